@@ -1,0 +1,27 @@
+//! Core types shared by every renderlab crate: images in linear light, colour conversion,
+//! image I/O with validation, the camera, meshes with tangent frames, materials, scenes and
+//! the per-pixel [`SurfacePoint`] that the rasterizer hands to the shading techniques.
+//!
+//! Everything here is deterministic and allocation-aware: images are flat arrays, sizes are
+//! validated before memory is reserved, and files are written atomically.
+
+pub mod camera;
+pub mod color;
+pub mod counter;
+pub mod error;
+pub mod image;
+pub mod io;
+pub mod material;
+pub mod mesh;
+pub mod procedural;
+pub mod scene;
+pub mod surface;
+
+pub use camera::Camera;
+pub use error::{CoreError, Result};
+pub use glam;
+pub use image::Image;
+pub use material::Material;
+pub use mesh::{Mesh, Vertex};
+pub use scene::{DirectionalLight, Scene, SceneObject};
+pub use surface::SurfacePoint;
