@@ -1,1 +1,20 @@
-fn main() {}
+//! `renderlab`: render relief and textured surfaces, measure the methods, write the lab report.
+//!
+//! This binary only parses arguments, reports progress and maps errors to exit codes; every
+//! algorithm lives in the library crates.
+
+mod args;
+mod commands;
+mod progress;
+
+use clap::Parser;
+
+fn main() {
+    let cli = args::Cli::parse();
+    if let Err(e) = commands::run(cli) {
+        // One line, naming the file or flag at fault.
+        let msg = format!("{e:#}").replace('\n', " ");
+        eprintln!("renderlab: error: {msg}");
+        std::process::exit(1);
+    }
+}

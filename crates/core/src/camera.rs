@@ -70,12 +70,7 @@ impl Camera {
 
     /// View → clip transform (depth mapped to [0,1]).
     pub fn projection(&self) -> Mat4 {
-        Mat4::perspective_rh(
-            self.fov_y_deg.to_radians(),
-            self.aspect(),
-            self.near,
-            self.far,
-        )
+        Mat4::perspective_rh(self.fov_y_deg.to_radians(), self.aspect(), self.near, self.far)
     }
 
     /// World → clip transform.
@@ -105,16 +100,8 @@ mod tests {
         let thesis = [(0.0, 7.0), (-4.24, 5.24), (-5.2, 4.0), (-5.91, 2.04)];
         for (angle, (x, z)) in BENCH_ANGLES_DEG.iter().zip(thesis) {
             let c = Camera::benchmark(*angle, 1280, 800);
-            assert!(
-                (c.position.x - x).abs() < 0.01,
-                "{angle}: x {}",
-                c.position.x
-            );
-            assert!(
-                (c.position.z - z).abs() < 0.01,
-                "{angle}: z {}",
-                c.position.z
-            );
+            assert!((c.position.x - x).abs() < 0.01, "{angle}: x {}", c.position.x);
+            assert!((c.position.z - z).abs() < 0.01, "{angle}: z {}", c.position.z);
         }
     }
 

@@ -90,11 +90,7 @@ pub enum CoreError {
 impl CoreError {
     /// Convenience constructor for [`CoreError::Parameter`].
     pub fn param(name: impl Into<String>, value: impl ToString, reason: impl Into<String>) -> Self {
-        CoreError::Parameter {
-            name: name.into(),
-            value: value.to_string(),
-            reason: reason.into(),
-        }
+        CoreError::Parameter { name: name.into(), value: value.to_string(), reason: reason.into() }
     }
 }
 
@@ -104,11 +100,7 @@ pub fn check_range(name: &str, value: f32, lo: f32, hi: f32) -> Result<f32> {
         return Err(CoreError::param(name, value, "must be a finite number"));
     }
     if value < lo || value > hi {
-        return Err(CoreError::param(
-            name,
-            value,
-            format!("must lie in [{lo}, {hi}]"),
-        ));
+        return Err(CoreError::param(name, value, format!("must lie in [{lo}, {hi}]")));
     }
     Ok(value)
 }

@@ -11,14 +11,7 @@ pub const MAX_PIXELS: u64 = 64 * 1024 * 1024;
 ///
 /// `what` names the file or parameter in the error message.
 pub fn check_dimensions(what: &str, width: u64, height: u64) -> Result<()> {
-    let err = |reason| {
-        Err(CoreError::Dimensions {
-            what: what.to_string(),
-            width,
-            height,
-            reason,
-        })
-    };
+    let err = |reason| Err(CoreError::Dimensions { what: what.to_string(), width, height, reason });
     if width == 0 || height == 0 {
         return err("width and height must be at least 1");
     }
@@ -44,11 +37,7 @@ impl<T: Copy> Image<T> {
     /// [`check_dimensions`] would refuse; validate user input first.
     pub fn new(width: u32, height: u32, value: T) -> Self {
         assert!(width > 0 && height > 0, "image dimensions must be positive");
-        Self {
-            width,
-            height,
-            data: vec![value; width as usize * height as usize],
-        }
+        Self { width, height, data: vec![value; width as usize * height as usize] }
     }
 
     /// An image whose pixel (x, y) is `f(x, y)`.
@@ -60,11 +49,7 @@ impl<T: Copy> Image<T> {
                 data.push(f(x, y));
             }
         }
-        Self {
-            width,
-            height,
-            data,
-        }
+        Self { width, height, data }
     }
 
     /// Like [`Image::from_fn`], rows computed in parallel (deterministic: each pixel
@@ -76,18 +61,12 @@ impl<T: Copy> Image<T> {
         use rayon::prelude::*;
         assert!(width > 0 && height > 0, "image dimensions must be positive");
         let mut data = vec![T::default(); width as usize * height as usize];
-        data.par_chunks_mut(width as usize)
-            .enumerate()
-            .for_each(|(y, row)| {
-                for (x, px) in row.iter_mut().enumerate() {
-                    *px = f(x as u32, y as u32);
-                }
-            });
-        Self {
-            width,
-            height,
-            data,
-        }
+        data.par_chunks_mut(width as usize).enumerate().for_each(|(y, row)| {
+            for (x, px) in row.iter_mut().enumerate() {
+                *px = f(x as u32, y as u32);
+            }
+        });
+        Self { width, height, data }
     }
 
     /// Wraps an existing buffer; errors if its length is not `width * height`.
@@ -100,11 +79,7 @@ impl<T: Copy> Image<T> {
                 format!("length must be {}x{}", width, height),
             ));
         }
-        Ok(Self {
-            width,
-            height,
-            data,
-        })
+        Ok(Self { width, height, data })
     }
 
     /// Width in pixels.
@@ -180,10 +155,6 @@ impl<T: Copy> Image<T> {
 
     /// A new image with `f` applied to every pixel.
     pub fn map<U: Copy>(&self, f: impl FnMut(T) -> U) -> Image<U> {
-        Image {
-            width: self.width,
-            height: self.height,
-            data: self.data.iter().copied().map(f).collect(),
-        }
+        Image { width: self.width, height: self.height, data: self.data.iter().copied().map(f).collect() }
     }
 }

@@ -54,13 +54,7 @@ impl Material {
             }
             None => normals_from_height(&height, height_scale),
         };
-        Ok(Self {
-            name,
-            albedo,
-            height,
-            normal,
-            height_scale,
-        })
+        Ok(Self { name, albedo, height, normal, height_scale })
     }
 
     /// `(width, height)` of the maps.

@@ -51,19 +51,11 @@ impl Mesh {
         ];
         let vertices = corners
             .iter()
-            .map(|&(position, uv)| Vertex {
-                position,
-                normal,
-                uv,
-                tangent: Vec4::ZERO,
-            })
+            .map(|&(position, uv)| Vertex { position, normal, uv, tangent: Vec4::ZERO })
             .collect();
         // Counter-clockwise as seen from the normal side: 0 (top-left), 3 (bottom-left),
         // 2 (bottom-right) then 0, 2, 1.
-        let mut mesh = Self {
-            vertices,
-            triangles: vec![[0, 3, 2], [0, 2, 1]],
-        };
+        let mut mesh = Self { vertices, triangles: vec![[0, 3, 2], [0, 2, 1]] };
         mesh.compute_tangents();
         mesh
     }
@@ -101,11 +93,7 @@ impl Mesh {
                 t = nrm.any_orthonormal_vector();
             }
             let t = t.normalize();
-            let w = if nrm.cross(t).dot(bit[i]) < 0.0 {
-                -1.0
-            } else {
-                1.0
-            };
+            let w = if nrm.cross(t).dot(bit[i]) < 0.0 { -1.0 } else { 1.0 };
             v.tangent = t.extend(w);
         }
     }

@@ -40,11 +40,7 @@ pub struct Lighting {
 
 impl Default for Lighting {
     fn default() -> Self {
-        Self {
-            ambient: 0.2,
-            specular_exponent: 32.0,
-            specular_strength: 0.2,
-        }
+        Self { ambient: 0.2, specular_exponent: 32.0, specular_strength: 0.2 }
     }
 }
 
@@ -77,10 +73,7 @@ pub struct Scene {
 /// The default light: from the front, above and slightly to the right, so that all three
 /// walls and the floor receive direct light at a moderate angle.
 pub fn default_light() -> DirectionalLight {
-    DirectionalLight {
-        to_light: Vec3::new(0.35, 0.55, 0.76).normalize(),
-        color: Vec3::ONE,
-    }
+    DirectionalLight { to_light: Vec3::new(0.35, 0.55, 0.76).normalize(), color: Vec3::ONE }
 }
 
 fn background() -> Vec3 {
@@ -101,11 +94,7 @@ impl Scene {
     /// The thesis's benchmark scene: only the bricks wall, lit by the default light.
     pub fn benchmark(bricks: Material) -> Self {
         Self {
-            objects: vec![SceneObject {
-                name: "wall2".into(),
-                mesh: bricks_wall(),
-                material: 0,
-            }],
+            objects: vec![SceneObject { name: "wall2".into(), mesh: bricks_wall(), material: 0 }],
             materials: vec![bricks],
             light: default_light(),
             lighting: Lighting::default(),
@@ -123,41 +112,27 @@ impl Scene {
         let turn = 35f32.to_radians();
         // Left wall: its right edge meets wall2's left edge; it runs toward +Z.
         let left_right_dir = Vec3::new(turn.cos(), 0.0, -turn.sin());
-        let left_centre =
-            BRICKS_WALL_CENTRE + Vec3::new(-half_w, 0.0, 0.0) - left_right_dir * half_w;
+        let left_centre = BRICKS_WALL_CENTRE + Vec3::new(-half_w, 0.0, 0.0) - left_right_dir * half_w;
         let right_right_dir = Vec3::new(turn.cos(), 0.0, turn.sin());
-        let right_centre =
-            BRICKS_WALL_CENTRE + Vec3::new(half_w, 0.0, 0.0) + right_right_dir * half_w;
+        let right_centre = BRICKS_WALL_CENTRE + Vec3::new(half_w, 0.0, 0.0) + right_right_dir * half_w;
         let down = -Vec3::Y * half_h;
         let floor_y = BRICKS_WALL_CENTRE.y - half_h;
         let floor_centre = Vec3::new(0.0, floor_y, 1.0 + 6.0);
-        let floor = Mesh::quad(
-            floor_centre,
-            Vec3::X * 12.0,
-            Vec3::Z * 6.0,
-            Vec2::new(24.0 / 3.0, 12.0 / 3.0),
-        );
+        let floor =
+            Mesh::quad(floor_centre, Vec3::X * 12.0, Vec3::Z * 6.0, Vec2::new(24.0 / 3.0, 12.0 / 3.0));
         let objects = vec![
             SceneObject {
                 name: "wall1".into(),
                 mesh: Mesh::quad(left_centre, left_right_dir * half_w, down, repeat),
                 material: 1,
             },
-            SceneObject {
-                name: "wall2".into(),
-                mesh: bricks_wall(),
-                material: 0,
-            },
+            SceneObject { name: "wall2".into(), mesh: bricks_wall(), material: 0 },
             SceneObject {
                 name: "wall3".into(),
                 mesh: Mesh::quad(right_centre, right_right_dir * half_w, down, repeat),
                 material: 2,
             },
-            SceneObject {
-                name: "floor".into(),
-                mesh: floor,
-                material: 3,
-            },
+            SceneObject { name: "floor".into(), mesh: floor, material: 3 },
         ];
         Self {
             objects,
@@ -171,21 +146,11 @@ impl Scene {
     /// The thesis's room with the built-in procedural materials at `size`² texels.
     pub fn thesis_room_default(size: u32) -> Result<Self> {
         let m = |n| procedural::material(n, size);
-        Ok(Self::thesis_room([
-            m("bricks")?,
-            m("sand_rocks")?,
-            m("bark_willow")?,
-            m("brick_pavement")?,
-        ]))
+        Ok(Self::thesis_room([m("bricks")?, m("sand_rocks")?, m("bark_willow")?, m("brick_pavement")?]))
     }
 
     /// A camera overlooking the whole room from the middle of the thesis's walking area.
     pub fn room_camera(width: u32, height: u32) -> Camera {
-        Camera::look_at(
-            Vec3::new(1.5, 1.6, 9.5),
-            Vec3::new(0.0, 0.4, 1.0),
-            width,
-            height,
-        )
+        Camera::look_at(Vec3::new(1.5, 1.6, 9.5), Vec3::new(0.0, 0.4, 1.0), width, height)
     }
 }

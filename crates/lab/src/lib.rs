@@ -1,1 +1,28 @@
-//! placeholder
+//! Experiments and their measurement: image metrics, timing, results files and HTML reports.
+//!
+//! This crate is the toolkit every lab (relief, texture filtering, noise, ray tracing) is built
+//! from. An experiment renders each technique and a ground-truth reference with the same
+//! shading, then:
+//!
+//! - times each technique the same way with [`timing::measure`] (warm-up, repetitions, median);
+//! - compares its image with the reference with [`metrics`] (PSNR, SSIM and FLIP, optionally
+//!   restricted to a mask such as "pixels where the surface is visible");
+//! - turns error maps into pictures with [`heatmap`];
+//! - writes rows of numbers with [`results`] (CSV and JSON, atomically);
+//! - draws cost-against-error charts with [`plot`] and assembles a self-contained HTML page
+//!   with [`report`], linked from an index page.
+
+pub mod error;
+mod glyphs;
+pub mod heatmap;
+pub mod metrics;
+pub mod plot;
+pub mod relief_lab;
+pub mod report;
+pub mod results;
+pub mod timing;
+
+pub use error::{LabError, Result};
+pub use metrics::{Comparison, FlipResult, Metrics};
+pub use report::Report;
+pub use timing::{measure, Timing};

@@ -20,11 +20,7 @@ impl HeightField {
         Self {
             width: h.width(),
             height: h.height(),
-            depth: h
-                .pixels()
-                .iter()
-                .map(|&v| 1.0 - v.clamp(0.0, 1.0))
-                .collect(),
+            depth: h.pixels().iter().map(|&v| 1.0 - v.clamp(0.0, 1.0)).collect(),
         }
     }
 
@@ -75,16 +71,8 @@ impl HeightField {
         let x = uv.x * self.width as f32 - 0.5;
         let y = uv.y * self.height as f32 - 0.5;
         // NaN or absurd coordinates: clamp into a safe range so the lookup is defined.
-        let x = if x.is_finite() {
-            x.clamp(-1.0e7, 1.0e7)
-        } else {
-            0.0
-        };
-        let y = if y.is_finite() {
-            y.clamp(-1.0e7, 1.0e7)
-        } else {
-            0.0
-        };
+        let x = if x.is_finite() { x.clamp(-1.0e7, 1.0e7) } else { 0.0 };
+        let y = if y.is_finite() { y.clamp(-1.0e7, 1.0e7) } else { 0.0 };
         let x0 = x.floor();
         let y0 = y.floor();
         let fx = x - x0;

@@ -1,0 +1,205 @@
+//! Command-line arguments.
+
+use clap::{Args, Parser, Subcommand};
+use std::path::PathBuf;
+
+/// renderlab: forms images of textured and relief surfaces and measures rendering methods
+/// for cost and for error against a ground-truth reference.
+#[derive(Parser, Debug)]
+#[command(name = "renderlab", version, about, long_about = None)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Run every lab at default settings on the built-in scenes and write the full report
+    /// (DIR/index.html). Takes a few minutes on 2 cores.
+    Report(ReportArgs),
+    /// Relief-surface lab: render one technique, or benchmark them all.
+    #[command(subcommand)]
+    Relief(ReliefCommand),
+    /// Compute the thesis's Sobel complexity map of a height map (first channel, 8 or 16 bit)
+    /// and write it as an 8-bit grey PNG.
+    Complexity(ComplexityArgs),
+    /// Write the built-in procedural materials (albedo, height, normal maps) as PNG files.
+    Materials(MaterialsArgs),
+}
+
+/// `renderlab report`.
+#[derive(Args, Debug)]
+pub struct ReportArgs {
+    /// Output directory (created if missing).
+    #[arg(long, default_value = "report")]
+    pub out: PathBuf,
+    /// Fewer repetitions and a smaller frame, for a quick look (not for figures).
+    #[arg(long)]
+    pub quick: bool,
+}
+
+/// `renderlab relief …`.
+#[derive(Subcommand, Debug)]
+pub enum ReliefCommand {
+    /// Render every technique at the thesis's four view angles, time it, measure its error
+    /// against the exact height-field intersection and write results.json, results.csv,
+    /// images and index.html to --out.
+    Bench(BenchArgs),
+    /// Render one technique to a PNG.
+    Render(RenderArgs),
+}
+
+/// Which material to use: a built-in one or the user's maps.
+#[derive(Args, Debug, Clone)]
+pub struct MaterialArgs {
+    /// Built-in material: bricks, sand_rocks, bark_willow or brick_pavement.
+    #[arg(long, default_value = "bricks")]
+    pub material: String,
+    /// Size of the built-in material's maps in texels per side.
+    #[arg(long, default_value_t = 1024)]
+    pub texture_size: u32,
+    /// Your albedo map (PNG, JPEG, TGA or EXR); use with --height-map instead of --material.
+    #[arg(long, requires = "height_map")]
+    pub albedo: Option<PathBuf>,
+    /// Your height map (first channel, 8 or 16 bit; white = top).
+    #[arg(long, requires = "albedo")]
+    pub height_map: Option<PathBuf>,
+    /// Your tangent-space normal map (optional; derived from the height map if absent).
+    #[arg(long, requires = "albedo")]
+    pub normal_map: Option<PathBuf>,
+    /// Relief depth in UV units per unit depth for your maps (the thesis's HeightScale).
+    #[arg(long, default_value_t = 0.05)]
+    pub height_scale: f32,
+}
+
+/// Complexity-map parameters (the thesis code's defaults).
+#[derive(Args, Debug, Clone)]
+pub struct ComplexityFlags {
+    /// Number of 3×3 grey-dilation passes.
+    #[arg(long, default_value_t = 5)]
+    pub dilate: u32,
+    /// Gamma applied after dilation (values below 1 lift small gradients).
+    #[arg(long, default_value_t = 0.8)]
+    pub gamma: f32,
+    /// Number of quantisation levels.
+    #[arg(long, default_value_t = 24)]
+    pub levels: u32,
+}
+
+/// `renderlab relief bench`.
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// Output directory.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Material.
+    #[command(flatten)]
+    pub material: MaterialArgs,
+    /// Frame width in pixels.
+    #[arg(long, default_value_t = 1280)]
+    pub width: u32,
+    /// Frame height in pixels.
+    #[arg(long, default_value_t = 800)]
+    pub height: u32,
+    /// View angles in degrees from the wall normal, comma-separated (each in [0, 89]).
+    #[arg(long, value_delimiter = ',', default_value = "0,45,60,80")]
+    pub angles: Vec<f32>,
+    /// Techniques, comma-separated (default: all). Syntax: basic, normal, parallax, steep:N,
+    /// pom:N, adaptive[:MIN:MAX], relief[:LINEAR:BINARY], adaptive-relief[:MIN:MAX:BINARY],
+    /// cone[:STEPS:BINARY], pom-shadow[:N:SAMPLES].
+    #[arg(long, value_delimiter = ',')]
+    pub techniques: Vec<String>,
+    /// Timed repetitions per measurement (the median is reported).
+    #[arg(long, default_value_t = 5)]
+    pub reps: u32,
+    /// Untimed warm-up renders per measurement.
+    #[arg(long, default_value_t = 1)]
+    pub warmup: u32,
+    /// Skip writing images (results and report only).
+    #[arg(long)]
+    pub no_images: bool,
+    /// Complexity-map parameters for adaptive POM.
+    #[command(flatten)]
+    pub complexity: ComplexityFlags,
+}
+
+/// What `relief render` shows.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DebugView {
+    /// The shaded image.
+    None,
+    /// Per-pixel layer count as a heat map (the thesis's debug mode, in colour).
+    Layers,
+    /// The complexity map sampled at each pixel.
+    Complexity,
+    /// The exact reference instead of the technique.
+    Reference,
+    /// UV error against the reference, 0–4 texels.
+    Error,
+}
+
+/// Which scene `relief render` draws.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SceneChoice {
+    /// The benchmark: the material alone on the bricks wall, camera at --angle.
+    Bench,
+    /// The thesis's room: three walls and a floor with the four built-in materials.
+    Room,
+}
+
+/// `renderlab relief render`.
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// Technique (see `relief bench --help` for the syntax).
+    #[arg(long, short, default_value = "adaptive")]
+    pub technique: String,
+    /// Output PNG (or EXR) file.
+    #[arg(long, short)]
+    pub out: PathBuf,
+    /// Material (benchmark scene only).
+    #[command(flatten)]
+    pub material: MaterialArgs,
+    /// Scene.
+    #[arg(long, value_enum, default_value_t = SceneChoice::Bench)]
+    pub scene: SceneChoice,
+    /// View angle in degrees from the wall normal (benchmark scene).
+    #[arg(long, default_value_t = 45.0)]
+    pub angle: f32,
+    /// Frame width in pixels.
+    #[arg(long, default_value_t = 1280)]
+    pub width: u32,
+    /// Frame height in pixels.
+    #[arg(long, default_value_t = 800)]
+    pub height: u32,
+    /// Debug view instead of the shaded image.
+    #[arg(long, value_enum, default_value_t = DebugView::None)]
+    pub debug: DebugView,
+    /// Complexity-map parameters for adaptive POM.
+    #[command(flatten)]
+    pub complexity: ComplexityFlags,
+}
+
+/// `renderlab complexity`.
+#[derive(Args, Debug)]
+pub struct ComplexityArgs {
+    /// Input height map (PNG, JPEG, TGA or EXR; first channel is used).
+    pub height: PathBuf,
+    /// Output complexity map (PNG, 8-bit grey, value·255 truncated as the thesis's tool does).
+    pub out: PathBuf,
+    /// Parameters.
+    #[command(flatten)]
+    pub params: ComplexityFlags,
+}
+
+/// `renderlab materials`.
+#[derive(Args, Debug)]
+pub struct MaterialsArgs {
+    /// Output directory.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Texture size in texels per side.
+    #[arg(long, default_value_t = 1024)]
+    pub size: u32,
+}

@@ -1,0 +1,232 @@
+//! The subcommands' implementations: validate arguments, call the libraries, report.
+
+use crate::args::*;
+use crate::progress::Progress;
+use anyhow::{bail, Context, Result};
+use glam::Vec3;
+use renderlab_core::camera::Camera;
+use renderlab_core::error::check_range;
+use renderlab_core::image::check_dimensions;
+use renderlab_core::procedural::{self, MATERIAL_NAMES};
+use renderlab_core::{io, Image, Material, Scene};
+use renderlab_lab::heatmap::heat_image;
+use renderlab_lab::relief_lab::{default_techniques, run_relief_bench, ReliefBenchConfig, View};
+use renderlab_relief::complexity::{complexity_map, ComplexityParams};
+use renderlab_relief::render::{render, render_reference};
+use renderlab_relief::{ReliefMaterial, Technique};
+use std::path::Path;
+
+/// Dispatches a parsed command line.
+pub fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Report(a) => report(a),
+        Command::Relief(ReliefCommand::Bench(a)) => relief_bench(a),
+        Command::Relief(ReliefCommand::Render(a)) => relief_render(a),
+        Command::Complexity(a) => complexity(a),
+        Command::Materials(a) => materials(a),
+    }
+}
+
+fn params(f: &ComplexityFlags) -> Result<ComplexityParams> {
+    let p = ComplexityParams { dilation_iterations: f.dilate, gamma: f.gamma, levels: f.levels };
+    p.validate()?;
+    Ok(p)
+}
+
+fn frame_size(width: u32, height: u32) -> Result<()> {
+    check_dimensions("--width/--height", width as u64, height as u64)?;
+    if width < 8 || height < 8 {
+        bail!("--width/--height: {width}x{height} is too small (at least 8x8)");
+    }
+    Ok(())
+}
+
+/// Loads the material the user asked for.
+fn load_material(m: &MaterialArgs) -> Result<Material> {
+    match (&m.albedo, &m.height_map) {
+        (Some(a), Some(h)) => {
+            check_range("--height-scale", m.height_scale, 0.0, 1.0)?;
+            let albedo = io::load_color(a)?;
+            let height = io::load_height(h)?;
+            let normal = match &m.normal_map {
+                Some(n) => Some(io::load_normal_map(n)?),
+                None => None,
+            };
+            let name =
+                a.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "user".into());
+            Ok(Material::from_maps(name, albedo, height, normal, m.height_scale)?)
+        }
+        _ => {
+            if m.texture_size > 8192 {
+                bail!("--texture-size: {} is larger than 8192", m.texture_size);
+            }
+            Ok(procedural::material(&m.material, m.texture_size)?)
+        }
+    }
+}
+
+fn parse_techniques(list: &[String]) -> Result<Vec<Technique>> {
+    if list.is_empty() {
+        return Ok(default_techniques());
+    }
+    list.iter().map(|s| Technique::parse(s).map_err(Into::into)).collect()
+}
+
+fn check_angles(angles: &[f32]) -> Result<()> {
+    if angles.is_empty() {
+        bail!("--angles: give at least one angle");
+    }
+    for &a in angles {
+        check_range("--angles", a, 0.0, 89.0)?;
+    }
+    Ok(())
+}
+
+fn relief_bench(a: BenchArgs) -> Result<()> {
+    frame_size(a.width, a.height)?;
+    check_angles(&a.angles)?;
+    if a.reps == 0 || a.reps > 1000 {
+        bail!("--reps: {} must lie in 1..=1000", a.reps);
+    }
+    if a.warmup > 100 {
+        bail!("--warmup: {} must lie in 0..=100", a.warmup);
+    }
+    let cfg = ReliefBenchConfig {
+        width: a.width,
+        height: a.height,
+        angles: a.angles.clone(),
+        techniques: parse_techniques(&a.techniques)?,
+        warmup: a.warmup,
+        reps: a.reps,
+        complexity: params(&a.complexity)?,
+        write_images: !a.no_images,
+    };
+    let material = load_material(&a.material)?;
+    create_dir(&a.out)?;
+    let p = Progress::new("relief");
+    let summary = run_relief_bench(&material, &cfg, &a.out, &|d, t, m| p.update(d, t, m))?;
+    p.finish();
+    for f in &summary.findings {
+        println!("{f}");
+    }
+    println!("wrote {} ({} measurements)", summary.index.display(), summary.records.len());
+    Ok(())
+}
+
+fn create_dir(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("{}: cannot create directory", dir.display()))
+}
+
+fn relief_render(a: RenderArgs) -> Result<()> {
+    frame_size(a.width, a.height)?;
+    check_range("--angle", a.angle, 0.0, 89.0)?;
+    io::format_of(&a.out)?;
+    let technique = Technique::parse(&a.technique)?;
+    let cp = params(&a.complexity)?;
+    let (scene, camera) = match a.scene {
+        SceneChoice::Bench => {
+            let m = load_material(&a.material)?;
+            (Scene::benchmark(m), Camera::benchmark(a.angle, a.width, a.height))
+        }
+        SceneChoice::Room => {
+            let size = a.material.texture_size.min(8192);
+            (Scene::thesis_room_default(size)?, Scene::room_camera(a.width, a.height))
+        }
+    };
+    let mats: Vec<ReliefMaterial> =
+        scene.materials.iter().map(|m| ReliefMaterial::new(m, &cp, technique.needs_cone_map())).collect();
+    let view = View::new(&scene, &camera, a.angle);
+    let lit = |t| render(view.input(), &mats, t, scene.lighting, scene.background, false);
+    let rgb8 = |img: Image<[u8; 3]>| -> Image<Vec3> {
+        img.map(|c| Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32) / 255.0).map(|c| {
+            Vec3::new(
+                renderlab_core::color::srgb_to_linear(c.x),
+                renderlab_core::color::srgb_to_linear(c.y),
+                renderlab_core::color::srgb_to_linear(c.z),
+            )
+        })
+    };
+    let out = match a.debug {
+        DebugView::None => lit(technique).image,
+        DebugView::Reference => {
+            render_reference(view.input(), &mats, technique, scene.lighting, scene.background).image
+        }
+        DebugView::Layers => {
+            let f = render(view.input(), &mats, technique, scene.lighting, scene.background, false);
+            let max = technique.layers().max(1) as f32;
+            rgb8(heat_image(&f.layers.map(|l| l as f32), max, Some(&f.mask)))
+        }
+        DebugView::Complexity => {
+            let f = render(view.input(), &mats, Technique::Basic, scene.lighting, scene.background, false);
+            let c =
+                Image::from_fn(a.width, a.height, |x, y| match view.gbuffer.get(x, y) {
+                    Some(sp) => mats[sp.material as usize].inputs().complexity_at(sp.uv),
+                    None => 0.0,
+                });
+            rgb8(heat_image(&c, 1.0, Some(&f.mask)))
+        }
+        DebugView::Error => {
+            let f = lit(technique);
+            let r = render_reference(view.input(), &mats, technique, scene.lighting, scene.background);
+            let size = glam::Vec2::new(mats[0].height.width() as f32, mats[0].height.height() as f32);
+            let e =
+                Image::from_fn(a.width, a.height, |x, y| ((f.uv.get(x, y) - r.uv.get(x, y)) * size).length());
+            rgb8(heat_image(&e, 4.0, Some(&f.mask)))
+        }
+    };
+    io::save_color(&a.out, &out)?;
+    println!("wrote {}", a.out.display());
+    Ok(())
+}
+
+fn complexity(a: ComplexityArgs) -> Result<()> {
+    let p = params(&a.params)?;
+    io::format_of(&a.out)?;
+    let h = io::load_height(&a.height)?;
+    let c = complexity_map(&h, &p);
+    io::save_gray(&a.out, &c, false)?;
+    println!("Complexity map saved as {}.", a.out.display());
+    Ok(())
+}
+
+fn materials(a: MaterialsArgs) -> Result<()> {
+    create_dir(&a.out)?;
+    for name in MATERIAL_NAMES {
+        let m = procedural::material(name, a.size)?;
+        io::save_color(a.out.join(format!("{name}_albedo.png")), &m.albedo)?;
+        io::save_gray(a.out.join(format!("{name}_height.png")), &m.height, true)?;
+        let n = m.normal.map(|n| n * 0.5 + Vec3::splat(0.5));
+        let n8 = n.map(|c| [(c.x * 255.0 + 0.5) as u8, (c.y * 255.0 + 0.5) as u8, (c.z * 255.0 + 0.5) as u8]);
+        io::save_rgb8(a.out.join(format!("{name}_normal.png")), &n8)?;
+        println!("wrote {name} ({0}x{0})", a.size);
+    }
+    Ok(())
+}
+
+fn report(a: ReportArgs) -> Result<()> {
+    create_dir(&a.out)?;
+    let started = std::time::Instant::now();
+    let mut cfg = ReliefBenchConfig::default();
+    if a.quick {
+        cfg.width = 640;
+        cfg.height = 400;
+        cfg.reps = 1;
+        cfg.warmup = 0;
+    }
+    let material = procedural::material("bricks", procedural::DEFAULT_SIZE)?;
+    let relief_dir = a.out.join("relief");
+    create_dir(&relief_dir)?;
+    let p = Progress::new("relief");
+    let summary = run_relief_bench(&material, &cfg, &relief_dir, &|d, t, m| p.update(d, t, m))?;
+    p.finish();
+    let findings = summary.findings.join(" ");
+    renderlab_lab::report::write_index(
+        &a.out,
+        &[("Relief surfaces (thesis 000)", "relief/index.html", findings.as_str())],
+    )?;
+    for f in &summary.findings {
+        println!("{f}");
+    }
+    println!("wrote {} in {:.1} s", a.out.join("index.html").display(), started.elapsed().as_secs_f64());
+    Ok(())
+}

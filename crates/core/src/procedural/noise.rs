@@ -1,0 +1,331 @@
+//! Small deterministic noise toolkit for the procedural materials: an integer hash, periodic
+//! gradient (Perlin) noise with fBm and ridged sums, and periodic cellular (Voronoi) features.
+//!
+//! Everything is a pure function of its arguments (no RNG state), so maps built with it are
+//! bit-identical for any thread count. Every function works in texture space `(u, v)` and is
+//! periodic with period 1 along both axes: the lattice is wrapped modulo a whole number of
+//! cells (`px × py`), so a texture built from these functions tiles seamlessly at any size.
+//!
+//! This is deliberately separate from the `renderlab-noise` crate (the thesis's noise, being
+//! measured); the materials only need something small, periodic and fast.
+
+use glam::Vec2;
+
+/// A 32-bit integer hash with good avalanche (the "lowbias32" finaliser by Chris Wellons).
+/// Used instead of a random-number generator so that every value is a pure function of
+/// its inputs.
+#[inline]
+pub fn hash(mut x: u32) -> u32 {
+    x ^= x >> 16;
+    x = x.wrapping_mul(0x7feb_352d);
+    x ^= x >> 15;
+    x = x.wrapping_mul(0x846c_a68b);
+    x ^= x >> 16;
+    x
+}
+
+/// Hash of a lattice point `(ix, iy)` under `seed`: the identity of a noise cell.
+#[inline]
+pub fn hash2(ix: u32, iy: u32, seed: u32) -> u32 {
+    hash(ix ^ hash(iy.wrapping_add(hash(seed))))
+}
+
+/// A uniform value in `[0, 1)` from a hash (24 high-quality bits).
+#[inline]
+pub fn unit(h: u32) -> f32 {
+    (h >> 8) as f32 * (1.0 / 16_777_216.0)
+}
+
+/// The `k`-th independent uniform value in `[0, 1)` attached to an identity `id` (a cell,
+/// a brick, a rock): used for per-object colour, size and orientation.
+#[inline]
+pub fn rand(id: u32, k: u32) -> f32 {
+    unit(hash(id ^ hash(k.wrapping_mul(0x9e37_79b9).wrapping_add(0x632b_e5ab))))
+}
+
+/// Hermite smoothstep: 0 below `e0`, 1 above `e1`, a C¹ ramp between.
+#[inline]
+pub fn smoothstep(e0: f32, e1: f32, x: f32) -> f32 {
+    let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// Linear interpolation `a + (b − a)·t`.
+#[inline]
+pub fn lerp(a: f32, b: f32, t: f32) -> f32 {
+    a + (b - a) * t
+}
+
+/// Perlin's quintic fade curve (C² continuous lattice interpolation).
+#[inline]
+fn fade(t: f32) -> f32 {
+    t * t * t * (t * (t * 6.0 - 15.0) + 10.0)
+}
+
+/// Sixteen evenly spaced unit gradients (cos, sin of k·22.5°).
+const GRADIENTS: [(f32, f32); 16] = [
+    (1.0, 0.0),
+    (0.923_879_5, 0.382_683_43),
+    (0.707_106_77, 0.707_106_77),
+    (0.382_683_43, 0.923_879_5),
+    (0.0, 1.0),
+    (-0.382_683_43, 0.923_879_5),
+    (-0.707_106_77, 0.707_106_77),
+    (-0.923_879_5, 0.382_683_43),
+    (-1.0, 0.0),
+    (-0.923_879_5, -0.382_683_43),
+    (-0.707_106_77, -0.707_106_77),
+    (-0.382_683_43, -0.923_879_5),
+    (0.0, -1.0),
+    (0.382_683_43, -0.923_879_5),
+    (0.707_106_77, -0.707_106_77),
+    (0.923_879_5, -0.382_683_43),
+];
+
+/// Splits a lattice coordinate into its wrapped cell index (modulo `period`), the next
+/// cell's index, and the fractional part.
+#[inline]
+fn lattice(x: f32, period: u32) -> (u32, u32, f32) {
+    let xf = x.floor();
+    let i = wrap(xf as i64, period);
+    let j = if i + 1 == period { 0 } else { i + 1 };
+    (i, j, x - xf)
+}
+
+/// `i` modulo `period` in `[0, period)`, without a division in the common case where `i` is
+/// already inside or one period off.
+#[inline]
+fn wrap(i: i64, period: u32) -> u32 {
+    let p = period as i64;
+    if (0..p).contains(&i) {
+        i as u32
+    } else if (p..2 * p).contains(&i) {
+        (i - p) as u32
+    } else if (-p..0).contains(&i) {
+        (i + p) as u32
+    } else {
+        i.rem_euclid(p) as u32
+    }
+}
+
+/// Periodic 2D gradient noise at texture coordinates `(u, v)` with `px × py` lattice cells
+/// per unit square (so period 1 in u and v). Roughly in `[-1, 1]`, 0 at lattice points.
+#[inline]
+pub fn perlin(u: f32, v: f32, px: u32, py: u32, seed: u32) -> f32 {
+    let (ix0, ix1, fx) = lattice(u * px as f32, px.max(1));
+    let (iy0, iy1, fy) = lattice(v * py as f32, py.max(1));
+    let s = hash(seed);
+    let hy0 = hash(iy0.wrapping_add(s));
+    let hy1 = hash(iy1.wrapping_add(s));
+    let g = |ix: u32, hy: u32, dx: f32, dy: f32| {
+        let (gx, gy) = GRADIENTS[(hash(ix ^ hy) & 15) as usize];
+        gx * dx + gy * dy
+    };
+    let n00 = g(ix0, hy0, fx, fy);
+    let n10 = g(ix1, hy0, fx - 1.0, fy);
+    let n01 = g(ix0, hy1, fx, fy - 1.0);
+    let n11 = g(ix1, hy1, fx - 1.0, fy - 1.0);
+    let (sx, sy) = (fade(fx), fade(fy));
+    // 2D gradient noise with unit gradients peaks at ±√½; rescale to about ±1.
+    lerp(lerp(n00, n10, sx), lerp(n01, n11, sx), sy) * std::f32::consts::SQRT_2
+}
+
+/// Fractal sums of periodic gradient noise: octave `k` has `2^k` times the base cell count,
+/// and amplitude `gain^k`. Octaves finer than `max_cells` cells per unit (the sampling
+/// limit of the texture) are skipped, so small textures do not alias.
+#[derive(Clone, Copy, Debug)]
+pub struct Fbm {
+    /// Base lattice cells per unit along u.
+    pub px: u32,
+    /// Base lattice cells per unit along v.
+    pub py: u32,
+    /// Number of octaves.
+    pub octaves: u32,
+    /// Amplitude ratio between successive octaves.
+    pub gain: f32,
+    /// Seed of the first octave (later octaves derive their own).
+    pub seed: u32,
+    /// Finest allowed cell count per unit (typically half the texture size).
+    pub max_cells: u32,
+}
+
+impl Fbm {
+    /// An fBm with `px × py` base cells, 4 octaves of gain ½ and no detail limit.
+    pub const fn new(px: u32, py: u32, seed: u32) -> Self {
+        Self { px, py, octaves: 4, gain: 0.5, seed, max_cells: u32::MAX }
+    }
+
+    /// Sets the octave count.
+    pub const fn octaves(mut self, octaves: u32) -> Self {
+        self.octaves = octaves;
+        self
+    }
+
+    /// Sets the amplitude ratio between octaves.
+    pub const fn gain(mut self, gain: f32) -> Self {
+        self.gain = gain;
+        self
+    }
+
+    /// Skips octaves with more than `max_cells` cells per unit (the first is always kept).
+    pub const fn limit(mut self, max_cells: u32) -> Self {
+        self.max_cells = max_cells;
+        self
+    }
+
+    /// Sum of `octave(noise)` normalised by the full amplitude sum, so that the amplitude of
+    /// each octave does not depend on how many were skipped.
+    #[inline]
+    fn sum(&self, u: f32, v: f32, octave: impl Fn(f32) -> f32) -> f32 {
+        let (mut px, mut py) = (self.px, self.py);
+        let (mut amp, mut total, mut norm) = (1.0, 0.0, 0.0);
+        for k in 0..self.octaves {
+            if k == 0 || px.max(py) <= self.max_cells {
+                total += amp * octave(perlin(u, v, px, py, self.seed.wrapping_add(k * 7919)));
+            }
+            norm += amp;
+            amp *= self.gain;
+            px = px.saturating_mul(2);
+            py = py.saturating_mul(2);
+        }
+        total / norm
+    }
+
+    /// Fractional Brownian motion, roughly in `[-1, 1]` (mostly within ±0.6).
+    #[inline]
+    pub fn fbm(&self, u: f32, v: f32) -> f32 {
+        self.sum(u, v, |n| n)
+    }
+
+    /// Turbulence (sum of `|noise|`), in `[0, 1]`: creases at the noise's zero lines.
+    #[inline]
+    pub fn turbulence(&self, u: f32, v: f32) -> f32 {
+        self.sum(u, v, f32::abs)
+    }
+
+    /// Ridged noise (sum of `1 − |noise|`), in `[0, 1]`: sharp crests at the zero lines.
+    #[inline]
+    pub fn ridged(&self, u: f32, v: f32) -> f32 {
+        self.sum(u, v, |n| 1.0 - n.abs())
+    }
+}
+
+/// One feature point of a periodic cellular (Voronoi) pattern.
+#[derive(Clone, Copy, Debug)]
+pub struct Feature {
+    /// Identity of the feature's cell, wrapped into the period (same on both sides of a seam).
+    pub id: u32,
+    /// The feature's cell `(ix, iy)`, wrapped into `[0, px) × [0, py)`.
+    pub cell: [u32; 2],
+    /// Vector from the query point to the feature, in lattice units (one cell = 1).
+    pub delta: Vec2,
+}
+
+/// Calls `f` for the feature points of the 3×3 cells around `(u, v)` in a periodic
+/// `px × py` cellular pattern: one point per cell, jittered within the cell by up to
+/// `jitter` (0 = cell centres, 1 = anywhere). Any feature closer than `1 + (1 − jitter)/2`
+/// cells to the query point is among them.
+#[inline]
+pub fn for_each_feature(
+    u: f32,
+    v: f32,
+    px: u32,
+    py: u32,
+    jitter: f32,
+    seed: u32,
+    mut f: impl FnMut(Feature),
+) {
+    let (px, py) = (px.max(1), py.max(1));
+    let (x, y) = (u * px as f32, v * py as f32);
+    let (cx, cy) = (x.floor(), y.floor());
+    let (fx, fy) = (x - cx, y - cy);
+    let (cx, cy) = (cx as i64, cy as i64);
+    for dy in -1..=1i64 {
+        let iy = wrap(cy + dy, py);
+        for dx in -1..=1i64 {
+            let ix = wrap(cx + dx, px);
+            let id = hash2(ix, iy, seed);
+            let jx = 0.5 + jitter * (unit(id) - 0.5);
+            let jy = 0.5 + jitter * (unit(hash(id)) - 0.5);
+            f(Feature { id, cell: [ix, iy], delta: Vec2::new(dx as f32 + jx - fx, dy as f32 + jy - fy) });
+        }
+    }
+}
+
+/// Distances to the nearest and second-nearest feature points of a periodic cellular
+/// pattern (in lattice units), with the nearest feature.
+#[derive(Clone, Copy, Debug)]
+pub struct Cellular {
+    /// Distance to the nearest feature (F1).
+    pub f1: f32,
+    /// Distance to the second-nearest feature (F2); `f2 − f1` is 0 on cell borders.
+    pub f2: f32,
+    /// The nearest feature.
+    pub nearest: Feature,
+}
+
+/// Worley's cellular noise (F1, F2) on a periodic `px × py` lattice; see [`for_each_feature`].
+#[inline]
+pub fn cellular(u: f32, v: f32, px: u32, py: u32, jitter: f32, seed: u32) -> Cellular {
+    let mut best =
+        Cellular { f1: f32::MAX, f2: f32::MAX, nearest: Feature { id: 0, cell: [0, 0], delta: Vec2::ZERO } };
+    for_each_feature(u, v, px, py, jitter, seed, |ft| {
+        let d = ft.delta.length_squared();
+        if d < best.f1 {
+            best.f2 = best.f1;
+            best.f1 = d;
+            best.nearest = ft;
+        } else if d < best.f2 {
+            best.f2 = d;
+        }
+    });
+    best.f1 = best.f1.sqrt();
+    best.f2 = best.f2.sqrt();
+    best
+}
+
+/// Signed distance from `p` to a rectangle centred at the origin with half extents `half`
+/// and corners rounded by `radius`: negative inside, positive outside.
+#[inline]
+pub fn rounded_box(p: Vec2, half: Vec2, radius: f32) -> f32 {
+    let q = p.abs() - half + Vec2::splat(radius);
+    q.max(Vec2::ZERO).length() + q.x.max(q.y).min(0.0) - radius
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn perlin_is_periodic_and_bounded() {
+        for i in 0..200 {
+            let u = unit(hash(i)) * 3.0 - 1.0;
+            let v = unit(hash(i + 1000)) * 3.0 - 1.0;
+            let a = perlin(u, v, 5, 7, 3);
+            let b = perlin(u + 1.0, v - 2.0, 5, 7, 3);
+            assert!((a - b).abs() < 1e-4, "{a} vs {b}");
+            assert!(a.abs() <= 1.0 + 1e-4);
+        }
+    }
+
+    #[test]
+    fn fbm_and_cellular_are_periodic() {
+        let f = Fbm::new(3, 4, 9).octaves(5);
+        for i in 0..100 {
+            let u = unit(hash(i));
+            let v = unit(hash(i + 77));
+            assert!((f.fbm(u, v) - f.fbm(u + 1.0, v + 1.0)).abs() < 1e-4);
+            let a = cellular(u, v, 6, 5, 0.9, 1);
+            let b = cellular(u - 1.0, v + 1.0, 6, 5, 0.9, 1);
+            assert!((a.f1 - b.f1).abs() < 1e-4 && a.nearest.id == b.nearest.id);
+            assert!(a.f1 <= a.f2);
+        }
+    }
+
+    #[test]
+    fn rounded_box_signs() {
+        let half = Vec2::new(2.0, 1.0);
+        assert!(rounded_box(Vec2::ZERO, half, 0.1) < 0.0);
+        assert!((rounded_box(Vec2::new(3.0, 0.0), half, 0.1) - 1.0).abs() < 1e-6);
+    }
+}

@@ -1,0 +1,25 @@
+//! Typed errors of the lab crate. Like the core crate's errors, each message names the file
+//! at fault so that the command-line tool can print it as one line.
+
+use renderlab_core::CoreError;
+use std::path::PathBuf;
+
+/// Result alias for the lab crate.
+pub type Result<T> = std::result::Result<T, LabError>;
+
+/// Everything that can go wrong when the lab writes results or reports.
+#[derive(Debug, thiserror::Error)]
+pub enum LabError {
+    /// An error from the core crate, typically a failed atomic write.
+    #[error(transparent)]
+    Core(#[from] CoreError),
+    /// A value could not be turned into JSON or CSV (for CSV: a field that is not a scalar,
+    /// or rows whose columns differ).
+    #[error("{path}: cannot serialise results: {reason}")]
+    Serialize {
+        /// File that was to be written.
+        path: PathBuf,
+        /// What the serialiser reported.
+        reason: String,
+    },
+}

@@ -1,0 +1,566 @@
+//! The relief-surface lab: renders every relief technique at the thesis's benchmark views,
+//! times it, counts its height fetches, and measures its error against the exact
+//! intersection shaded the same way. Writes `results.json`, `results.csv`, images and an
+//! `index.html` that sets our figures beside the thesis's Table 4.1.
+
+use crate::heatmap::{heat_image, with_legend};
+use crate::metrics::compare;
+use crate::plot::{scatter_svg, Series};
+use crate::report::Report;
+use crate::results::{write_csv, write_json};
+use crate::timing::{measure, Timing};
+use glam::Vec2;
+use renderlab_core::camera::{Camera, BENCH_ANGLES_DEG, BENCH_HEIGHT, BENCH_WIDTH};
+use renderlab_core::io::{save_color, save_rgb8};
+use renderlab_core::{CoreError, Image, Material, Scene};
+use renderlab_raster::{rasterize, GBuffer};
+use renderlab_relief::complexity::ComplexityParams;
+use renderlab_relief::render::{render, render_reference};
+use renderlab_relief::{Frame, FrameInput, ReliefMaterial, Shading, Technique};
+use serde::Serialize;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// Settings of one relief benchmark run.
+#[derive(Clone, Debug)]
+pub struct ReliefBenchConfig {
+    /// Frame width (thesis: 1280).
+    pub width: u32,
+    /// Frame height (thesis: 800).
+    pub height: u32,
+    /// View angles in degrees (thesis: 0, 45, 60, 80).
+    pub angles: Vec<f32>,
+    /// Techniques to measure.
+    pub techniques: Vec<Technique>,
+    /// Untimed renders before timing.
+    pub warmup: u32,
+    /// Timed renders; the median is reported.
+    pub reps: u32,
+    /// Complexity-map parameters for adaptive POM.
+    pub complexity: ComplexityParams,
+    /// Whether to write the images (result, reference, error and layer maps).
+    pub write_images: bool,
+}
+
+/// The thesis's POM settings and adaptive POM, then the methods beyond the thesis.
+pub fn default_techniques() -> Vec<Technique> {
+    let mut t = vec![Technique::Basic, Technique::NormalMapping, Technique::Parallax, Technique::Steep { layers: 32 }];
+    for layers in [4, 8, 16, 24, 32] {
+        t.push(Technique::Pom { layers });
+    }
+    t.push(Technique::AdaptivePom { min: 4, max: 32 });
+    t.push(Technique::Relief { linear: 16, binary: 6 });
+    t.push(Technique::AdaptiveRelief { min: 4, max: 16, binary: 5 });
+    t.push(Technique::ConeStep { steps: 16, binary: 5 });
+    t.push(Technique::PomShadow { layers: 32, shadow_samples: 16 });
+    t
+}
+
+impl Default for ReliefBenchConfig {
+    fn default() -> Self {
+        Self {
+            width: BENCH_WIDTH,
+            height: BENCH_HEIGHT,
+            angles: BENCH_ANGLES_DEG.to_vec(),
+            techniques: default_techniques(),
+            warmup: 1,
+            reps: 5,
+            complexity: ComplexityParams::default(),
+            write_images: true,
+        }
+    }
+}
+
+/// One technique at one angle: cost and error.
+#[derive(Clone, Debug, Serialize)]
+pub struct ReliefRecord {
+    /// Canonical technique name (e.g. `pom:32`).
+    pub technique: String,
+    /// Technique family (e.g. `pom`).
+    pub family: String,
+    /// Nominal layer or step count (0 when not applicable).
+    pub layers: u32,
+    /// View angle from the wall normal, degrees.
+    pub angle_deg: f32,
+    /// Median time of the shading pass (relief + lighting), ms.
+    pub time_ms: f64,
+    /// Fastest repetition, ms.
+    pub time_min_ms: f64,
+    /// Slowest repetition, ms.
+    pub time_max_ms: f64,
+    /// `1000 / time_ms`: the frame rate this pass alone would allow.
+    pub fps_equivalent: f64,
+    /// Mean height fetches per covered pixel.
+    pub samples_per_pixel: f64,
+    /// Mean planned layer count per covered pixel (0 when not applicable).
+    pub mean_layers: f64,
+    /// PSNR against the reference, dB (covered pixels).
+    pub psnr_db: f64,
+    /// Mean SSIM against the reference (covered pixels).
+    pub ssim: f64,
+    /// Mean FLIP error against the reference (covered pixels).
+    pub flip: f64,
+    /// Mean distance between the technique's and the exact displaced UV, in level-0 texels.
+    pub uv_error_texels: f64,
+    /// 95th percentile of that distance, texels.
+    pub uv_error_p95_texels: f64,
+    /// Pixels showing the surface.
+    pub covered_pixels: usize,
+}
+
+/// What a finished run hands back to its caller.
+#[derive(Clone, Debug)]
+pub struct ReliefSummary {
+    /// One record per technique × angle.
+    pub records: Vec<ReliefRecord>,
+    /// Human-readable conclusions (also in the HTML).
+    pub findings: Vec<String>,
+    /// Path of the HTML page.
+    pub index: PathBuf,
+}
+
+/// A progress report: `done` of `total` steps, and what is being done.
+pub type Progress<'a> = &'a (dyn Fn(usize, usize, &str) + Sync);
+
+/// The thesis's Table 4.1 (FPS), rows 0°, 45°, 60°, 80°; columns POM 4, 8, 16, 24, 32, adaptive.
+pub const THESIS_TABLE_4_1: [[f64; 6]; 4] = [
+    [1294.0, 866.0, 418.0, 280.0, 207.0, 978.0],
+    [571.0, 265.0, 121.0, 80.0, 62.0, 162.0],
+    [670.0, 301.0, 150.0, 102.0, 76.0, 169.0],
+    [1351.0, 735.0, 345.0, 247.0, 185.0, 332.0],
+];
+
+/// The thesis's headline figure: weighted mean FPS of POM 4..32 (weights 0.5, 0.5, 1, 1, 1,
+/// divided by 4) against the mean FPS of adaptive POM; returns `(x1, x2, gain)` with
+/// `gain = (x2 − x1) / x1`. `pom_means` are the per-setting means over the angles.
+pub fn thesis_weighted_gain(pom_means: [f64; 5], adaptive_mean: f64) -> (f64, f64, f64) {
+    let x1 = (pom_means[0] * 0.5 + pom_means[1] * 0.5 + pom_means[2] + pom_means[3] + pom_means[4]) / 4.0;
+    (x1, adaptive_mean, (adaptive_mean - x1) / x1)
+}
+
+fn slug(t: &Technique) -> String {
+    t.name().replace(':', "-")
+}
+
+/// Mean and 95th percentile of the UV distance in texels over the mask.
+fn uv_error(frame: &Frame, reference: &Frame, size: Vec2) -> (f64, f64, Image<f32>) {
+    let err = Image::from_fn_par(frame.uv.width(), frame.uv.height(), |x, y| {
+        if frame.mask.get(x, y) {
+            ((frame.uv.get(x, y) - reference.uv.get(x, y)) * size).length()
+        } else {
+            0.0
+        }
+    });
+    let mut v: Vec<f32> = err.pixels().iter().zip(frame.mask.pixels()).filter(|(_, &m)| m).map(|(&e, _)| e).collect();
+    if v.is_empty() {
+        return (0.0, 0.0, err);
+    }
+    let mean = v.iter().map(|&e| e as f64).sum::<f64>() / v.len() as f64;
+    let k = ((v.len() - 1) as f64 * 0.95).round() as usize;
+    let (_, p95, _) = v.select_nth_unstable_by(k, |a, b| a.total_cmp(b));
+    (mean, *p95 as f64, err)
+}
+
+/// A rasterized view: the G-buffer the relief renderer shades.
+pub struct View {
+    /// View angle, degrees.
+    pub angle: f32,
+    /// Per-pixel surface points.
+    pub gbuffer: GBuffer,
+}
+
+impl View {
+    /// Rasterizes `scene` from `camera`.
+    pub fn new(scene: &Scene, camera: &Camera, angle: f32) -> Self {
+        Self { angle, gbuffer: rasterize(scene, camera) }
+    }
+
+    /// The renderer's view of it.
+    pub fn input(&self) -> FrameInput<'_> {
+        FrameInput { width: self.gbuffer.width(), height: self.gbuffer.height(), points: self.gbuffer.pixels() }
+    }
+}
+
+/// Runs the relief benchmark on `material` (the thesis: bricks, alone on its wall) and writes
+/// everything under `out`.
+pub fn run_relief_bench(
+    material: &Material,
+    cfg: &ReliefBenchConfig,
+    out: &Path,
+    progress: Progress,
+) -> crate::Result<ReliefSummary> {
+    cfg.complexity.validate()?;
+    let img_dir = out.join("img");
+    std::fs::create_dir_all(&img_dir).map_err(|source| CoreError::Write { path: img_dir.clone(), source })?;
+    let needs_cone = cfg.techniques.iter().any(Technique::needs_cone_map);
+    progress(0, 1, "preparing material (pyramids, complexity map, cone map)");
+    let mat = ReliefMaterial::new(material, &cfg.complexity, needs_cone);
+    let tex_size = Vec2::new(material.size().0 as f32, material.size().1 as f32);
+    let scene = Scene::benchmark(material.clone());
+    let total = cfg.angles.len() * cfg.techniques.len();
+    let mut done = 0;
+    let mut records = Vec::new();
+    let mut images: Vec<(f32, String, String)> = Vec::new();
+    for &angle in &cfg.angles {
+        let camera = Camera::benchmark(angle, cfg.width, cfg.height);
+        let view = View::new(&scene, &camera, angle);
+        let mats = std::slice::from_ref(&mat);
+        let mut refs: HashMap<Shading, Frame> = HashMap::new();
+        for t in &cfg.techniques {
+            progress(done, total, &format!("{angle}°: {t}"));
+            let shading = t.shading();
+            if !refs.contains_key(&shading) {
+                let r = render_reference(view.input(), mats, *t, scene.lighting, scene.background);
+                if cfg.write_images {
+                    let name = format!("reference_{}_{}.png", shading_name(shading), angle);
+                    save_color(img_dir.join(&name), &r.image)?;
+                }
+                refs.insert(shading, r);
+            }
+            let reference = &refs[&shading];
+            let (timing, _): (Timing, Frame) = measure(cfg.warmup, cfg.reps, || {
+                render(view.input(), mats, *t, scene.lighting, scene.background, false)
+            });
+            let frame = render(view.input(), mats, *t, scene.lighting, scene.background, true);
+            let cmp = compare(&frame.image, &reference.image, Some(&frame.mask));
+            let (uv_mean, uv_p95, uv_map) = uv_error(&frame, reference, tex_size);
+            let covered = frame.mask.pixels().iter().filter(|&&m| m).count();
+            let mean_layers = if covered == 0 {
+                0.0
+            } else {
+                frame.layers.pixels().iter().map(|&l| l as f64).sum::<f64>() / covered as f64
+            };
+            let rec = ReliefRecord {
+                technique: t.name(),
+                family: t.family().into(),
+                layers: t.layers(),
+                angle_deg: angle,
+                time_ms: timing.median_ms,
+                time_min_ms: timing.min_ms,
+                time_max_ms: timing.max_ms,
+                fps_equivalent: 1000.0 / timing.median_ms,
+                samples_per_pixel: frame.fetches_per_pixel(),
+                mean_layers,
+                psnr_db: cmp.metrics.psnr_db,
+                ssim: cmp.metrics.ssim,
+                flip: cmp.metrics.flip,
+                uv_error_texels: uv_mean,
+                uv_error_p95_texels: uv_p95,
+                covered_pixels: covered,
+            };
+            if cfg.write_images {
+                let base = format!("{}_{}", slug(t), angle);
+                save_color(img_dir.join(format!("{base}.png")), &frame.image)?;
+                let heat = with_legend(&heat_image(&uv_map, 4.0, Some(&frame.mask)), 4.0, "UV error (texels)");
+                save_rgb8(img_dir.join(format!("{base}_uverr.png")), &heat)?;
+                let flip = with_legend(&heat_image(&cmp.flip_map, 1.0, Some(&frame.mask)), 1.0, "FLIP");
+                save_rgb8(img_dir.join(format!("{base}_flip.png")), &flip)?;
+                if t.layers() > 0 {
+                    let max = t.layers() as f32;
+                    let l = frame.layers.map(|v| v as f32);
+                    let heat = with_legend(&heat_image(&l, max, Some(&frame.mask)), max, "layers");
+                    save_rgb8(img_dir.join(format!("{base}_layers.png")), &heat)?;
+                }
+                images.push((angle, t.name(), base));
+            }
+            records.push(rec);
+            done += 1;
+        }
+    }
+    progress(done, total, "writing results and report");
+    write_json(&out.join("results.json"), &records)?;
+    write_csv(&out.join("results.csv"), &records)?;
+    let findings = findings(&records, &cfg.angles);
+    let index = out.join("index.html");
+    write_report(&index, material, cfg, &records, &findings, &images)?;
+    progress(total, total, "done");
+    Ok(ReliefSummary { records, findings, index })
+}
+
+fn shading_name(s: Shading) -> &'static str {
+    match s {
+        Shading::Unlit => "unlit",
+        Shading::Lit => "lit",
+        Shading::LitShadowed => "shadowed",
+    }
+}
+
+fn find<'a>(records: &'a [ReliefRecord], technique: &str, angle: f32) -> Option<&'a ReliefRecord> {
+    records.iter().find(|r| r.technique == technique && r.angle_deg == angle)
+}
+
+/// Mean over the angles of `f(record)` for one technique; `None` if any angle is missing.
+fn mean_over_angles(records: &[ReliefRecord], technique: &str, angles: &[f32], f: impl Fn(&ReliefRecord) -> f64) -> Option<f64> {
+    let v: Option<Vec<f64>> = angles.iter().map(|&a| find(records, technique, a).map(&f)).collect();
+    let v = v?;
+    Some(v.iter().sum::<f64>() / v.len() as f64)
+}
+
+/// The comparison the issue asks for: each candidate against POM-32, averaged over angles.
+#[derive(Clone, Debug, Serialize)]
+pub struct VersusPom32 {
+    /// Candidate technique.
+    pub technique: String,
+    /// Mean over angles of time(candidate) / time(POM-32).
+    pub time_ratio: f64,
+    /// Candidate's mean UV error (texels) over angles.
+    pub uv_error: f64,
+    /// POM-32's mean UV error (texels) over angles.
+    pub pom32_uv_error: f64,
+    /// Candidate's mean PSNR over angles.
+    pub psnr_db: f64,
+    /// POM-32's mean PSNR over angles.
+    pub pom32_psnr_db: f64,
+    /// Whether error ≤ POM-32's (UV error and PSNR) and time ratio ≤ 0.4.
+    pub passes: bool,
+}
+
+/// Every technique measured against POM-32 at the same angles.
+pub fn versus_pom32(records: &[ReliefRecord], angles: &[f32]) -> Vec<VersusPom32> {
+    let mut names: Vec<String> = Vec::new();
+    for r in records {
+        if !names.contains(&r.technique) {
+            names.push(r.technique.clone());
+        }
+    }
+    let pom = "pom:32";
+    let Some(p_err) = mean_over_angles(records, pom, angles, |r| r.uv_error_texels) else { return vec![] };
+    let p_psnr = mean_over_angles(records, pom, angles, |r| r.psnr_db).unwrap_or(f64::NAN);
+    names
+        .iter()
+        .filter(|n| n.as_str() != pom)
+        .filter_map(|n| {
+            let ratio = {
+                let v: Option<Vec<f64>> = angles
+                    .iter()
+                    .map(|&a| Some(find(records, n, a)?.time_ms / find(records, pom, a)?.time_ms))
+                    .collect();
+                let v = v?;
+                v.iter().sum::<f64>() / v.len() as f64
+            };
+            let err = mean_over_angles(records, n, angles, |r| r.uv_error_texels)?;
+            let psnr = mean_over_angles(records, n, angles, |r| r.psnr_db)?;
+            Some(VersusPom32 {
+                technique: n.clone(),
+                time_ratio: ratio,
+                uv_error: err,
+                pom32_uv_error: p_err,
+                psnr_db: psnr,
+                pom32_psnr_db: p_psnr,
+                passes: ratio <= 0.4 && err <= p_err && psnr >= p_psnr,
+            })
+        })
+        .collect()
+}
+
+fn findings(records: &[ReliefRecord], angles: &[f32]) -> Vec<String> {
+    let mut out = Vec::new();
+    let poms = ["pom:4", "pom:8", "pom:16", "pom:24", "pom:32"];
+    let fps = |t: &str| mean_over_angles(records, t, angles, |r| r.fps_equivalent);
+    let pom_means: Option<Vec<f64>> = poms.iter().map(|t| fps(t)).collect();
+    if let (Some(pm), Some(ad)) = (pom_means, fps("adaptive:4:32")) {
+        let (x1, x2, gain) = thesis_weighted_gain([pm[0], pm[1], pm[2], pm[3], pm[4]], ad);
+        out.push(format!(
+            "Thesis's weighted metric on our timings: POM weighted mean {x1:.1} FPS-eq, adaptive {x2:.1} FPS-eq, gain {:+.1}% (thesis: +24%).",
+            gain * 100.0
+        ));
+        let unweighted = pm.iter().sum::<f64>() / 5.0;
+        out.push(format!(
+            "Unweighted: POM mean {unweighted:.1} FPS-eq vs adaptive {x2:.1}: {:+.1}%.",
+            (x2 - unweighted) / unweighted * 100.0
+        ));
+    }
+    for v in versus_pom32(records, angles) {
+        if matches!(v.technique.split(':').next(), Some("adaptive" | "adaptive-relief" | "relief" | "cone")) {
+            out.push(format!(
+                "{} vs POM-32: {:.2}× its time, UV error {:.3} vs {:.3} texels, PSNR {:.2} vs {:.2} dB: {}.",
+                v.technique,
+                v.time_ratio,
+                v.uv_error,
+                v.pom32_uv_error,
+                v.psnr_db,
+                v.pom32_psnr_db,
+                if v.passes { "meets the target (≤0.4× time, error no worse)" } else { "does not meet the target" }
+            ));
+        }
+    }
+    out
+}
+
+fn fmt_f(v: f64, digits: usize) -> String {
+    if v.is_infinite() {
+        "∞".into()
+    } else if v.is_nan() {
+        "–".into()
+    } else {
+        format!("{v:.digits$}")
+    }
+}
+
+fn write_report(
+    path: &Path,
+    material: &Material,
+    cfg: &ReliefBenchConfig,
+    records: &[ReliefRecord],
+    findings: &[String],
+    images: &[(f32, String, String)],
+) -> crate::Result<()> {
+    let mut r = Report::new("Relief-surface lab");
+    r.paragraph(&format!(
+        "Material '{}' ({}×{} texels, height scale {}), alone on the bricks wall, {}×{} pixels, \
+         camera 6 units from the wall centre. Times are medians of {} runs (after {} warm-up) of the \
+         shading pass alone (relief trace + lighting + texture filtering) on {} threads; the reference \
+         is the exact intersection with the bilinear height field, shaded identically.",
+        material.name,
+        material.size().0,
+        material.size().1,
+        material.height_scale,
+        cfg.width,
+        cfg.height,
+        cfg.reps,
+        cfg.warmup,
+        rayon::current_num_threads()
+    ));
+    r.section("Findings");
+    for f in findings {
+        r.paragraph(f);
+    }
+
+    r.section("Thesis Table 4.1 beside ours");
+    r.paragraph(
+        "Thesis: frames per second of the whole application on its laptop GPU. Ours: FPS-equivalent \
+         (1000 / shading-pass ms) on this machine's CPU. Absolute values are not comparable; the \
+         ratios between columns are.",
+    );
+    let cols = ["pom:4", "pom:8", "pom:16", "pom:24", "pom:32", "adaptive:4:32"];
+    let mut rows = Vec::new();
+    for (i, &a) in BENCH_ANGLES_DEG.iter().enumerate() {
+        let mut row = vec![format!("{a}°")];
+        for (j, c) in cols.iter().enumerate() {
+            let ours = find(records, c, a).map(|r| fmt_f(r.fps_equivalent, 1)).unwrap_or("–".into());
+            row.push(format!("{:.0} | {}", THESIS_TABLE_4_1[i][j], ours));
+        }
+        rows.push(row);
+    }
+    let mut headers = vec!["angle".to_string()];
+    headers.extend(["POM 4", "POM 8", "POM 16", "POM 24", "POM 32", "adaptive 4–32"].iter().map(|s| format!("{s} (thesis | ours)")));
+    r.table(&headers, rows);
+
+    r.section("Adaptive POM against each fixed setting (speed-up = time of POM-N / time of adaptive)");
+    let mut rows = Vec::new();
+    for &a in &cfg.angles {
+        let mut row = vec![format!("{a}°")];
+        for c in &cols[..5] {
+            let v = match (find(records, c, a), find(records, "adaptive:4:32", a)) {
+                (Some(p), Some(ad)) => format!("{:.2}×", p.time_ms / ad.time_ms),
+                _ => "–".into(),
+            };
+            row.push(v);
+        }
+        rows.push(row);
+    }
+    let headers: Vec<String> =
+        ["angle", "vs POM 4", "vs POM 8", "vs POM 16", "vs POM 24", "vs POM 32"].iter().map(|s| s.to_string()).collect();
+    r.table(&headers, rows);
+
+    r.section("Against POM-32, averaged over the angles");
+    let v = versus_pom32(records, &cfg.angles);
+    let rows: Vec<Vec<String>> = v
+        .iter()
+        .map(|v| {
+            vec![
+                v.technique.clone(),
+                format!("{:.3}", v.time_ratio),
+                format!("{:.3} / {:.3}", v.uv_error, v.pom32_uv_error),
+                format!("{} / {}", fmt_f(v.psnr_db, 2), fmt_f(v.pom32_psnr_db, 2)),
+                if v.passes { "yes".into() } else { "no".into() },
+            ]
+        })
+        .collect();
+    let headers: Vec<String> = ["technique", "time / POM-32 time", "UV error (texels): it / POM-32", "PSNR dB: it / POM-32", "≤0.4× time and error no worse"]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    r.table(&headers, rows);
+
+    r.section("Cost against error");
+    let mut by_family: Vec<(String, Series)> = Vec::new();
+    for rec in records.iter().filter(|r| r.family != "basic" && r.family != "normal") {
+        let idx = match by_family.iter().position(|(f, _)| f == &rec.family) {
+            Some(i) => i,
+            None => {
+                by_family.push((
+                    rec.family.clone(),
+                    Series { name: rec.family.clone(), points: vec![], labels: vec![], connect: false },
+                ));
+                by_family.len() - 1
+            }
+        };
+        let s = &mut by_family[idx].1;
+        s.points.push((rec.time_ms, rec.uv_error_texels.max(1e-4)));
+        s.labels.push(format!("{} {}°", rec.technique, rec.angle_deg));
+    }
+    let series: Vec<Series> = by_family.into_iter().map(|(_, s)| s).collect();
+    r.svg(&scatter_svg("Time vs UV error, every technique and angle", "shading pass time (ms)", "mean UV error (texels)", &series, true, true));
+
+    r.section("All measurements");
+    let headers: Vec<String> = ["technique", "angle", "time ms", "FPS-eq", "fetches/px", "layers/px", "PSNR dB", "SSIM", "FLIP", "UV err texels", "UV err p95"]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    let rows: Vec<Vec<String>> = records
+        .iter()
+        .map(|r| {
+            vec![
+                r.technique.clone(),
+                format!("{}°", r.angle_deg),
+                fmt_f(r.time_ms, 2),
+                fmt_f(r.fps_equivalent, 1),
+                fmt_f(r.samples_per_pixel, 2),
+                fmt_f(r.mean_layers, 1),
+                fmt_f(r.psnr_db, 2),
+                fmt_f(r.ssim, 4),
+                fmt_f(r.flip, 4),
+                fmt_f(r.uv_error_texels, 3),
+                fmt_f(r.uv_error_p95_texels, 3),
+            ]
+        })
+        .collect();
+    r.table(&headers, rows);
+
+    if !images.is_empty() {
+        r.section("Images");
+        r.paragraph("Per angle: the reference, then each technique's result, its UV-error heat map (0–4 texels), its FLIP map and, for layered methods, the per-pixel layer count.");
+        for &a in &cfg.angles {
+            r.section(&format!("{a}°"));
+            let mut items: Vec<(String, String)> = vec![(format!("img/reference_lit_{a}.png"), "reference (lit)".into())];
+            for (angle, name, base) in images.iter().filter(|(x, _, _)| *x == a) {
+                let _ = angle;
+                items.push((format!("img/{base}.png"), name.clone()));
+                items.push((format!("img/{base}_uverr.png"), format!("{name}: UV error")));
+                items.push((format!("img/{base}_flip.png"), format!("{name}: FLIP")));
+                if Path::new(path.parent().unwrap_or(Path::new("."))).join(format!("img/{base}_layers.png")).exists() {
+                    items.push((format!("img/{base}_layers.png"), format!("{name}: layers")));
+                }
+            }
+            let items: Vec<(&str, &str)> = items.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
+            r.image_grid(&items, 4);
+        }
+    }
+    r.write(path)?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn thesis_gain_from_thesis_table_is_24_percent() {
+        let mean = |j: usize| THESIS_TABLE_4_1.iter().map(|r| r[j]).sum::<f64>() / 4.0;
+        let (x1, x2, gain) = thesis_weighted_gain([mean(0), mean(1), mean(2), mean(3), mean(4)], mean(5));
+        assert!((x1 - 331.0).abs() < 1.0, "{x1}");
+        assert!((x2 - 410.0).abs() < 1.0, "{x2}");
+        assert!((gain * 100.0 - 24.0).abs() < 0.5, "{gain}");
+    }
+}

@@ -1,0 +1,140 @@
+//! Wall-clock timing with warm-up and repetitions, summarised by the median.
+//!
+//! The median of several repetitions is robust to the odd interruption of a shared, noisy
+//! machine; min and max show the spread. Absolute times are only comparable within one run on
+//! one machine: experiments should report ratios between techniques timed the same way.
+
+use serde::Serialize;
+use std::hint::black_box;
+use std::time::Instant;
+
+/// Summary of repeated timings of one piece of work, in milliseconds.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Timing {
+    /// Median time of one repetition (the mean of the middle two for an even count).
+    pub median_ms: f64,
+    /// Fastest repetition.
+    pub min_ms: f64,
+    /// Slowest repetition.
+    pub max_ms: f64,
+    /// Number of timed repetitions (warm-up runs excluded).
+    pub reps: u32,
+}
+
+impl Timing {
+    /// Summarises individual repetition times (in ms). `None` for an empty slice.
+    pub fn from_samples(samples_ms: &[f64]) -> Option<Timing> {
+        if samples_ms.is_empty() {
+            return None;
+        }
+        let mut s = samples_ms.to_vec();
+        s.sort_by(f64::total_cmp);
+        let n = s.len();
+        let median_ms = if n % 2 == 1 {
+            s[n / 2]
+        } else {
+            0.5 * (s[n / 2 - 1] + s[n / 2])
+        };
+        Some(Timing {
+            median_ms,
+            min_ms: s[0],
+            max_ms: s[n - 1],
+            reps: n as u32,
+        })
+    }
+
+    /// How many times faster this is than `other` (ratio of medians: `other / self`).
+    pub fn speedup_over(&self, other: &Timing) -> f64 {
+        other.median_ms / self.median_ms
+    }
+}
+
+/// Runs `f` `warmup` times untimed (to fill caches, page in memory and start rayon's threads),
+/// then `reps` times timed, and returns the timing summary with the result of the last run.
+/// Results go through [`std::hint::black_box`] so the optimiser cannot drop the work.
+/// `reps` of 0 is taken as 1 (there must be a result to return).
+pub fn measure<T>(warmup: u32, reps: u32, f: impl FnMut() -> T) -> (Timing, T) {
+    let start = Instant::now();
+    measure_with_clock(warmup, reps, f, || start.elapsed().as_secs_f64() * 1e3)
+}
+
+/// [`measure`] with the clock supplied: `now_ms()` returns the current time in milliseconds
+/// from any fixed origin. Lets tests drive the statistics with a fake clock.
+pub fn measure_with_clock<T>(
+    warmup: u32,
+    reps: u32,
+    mut f: impl FnMut() -> T,
+    mut now_ms: impl FnMut() -> f64,
+) -> (Timing, T) {
+    for _ in 0..warmup {
+        black_box(f());
+    }
+    let reps = reps.max(1);
+    let mut samples = Vec::with_capacity(reps as usize);
+    let mut last = None;
+    for _ in 0..reps {
+        let t0 = now_ms();
+        let r = black_box(f());
+        let t1 = now_ms();
+        samples.push(t1 - t0);
+        // The previous result is dropped here, outside the timed span.
+        last = Some(r);
+    }
+    let timing = Timing::from_samples(&samples).expect("at least one repetition");
+    (timing, last.expect("at least one repetition"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::cell::Cell;
+
+    #[test]
+    fn median_of_odd_and_even_counts() {
+        let t = Timing::from_samples(&[5.0, 1.0, 3.0]).unwrap();
+        assert_eq!((t.median_ms, t.min_ms, t.max_ms, t.reps), (3.0, 1.0, 5.0, 3));
+        let t = Timing::from_samples(&[4.0, 1.0, 3.0, 100.0]).unwrap();
+        assert_eq!(t.median_ms, 3.5);
+        assert!(Timing::from_samples(&[]).is_none());
+    }
+
+    #[test]
+    fn fake_clock_gives_exact_statistics() {
+        // Repetition i takes durations[i] ms on the fake clock.
+        let durations = [7.0, 2.0, 9.0, 4.0, 5.0];
+        let clock = Cell::new(0.0);
+        let calls = Cell::new(0u32);
+        let rep = Cell::new(0usize);
+        let (t, last) = measure_with_clock(
+            3,
+            5,
+            || {
+                calls.set(calls.get() + 1);
+                calls.get()
+            },
+            || {
+                // Called twice per repetition: advance on the second call.
+                let now = clock.get();
+                let r = rep.get();
+                if r % 2 == 1 {
+                    clock.set(now + durations[r / 2]);
+                }
+                rep.set(r + 1);
+                clock.get()
+            },
+        );
+        assert_eq!(calls.get(), 8, "3 warm-up + 5 timed calls");
+        assert_eq!(last, 8, "the last call's result is returned");
+        assert_eq!(t.reps, 5);
+        assert_eq!((t.median_ms, t.min_ms, t.max_ms), (5.0, 2.0, 9.0));
+        assert_eq!(t.speedup_over(&Timing { median_ms: 10.0, ..t }), 2.0);
+    }
+
+    #[test]
+    fn real_clock_is_structurally_sound() {
+        let (t, v) = measure(1, 0, || (0..1000u64).sum::<u64>());
+        assert_eq!(v, 499_500);
+        assert_eq!(t.reps, 1);
+        assert!(t.min_ms >= 0.0 && t.min_ms <= t.median_ms && t.median_ms <= t.max_ms);
+    }
+}

@@ -1,0 +1,134 @@
+//! Rendering one horizontal band of the screen: scan conversion of the band's triangles into
+//! a visibility buffer (nearest `1/w` and triangle id per pixel), then one resolve per
+//! visible pixel into the G-buffer. Bands are independent, so they run in parallel and the
+//! result does not depend on the thread count.
+
+use crate::bin::BAND_HEIGHT;
+use crate::resolve::{resolve, FrameConstants};
+use crate::setup::TriangleSetup;
+use crate::triangle::RasterTriangle;
+use renderlab_core::SurfacePoint;
+
+/// Marks a pixel no triangle has reached.
+const NO_TRIANGLE: u32 = u32::MAX;
+
+/// Everything shared by all bands of one frame.
+pub(crate) struct Frame<'a> {
+    pub setups: &'a [TriangleSetup],
+    pub tris: &'a [RasterTriangle],
+    pub width: u32,
+    pub height: u32,
+}
+
+/// Per-thread visibility buffers, reused from band to band and frame to frame (a band of
+/// 1280 pixels takes 160 KB; allocating it per band made the allocator hand pages back to
+/// the kernel and fault them in again).
+#[derive(Default)]
+pub(crate) struct Scratch {
+    depth: Vec<f32>,
+    id: Vec<u32>,
+}
+
+thread_local! {
+    /// This thread's [`Scratch`].
+    pub(crate) static SCRATCH: std::cell::RefCell<Scratch> = std::cell::RefCell::default();
+}
+
+/// Counts from one band.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct BandCounts {
+    pub fragments: u64,
+    pub covered: u64,
+}
+
+impl std::ops::Add for BandCounts {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        Self { fragments: self.fragments + o.fragments, covered: self.covered + o.covered }
+    }
+}
+
+impl Frame<'_> {
+    /// Rows `band * BAND_HEIGHT ..` (at most `BAND_HEIGHT`, clipped to the screen).
+    fn rows(&self, band: usize) -> (u32, u32) {
+        let y0 = band as u32 * BAND_HEIGHT;
+        (y0, (y0 + BAND_HEIGHT).min(self.height))
+    }
+
+    /// Calls `f(triangle index, y, x_start, x_end)` for every non-empty covered span of the
+    /// band's triangles, triangle by triangle in submission order.
+    #[inline]
+    fn for_each_span(&self, band: usize, bin: &[u32], mut f: impl FnMut(u32, u32, u32, u32)) {
+        let (y_start, y_end) = self.rows(band);
+        for &i in bin {
+            let t = &self.tris[i as usize];
+            for y in t.y0.max(y_start)..=t.y1.min(y_end - 1) {
+                let (xs, xe) = t.span(y);
+                if xs < xe {
+                    f(i, y, xs, xe);
+                }
+            }
+        }
+    }
+
+    /// Rasterizes band `band` into `out` (its rows of the G-buffer, every pixel written).
+    pub fn render(
+        &self,
+        band: usize,
+        bin: &[u32],
+        out: &mut [Option<SurfacePoint>],
+        scratch: &mut Scratch,
+        constants: &FrameConstants,
+    ) -> BandCounts {
+        let w = self.width as usize;
+        let (y_start, _) = self.rows(band);
+        let n = out.len();
+        scratch.depth.clear();
+        scratch.depth.resize(n, 0.0);
+        scratch.id.clear();
+        scratch.id.resize(n, NO_TRIANGLE);
+        let (depth, id) = (&mut scratch.depth[..], &mut scratch.id[..]);
+        let mut fragments = 0u64;
+        self.for_each_span(band, bin, |i, y, xs, xe| {
+            let t = &self.tris[i as usize];
+            let row = (y - y_start) as usize * w;
+            fragments += (xe - xs) as u64;
+            for x in xs..xe {
+                let z = t.inv_w(x, y);
+                let k = row + x as usize;
+                // Strictly nearer wins: on a tie the earlier triangle keeps the pixel.
+                if z > depth[k] {
+                    depth[k] = z;
+                    id[k] = i;
+                }
+            }
+        });
+        let mut covered = 0u64;
+        for (r, (out_row, id_row)) in out.chunks_exact_mut(w).zip(id.chunks_exact(w)).enumerate() {
+            let y = y_start + r as u32;
+            for (x, (px, &i)) in out_row.iter_mut().zip(id_row).enumerate() {
+                *px = if i == NO_TRIANGLE {
+                    None
+                } else {
+                    let t = &self.tris[i as usize];
+                    resolve(&self.setups[t.setup as usize], x as u32, y, constants)
+                };
+                covered += px.is_some() as u64;
+            }
+        }
+        BandCounts { fragments, covered }
+    }
+
+    /// Adds, for every pixel of band `band`, the number of fragments covering it (before the
+    /// depth test) to `counts` (the band's rows).
+    pub fn count(&self, band: usize, bin: &[u32], counts: &mut [u32]) {
+        let w = self.width as usize;
+        let (y_start, _) = self.rows(band);
+        self.for_each_span(band, bin, |_, y, xs, xe| {
+            let row = (y - y_start) as usize * w;
+            for c in &mut counts[row + xs as usize..row + xe as usize] {
+                *c += 1;
+            }
+        });
+    }
+}

@@ -1,0 +1,99 @@
+//! The output is bit-identical whatever the number of threads.
+
+mod common;
+
+use common::bricks;
+use renderlab_core::{Camera, Scene, SurfacePoint};
+use renderlab_raster::{overdraw, rasterize_into, GBuffer, RasterStats};
+
+/// Every bit of a G-buffer, so that −0.0 vs 0.0 or NaN payloads would count as differences.
+fn bits(g: &GBuffer) -> Vec<u32> {
+    let mut out = Vec::new();
+    for p in g.pixels() {
+        match p {
+            None => out.push(u32::MAX),
+            Some(SurfacePoint {
+                uv,
+                duv_dx,
+                duv_dy,
+                tbn,
+                view_ts,
+                light_ts,
+                position,
+                depth,
+                object,
+                material,
+            }) => {
+                let floats = uv
+                    .to_array()
+                    .into_iter()
+                    .chain(duv_dx.to_array())
+                    .chain(duv_dy.to_array())
+                    .chain(tbn.to_cols_array())
+                    .chain(view_ts.to_array())
+                    .chain(light_ts.to_array())
+                    .chain(position.to_array())
+                    .chain([*depth]);
+                out.extend(floats.map(f32::to_bits));
+                out.extend([*object, *material]);
+            }
+        }
+    }
+    out
+}
+
+fn run_with_threads(n: usize, scene: &Scene, cam: &Camera) -> (Vec<u32>, RasterStats, Vec<u32>) {
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
+    pool.install(|| {
+        let mut g = GBuffer::default();
+        let stats = rasterize_into(scene, cam, &mut g);
+        (bits(&g), stats, overdraw(scene, cam))
+    })
+}
+
+#[test]
+fn thesis_room_is_bit_identical_for_1_2_and_3_threads() {
+    let scene = Scene::thesis_room_default(16).unwrap();
+    let cam = Scene::room_camera(416, 263);
+    let reference = run_with_threads(1, &scene, &cam);
+    assert!(reference.1.covered > 416 * 263 / 2, "{:?}", reference.1);
+    for n in [2, 3] {
+        let other = run_with_threads(n, &scene, &cam);
+        assert!(other.0 == reference.0, "{n} threads: G-buffer differs");
+        assert_eq!(other.1, reference.1, "{n} threads: counters differ");
+        assert!(other.2 == reference.2, "{n} threads: overdraw differs");
+    }
+}
+
+#[test]
+fn benchmark_wall_is_bit_identical_for_1_2_and_3_threads() {
+    let scene = Scene::benchmark(bricks());
+    for angle in [45.0, 80.0] {
+        let cam = Camera::benchmark(angle, 333, 211);
+        let reference = run_with_threads(1, &scene, &cam);
+        for n in [2, 3] {
+            assert!(run_with_threads(n, &scene, &cam) == reference, "{angle}°, {n} threads");
+        }
+    }
+}
+
+#[test]
+fn thesis_room_frame_is_consistent() {
+    let scene = Scene::thesis_room_default(16).unwrap();
+    let cam = Scene::room_camera(320, 200);
+    let mut g = GBuffer::default();
+    let stats = rasterize_into(&scene, &cam, &mut g);
+    assert_eq!(stats.triangles, 8);
+    assert_eq!(stats.covered as usize, g.covered());
+    let mut seen = [0usize; 4];
+    for p in g.pixels().iter().flatten() {
+        assert!(p.view_ts.z > 0.0, "view_ts {}", p.view_ts);
+        assert_eq!(p.material, scene.objects[p.object as usize].material);
+        // B is the direction in which v grows: on the walls that is downward.
+        if p.object != 3 {
+            assert!(p.tbn.y_axis.y < -0.999, "B = {}", p.tbn.y_axis);
+        }
+        seen[p.object as usize] += 1;
+    }
+    assert!(seen.iter().all(|&n| n > 100), "{seen:?}");
+}

@@ -1,0 +1,100 @@
+//! The thesis's adaptive POM: the layer count follows the view angle and the Sobel
+//! complexity map, then an ordinary POM march runs with that many layers.
+
+use crate::parallax::{interpolate, layered_march};
+use crate::technique::{ReliefHit, ReliefInputs, ReliefTechnique};
+use glam::{Vec2, Vec3};
+use renderlab_core::counter::Counter;
+
+/// Exponent of the view-angle factor (thesis: 0.8).
+pub const ANGLE_EXPONENT: f32 = 0.8;
+
+/// Adaptive POM with base layer range `min..max` (thesis: 4..32).
+#[derive(Clone, Copy, Debug)]
+pub struct AdaptivePom {
+    /// Base minimum layer count.
+    pub min: u32,
+    /// Base maximum layer count.
+    pub max: u32,
+}
+
+/// `a + (b − a)·t`, GLSL's `mix`.
+#[inline]
+fn mix(a: f32, b: f32, t: f32) -> f32 {
+    a + (b - a) * t
+}
+
+impl AdaptivePom {
+    /// The view-angle factor `F = (1 − |V·N|)^0.8` with N = (0,0,1) in tangent space.
+    #[inline]
+    pub fn angle_factor(view_ts: Vec3) -> f32 {
+        let v = view_ts.normalize_or_zero();
+        (1.0 - v.z.abs()).max(0.0).powf(ANGLE_EXPONENT)
+    }
+
+    /// The angle-dependent range `(N_min, N_max) = (mix(Min, Max/2, F), mix(Min, Max, F))`,
+    /// before truncation (the thesis's Table 2.2 shows these truncated).
+    #[inline]
+    pub fn layer_range(&self, view_ts: Vec3) -> (f32, f32) {
+        let f = Self::angle_factor(view_ts);
+        let (min, max) = (self.min as f32, self.max as f32);
+        (mix(min, max / 2.0, f), mix(min, max, f))
+    }
+
+    /// The layer count `int(mix(N_min, N_max, C))` for complexity `c` (at least 1).
+    #[inline]
+    pub fn layers(&self, view_ts: Vec3, c: f32) -> u32 {
+        let (lo, hi) = self.layer_range(view_ts);
+        (mix(lo, hi, c.clamp(0.0, 1.0)) as u32).max(1)
+    }
+}
+
+impl ReliefTechnique for AdaptivePom {
+    #[inline]
+    fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
+        let n = self.layers(v, inp.complexity_at(uv));
+        let m = layered_march(inp, uv, v, n, counter);
+        let (uv, depth) = interpolate(&m);
+        ReliefHit { uv, depth, layers: n }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn view(angle_deg: f32) -> Vec3 {
+        let a = angle_deg.to_radians();
+        Vec3::new(a.sin(), 0.0, a.cos())
+    }
+
+    /// The thesis's Table 2.2: (angle, F, N_min, N_max) with the bounds truncated to integers.
+    #[test]
+    fn reproduces_table_2_2() {
+        let t = AdaptivePom { min: 4, max: 32 };
+        for (angle, f, lo, hi) in [(0.0, 0.0, 4, 4), (45.0, 0.3744, 8, 14), (80.0, 0.8585, 14, 28)] {
+            let got_f = AdaptivePom::angle_factor(view(angle));
+            assert!((got_f - f).abs() < 5e-4, "{angle}°: F {got_f} vs {f}");
+            let (a, b) = t.layer_range(view(angle));
+            assert_eq!((a as u32, b as u32), (lo, hi), "{angle}°: {a} {b}");
+            // Complexity 0 and 1 give exactly the truncated bounds.
+            assert_eq!(t.layers(view(angle), 0.0), lo);
+            assert_eq!(t.layers(view(angle), 1.0), hi);
+        }
+    }
+
+    #[test]
+    fn head_on_ignores_complexity_and_layers_grow_with_angle() {
+        let t = AdaptivePom { min: 4, max: 32 };
+        for c in [0.0, 0.3, 1.0] {
+            assert_eq!(t.layers(view(0.0), c), 4);
+        }
+        let mut last = 0;
+        for a in (0..90).step_by(5) {
+            let n = t.layers(view(a as f32), 1.0);
+            assert!(n >= last);
+            last = n;
+        }
+        assert!(t.layers(view(89.99), 1.0) <= 32);
+    }
+}

@@ -1,0 +1,59 @@
+//! A material prepared for relief rendering: filtered textures, the depth field, the
+//! complexity map and (on request) the cone map.
+
+use crate::complexity::{complexity_map, ComplexityParams};
+use crate::cone::{ConeKind, ConeMap};
+use crate::height::HeightField;
+use crate::technique::ReliefInputs;
+use renderlab_core::{Image, Material};
+use renderlab_texture::{Texture, Wrap};
+
+/// Size (per side, at most) of the cone map built for cone-step mapping.
+pub const CONE_MAP_SIZE: u32 = 256;
+
+/// Everything the relief renderer reads for one material.
+#[derive(Clone, Debug)]
+pub struct ReliefMaterial {
+    /// Material name.
+    pub name: String,
+    /// Albedo with its mip pyramid (linear light, repeat wrap).
+    pub albedo: Texture,
+    /// Tangent-space normals with their mip pyramid.
+    pub normal: Texture,
+    /// Depth field (1 − height), bilinear.
+    pub height: HeightField,
+    /// Depth scale in UV per unit depth.
+    pub height_scale: f32,
+    /// The thesis's Sobel complexity map of the height map.
+    pub complexity: Image<f32>,
+    /// Relaxed cone map, if built.
+    pub cone: Option<ConeMap>,
+}
+
+impl ReliefMaterial {
+    /// Prepares `m`: builds pyramids, the depth field and the complexity map with `params`;
+    /// builds the cone map too when `with_cone_map` is set (it costs a few seconds at 1024²).
+    pub fn new(m: &Material, params: &ComplexityParams, with_cone_map: bool) -> Self {
+        let height = HeightField::from_height(&m.height);
+        let cone = with_cone_map.then(|| ConeMap::build(&height, ConeKind::Relaxed, CONE_MAP_SIZE));
+        Self {
+            name: m.name.clone(),
+            albedo: Texture::from_rgb(&m.albedo, Wrap::Repeat),
+            normal: Texture::from_rgb(&m.normal, Wrap::Repeat),
+            complexity: complexity_map(&m.height, params),
+            height,
+            height_scale: m.height_scale,
+            cone,
+        }
+    }
+
+    /// The inputs a [`ReliefTechnique`](crate::technique::ReliefTechnique) reads.
+    pub fn inputs(&self) -> ReliefInputs<'_> {
+        ReliefInputs {
+            height: &self.height,
+            height_scale: self.height_scale,
+            complexity: &self.complexity,
+            cone: self.cone.as_ref(),
+        }
+    }
+}

@@ -1,0 +1,188 @@
+//! Rendering a frame: for every pixel of a G-buffer, run a relief technique, then light the
+//! displaced point with the thesis's model. The reference goes through the same code with the
+//! exact tracer, so differences between images are the technique's alone.
+
+use crate::material::ReliefMaterial;
+use crate::technique::{ReliefHit, ReliefTechnique, Shading};
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+use renderlab_core::counter::{Counter, NoCount, Tally};
+use renderlab_core::scene::Lighting;
+use renderlab_core::{Image, SurfacePoint};
+use renderlab_texture::{Filter, Trilinear};
+
+/// How shadows are computed for [`Shading::LitShadowed`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShadowMode {
+    /// No self-shadowing.
+    None,
+    /// Soft shadows with this many samples along the light ray.
+    Soft(u32),
+    /// The exact hard shadow (reference).
+    Exact,
+}
+
+/// The visible surface of a frame: `width × height` pixels, row-major, `None` for background.
+#[derive(Clone, Copy)]
+pub struct FrameInput<'a> {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// One entry per pixel.
+    pub points: &'a [Option<SurfacePoint>],
+}
+
+/// A rendered frame and what it cost.
+#[derive(Clone, Debug)]
+pub struct Frame {
+    /// Colour in linear light.
+    pub image: Image<Vec3>,
+    /// Displaced UV per pixel (zero on background).
+    pub uv: Image<Vec2>,
+    /// Depth of the hit per pixel.
+    pub depth: Image<f32>,
+    /// Planned layer count per pixel (0 where not applicable).
+    pub layers: Image<u16>,
+    /// Pixels showing a surface.
+    pub mask: Image<bool>,
+    /// Height fetches of the whole frame (0 when not counted).
+    pub fetches: u64,
+}
+
+impl Frame {
+    /// Mean height fetches per covered pixel.
+    pub fn fetches_per_pixel(&self) -> f64 {
+        let n = self.mask.pixels().iter().filter(|&&m| m).count();
+        if n == 0 {
+            0.0
+        } else {
+            self.fetches as f64 / n as f64
+        }
+    }
+}
+
+/// Lighting of one point: the thesis's ambient + Lambert + Blinn–Phong in tangent space.
+#[inline]
+pub fn light(albedo: Vec3, n: Vec3, l: Vec3, v: Vec3, lighting: &Lighting, shadow: f32) -> Vec3 {
+    let ambient = albedo * lighting.ambient;
+    let diff = n.dot(l).max(0.0);
+    let h = (l + v).normalize_or_zero();
+    let spec = n.dot(h).max(0.0).powf(lighting.specular_exponent) * lighting.specular_strength;
+    // Light arriving from below the geometric surface reaches no point of it.
+    let facing = if l.z > 0.0 { shadow } else { 0.0 };
+    ambient + (albedo * diff + Vec3::splat(spec)) * facing
+}
+
+/// Shading options shared by a technique and its reference.
+#[derive(Clone, Copy, Debug)]
+pub struct ShadeOptions {
+    /// Lighting constants.
+    pub lighting: Lighting,
+    /// Shading mode.
+    pub shading: Shading,
+    /// Shadow computation when the mode is shadowed.
+    pub shadow: ShadowMode,
+    /// Background colour (linear).
+    pub background: Vec3,
+}
+
+#[inline]
+fn shade_point<T: ReliefTechnique, C: Counter>(
+    t: &T,
+    sp: &SurfacePoint,
+    mat: &ReliefMaterial,
+    opt: &ShadeOptions,
+    counter: &mut C,
+) -> (Vec3, ReliefHit) {
+    let inputs = mat.inputs();
+    let hit = t.trace(&inputs, sp.uv, sp.view_ts, counter);
+    let albedo = Trilinear.sample(&mat.albedo, hit.uv, sp.duv_dx, sp.duv_dy, &mut NoCount).truncate();
+    let color = match opt.shading {
+        Shading::Unlit => albedo,
+        Shading::Lit | Shading::LitShadowed => {
+            let n = Trilinear.sample(&mat.normal, hit.uv, sp.duv_dx, sp.duv_dy, &mut NoCount).truncate();
+            let n = n.try_normalize().unwrap_or(Vec3::Z);
+            let shadow = match (opt.shading, opt.shadow) {
+                (Shading::LitShadowed, ShadowMode::Soft(samples)) => crate::shadow::soft_shadow(
+                    &mat.height,
+                    mat.height_scale,
+                    hit.uv,
+                    hit.depth,
+                    sp.light_ts,
+                    samples,
+                    counter,
+                ),
+                (Shading::LitShadowed, ShadowMode::Exact) => {
+                    if crate::reference::exact_shadowed(
+                        &mat.height,
+                        mat.height_scale,
+                        hit.uv,
+                        hit.depth,
+                        sp.light_ts,
+                    ) {
+                        0.0
+                    } else {
+                        1.0
+                    }
+                }
+                _ => 1.0,
+            };
+            light(albedo, n, sp.light_ts, sp.view_ts, &opt.lighting, shadow)
+        }
+    };
+    (color, hit)
+}
+
+/// Renders a frame with technique `t`. With `count` set, height fetches are tallied (a
+/// separate run from timing runs, so timing pays nothing for counting). Rows are shaded in
+/// parallel; the result does not depend on the thread count.
+pub fn render_frame<T: ReliefTechnique>(
+    input: FrameInput,
+    materials: &[ReliefMaterial],
+    t: &T,
+    opt: &ShadeOptions,
+    count: bool,
+) -> Frame {
+    let (w, h) = (input.width as usize, input.height as usize);
+    assert_eq!(input.points.len(), w * h, "frame input size");
+    let mut image = vec![opt.background; w * h];
+    let mut uv = vec![Vec2::ZERO; w * h];
+    let mut depth = vec![0.0f32; w * h];
+    let mut layers = vec![0u16; w * h];
+    let fetches: u64 = image
+        .par_chunks_mut(w)
+        .zip(uv.par_chunks_mut(w))
+        .zip(depth.par_chunks_mut(w))
+        .zip(layers.par_chunks_mut(w))
+        .enumerate()
+        .map(|(y, (((img, uvr), dr), lr))| {
+            let row = &input.points[y * w..(y + 1) * w];
+            let mut tally = Tally::default();
+            for (x, p) in row.iter().enumerate() {
+                let Some(sp) = p else { continue };
+                let mat = &materials[(sp.material as usize).min(materials.len() - 1)];
+                let (c, hit) = if count {
+                    shade_point(t, sp, mat, opt, &mut tally)
+                } else {
+                    shade_point(t, sp, mat, opt, &mut NoCount)
+                };
+                img[x] = c;
+                uvr[x] = hit.uv;
+                dr[x] = hit.depth;
+                lr[x] = hit.layers.min(u16::MAX as u32) as u16;
+            }
+            tally.0
+        })
+        .sum();
+    let mask: Vec<bool> = input.points.iter().map(Option::is_some).collect();
+    let wh = (input.width, input.height);
+    Frame {
+        image: Image::from_vec(wh.0, wh.1, image).expect("sizes match"),
+        uv: Image::from_vec(wh.0, wh.1, uv).expect("sizes match"),
+        depth: Image::from_vec(wh.0, wh.1, depth).expect("sizes match"),
+        layers: Image::from_vec(wh.0, wh.1, layers).expect("sizes match"),
+        mask: Image::from_vec(wh.0, wh.1, mask).expect("sizes match"),
+        fetches,
+    }
+}

@@ -1,0 +1,41 @@
+//! Self-shadowing of the height field toward a directional light.
+
+use crate::height::HeightField;
+use glam::{Vec2, Vec3};
+use renderlab_core::counter::Counter;
+
+/// Soft self-shadowing: samples the light ray from the hit upward to the top surface and
+/// darkens by the deepest penetration of the surface above the ray, weighted down with
+/// distance so that far occluders give a softer shadow. Returns 1 (lit) … 0 (shadowed).
+pub fn soft_shadow<C: Counter>(
+    field: &HeightField,
+    height_scale: f32,
+    uv: Vec2,
+    depth: f32,
+    light_ts: Vec3,
+    samples: u32,
+    counter: &mut C,
+) -> f32 {
+    if light_ts.z <= 0.0 {
+        return 0.0;
+    }
+    if depth <= 0.0 || samples == 0 {
+        return 1.0;
+    }
+    let lz = light_ts.z.max(crate::technique::MIN_VIEW_Z);
+    let dl = Vec2::new(light_ts.x, light_ts.y) / lz * height_scale;
+    let n = samples as f32;
+    let step = depth / n;
+    let mut occlusion = 0.0f32;
+    for i in 1..=samples {
+        let risen = step * i as f32;
+        let ray_depth = depth - risen;
+        let map = field.depth(uv + dl * risen, counter);
+        let pen = (ray_depth - map) * (1.0 - i as f32 / (n + 1.0));
+        occlusion = occlusion.max(pen);
+    }
+    1.0 - (occlusion * SHADOW_SHARPNESS).clamp(0.0, 1.0)
+}
+
+/// Penetration depth (in depth units) that gives a fully dark soft shadow, inverted.
+pub const SHADOW_SHARPNESS: f32 = 25.0;

@@ -1,0 +1,183 @@
+//! Texture filters. A filter turns a texture coordinate and its screen-space Jacobian
+//! (Heckbert's footprint: `duv_dx`, `duv_dy`) into a colour, counting each texel it reads.
+
+use crate::mip::Texture;
+use glam::{Vec2, Vec4};
+use renderlab_core::counter::Counter;
+
+/// A texture reconstruction/antialiasing filter.
+pub trait Filter: Sync {
+    /// Short name used in reports and on the command line.
+    fn name(&self) -> &'static str;
+
+    /// Filtered texture value at `uv` for a pixel whose footprint is spanned by
+    /// `duv_dx` and `duv_dy` (UV change per pixel step in x and y).
+    fn sample<C: Counter>(
+        &self,
+        tex: &Texture,
+        uv: Vec2,
+        duv_dx: Vec2,
+        duv_dy: Vec2,
+        counter: &mut C,
+    ) -> Vec4;
+}
+
+/// Nearest-texel lookup on level 0 (1 fetch).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Nearest;
+
+/// Bilinear interpolation on level 0 (4 fetches): no antialiasing under minification.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Bilinear;
+
+/// Trilinear mip-mapping (8 fetches): bilinear on the two levels around the LOD
+/// `log2(max(|∂uv/∂x|, |∂uv/∂y|) · size)`, blended linearly.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Trilinear;
+
+/// Sanitises a coordinate so that NaN or huge values give a defined lookup.
+#[inline]
+fn finite(v: f32) -> f32 {
+    if v.is_finite() {
+        v.clamp(-1.0e7, 1.0e7)
+    } else {
+        0.0
+    }
+}
+
+/// Bilinear lookup on one level (4 fetches), texel centres at `(i + 0.5) / size`.
+#[inline]
+pub fn bilinear_level<C: Counter>(tex: &Texture, level: usize, uv: Vec2, counter: &mut C) -> Vec4 {
+    let img = tex.level(level);
+    let x = finite(uv.x) * img.width() as f32 - 0.5;
+    let y = finite(uv.y) * img.height() as f32 - 0.5;
+    let x0 = x.floor();
+    let y0 = y.floor();
+    let fx = x - x0;
+    let fy = y - y0;
+    let (xi, yi) = (x0 as i64, y0 as i64);
+    counter.count(4);
+    let a = tex.texel(level, xi, yi);
+    let b = tex.texel(level, xi + 1, yi);
+    let c = tex.texel(level, xi, yi + 1);
+    let d = tex.texel(level, xi + 1, yi + 1);
+    let top = a + (b - a) * fx;
+    let bottom = c + (d - c) * fx;
+    top + (bottom - top) * fy
+}
+
+/// The continuous level of detail of a footprint: `log2` of the longer Jacobian column in
+/// level-0 texels, clamped to the pyramid.
+#[inline]
+pub fn lod(tex: &Texture, duv_dx: Vec2, duv_dy: Vec2) -> f32 {
+    let size = tex.size();
+    let a = (duv_dx * size).length_squared();
+    let b = (duv_dy * size).length_squared();
+    let rho2 = a.max(b);
+    if !(a.is_finite() && b.is_finite()) {
+        return (tex.level_count() - 1) as f32;
+    }
+    let l = 0.5 * rho2.max(1e-30).log2();
+    l.clamp(0.0, (tex.level_count() - 1) as f32)
+}
+
+impl Filter for Nearest {
+    fn name(&self) -> &'static str {
+        "nearest"
+    }
+
+    #[inline]
+    fn sample<C: Counter>(&self, tex: &Texture, uv: Vec2, _: Vec2, _: Vec2, counter: &mut C) -> Vec4 {
+        let s = tex.size();
+        counter.count(1);
+        tex.texel(0, (finite(uv.x) * s.x).floor() as i64, (finite(uv.y) * s.y).floor() as i64)
+    }
+}
+
+impl Filter for Bilinear {
+    fn name(&self) -> &'static str {
+        "bilinear"
+    }
+
+    #[inline]
+    fn sample<C: Counter>(&self, tex: &Texture, uv: Vec2, _: Vec2, _: Vec2, counter: &mut C) -> Vec4 {
+        bilinear_level(tex, 0, uv, counter)
+    }
+}
+
+impl Filter for Trilinear {
+    fn name(&self) -> &'static str {
+        "trilinear"
+    }
+
+    #[inline]
+    fn sample<C: Counter>(
+        &self,
+        tex: &Texture,
+        uv: Vec2,
+        duv_dx: Vec2,
+        duv_dy: Vec2,
+        counter: &mut C,
+    ) -> Vec4 {
+        let l = lod(tex, duv_dx, duv_dy);
+        let l0 = l.floor() as usize;
+        let t = l - l0 as f32;
+        let a = bilinear_level(tex, l0, uv, counter);
+        if t <= 0.0 || l0 + 1 >= tex.level_count() {
+            return a;
+        }
+        let b = bilinear_level(tex, l0 + 1, uv, counter);
+        a + (b - a) * t
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mip::Wrap;
+    use renderlab_core::counter::Tally;
+    use renderlab_core::Image;
+
+    fn ramp() -> Texture {
+        Texture::from_gray(&Image::from_fn(8, 4, |x, _| x as f32 / 7.0), Wrap::Clamp)
+    }
+
+    #[test]
+    fn bilinear_hits_texel_centres_and_interpolates() {
+        let t = ramp();
+        let mut c = Tally::default();
+        let v = Bilinear.sample(&t, Vec2::new(2.5 / 8.0, 0.5), Vec2::ZERO, Vec2::ZERO, &mut c);
+        assert!((v.x - 2.0 / 7.0).abs() < 1e-6);
+        let v = Bilinear.sample(&t, Vec2::new(3.0 / 8.0, 0.5), Vec2::ZERO, Vec2::ZERO, &mut c);
+        assert!((v.x - 2.5 / 7.0).abs() < 1e-6);
+        assert_eq!(c.0, 8);
+    }
+
+    #[test]
+    fn lod_follows_footprint() {
+        let t = Texture::from_gray(&Image::new(64, 64, 0.0), Wrap::Repeat);
+        assert_eq!(lod(&t, Vec2::new(1.0 / 64.0, 0.0), Vec2::ZERO), 0.0);
+        assert!((lod(&t, Vec2::new(4.0 / 64.0, 0.0), Vec2::new(0.0, 1.0 / 64.0)) - 2.0).abs() < 1e-5);
+        assert_eq!(lod(&t, Vec2::splat(f32::INFINITY), Vec2::ZERO), 6.0);
+        assert_eq!(lod(&t, Vec2::splat(f32::NAN), Vec2::ZERO), 6.0);
+    }
+
+    #[test]
+    fn trilinear_of_constant_is_constant() {
+        let t = Texture::from_gray(&Image::new(33, 17, 0.25), Wrap::Repeat);
+        let mut c = Tally::default();
+        for k in 0..20 {
+            let d = Vec2::new(0.01 * k as f32, 0.003);
+            let v = Trilinear.sample(&t, Vec2::new(0.3, 0.7), d, d.perp(), &mut c);
+            assert!((v.x - 0.25).abs() < 1e-5);
+        }
+    }
+
+    #[test]
+    fn nan_uv_is_defined() {
+        let t = ramp();
+        let mut c = Tally::default();
+        let v = Trilinear.sample(&t, Vec2::NAN, Vec2::NAN, Vec2::NAN, &mut c);
+        assert!(v.is_finite());
+    }
+}
