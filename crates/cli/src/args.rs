@@ -120,6 +120,9 @@ pub struct BenchArgs {
     /// Skip writing images (results and report only).
     #[arg(long)]
     pub no_images: bool,
+    /// Largest side of the relaxed cone map for cone-step methods (16..=4096).
+    #[arg(long, default_value_t = 512)]
+    pub cone_size: u32,
     /// Complexity-map parameters for adaptive POM.
     #[command(flatten)]
     pub complexity: ComplexityFlags,

@@ -100,7 +100,11 @@ fn relief_bench(a: BenchArgs) -> Result<()> {
         reps: a.reps,
         complexity: params(&a.complexity)?,
         write_images: !a.no_images,
+        cone_size: a.cone_size,
     };
+    if !(16..=4096).contains(&a.cone_size) {
+        bail!("--cone-size: {} must lie in 16..=4096", a.cone_size);
+    }
     let material = load_material(&a.material)?;
     create_dir(&a.out)?;
     let p = Progress::new("relief");
@@ -158,11 +162,10 @@ fn relief_render(a: RenderArgs) -> Result<()> {
         }
         DebugView::Complexity => {
             let f = render(view.input(), &mats, Technique::Basic, scene.lighting, scene.background, false);
-            let c =
-                Image::from_fn(a.width, a.height, |x, y| match view.gbuffer.get(x, y) {
-                    Some(sp) => mats[sp.material as usize].inputs().complexity_at(sp.uv),
-                    None => 0.0,
-                });
+            let c = Image::from_fn(a.width, a.height, |x, y| match view.gbuffer.get(x, y) {
+                Some(sp) => mats[sp.material as usize].inputs().complexity_at(sp.uv),
+                None => 0.0,
+            });
             rgb8(heat_image(&c, 1.0, Some(&f.mask)))
         }
         DebugView::Error => {
@@ -206,7 +209,7 @@ fn materials(a: MaterialsArgs) -> Result<()> {
 fn report(a: ReportArgs) -> Result<()> {
     create_dir(&a.out)?;
     let started = std::time::Instant::now();
-    let mut cfg = ReliefBenchConfig::default();
+    let mut cfg = ReliefBenchConfig { reps: 3, ..ReliefBenchConfig::default() };
     if a.quick {
         cfg.width = 640;
         cfg.height = 400;

@@ -1,4 +1,4 @@
-//! A pinhole perspective camera (right-handed, looking down its local −Z, depth in [0,1]).
+//! A pinhole perspective camera (right-handed, looking down its local −Z, depth in [0, 1]).
 
 use glam::{Mat4, Vec3};
 
@@ -68,7 +68,7 @@ impl Camera {
         Mat4::look_to_rh(self.position, self.forward, self.up)
     }
 
-    /// View → clip transform (depth mapped to [0,1]).
+    /// View → clip transform (depth mapped to [0, 1]).
     pub fn projection(&self) -> Mat4 {
         Mat4::perspective_rh(self.fov_y_deg.to_radians(), self.aspect(), self.near, self.far)
     }

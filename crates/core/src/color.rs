@@ -2,7 +2,7 @@
 
 use glam::Vec3;
 
-/// Converts one sRGB-encoded component in [0,1] to linear light (IEC 61966-2-1).
+/// Converts one sRGB-encoded component in [0, 1] to linear light (IEC 61966-2-1).
 #[inline]
 pub fn srgb_to_linear(c: f32) -> f32 {
     if c <= 0.04045 {
@@ -12,7 +12,7 @@ pub fn srgb_to_linear(c: f32) -> f32 {
     }
 }
 
-/// Converts one linear-light component to sRGB encoding, clamping to [0,1].
+/// Converts one linear-light component to sRGB encoding, clamping to [0, 1].
 #[inline]
 pub fn linear_to_srgb(c: f32) -> f32 {
     let c = if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) };
@@ -54,8 +54,8 @@ pub fn luminance(c: Vec3) -> f32 {
 }
 
 /// A perceptually ordered colour map (a compact "turbo"-like ramp) for heat maps:
-/// `t` in [0,1] goes from dark blue through green and yellow to dark red. Returns sRGB-encoded
-/// values in [0,1] (meant for display, not for lighting).
+/// `t` in [0, 1] goes from dark blue through green and yellow to dark red. Returns sRGB-encoded
+/// values in [0, 1] (meant for display, not for lighting).
 pub fn heat_color(t: f32) -> Vec3 {
     let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
     // Piecewise-linear through hand-picked key colours.

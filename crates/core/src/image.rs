@@ -24,6 +24,22 @@ pub fn check_dimensions(what: &str, width: u64, height: u64) -> Result<()> {
     Ok(())
 }
 
+/// `i` wrapped into `0..n` (repeat addressing). In-range indices, the common case in texture
+/// lookups, skip the integer division.
+#[inline(always)]
+pub fn wrap_index(i: i64, n: u32) -> usize {
+    let n = n as i64;
+    if (i as u64) < n as u64 {
+        i as usize
+    } else if i < 0 && i >= -n {
+        (i + n) as usize
+    } else if i >= n && i < 2 * n {
+        (i - n) as usize
+    } else {
+        i.rem_euclid(n) as usize
+    }
+}
+
 /// A `width × height` grid of pixels stored row by row.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image<T> {
@@ -116,9 +132,7 @@ impl<T: Copy> Image<T> {
     /// The pixel at (x, y) with coordinates wrapped (repeat addressing).
     #[inline]
     pub fn get_wrapped(&self, x: i64, y: i64) -> T {
-        let xx = x.rem_euclid(self.width as i64) as usize;
-        let yy = y.rem_euclid(self.height as i64) as usize;
-        self.data[yy * self.width as usize + xx]
+        self.data[wrap_index(y, self.height) * self.width as usize + wrap_index(x, self.width)]
     }
 
     /// The pixel at (x, y) with coordinates clamped to the edge.

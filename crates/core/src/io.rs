@@ -1,6 +1,6 @@
 //! Image input and output. PNG, JPEG, TGA and EXR in; PNG and EXR out. Colour images are
 //! converted to linear light on load (sRGB-encoded formats) and encoded to sRGB on save;
-//! data images (height, normal maps) are read as raw values scaled to [0,1].
+//! data images (height, normal maps) are read as raw values scaled to [0, 1].
 //!
 //! Bad input never crashes: every failure is a [`CoreError`] that names the file. Dimensions
 //! are checked from the file header before any pixel memory is reserved (so a 12-byte header
@@ -46,7 +46,7 @@ pub fn format_of(path: &Path) -> Result<Format> {
     }
 }
 
-/// Pixels as decoded, before any colour interpretation: RGBA values scaled to [0,1] (or as
+/// Pixels as decoded, before any colour interpretation: RGBA values scaled to [0, 1] (or as
 /// stored, for EXR).
 struct Raw {
     image: Image<Vec4>,
@@ -110,9 +110,8 @@ fn read_ldr(path: &Path, bytes: &[u8], format: Format) -> Result<Raw> {
         check_dimensions(&what, w as u64, h as u64)?;
     }
     let cursor = std::io::Cursor::new(bytes);
-    let (w, h) = ImageReader::with_format(cursor.clone(), fmt)
-        .into_dimensions()
-        .map_err(|e| decode_err(path, e))?;
+    let (w, h) =
+        ImageReader::with_format(cursor.clone(), fmt).into_dimensions().map_err(|e| decode_err(path, e))?;
     check_dimensions(&what, w as u64, h as u64)?;
     let mut reader = ImageReader::with_format(cursor, fmt);
     let mut limits = image::Limits::default();
@@ -127,7 +126,7 @@ fn read_ldr(path: &Path, bytes: &[u8], format: Format) -> Result<Raw> {
     Ok(Raw { image: Image::from_vec(w, h, to_vec4(img))?, srgb: true })
 }
 
-/// Converts decoded pixels to RGBA in [0,1], integer samples `k` becoming exactly
+/// Converts decoded pixels to RGBA in [0, 1], integer samples `k` becoming exactly
 /// `k / 255` or `k / 65535` (the `image` crate's own float conversion may differ in the
 /// last bit, which would break exact round trips of 16-bit height maps).
 fn to_vec4(img: image::DynamicImage) -> Vec<Vec4> {
@@ -255,8 +254,8 @@ pub fn load_color(path: impl AsRef<Path>) -> Result<Image<Vec3>> {
 }
 
 /// Loads a height map (1 = top of the relief): the first channel (red, or grey), 8 or 16 bits,
-/// scaled to [0,1] with no colour conversion, because heights are data, not colour. A 16-bit
-/// value `k` becomes exactly `k / 65535`. EXR values are clamped to [0,1].
+/// scaled to [0, 1] with no colour conversion, because heights are data, not colour. A 16-bit
+/// value `k` becomes exactly `k / 65535`. EXR values are clamped to [0, 1].
 pub fn load_height(path: impl AsRef<Path>) -> Result<Image<f32>> {
     let raw = read_raw(path.as_ref())?;
     Ok(raw.image.map(|p| p.x.clamp(0.0, 1.0)))
@@ -301,9 +300,9 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> std::io::
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
     };
-    let file_name = path
-        .file_name()
-        .ok_or_else(|| werr(std::io::Error::new(std::io::ErrorKind::InvalidInput, "path has no file name")))?;
+    let file_name = path.file_name().ok_or_else(|| {
+        werr(std::io::Error::new(std::io::ErrorKind::InvalidInput, "path has no file name"))
+    })?;
     let tmp = dir.join(format!(
         ".{}.{}.{}.tmp",
         file_name.to_string_lossy(),
@@ -371,11 +370,11 @@ pub fn save_rgb8(path: impl AsRef<Path>, img: &Image<[u8; 3]>) -> Result<()> {
     encode_png(path, img.width(), img.height(), &data, image::ExtendedColorType::Rgb8)
 }
 
-/// Saves a single-channel data image (height, complexity; values in [0,1], no sRGB encoding)
+/// Saves a single-channel data image (height, complexity; values in [0, 1], no sRGB encoding)
 /// as a grey PNG: 8-bit with each value `v` written as `floor(v·255)` computed in `f32`, as
 /// the thesis's tool does (so its maps are reproduced value for value), or 16-bit when
 /// `sixteen_bit` is set, rounded to nearest so that `k / 65535` reads back exactly. NaN is
-/// written as 0 and values are clamped to [0,1]. With an `.exr` path, writes float EXR
+/// written as 0 and values are clamped to [0, 1]. With an `.exr` path, writes float EXR
 /// (grey in R, G and B) and ignores `sixteen_bit`.
 pub fn save_gray(path: impl AsRef<Path>, img: &Image<f32>, sixteen_bit: bool) -> Result<()> {
     let path = path.as_ref();
@@ -421,4 +420,31 @@ pub fn save_exr(path: impl AsRef<Path>, img: &Image<Vec3>) -> Result<()> {
         .map_err(|e| CoreError::Write { path: path.to_path_buf(), source: std::io::Error::other(e) })?;
     let bytes = buf.into_inner();
     write_atomic(path, |out| out.write_all(&bytes))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_panicking_decoder_becomes_an_error_naming_the_file() {
+        let path = Path::new("dir/bad.png");
+        let r: Result<()> = guarded(path, || panic!("index out of bounds"));
+        let msg = r.unwrap_err().to_string();
+        assert!(msg.contains("bad.png") && msg.contains("index out of bounds"), "{msg}");
+        let r: Result<()> = guarded(path, || panic!("{}", String::from("formatted")));
+        assert!(r.unwrap_err().to_string().contains("formatted"));
+        assert_eq!(guarded(path, || Ok(7)).unwrap(), 7);
+    }
+
+    #[test]
+    fn png_header_size_reads_the_ihdr() {
+        let mut b = vec![0x89, b'P', b'N', b'G', 0x0d, 0x0a, 0x1a, 0x0a, 0, 0, 0, 13];
+        b.extend_from_slice(b"IHDR");
+        b.extend_from_slice(&100_000u32.to_be_bytes());
+        b.extend_from_slice(&7u32.to_be_bytes());
+        assert_eq!(png_header_size(&b), Some((100_000, 7)));
+        assert_eq!(png_header_size(&b[..20]), None);
+        assert_eq!(png_header_size(b"GIF89a............................"), None);
+    }
 }

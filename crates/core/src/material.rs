@@ -13,7 +13,7 @@ pub struct Material {
     pub name: String,
     /// Base colour in linear light.
     pub albedo: Image<Vec3>,
-    /// Height in [0,1], 1 = top surface.
+    /// Height in [0, 1], 1 = top surface.
     pub height: Image<f32>,
     /// Unit tangent-space normals (x along +u, y along +v, z out of the surface).
     pub normal: Image<Vec3>,

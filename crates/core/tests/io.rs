@@ -512,8 +512,6 @@ fn read_only_formats_are_not_written() {
     assert!(save_rgb8(dir.path().join("x.exr"), &Image::new(4, 4, [0u8; 3])).is_err());
 }
 
-
-
 // ---------------------------------------------------------------------------------------------
 // Fuzzing
 
@@ -595,7 +593,7 @@ fn fuzz_cases(default: u32) -> u32 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: fuzz_cases(64), ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: fuzz_cases(200), ..ProptestConfig::default() })]
 
     #[test]
     fn mutated_files_never_panic(

@@ -111,9 +111,7 @@ mod tests {
         let mut lit = Vec::new();
         draw_text("1", 10, 20, 1, |x, y| lit.push((x, y)));
         assert!(!lit.is_empty());
-        assert!(lit
-            .iter()
-            .all(|&(x, y)| (10..15).contains(&x) && (20..27).contains(&y)));
+        assert!(lit.iter().all(|&(x, y)| (10..15).contains(&x) && (20..27).contains(&y)));
         // The vertical stroke of '1' is the middle column, all seven rows.
         assert_eq!(lit.iter().filter(|p| p.0 == 12).count(), 7);
     }

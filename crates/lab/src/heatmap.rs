@@ -21,13 +21,13 @@ const LEGEND_BG: [u8; 3] = [28, 28, 30];
 /// Tick marks and text of the legend strip.
 const LEGEND_FG: [u8; 3] = [225, 225, 225];
 
-/// Quantises a display value in [0,1] to 8 bits, rounding to nearest.
+/// Quantises a display value in [0, 1] to 8 bits, rounding to nearest.
 #[inline]
 fn to_u8(v: f32) -> u8 {
     (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8
 }
 
-/// The heat colour of `t` in [0,1] as 8-bit sRGB.
+/// The heat colour of `t` in [0, 1] as 8-bit sRGB.
 #[inline]
 fn heat_rgb8(t: f32) -> [u8; 3] {
     let c = heat_color(t);
@@ -45,11 +45,7 @@ pub fn heat_image(values: &Image<f32>, max: f32, mask: Option<&Image<bool>>) -> 
     if let Some(m) = mask {
         assert_eq!(m.size(), values.size(), "heat_image: mask size differs");
     }
-    let scale = if max.is_finite() && max > 0.0 {
-        1.0 / max
-    } else {
-        1.0
-    };
+    let scale = if max.is_finite() && max > 0.0 { 1.0 / max } else { 1.0 };
     let (w, h) = values.size();
     Image::from_fn_par(w, h, |x, y| {
         if mask.is_some_and(|m| !m.get(x, y)) {
@@ -74,18 +70,17 @@ pub fn gray_image(values: &Image<f32>, lo: f32, hi: f32) -> Image<[u8; 3]> {
         if v.is_nan() {
             return NOT_A_NUMBER;
         }
-        let g = if valid {
-            to_u8((v - lo) / (hi - lo))
-        } else {
-            128
-        };
+        let g = if valid { to_u8((v - lo) / (hi - lo)) } else { 128 };
         [g, g, g]
     })
 }
 
-/// The `p`-quantile (`p` in [0,1], e.g. 0.99) of the finite values whose mask is set, by the
+/// The `p`-quantile (`p` in [0, 1], e.g. 0.99) of the finite values whose mask is set, by the
 /// nearest-rank method; 0 when there is none. Useful to choose a heat-map `max` that a few
 /// outliers do not dominate.
+///
+/// # Panics
+/// If the mask and the values differ in size.
 pub fn percentile(values: &Image<f32>, mask: Option<&Image<bool>>, p: f32) -> f32 {
     if let Some(m) = mask {
         assert_eq!(m.size(), values.size(), "percentile: mask size differs");
@@ -178,17 +173,10 @@ pub fn with_legend(img: &Image<[u8; 3]>, max: f32, label: &str) -> Image<[u8; 3]
     // Text row: "0" at the left end, the maximum at the right end, the label centred.
     let text_y = (tick_y0 + tick_h + gap) as i64;
     let lo_text = "0".to_string();
-    let hi_text = tick_text(if max.is_finite() && max > 0.0 {
-        max
-    } else {
-        1.0
-    });
+    let hi_text = tick_text(if max.is_finite() && max > 0.0 { max } else { 1.0 });
     let label = label.to_ascii_uppercase();
-    let (lo_w, hi_w, label_w) = (
-        glyphs::text_width(&lo_text, s),
-        glyphs::text_width(&hi_text, s),
-        glyphs::text_width(&label, s),
-    );
+    let (lo_w, hi_w, label_w) =
+        (glyphs::text_width(&lo_text, s), glyphs::text_width(&hi_text, s), glyphs::text_width(&label, s));
     let room = bx1.saturating_sub(bx0);
     let mut put = |text: &str, x: i64| {
         glyphs::draw_text(text, x, text_y, s, |px, py| {
@@ -203,8 +191,7 @@ pub fn with_legend(img: &Image<[u8; 3]>, max: f32, label: &str) -> Image<[u8; 3]
         let free = room - lo_w - hi_w;
         if label_w + 8 * s <= free {
             let centre = (bx0 + bx1) / 2;
-            let x = (centre - label_w / 2)
-                .clamp(bx0 + lo_w + 4 * s, bx1 - hi_w - 4 * s - label_w);
+            let x = (centre - label_w / 2).clamp(bx0 + lo_w + 4 * s, bx1 - hi_w - 4 * s - label_w);
             put(&label, x as i64);
         }
     }

@@ -2,7 +2,7 @@
 //! an optional mask.
 //!
 //! Every function takes images in **linear light** (`Image<Vec3>`, the renderer's output) and
-//! converts them internally to **sRGB-encoded display values in [0,1]** (clamped, with
+//! converts them internally to **sRGB-encoded display values in [0, 1]** (clamped, with
 //! [`linear_to_srgb`]) before comparing: the metrics judge what a viewer sees on a screen,
 //! which is also how PSNR, SSIM and FLIP are defined and how published numbers are computed.
 //!
@@ -41,14 +41,7 @@ const SSIM_C2: f32 = 0.03 * 0.03;
 
 /// Panics with a clear message unless the two sizes agree.
 fn assert_same_size(what: &str, a: (u32, u32), b: (u32, u32)) {
-    assert!(
-        a == b,
-        "{what}: sizes differ ({}x{} vs {}x{})",
-        a.0,
-        a.1,
-        b.0,
-        b.1
-    );
+    assert!(a == b, "{what}: sizes differ ({}x{} vs {}x{})", a.0, a.1, b.0, b.1);
 }
 
 fn check_inputs(test: &Image<Vec3>, reference: &Image<Vec3>, mask: Option<&Image<bool>>) {
@@ -58,7 +51,7 @@ fn check_inputs(test: &Image<Vec3>, reference: &Image<Vec3>, mask: Option<&Image
     }
 }
 
-/// sRGB-encoded display values in [0,1] of a linear colour.
+/// sRGB-encoded display values in [0, 1] of a linear colour.
 #[inline]
 fn encode(c: Vec3) -> [f32; 3] {
     [linear_to_srgb(c.x), linear_to_srgb(c.y), linear_to_srgb(c.z)]
@@ -73,8 +66,7 @@ fn counts(mask_row: Option<&[bool]>, x: usize) -> bool {
 /// Adds per-row `(sum, count)` pairs in row order, so the total does not depend on how rayon
 /// split the work.
 fn ordered_total(rows: &[(f64, u64)]) -> (f64, u64) {
-    rows.iter()
-        .fold((0.0, 0), |(s, n), &(rs, rn)| (s + rs, n + rn))
+    rows.iter().fold((0.0, 0), |(s, n), &(rs, rn)| (s + rs, n + rn))
 }
 
 /// Mean of `map` over the pixels whose mask is set; `NaN` when none is.
@@ -165,14 +157,12 @@ fn ssim_weights() -> [f32; 2 * SSIM_RADIUS + 1] {
 fn luma_plane(img: &Image<Vec3>) -> Vec<f32> {
     let w = img.width() as usize;
     let mut out = vec![0.0f32; img.pixels().len()];
-    out.par_chunks_mut(w)
-        .zip(img.pixels().par_chunks(w))
-        .for_each(|(o, row)| {
-            for (o, &c) in o.iter_mut().zip(row) {
-                let [r, g, b] = encode(c);
-                *o = 0.2126 * r + 0.7152 * g + 0.0722 * b;
-            }
-        });
+    out.par_chunks_mut(w).zip(img.pixels().par_chunks(w)).for_each(|(o, row)| {
+        for (o, &c) in o.iter_mut().zip(row) {
+            let [r, g, b] = encode(c);
+            *o = 0.2126 * r + 0.7152 * g + 0.0722 * b;
+        }
+    });
     out
 }
 
@@ -186,11 +176,7 @@ type Moments = [f32; 6];
 /// the image never influence the result. With no mask this is the usual SSIM with a window
 /// truncated (and renormalised) at the image border instead of the MATLAB reference's
 /// cropping, so that every pixel gets a value.
-fn ssim_values(
-    test: &Image<Vec3>,
-    reference: &Image<Vec3>,
-    mask: Option<&Image<bool>>,
-) -> Image<f32> {
+fn ssim_values(test: &Image<Vec3>, reference: &Image<Vec3>, mask: Option<&Image<bool>>) -> Image<f32> {
     check_inputs(test, reference, mask);
     let (w, h) = (reference.width() as usize, reference.height() as usize);
     let g = ssim_weights();
@@ -265,11 +251,7 @@ fn ssim_values(
 ///
 /// # Panics
 /// If the images or the mask differ in size.
-pub fn ssim_map(
-    test: &Image<Vec3>,
-    reference: &Image<Vec3>,
-    mask: Option<&Image<bool>>,
-) -> Image<f32> {
+pub fn ssim_map(test: &Image<Vec3>, reference: &Image<Vec3>, mask: Option<&Image<bool>>) -> Image<f32> {
     ssim_values(test, reference, mask)
 }
 
@@ -285,10 +267,10 @@ pub fn ssim(test: &Image<Vec3>, reference: &Image<Vec3>, mask: Option<&Image<boo
 /// The result of a FLIP comparison.
 #[derive(Clone, Debug)]
 pub struct FlipResult {
-    /// Mean FLIP error over the whole image, in [0,1] (0 = indistinguishable). This is the
+    /// Mean FLIP error over the whole image, in [0, 1] (0 = indistinguishable). This is the
     /// single number the FLIP authors recommend reporting.
     pub mean: f64,
-    /// Per-pixel FLIP error in [0,1], for heat maps (see [`crate::heatmap::heat_image`]).
+    /// Per-pixel FLIP error in [0, 1], for heat maps (see [`crate::heatmap::heat_image`]).
     pub map: Image<f32>,
 }
 
@@ -296,23 +278,22 @@ pub struct FlipResult {
 fn srgb8_bytes(img: &Image<Vec3>) -> Vec<u8> {
     let w = img.width() as usize;
     let mut out = vec![0u8; img.pixels().len() * 3];
-    out.par_chunks_mut(w * 3)
-        .zip(img.pixels().par_chunks(w))
-        .for_each(|(o, row)| {
-            for (o, &c) in o.chunks_exact_mut(3).zip(row) {
-                o.copy_from_slice(&linear_to_srgb8(c));
-            }
-        });
+    out.par_chunks_mut(w * 3).zip(img.pixels().par_chunks(w)).for_each(|(o, row)| {
+        for (o, &c) in o.chunks_exact_mut(3).zip(row) {
+            o.copy_from_slice(&linear_to_srgb8(c));
+        }
+    });
     out
 }
 
 /// LDR-FLIP (Andersson et al. 2020, NVIDIA's reference implementation through the `nv-flip`
 /// crate) between `test` and `reference`, both quantised to 8-bit sRGB, at the default
 /// [`FLIP_DEFAULT_PIXELS_PER_DEGREE`]. FLIP models how visible the differences are when one
-/// flips between the two images; the mean is in [0,1] with 0 for identical images.
+/// flips between the two images; the mean is in [0, 1] with 0 for identical images.
 ///
 /// FLIP itself has no mask; use [`flip_masked_mean`] to average its map over a mask.
-/// The C++ implementation runs on one thread.
+/// The C++ implementation runs on one thread; this runs it on horizontal bands in parallel
+/// (with halos, so the result is identical to one call on the whole image).
 ///
 /// # Panics
 /// If the images differ in size.
@@ -325,24 +306,59 @@ pub fn flip(test: &Image<Vec3>, reference: &Image<Vec3>) -> FlipResult {
 ///
 /// # Panics
 /// If the images differ in size, or `pixels_per_degree` is not a positive finite number.
-pub fn flip_with_ppd(
-    test: &Image<Vec3>,
-    reference: &Image<Vec3>,
-    pixels_per_degree: f32,
-) -> FlipResult {
+pub fn flip_with_ppd(test: &Image<Vec3>, reference: &Image<Vec3>, pixels_per_degree: f32) -> FlipResult {
     check_inputs(test, reference, None);
     assert!(
         pixels_per_degree.is_finite() && pixels_per_degree > 0.0,
         "flip: pixels per degree must be positive and finite, got {pixels_per_degree}"
     );
-    let (w, h) = reference.size();
-    let reference_img = nv_flip::FlipImageRgb8::with_data(w, h, &srgb8_bytes(reference));
-    let test_img = nv_flip::FlipImageRgb8::with_data(w, h, &srgb8_bytes(test));
-    // nv_flip::flip takes the reference first.
-    let error = nv_flip::flip(reference_img, test_img, pixels_per_degree);
-    let map = Image::from_vec(w, h, error.to_vec()).expect("FLIP map has the image's size");
+    let h = reference.height();
+    let threads = rayon::current_num_threads().max(1);
+    let band = (h as usize).div_ceil(2 * threads).max(FLIP_MIN_BAND_ROWS);
+    let map = flip_banded(test, reference, pixels_per_degree, band);
     let mean = masked_mean(&map, None);
     FlipResult { mean, map }
+}
+
+/// Bands shorter than this are not worth FLIP's halo rows.
+const FLIP_MIN_BAND_ROWS: usize = 96;
+
+/// Support radius in pixels of FLIP's filters at `ppd`: the larger of the spatial (contrast
+/// sensitivity) filter radius and the feature (edge and point) filter radius, computed as the
+/// reference implementation does (`calculateSpatialFilterRadius`, and `ceil(3σ)` with
+/// σ = ½·0.082·ppd). 10 pixels at 67 pixels per degree.
+fn flip_filter_radius(ppd: f32) -> usize {
+    let pi_sq = std::f32::consts::PI * std::f32::consts::PI;
+    let spatial = (3.0 * (0.04f32 / (2.0 * pi_sq)).sqrt() * ppd).ceil();
+    let feature = (3.0 * (0.5 * 0.082 * ppd)).ceil();
+    spatial.max(feature) as usize
+}
+
+/// FLIP computed in horizontal bands of `band_rows` rows, in parallel (the C++ code is single
+/// threaded). Each band is extended by a halo wider than FLIP's filters, and FLIP has no
+/// image-wide step (every pixel's error depends only on its neighbourhood, with edge clamping
+/// at the true image border, which bands touching it share), so the map is bit-identical to
+/// one call on the whole image.
+fn flip_banded(test: &Image<Vec3>, reference: &Image<Vec3>, ppd: f32, band_rows: usize) -> Image<f32> {
+    let (w, h) = (reference.width() as usize, reference.height() as usize);
+    let band_rows = band_rows.clamp(1, h);
+    let halo = flip_filter_radius(ppd) + 2;
+    let (ref_bytes, test_bytes) = (srgb8_bytes(reference), srgb8_bytes(test));
+    let row_bytes = 3 * w;
+    let mut out = vec![0.0f32; w * h];
+    out.par_chunks_mut(band_rows * w).enumerate().for_each(|(i, dst)| {
+        let y0 = i * band_rows;
+        let y1 = y0 + dst.len() / w;
+        let (a0, a1) = (y0.saturating_sub(halo), (y1 + halo).min(h));
+        let rows = (a1 - a0) as u32;
+        let r = nv_flip::FlipImageRgb8::with_data(w as u32, rows, &ref_bytes[a0 * row_bytes..a1 * row_bytes]);
+        let t =
+            nv_flip::FlipImageRgb8::with_data(w as u32, rows, &test_bytes[a0 * row_bytes..a1 * row_bytes]);
+        // nv_flip::flip takes the reference first.
+        let err = nv_flip::flip(r, t, ppd).to_vec();
+        dst.copy_from_slice(&err[(y0 - a0) * w..(y1 - a0) * w]);
+    });
+    Image::from_vec(w as u32, h as u32, out).expect("FLIP map has the image's size")
 }
 
 /// Mean of a FLIP map over the pixels whose mask is set (`None`: the whole image, equal to
@@ -355,7 +371,7 @@ pub fn flip_masked_mean(result: &FlipResult, mask: Option<&Image<bool>>) -> f64 
 }
 
 /// Per-pixel absolute error: the mean over R, G and B of `|test − reference|` in sRGB-encoded
-/// values, in [0,1]. A simple, metric-free view of where two images differ.
+/// values, in [0, 1]. A simple, metric-free view of where two images differ.
 ///
 /// # Panics
 /// If the images differ in size.
@@ -396,11 +412,7 @@ pub struct Comparison {
 ///
 /// # Panics
 /// If the images or the mask differ in size.
-pub fn compare(
-    test: &Image<Vec3>,
-    reference: &Image<Vec3>,
-    mask: Option<&Image<bool>>,
-) -> Comparison {
+pub fn compare(test: &Image<Vec3>, reference: &Image<Vec3>, mask: Option<&Image<bool>>) -> Comparison {
     let ssim_map = ssim_values(test, reference, mask);
     let flip = flip(test, reference);
     let metrics = Metrics {
@@ -408,11 +420,7 @@ pub fn compare(
         ssim: masked_mean(&ssim_map, mask),
         flip: flip_masked_mean(&flip, mask),
     };
-    Comparison {
-        metrics,
-        ssim_map,
-        flip_map: flip.map,
-    }
+    Comparison { metrics, ssim_map, flip_map: flip.map }
 }
 
 #[cfg(test)]
@@ -534,6 +542,20 @@ mod tests {
     }
 
     #[test]
+    fn banded_flip_equals_one_call_on_the_whole_image() {
+        let a = from_srgb(97, 203, |x, y| pattern(x, y) + 0.3 * (hash01(x, y, 1) - 0.5));
+        let b = from_srgb(97, 203, |x, y| pattern(x, y) + 0.1 * hash01(x, y, 2));
+        for ppd in [FLIP_DEFAULT_PIXELS_PER_DEGREE, 20.0] {
+            let whole = flip_banded(&a, &b, ppd, 203);
+            for band in [1, 7, 50, 64] {
+                assert_eq!(flip_banded(&a, &b, ppd, band), whole, "band {band}, ppd {ppd}");
+            }
+        }
+        assert_eq!(flip(&a, &b).map, flip_banded(&a, &b, FLIP_DEFAULT_PIXELS_PER_DEGREE, 203));
+        assert_eq!(flip_filter_radius(67.0), 10);
+    }
+
+    #[test]
     fn flip_of_black_against_white_is_high() {
         let black = Image::new(32, 32, Vec3::ZERO);
         let white = Image::new(32, 32, Vec3::ONE);
@@ -574,6 +596,36 @@ mod tests {
         let e = per_pixel_abs_error(&a, &b);
         assert!((e.get(0, 0) - 0.3).abs() < 1e-5);
         assert!((e.get(1, 0) - 0.1).abs() < 1e-5);
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(48))]
+        #[test]
+        fn metrics_are_bounded_symmetric_and_perfect_on_identity(
+            w in 1u32..14,
+            h in 1u32..14,
+            seed in 0u64..1000,
+            mask_seed in 0u64..1000,
+        ) {
+            let a = Image::from_fn(w, h, |x, y| {
+                Vec3::new(hash01(x, y, seed), hash01(x, y, seed + 1), hash01(x, y, seed + 2))
+            });
+            let b = Image::from_fn(w, h, |x, y| Vec3::splat(hash01(x, y, seed + 3)));
+            let mask = Image::from_fn(w, h, |x, y| hash01(x, y, mask_seed) < 0.7);
+            for m in [None, Some(&mask)] {
+                let p = psnr(&a, &b, m);
+                let s = ssim(&a, &b, m);
+                if m.is_none_or(|m| m.pixels().iter().any(|&v| v)) {
+                    proptest::prop_assert!(p > 0.0);
+                    proptest::prop_assert!((-1.0..=1.0).contains(&s), "ssim {}", s);
+                    proptest::prop_assert_eq!(s, ssim(&b, &a, m));
+                    proptest::prop_assert_eq!(ssim(&a, &a, m), 1.0);
+                    proptest::prop_assert_eq!(psnr(&a, &a, m), f64::INFINITY);
+                } else {
+                    proptest::prop_assert!(p.is_nan() && s.is_nan());
+                }
+            }
+        }
     }
 
     #[test]

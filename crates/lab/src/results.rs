@@ -18,10 +18,8 @@ use std::path::Path;
 /// Writes `value` as pretty-printed JSON (with a final newline), atomically.
 pub fn write_json<T: Serialize + ?Sized>(path: impl AsRef<Path>, value: &T) -> Result<()> {
     let path = path.as_ref();
-    let mut bytes = serde_json::to_vec_pretty(value).map_err(|e| LabError::Serialize {
-        path: path.to_path_buf(),
-        reason: e.to_string(),
-    })?;
+    let mut bytes = serde_json::to_vec_pretty(value)
+        .map_err(|e| LabError::Serialize { path: path.to_path_buf(), reason: e.to_string() })?;
     bytes.push(b'\n');
     write_atomic(path, |out| out.write_all(&bytes))?;
     Ok(())
@@ -37,10 +35,7 @@ pub fn write_json<T: Serialize + ?Sized>(path: impl AsRef<Path>, value: &T) -> R
 /// are quoted, with quotes doubled (RFC 4180). An empty slice writes an empty file.
 pub fn write_csv<T: Serialize>(path: impl AsRef<Path>, rows: &[T]) -> Result<()> {
     let path = path.as_ref();
-    let text = csv_string(rows).map_err(|e| LabError::Serialize {
-        path: path.to_path_buf(),
-        reason: e.0,
-    })?;
+    let text = csv_string(rows).map_err(|e| LabError::Serialize { path: path.to_path_buf(), reason: e.0 })?;
     write_atomic(path, |out| out.write_all(text.as_bytes()))?;
     Ok(())
 }
@@ -69,8 +64,7 @@ fn csv_string<T: Serialize>(rows: &[T]) -> std::result::Result<String, CsvError>
     let mut header: Option<Vec<String>> = None;
     for (i, row) in rows.iter().enumerate() {
         let mut ser = RowSerializer { cells: Vec::new() };
-        row.serialize(&mut ser)
-            .map_err(|e| CsvError(format!("row {}: {}", i + 1, e.0)))?;
+        row.serialize(&mut ser).map_err(|e| CsvError(format!("row {}: {}", i + 1, e.0)))?;
         let names: Vec<String> = ser.cells.iter().map(|(k, _)| k.clone()).collect();
         match &header {
             None => {
@@ -115,9 +109,7 @@ struct RowSerializer {
 }
 
 fn not_a_row<T>() -> std::result::Result<T, CsvError> {
-    Err(CsvError(
-        "a CSV row must serialise as a struct or a map of scalars".into(),
-    ))
+    Err(CsvError("a CSV row must serialise as a struct or a map of scalars".into()))
 }
 
 macro_rules! reject_scalars {
@@ -126,7 +118,7 @@ macro_rules! reject_scalars {
     };
 }
 
-impl<'a> ser::Serializer for &'a mut RowSerializer {
+impl ser::Serializer for &mut RowSerializer {
     type Ok = ();
     type Error = CsvError;
     type SerializeSeq = Impossible<(), CsvError>;
@@ -210,11 +202,7 @@ impl<'a> ser::Serializer for &'a mut RowSerializer {
         Ok(self)
     }
 
-    fn serialize_struct(
-        self,
-        _name: &'static str,
-        _len: usize,
-    ) -> std::result::Result<Self, CsvError> {
+    fn serialize_struct(self, _name: &'static str, _len: usize) -> std::result::Result<Self, CsvError> {
         Ok(self)
     }
 
@@ -238,9 +226,8 @@ impl ser::SerializeStruct for &mut RowSerializer {
         key: &'static str,
         value: &T,
     ) -> std::result::Result<(), CsvError> {
-        let cell = value
-            .serialize(CellSerializer)
-            .map_err(|e| CsvError(format!("field '{key}': {}", e.0)))?;
+        let cell =
+            value.serialize(CellSerializer).map_err(|e| CsvError(format!("field '{key}': {}", e.0)))?;
         self.cells.push((key.to_string(), cell));
         Ok(())
     }
@@ -255,24 +242,15 @@ impl ser::SerializeMap for &mut RowSerializer {
     type Error = CsvError;
 
     fn serialize_key<T: ?Sized + Serialize>(&mut self, key: &T) -> std::result::Result<(), CsvError> {
-        let key = key
-            .serialize(CellSerializer)
-            .map_err(|e| CsvError(format!("map key: {}", e.0)))?;
+        let key = key.serialize(CellSerializer).map_err(|e| CsvError(format!("map key: {}", e.0)))?;
         self.cells.push((key, String::new()));
         Ok(())
     }
 
-    fn serialize_value<T: ?Sized + Serialize>(
-        &mut self,
-        value: &T,
-    ) -> std::result::Result<(), CsvError> {
-        let last = self
-            .cells
-            .last_mut()
-            .ok_or_else(|| CsvError("map value without a key".into()))?;
-        last.1 = value
-            .serialize(CellSerializer)
-            .map_err(|e| CsvError(format!("field '{}': {}", last.0, e.0)))?;
+    fn serialize_value<T: ?Sized + Serialize>(&mut self, value: &T) -> std::result::Result<(), CsvError> {
+        let last = self.cells.last_mut().ok_or_else(|| CsvError("map value without a key".into()))?;
+        last.1 =
+            value.serialize(CellSerializer).map_err(|e| CsvError(format!("field '{}': {}", last.0, e.0)))?;
         Ok(())
     }
 
@@ -285,9 +263,7 @@ impl ser::SerializeMap for &mut RowSerializer {
 struct CellSerializer;
 
 fn not_a_scalar<T>() -> std::result::Result<T, CsvError> {
-    Err(CsvError(
-        "not a scalar (CSV rows must be flat; use #[serde(flatten)] or write JSON)".into(),
-    ))
+    Err(CsvError("not a scalar (CSV rows must be flat; use #[serde(flatten)] or write JSON)".into()))
 }
 
 /// Text of a float: serde_json's shortest form when finite, `inf`, `-inf` or `nan` otherwise.
@@ -534,6 +510,24 @@ mod tests {
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
     }
 
+    proptest::proptest! {
+        #[test]
+        fn csv_quoting_round_trips_any_text(
+            a in "[a-z0-9,\" \n\r]{0,12}",
+            b in "[a-z0-9,\" \n\r]{0,12}",
+        ) {
+            #[derive(Serialize)]
+            struct Pair {
+                a: String,
+                b: String,
+            }
+            let text = csv_string(&[Pair { a: a.clone(), b: b.clone() }]).unwrap();
+            let parsed = parse_csv(&text);
+            proptest::prop_assert_eq!(parsed.len(), 2);
+            proptest::prop_assert_eq!(&parsed[1], &vec![a, b]);
+        }
+    }
+
     #[test]
     fn csv_supports_flatten_and_non_finite_values() {
         #[derive(Serialize)]
@@ -550,10 +544,7 @@ mod tests {
         }
         let text = csv_string(&[Outer {
             name: "a",
-            timing: Inner {
-                median_ms: f64::NAN,
-                min_ms: 0.1,
-            },
+            timing: Inner { median_ms: f64::NAN, min_ms: 0.1 },
             ratio: f64::NEG_INFINITY,
         }])
         .unwrap();
@@ -568,10 +559,8 @@ mod tests {
         }
         let e = csv_string(&[Nested { v: vec![1] }]).unwrap_err();
         assert!(e.0.contains("field 'v'"), "{}", e.0);
-        let maps: Vec<std::collections::BTreeMap<&str, f64>> = vec![
-            [("a", 1.0)].into_iter().collect(),
-            [("b", 2.0)].into_iter().collect(),
-        ];
+        let maps: Vec<std::collections::BTreeMap<&str, f64>> =
+            vec![[("a", 1.0)].into_iter().collect(), [("b", 2.0)].into_iter().collect()];
         let e = csv_string(&maps).unwrap_err();
         assert!(e.0.contains("row 2"), "{}", e.0);
         assert!(csv_string(&[1.0f64]).is_err());
@@ -583,8 +572,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("r.json");
         write_json(&path, &rows()).unwrap();
-        let v: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
         assert_eq!(v[0]["technique"], "POM, 32 steps");
         assert_eq!(v[0]["steps"], 32);
         assert!(v[1]["psnr_db"].is_null());

@@ -30,17 +30,8 @@ impl Timing {
         let mut s = samples_ms.to_vec();
         s.sort_by(f64::total_cmp);
         let n = s.len();
-        let median_ms = if n % 2 == 1 {
-            s[n / 2]
-        } else {
-            0.5 * (s[n / 2 - 1] + s[n / 2])
-        };
-        Some(Timing {
-            median_ms,
-            min_ms: s[0],
-            max_ms: s[n - 1],
-            reps: n as u32,
-        })
+        let median_ms = if n % 2 == 1 { s[n / 2] } else { 0.5 * (s[n / 2 - 1] + s[n / 2]) };
+        Some(Timing { median_ms, min_ms: s[0], max_ms: s[n - 1], reps: n as u32 })
     }
 
     /// How many times faster this is than `other` (ratio of medians: `other / self`).
@@ -55,33 +46,42 @@ impl Timing {
 /// `reps` of 0 is taken as 1 (there must be a result to return).
 pub fn measure<T>(warmup: u32, reps: u32, f: impl FnMut() -> T) -> (Timing, T) {
     let start = Instant::now();
-    measure_with_clock(warmup, reps, f, || start.elapsed().as_secs_f64() * 1e3)
+    measure_with_clock(warmup, reps, f, || u64::try_from(start.elapsed().as_nanos()).unwrap_or(u64::MAX))
 }
 
-/// [`measure`] with the clock supplied: `now_ms()` returns the current time in milliseconds
-/// from any fixed origin. Lets tests drive the statistics with a fake clock.
+/// [`measure`] with the clock supplied: `now_ns()` returns the current time in nanoseconds
+/// from any fixed origin. Lets tests drive the statistics with a fake clock. Durations are
+/// converted to milliseconds by one division, so that they print without rounding noise.
 pub fn measure_with_clock<T>(
     warmup: u32,
     reps: u32,
     mut f: impl FnMut() -> T,
-    mut now_ms: impl FnMut() -> f64,
+    mut now_ns: impl FnMut() -> u64,
 ) -> (Timing, T) {
     for _ in 0..warmup {
         black_box(f());
     }
     let reps = reps.max(1);
     let mut samples = Vec::with_capacity(reps as usize);
-    let mut last = None;
-    for _ in 0..reps {
-        let t0 = now_ms();
+    let mut timed = || {
+        let t0 = now_ns();
         let r = black_box(f());
-        let t1 = now_ms();
-        samples.push(t1 - t0);
-        // The previous result is dropped here, outside the timed span.
-        last = Some(r);
+        let t1 = now_ns();
+        samples.push(t1.saturating_sub(t0) as f64 / 1e6);
+        r
+    };
+    let mut last = timed();
+    for _ in 1..reps {
+        // The previous result is dropped by this assignment, outside the timed span.
+        last = timed();
     }
-    let timing = Timing::from_samples(&samples).expect("at least one repetition");
-    (timing, last.expect("at least one repetition"))
+    let timing = Timing::from_samples(&samples).unwrap_or(Timing {
+        median_ms: 0.0,
+        min_ms: 0.0,
+        max_ms: 0.0,
+        reps: 0,
+    });
+    (timing, last)
 }
 
 #[cfg(test)]
@@ -100,9 +100,9 @@ mod tests {
 
     #[test]
     fn fake_clock_gives_exact_statistics() {
-        // Repetition i takes durations[i] ms on the fake clock.
-        let durations = [7.0, 2.0, 9.0, 4.0, 5.0];
-        let clock = Cell::new(0.0);
+        // Repetition i takes durations[i] ms on the fake clock (which counts nanoseconds).
+        let durations = [7_000_000u64, 2_000_000, 9_000_000, 4_000_000, 5_000_000];
+        let clock = Cell::new(0u64);
         let calls = Cell::new(0u32);
         let rep = Cell::new(0usize);
         let (t, last) = measure_with_clock(

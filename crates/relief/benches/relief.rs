@@ -7,7 +7,7 @@ use renderlab_core::counter::NoCount;
 use renderlab_core::procedural;
 use renderlab_relief::adaptive::AdaptivePom;
 use renderlab_relief::complexity::ComplexityParams;
-use renderlab_relief::cone_step::ConeStep;
+use renderlab_relief::cone_step::{ConeStep, Refinement};
 use renderlab_relief::parallax::{Parallax, Pom, Steep};
 use renderlab_relief::reference::ExactTrace;
 use renderlab_relief::relief_mapping::{AdaptiveRelief, ReliefMapping};
@@ -55,7 +55,7 @@ fn kernels(c: &mut Criterion) {
     run(c, "adaptive_pom_4_32", &AdaptivePom { min: 4, max: 32 }, &inp);
     run(c, "relief_16_6", &ReliefMapping { linear: 16, binary: 6 }, &inp);
     run(c, "adaptive_relief_4_16_5", &AdaptiveRelief { min: 4, max: 16, binary: 5 }, &inp);
-    run(c, "cone_16_5", &ConeStep { steps: 16, binary: 5 }, &inp);
+    run(c, "cone_16_5", &ConeStep { steps: 16, binary: 5, refine: Refinement::Binary }, &inp);
     run(c, "exact_reference", &ExactTrace, &inp);
 }
 

@@ -45,15 +45,18 @@
 use glam::Vec2;
 use rayon::prelude::*;
 use renderlab_core::counter::Counter;
+use renderlab_core::Image;
 
 use crate::height::HeightField;
 
-/// Largest stored ratio (UV per unit depth), given to flat regions whose cone is unbounded.
+/// Largest stored ratio (UV per unit depth), given where nothing limits the cone (flat
+/// regions, texels at the top of the relief).
 ///
-/// At 4, a ray whose UV step per unit depth is `s ≤ 0.5` already covers at least 8/9 of
-/// its remaining depth per step, so larger values would buy almost nothing while making
-/// the precomputation search further.
-pub const MAX_RATIO: f32 = 4.0;
+/// 1, the cap of Policarpo and Oliveira's construction: ratios then fit a unit-range texture
+/// channel (for the GPU twin), and a step already covers `r / (s + r)` of the remaining
+/// depth, i.e. at least half of it whenever `s = height_scale · tan θ ≤ 1`; a larger cap
+/// would gain little there while making both searches cover more than a tile.
+pub const MAX_RATIO: f32 = 1.0;
 
 /// Which cone map to build (see the module documentation).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
@@ -103,10 +106,16 @@ impl ConeMap {
     ///
     /// The relaxed map follows the published construction on the map's own grid: each map
     /// texel gets the depth of the highest field texel whose centre lies in its cell (the
-    /// field itself at full size), the surface between map texels is bilinear, and exit
-    /// points are found exactly on that surface (piecewise quadratic along a ray) rather
-    /// than by fixed steps. The result is `max(relaxed, conservative)`, clamped to
-    /// `MAX_RATIO`.
+    /// field itself at full size), the surface between map texels is bilinear, every other
+    /// texel `q` is tested once (at its nearest copy under tiling), and exit points are found
+    /// exactly on that surface (the ray's height above a bilinear patch is quadratic) rather
+    /// than by the paper's fixed steps. Where a ray is deep inside the relief it leaps ahead
+    /// by the conservative cones of the upside-down surface, which bound how far it surely
+    /// stays inside. Texels are tested nearest first and skipped when even an exit at `q`
+    /// itself could not lower the ratio. A per-texel work budget bounds pathological fields;
+    /// when it runs out the texel keeps the smaller of its best ratio so far and the least
+    /// any untested texel could impose (narrower, so still safe). The result is
+    /// `max(relaxed, conservative)`, at most `MAX_RATIO`.
     ///
     /// Runs in parallel; deterministic for any thread count.
     pub fn build(field: &HeightField, kind: ConeKind, max_size: u32) -> ConeMap {
@@ -117,12 +126,7 @@ impl ConeMap {
             ConeKind::Conservative => conservative,
             ConeKind::Relaxed => grid.relaxed_ratios(&conservative),
         };
-        ConeMap {
-            width: wc,
-            height: hc,
-            kind,
-            ratios,
-        }
+        ConeMap { width: wc, height: hc, kind, ratios }
     }
 
     /// Width of the map in texels.
@@ -152,8 +156,8 @@ impl ConeMap {
     /// The ratio stored at texel `(x, y)`, wrapped.
     #[inline]
     pub fn texel(&self, x: i64, y: i64) -> f32 {
-        let xx = x.rem_euclid(self.width as i64) as usize;
-        let yy = y.rem_euclid(self.height as i64) as usize;
+        let xx = renderlab_core::image::wrap_index(x, self.width);
+        let yy = renderlab_core::image::wrap_index(y, self.height);
         self.ratios[yy * self.width as usize + xx]
     }
 
@@ -162,12 +166,8 @@ impl ConeMap {
     #[inline]
     pub fn texel_of(&self, uv: Vec2) -> (u32, u32) {
         let cell = |t: f32, n: u32| -> u32 {
-            let t = if t.is_finite() {
-                (t * n as f32).clamp(-1.0e9, 1.0e9)
-            } else {
-                0.0
-            };
-            (t.floor() as i64).rem_euclid(n as i64) as u32
+            let t = if t.is_finite() { (t * n as f32).clamp(-1.0e9, 1.0e9) } else { 0.0 };
+            renderlab_core::image::wrap_index(t.floor() as i64, n) as u32
         };
         (cell(uv.x, self.width), cell(uv.y, self.height))
     }
@@ -259,20 +259,17 @@ impl Pooled {
         // field texel (i, j): the largest edge difference along each axis, scaled to UV.
         let (wf, hf) = (w as f32, h as f32);
         let mut patch_slope2 = vec![0.0f32; w * h];
-        patch_slope2
-            .par_chunks_mut(w)
-            .enumerate()
-            .for_each(|(j, row)| {
-                let j = j as i64;
-                for (i, out) in row.iter_mut().enumerate() {
-                    let i = i as i64;
-                    let (d00, d10) = (at(i, j), at(i + 1, j));
-                    let (d01, d11) = (at(i, j + 1), at(i + 1, j + 1));
-                    let gx = (d10 - d00).abs().max((d11 - d01).abs()) * wf;
-                    let gy = (d01 - d00).abs().max((d11 - d10).abs()) * hf;
-                    *out = gx * gx + gy * gy;
-                }
-            });
+        patch_slope2.par_chunks_mut(w).enumerate().for_each(|(j, row)| {
+            let j = j as i64;
+            for (i, out) in row.iter_mut().enumerate() {
+                let i = i as i64;
+                let (d00, d10) = (at(i, j), at(i + 1, j));
+                let (d01, d11) = (at(i, j + 1), at(i + 1, j + 1));
+                let gx = (d10 - d00).abs().max((d11 - d01).abs()) * wf;
+                let gy = (d01 - d00).abs().max((d11 - d10).abs()) * hf;
+                *out = gx * gx + gy * gy;
+            }
+        });
         let patch = |x: i64, y: i64| -> f32 {
             patch_slope2[y.rem_euclid(h as i64) as usize * w + x.rem_euclid(w as i64) as usize]
         };
@@ -350,85 +347,82 @@ impl Pooled {
         // The near bound covers the 3×3 neighbourhood of map cells (wrapped), a convex box in
         // which any segment from the cell to a touching cell stays.
         let mut near_ratio = vec![0.0f32; n];
-        near_ratio
-            .par_chunks_mut(wcu)
-            .enumerate()
-            .for_each(|(y, out)| {
-                for (x, o) in out.iter_mut().enumerate() {
-                    let mut s2 = 0.0f32;
-                    for dy in -1i64..=1 {
-                        let yy = (y as i64 + dy).rem_euclid(hcu as i64) as usize;
-                        for dx in -1i64..=1 {
-                            let xx = (x as i64 + dx).rem_euclid(wcu as i64) as usize;
-                            s2 = s2.max(cell_slope2[yy * wcu + xx]);
-                        }
+        near_ratio.par_chunks_mut(wcu).enumerate().for_each(|(y, out)| {
+            for (x, o) in out.iter_mut().enumerate() {
+                let mut s2 = 0.0f32;
+                for dy in -1i64..=1 {
+                    let yy = (y as i64 + dy).rem_euclid(hcu as i64) as usize;
+                    for dx in -1i64..=1 {
+                        let xx = (x as i64 + dx).rem_euclid(wcu as i64) as usize;
+                        s2 = s2.max(cell_slope2[yy * wcu + xx]);
                     }
-                    *o = if s2 > 0.0 {
-                        (1.0 / s2.sqrt()).min(MAX_RATIO)
-                    } else {
-                        MAX_RATIO
-                    };
                 }
-            });
+                *o = if s2 > 0.0 { (1.0 / s2.sqrt()).min(MAX_RATIO) } else { MAX_RATIO };
+            }
+        });
 
-        Pooled {
-            wc: wcu,
-            hc: hcu,
-            max_depth,
-            min_depth,
-            own_min,
-            near_ratio,
-        }
+        Pooled { wc: wcu, hc: hcu, max_depth, min_depth, own_min, near_ratio }
     }
 
     /// Rigorous empty-cone ratios (see [`ConeMap::build`]).
     fn conservative_ratios(&self) -> Vec<f32> {
         let search = Search::new(self.wc, self.hc, &self.min_depth, Metric::Gap);
         let mut out = vec![0.0f32; self.wc * self.hc];
-        out.par_chunks_mut(self.wc)
-            .enumerate()
-            .for_each(|(py, row)| {
-                for (px, o) in row.iter_mut().enumerate() {
-                    let idx = py * self.wc + px;
-                    let apex = self.max_depth[idx];
-                    let start = self.near_ratio[idx].min(MAX_RATIO);
-                    let r = search.run(px, py, apex, start, 0.0, |_, _, _, dist2, diff| {
-                        // Candidate bound gap / (apex − min depth of the cell).
-                        dist2.sqrt() / diff
-                    });
-                    *o = sanitize(r * 1.2);
-                }
-            });
+        out.par_chunks_mut(self.wc).enumerate().for_each(|(py, row)| {
+            for (px, o) in row.iter_mut().enumerate() {
+                let idx = py * self.wc + px;
+                let apex = self.max_depth[idx];
+                let start = self.near_ratio[idx].min(MAX_RATIO);
+                let r = search.run(px, py, apex, start, 0.0, |_, _, _, dist2, diff| {
+                    // Candidate bound gap / (apex − min depth of the cell).
+                    Some(dist2.sqrt() / diff)
+                });
+                *o = sanitize(r);
+            }
+        });
         out
     }
 
     /// Policarpo and Oliveira's relaxed ratios on the pooled grid, never below `floor`.
     fn relaxed_ratios(&self, floor: &[f32]) -> Vec<f32> {
         let search = Search::new(self.wc, self.hc, &self.own_min, Metric::Centre);
+        // Conservative cones of the grid surface turned upside down bound how far a ray that
+        // is inside the relief can travel while it surely stays inside: the exit search
+        // leaps over those stretches instead of walking them cell by cell.
+        let inverted =
+            Image::from_vec(self.wc as u32, self.hc as u32, self.own_min.iter().map(|d| 1.0 - d).collect())
+                .expect("the map size was validated by the height field");
+        let inverted = HeightField::from_depth(&inverted);
+        let inside = Pooled::new(&inverted, self.wc as u32, self.hc as u32).conservative_ratios();
         let surface = GridSurface {
-            wc: self.wc,
-            hc: self.hc,
-            depth: &self.own_min,
+            depth: Tiled::new(&self.own_min, self.wc, self.hc),
+            inside: Tiled::new(&inside, self.wc, self.hc),
         };
         let (cu, cv) = (1.0 / self.wc as f64, 1.0 / self.hc as f64);
         let mut out = vec![0.0f32; self.wc * self.hc];
-        out.par_chunks_mut(self.wc)
-            .enumerate()
-            .for_each(|(py, row)| {
-                for (px, o) in row.iter_mut().enumerate() {
-                    let idx = py * self.wc + px;
-                    let apex = self.own_min[idx];
-                    let lowest = floor[idx];
-                    let r = search.run(px, py, apex, MAX_RATIO, lowest, |kx, ky, r_best, _, _| {
-                        let dist = ((kx as f64 * cu).powi(2) + (ky as f64 * cv).powi(2)).sqrt();
-                        surface.relaxed_bound(px, py, kx, ky, apex, dist, r_best)
-                    });
-                    *o = sanitize(r).max(lowest);
-                }
-            });
+        out.par_chunks_mut(self.wc).enumerate().for_each(|(py, row)| {
+            for (px, o) in row.iter_mut().enumerate() {
+                let idx = py * self.wc + px;
+                let apex = self.own_min[idx];
+                let lowest = floor[idx];
+                let mut budget = RELAXED_BUDGET;
+                let r = search.run(px, py, apex, MAX_RATIO, lowest, |kx, ky, r_best, _, _| {
+                    let dist = ((kx as f64 * cu).powi(2) + (ky as f64 * cv).powi(2)).sqrt();
+                    surface.relaxed_bound(px, py, kx, ky, apex, dist, r_best, &mut budget)
+                });
+                *o = sanitize(r).max(lowest);
+            }
+        });
         out
     }
 }
+
+/// Work allowed per map texel for the relaxed construction, in ray-walk steps summed over all
+/// the texels it tests. Reached only on unusual fields (long stretches where rays run just
+/// under the surface); the search then stops and stores a bound that is still valid (the
+/// smallest candidate any untested texel could give, see [`Search::run`]), i.e. a narrower,
+/// safe cone.
+const RELAXED_BUDGET: u32 = 1 << 14;
 
 /// A ratio made safe to store: finite, in `[0, MAX_RATIO]`.
 #[inline]
@@ -491,31 +485,25 @@ impl<'a> Search<'a> {
         };
         // Block minima, separably: along x then along y (windows wrap).
         let mut along_x = vec![0.0f32; wc * hc];
-        along_x
-            .par_chunks_mut(wc)
-            .enumerate()
-            .for_each(|(y, row)| {
-                for (x, o) in row.iter_mut().enumerate() {
-                    let mut m = f32::INFINITY;
-                    for k in 0..BLOCK as usize {
-                        m = m.min(depth[y * wc + (x + k) % wc]);
-                    }
-                    *o = m;
+        along_x.par_chunks_mut(wc).enumerate().for_each(|(y, row)| {
+            for (x, o) in row.iter_mut().enumerate() {
+                let mut m = f32::INFINITY;
+                for k in 0..BLOCK as usize {
+                    m = m.min(depth[y * wc + (x + k) % wc]);
                 }
-            });
+                *o = m;
+            }
+        });
         let mut block_min = vec![0.0f32; wc * hc];
-        block_min
-            .par_chunks_mut(wc)
-            .enumerate()
-            .for_each(|(y, row)| {
-                for (x, o) in row.iter_mut().enumerate() {
-                    let mut m = f32::INFINITY;
-                    for k in 0..BLOCK as usize {
-                        m = m.min(along_x[((y + k) % hc) * wc + x]);
-                    }
-                    *o = m;
+        block_min.par_chunks_mut(wc).enumerate().for_each(|(y, row)| {
+            for (x, o) in row.iter_mut().enumerate() {
+                let mut m = f32::INFINITY;
+                for k in 0..BLOCK as usize {
+                    m = m.min(along_x[((y + k) % hc) * wc + x]);
                 }
-            });
+                *o = m;
+            }
+        });
         let global_min = depth.iter().copied().fold(f32::INFINITY, f32::min);
         Search {
             wc,
@@ -537,7 +525,10 @@ impl<'a> Search<'a> {
     /// `cell(kx, ky, r_best, dist2, apex − depth)` gives the bound from the cell at offset
     /// `(kx, ky)`; it is only called for cells shallower than the apex whose cheap bound
     /// `dist / (apex − depth)` is below the current best (every candidate must be at least
-    /// that cheap bound for the pruning to be exact).
+    /// that cheap bound for the pruning to be exact). When it returns `None` (out of work
+    /// budget) the search stops and returns the smaller of the best so far and the cheap
+    /// bound of the nearest cell that might not have been tested, which no untested cell can
+    /// undercut.
     fn run(
         &self,
         px: usize,
@@ -545,7 +536,7 @@ impl<'a> Search<'a> {
         apex: f32,
         start: f32,
         floor: f32,
-        mut cell: impl FnMut(i64, i64, f32, f32, f32) -> f32,
+        mut cell: impl FnMut(i64, i64, f32, f32, f32) -> Option<f32>,
     ) -> f32 {
         let mut best = start;
         if apex - self.global_min <= 0.0 || best <= floor {
@@ -566,25 +557,26 @@ impl<'a> Search<'a> {
                 lo.abs().min(hi.abs()) as usize
             }
         };
-        let mut visit_block = |bx: i64, by: i64, best: &mut f32| {
+        // Returns false when `cell` gave up.
+        let mut visit_block = |bx: i64, by: i64, best: &mut f32| -> bool {
             let kx_lo = (bx * BLOCK - half).max(-self.ax);
             let kx_hi = (bx * BLOCK - half + BLOCK - 1).min(self.ax);
             let ky_lo = (by * BLOCK - half).max(-self.ay);
             let ky_hi = (by * BLOCK - half + BLOCK - 1).min(self.ay);
             if kx_lo > kx_hi || ky_lo > ky_hi {
-                return;
+                return true;
             }
             let bxi = (px + bx * BLOCK - half).rem_euclid(wc) as usize;
             let byi = (py + by * BLOCK - half).rem_euclid(hc) as usize;
             let bmin = self.block_min[byi * self.wc + bxi];
             let bdiff = apex - bmin;
             if bdiff <= 0.0 {
-                return;
+                return true;
             }
             let bd2 = self.dist_x[min_axis(kx_lo, kx_hi)] + self.dist_y[min_axis(ky_lo, ky_hi)];
             let lim = *best * bdiff;
             if bd2 >= lim * lim {
-                return;
+                return true;
             }
             for ky in ky_lo..=ky_hi {
                 let yi = (py + ky).rem_euclid(hc) as usize;
@@ -608,47 +600,45 @@ impl<'a> Search<'a> {
                     if d2 >= lim * lim {
                         continue;
                     }
-                    let c = cell(kx, ky, *best, d2, diff);
-                    if c < *best {
-                        *best = c;
+                    match cell(kx, ky, *best, d2, diff) {
+                        Some(c) if c < *best => *best = c,
+                        Some(_) => {}
+                        None => return false,
                     }
                 }
             }
+            true
         };
         let reach = apex - self.global_min;
+        // Smallest distance (squared, UV²) from the centre cell to any cell of ring `ring` or
+        // beyond: at least ring·BLOCK − half cells along one axis (one cell in ring 0, whose
+        // closest candidates are the neighbours).
+        let ring_d2 = |ring: i64| -> f32 {
+            let k = (ring * BLOCK - half).max(1) as usize;
+            self.dist_x[k.min(self.dist_x.len() - 1)].min(self.dist_y[k.min(self.dist_y.len() - 1)])
+        };
         for ring in 0..=rings {
             if best <= floor {
                 break;
             }
             if ring > 0 {
-                // Every offset in this ring is at least ring·BLOCK − half cells away along
-                // one axis.
-                let k = (ring * BLOCK - half).max(0) as usize;
-                let d2 = self.dist_x[k.min(self.dist_x.len() - 1)]
-                    .min(self.dist_y[k.min(self.dist_y.len() - 1)]);
                 let lim = best * reach;
-                if d2 >= lim * lim {
+                if ring_d2(ring) >= lim * lim {
                     break;
                 }
             }
             let in_x = |b: i64| b >= bx_lo && b <= bx_hi;
             let in_y = |b: i64| b >= by_lo && b <= by_hi;
-            if ring == 0 {
-                visit_block(0, 0, &mut best);
-                continue;
-            }
-            for bx in -ring..=ring {
-                for by in [-ring, ring] {
-                    if in_x(bx) && in_y(by) {
-                        visit_block(bx, by, &mut best);
-                    }
-                }
-            }
-            for by in -ring + 1..ring {
-                for bx in [-ring, ring] {
-                    if in_x(bx) && in_y(by) {
-                        visit_block(bx, by, &mut best);
-                    }
+            // The blocks on the ring's perimeter (just the centre block for ring 0).
+            let top_bottom = (-ring..=ring).flat_map(|bx| [(bx, -ring), (bx, ring)]);
+            let sides = (-ring + 1..ring).flat_map(|by| [(-ring, by), (ring, by)]);
+            let perimeter = top_bottom.chain(sides).take(if ring == 0 { 1 } else { usize::MAX });
+            for (bx, by) in perimeter {
+                if in_x(bx) && in_y(by) && !visit_block(bx, by, &mut best) {
+                    // Out of budget: nothing in this ring or beyond can go below its cheap
+                    // bound, so this value is still a valid (smaller) ratio.
+                    let safe = ring_d2(ring).sqrt() / reach;
+                    return best.min(safe);
                 }
             }
         }
@@ -657,22 +647,78 @@ impl<'a> Search<'a> {
 }
 
 /// The pooled grid as a bilinear, wrapped surface with texel centres at integer coordinates.
-struct GridSurface<'a> {
-    wc: usize,
-    hc: usize,
-    depth: &'a [f32],
+struct GridSurface {
+    depth: Tiled,
+    /// Conservative ratios of the upside-down surface (`1 − depth`): from a point `h` below
+    /// the surface, a ray moving `v` UV per unit of depth gained stays below it for
+    /// `r·h / (v − r)` more depth (always, when `v ≤ r`).
+    inside: Tiled,
 }
 
-impl GridSurface<'_> {
+/// A `w × h` grid repeated over the 3×3 tiles around the original (plus a one-cell margin),
+/// so that the walks, which never go further than one tile from their start, read it
+/// without a division per fetch.
+struct Tiled {
+    w: i64,
+    h: i64,
+    stride: usize,
+    data: Vec<f32>,
+}
+
+impl Tiled {
+    fn new(src: &[f32], w: usize, h: usize) -> Tiled {
+        let (pw, ph) = (3 * w + 2, 3 * h + 2);
+        let mut data = Vec::with_capacity(pw * ph);
+        for y in 0..ph {
+            let sy = (y as i64 - h as i64 - 1).rem_euclid(h as i64) as usize;
+            for x in 0..pw {
+                let sx = (x as i64 - w as i64 - 1).rem_euclid(w as i64) as usize;
+                data.push(src[sy * w + sx]);
+            }
+        }
+        Tiled { w: w as i64, h: h as i64, stride: pw, data }
+    }
+
+    /// The value at `(x, y)`, wrapped.
+    #[inline]
+    fn get(&self, x: i64, y: i64) -> f32 {
+        let (px, py) = (x + self.w + 1, y + self.h + 1);
+        if px >= 0 && py >= 0 && px < 3 * self.w + 2 && py < 3 * self.h + 2 {
+            self.data[py as usize * self.stride + px as usize]
+        } else {
+            let (sx, sy) = (x.rem_euclid(self.w), y.rem_euclid(self.h));
+            self.data[(sy + self.h + 1) as usize * self.stride + (sx + self.w + 1) as usize]
+        }
+    }
+}
+
+impl GridSurface {
     #[inline]
     fn at(&self, x: i64, y: i64) -> f64 {
-        let xx = x.rem_euclid(self.wc as i64) as usize;
-        let yy = y.rem_euclid(self.hc as i64) as usize;
-        self.depth[yy * self.wc + xx] as f64
+        self.depth.get(x, y) as f64
+    }
+
+    /// Bilinear depth at grid position `(x, y)`.
+    #[inline]
+    fn bilinear(&self, x: f64, y: f64) -> f64 {
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let (i, j) = (x0 as i64, y0 as i64);
+        let top = self.at(i, j) + (self.at(i + 1, j) - self.at(i, j)) * fx;
+        let bottom = self.at(i, j + 1) + (self.at(i + 1, j + 1) - self.at(i, j + 1)) * fx;
+        top + (bottom - top) * fy
+    }
+
+    /// The upside-down conservative ratio for the map cell holding grid position `(x, y)`
+    /// (cells are centred on the integer positions).
+    #[inline]
+    fn inside_ratio(&self, x: f64, y: f64) -> f64 {
+        self.inside.get((x + 0.5).floor() as i64, (y + 0.5).floor() as i64) as f64
     }
 
     /// The relaxed bound that texel `(kx, ky)` cells away imposes on the cone at `(px, py)`
-    /// (apex depth `apex`, centre distance `dist` in UV), or `+∞` when it cannot beat `best`.
+    /// (apex depth `apex`, centre distance `dist` in UV): `Some(+∞)` when it cannot beat
+    /// `best`, `None` when `budget` (walk steps) ran out.
     ///
     /// The ray leaves the top plane above `p`, passes the surface point of `q` at parameter
     /// `s = 1` and reaches depth `s·d_q`; the exit is the first `s ≥ 1` where the ray is
@@ -688,93 +734,81 @@ impl GridSurface<'_> {
         apex: f32,
         dist: f64,
         best: f32,
-    ) -> f32 {
-        let (qx, qy) = (px as i64 + kx, py as i64 + ky);
-        let b = self.at(qx, qy);
+        budget: &mut u32,
+    ) -> Option<f32> {
+        let b = self.at(px as i64 + kx, py as i64 + ky);
         let a = apex as f64;
         let best = best as f64;
         if b >= a || dist <= 0.0 {
-            return f32::INFINITY;
+            return Some(f32::INFINITY);
         }
         // Beyond s_end the candidate s·dist / (a − s·b) is ≥ best (or the ray is below a).
         let s_end = best * a / (dist + best * b);
         if s_end <= 1.0 {
-            return f32::INFINITY;
+            return Some(f32::INFINITY);
         }
-        let exit = self.exit_along(px as f64, py as f64, kx as f64, ky as f64, b, s_end);
-        match exit {
-            Some(s) => {
-                let denom = a - s * b;
-                if denom <= 0.0 {
-                    f32::INFINITY
-                } else {
-                    (s * dist / denom) as f32
-                }
-            }
-            None => f32::INFINITY,
+        let ray = Ray { px: px as f64, py: py as f64, kx: kx as f64, ky: ky as f64, b, speed: dist };
+        match self.exit_along(&ray, s_end, budget)? {
+            Some(s) if a - s * b > 0.0 => Some((s * dist / (a - s * b)) as f32),
+            _ => Some(f32::INFINITY),
         }
     }
 
-    /// First `s` in `[1, s_end)` at which the ray `(p + s·k, s·b)` (grid units, depth) is
-    /// strictly above the bilinear surface, walking the grid cell by cell and solving the
-    /// quadratic that the ray's height above the surface follows inside each cell.
-    fn exit_along(&self, px: f64, py: f64, kx: f64, ky: f64, b: f64, s_end: f64) -> Option<f64> {
-        let start = |p: f64, k: f64| -> (i64, f64, f64) {
-            // Cell index at s = 1 (on a grid point), chosen in the direction of travel, the
-            // parameter of the next cell boundary and the parameter per cell.
-            let x1 = p + k;
-            if k > 0.0 {
-                let i = x1.floor() as i64;
-                (i, 1.0 + (i as f64 + 1.0 - x1) / k, 1.0 / k)
-            } else if k < 0.0 {
-                let i = x1.ceil() as i64 - 1;
-                (i, 1.0 + (i as f64 - x1) / k, -1.0 / k)
-            } else {
-                (x1.floor() as i64, f64::INFINITY, f64::INFINITY)
-            }
-        };
-        let (mut ix, mut next_x, dx) = start(px, kx);
-        let (mut iy, mut next_y, dy) = start(py, ky);
-        let step_x = kx.signum() as i64;
-        let step_y = ky.signum() as i64;
+    /// First `s` in `[1, s_end)` at which `ray` is strictly above the bilinear surface
+    /// (`Some(None)` if there is none, `None` when the budget ran out).
+    ///
+    /// Where the ray is well inside the relief it leaps ahead by the distance that the
+    /// upside-down cone map guarantees to stay inside; elsewhere it walks the grid cell by
+    /// cell, solving the quadratic that the ray's height above the surface follows inside
+    /// each cell, so the exit found is exact.
+    fn exit_along(&self, ray: &Ray, s_end: f64, budget: &mut u32) -> Option<Option<f64>> {
         let mut s = 1.0f64;
-        // Cells crossed are bounded by the path length in cells (plus slack).
-        let max_cells = ((s_end - 1.0) * (kx.abs() + ky.abs())).ceil() as usize + 4;
-        for _ in 0..max_cells {
-            let s_hi = next_x.min(next_y).min(s_end);
-            if let Some(e) = self.exit_in_cell(ix, iy, px, py, kx, ky, b, s, s_hi) {
-                return Some(e);
-            }
-            if s_hi >= s_end {
+        // Parameter per cell along the faster axis: leaps shorter than half a cell are not
+        // worth their two fetches.
+        let per_cell = 1.0 / ray.kx.abs().max(ray.ky.abs());
+        while s < s_end {
+            if *budget == 0 {
                 return None;
             }
-            s = s_hi;
-            if next_x <= next_y {
-                ix += step_x;
-                next_x += dx;
+            *budget -= 1;
+            let (x, y) = (ray.px + s * ray.kx, ray.py + s * ray.ky);
+            let below = s * ray.b - self.bilinear(x, y);
+            let r = self.inside_ratio(x, y);
+            if below > 0.0 && r > 0.0 {
+                let leap =
+                    if r * ray.b >= ray.speed { f64::INFINITY } else { r * below / (ray.speed - r * ray.b) };
+                if leap >= 0.5 * per_cell {
+                    // Stop a hair short so rounding cannot carry the ray past an exit.
+                    s += leap * (1.0 - 1e-9);
+                    continue;
+                }
             }
-            if next_y <= s_hi {
-                iy += step_y;
-                next_y += dy;
+            // One exact cell: from s to the next cell boundary.
+            let cell = |p: f64, k: f64| -> (i64, f64) {
+                if k > 0.0 {
+                    let i = p.floor();
+                    (i as i64, (i + 1.0 - p) / k)
+                } else if k < 0.0 {
+                    let i = p.ceil() - 1.0;
+                    (i as i64, (i - p) / k)
+                } else {
+                    (p.floor() as i64, f64::INFINITY)
+                }
+            };
+            let (ix, tx) = cell(x, ray.kx);
+            let (iy, ty) = cell(y, ray.ky);
+            let s_hi = (s + tx.min(ty)).min(s_end);
+            if let Some(e) = self.exit_in_cell(ix, iy, ray, s, s_hi) {
+                return Some(Some(e));
             }
+            // Always make progress, even when rounding puts x on a cell boundary.
+            s = s_hi.max(s + 1e-9 * per_cell);
         }
-        None
+        Some(None)
     }
 
     /// The exit inside cell `(ix, iy)` for `s` in `[s_lo, s_hi]`, if any.
-    #[allow(clippy::too_many_arguments)]
-    fn exit_in_cell(
-        &self,
-        ix: i64,
-        iy: i64,
-        px: f64,
-        py: f64,
-        kx: f64,
-        ky: f64,
-        b: f64,
-        s_lo: f64,
-        s_hi: f64,
-    ) -> Option<f64> {
+    fn exit_in_cell(&self, ix: i64, iy: i64, ray: &Ray, s_lo: f64, s_hi: f64) -> Option<f64> {
         if s_hi <= s_lo {
             return None;
         }
@@ -782,12 +816,13 @@ impl GridSurface<'_> {
         let d10 = self.at(ix + 1, iy);
         let d01 = self.at(ix, iy + 1);
         let d11 = self.at(ix + 1, iy + 1);
+        let (kx, ky) = (ray.kx, ray.ky);
         // Depth inside the cell: d00 + bx·fx + by·fy + e·fx·fy with fx = fx0 + s·kx, etc.
         let (bx, by, e) = (d10 - d00, d01 - d00, d00 - d10 - d01 + d11);
-        let (fx0, fy0) = (px - ix as f64, py - iy as f64);
+        let (fx0, fy0) = (ray.px - ix as f64, ray.py - iy as f64);
         // f(s) = surface depth − ray depth = c0 + c1·s + c2·s²; the ray is outside when f > 0.
         let c0 = d00 + bx * fx0 + by * fy0 + e * fx0 * fy0;
-        let c1 = bx * kx + by * ky + e * (fx0 * ky + fy0 * kx) - b;
+        let c1 = bx * kx + by * ky + e * (fx0 * ky + fy0 * kx) - ray.b;
         let c2 = e * kx * ky;
         let f = |s: f64| c0 + s * (c1 + s * c2);
         let mut points = [s_lo, s_hi, s_hi, s_hi];
@@ -809,8 +844,6 @@ impl GridSurface<'_> {
                 if q != 0.0 {
                     push(q / c2);
                     push(c0 / q);
-                } else {
-                    push(0.0);
                 }
             }
         }
@@ -828,6 +861,17 @@ impl GridSurface<'_> {
     }
 }
 
+/// A ray of the relaxed construction in grid units: position `(px + s·kx, py + s·ky)`,
+/// depth `s·b`, moving `speed` UV per unit of `s`.
+struct Ray {
+    px: f64,
+    py: f64,
+    kx: f64,
+    ky: f64,
+    b: f64,
+    speed: f64,
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -835,21 +879,18 @@ mod tests {
     #[test]
     fn axis_cells_at_full_and_reduced_size() {
         let full = axis_cells(8, 8);
-        assert_eq!(
-            (full[3].support_lo, full[3].support_hi, full[3].own_lo, full[3].own_hi),
-            (2, 4, 3, 3)
-        );
+        assert_eq!((full[3].support_lo, full[3].support_hi, full[3].own_lo, full[3].own_hi), (2, 4, 3, 3));
         // 8 texels onto 2 cells: cell 0 spans texel coordinates [-0.5, 3.5].
         let half = axis_cells(8, 2);
-        assert_eq!(
-            (half[0].support_lo, half[0].support_hi, half[0].own_lo, half[0].own_hi),
-            (-1, 4, 0, 3)
-        );
+        assert_eq!((half[0].support_lo, half[0].support_hi, half[0].own_lo, half[0].own_hi), (-1, 4, 0, 3));
         assert_eq!((half[1].own_lo, half[1].own_hi), (4, 7));
-        // Uneven: 5 texels onto 2 cells; every texel belongs to exactly one cell.
+        // Uneven: 5 texels onto 2 cells; every texel belongs to exactly one cell. Texel 2's
+        // centre, (2 + 0.5)/5 = 0.5, is the start of cell 1's half-open range [0.5, 1).
         let odd = axis_cells(5, 2);
-        assert_eq!((odd[0].own_lo, odd[0].own_hi), (0, 2));
-        assert_eq!((odd[1].own_lo, odd[1].own_hi), (3, 4));
+        assert_eq!((odd[0].own_lo, odd[0].own_hi), (0, 1));
+        assert_eq!((odd[1].own_lo, odd[1].own_hi), (2, 4));
+        // Cell 0 spans texel coordinates [-0.5, 2]: bilinear support texels -1..=2.
+        assert_eq!((odd[0].support_lo, odd[0].support_hi), (-1, 2));
     }
 
     #[test]

@@ -4,6 +4,7 @@
 
 use glam::Vec2;
 use renderlab_core::counter::Counter;
+use renderlab_core::image::wrap_index;
 use renderlab_core::Image;
 
 /// A wrapped, bilinearly interpolated depth map.
@@ -48,9 +49,7 @@ impl HeightField {
     /// The depth stored at texel (x, y), wrapped.
     #[inline]
     pub fn texel(&self, x: i64, y: i64) -> f32 {
-        let xx = x.rem_euclid(self.width as i64) as usize;
-        let yy = y.rem_euclid(self.height as i64) as usize;
-        self.depth[yy * self.width as usize + xx]
+        self.depth[wrap_index(y, self.height) * self.width as usize + wrap_index(x, self.width)]
     }
 
     /// All depth values, row-major.
@@ -77,14 +76,13 @@ impl HeightField {
         let y0 = y.floor();
         let fx = x - x0;
         let fy = y - y0;
-        let w = self.width as i64;
-        let h = self.height as i64;
-        let xi = (x0 as i64).rem_euclid(w) as usize;
-        let yi = (y0 as i64).rem_euclid(h) as usize;
-        let xj = if xi + 1 == w as usize { 0 } else { xi + 1 };
-        let yj = if yi + 1 == h as usize { 0 } else { yi + 1 };
-        let row0 = yi * w as usize;
-        let row1 = yj * w as usize;
+        let w = self.width as usize;
+        let xi = wrap_index(x0 as i64, self.width);
+        let yi = wrap_index(y0 as i64, self.height);
+        let xj = if xi + 1 == w { 0 } else { xi + 1 };
+        let yj = if yi + 1 == self.height as usize { 0 } else { yi + 1 };
+        let row0 = yi * w;
+        let row1 = yj * w;
         let d00 = self.depth[row0 + xi];
         let d10 = self.depth[row0 + xj];
         let d01 = self.depth[row1 + xi];

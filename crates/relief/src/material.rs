@@ -9,7 +9,7 @@ use renderlab_core::{Image, Material};
 use renderlab_texture::{Texture, Wrap};
 
 /// Size (per side, at most) of the cone map built for cone-step mapping.
-pub const CONE_MAP_SIZE: u32 = 256;
+pub const CONE_MAP_SIZE: u32 = 512;
 
 /// Everything the relief renderer reads for one material.
 #[derive(Clone, Debug)]
@@ -32,10 +32,16 @@ pub struct ReliefMaterial {
 
 impl ReliefMaterial {
     /// Prepares `m`: builds pyramids, the depth field and the complexity map with `params`;
-    /// builds the cone map too when `with_cone_map` is set (it costs a few seconds at 1024²).
+    /// builds the relaxed cone map too when `with_cone_map` is set, at [`CONE_MAP_SIZE`].
     pub fn new(m: &Material, params: &ComplexityParams, with_cone_map: bool) -> Self {
+        Self::with_cone_size(m, params, with_cone_map.then_some(CONE_MAP_SIZE))
+    }
+
+    /// Like [`ReliefMaterial::new`] with the cone map's largest side chosen (`None`: no cone
+    /// map). Larger maps give wider, more precise cones and cost more to build.
+    pub fn with_cone_size(m: &Material, params: &ComplexityParams, cone_size: Option<u32>) -> Self {
         let height = HeightField::from_height(&m.height);
-        let cone = with_cone_map.then(|| ConeMap::build(&height, ConeKind::Relaxed, CONE_MAP_SIZE));
+        let cone = cone_size.map(|size| ConeMap::build(&height, ConeKind::Relaxed, size));
         Self {
             name: m.name.clone(),
             albedo: Texture::from_rgb(&m.albedo, Wrap::Repeat),

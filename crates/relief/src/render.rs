@@ -2,12 +2,12 @@
 //! frame (so the per-pixel loop is monomorphised), and renders the matching reference.
 
 use crate::adaptive::AdaptivePom;
-use crate::cone_step::ConeStep;
+use crate::cone_step::{ConeStep, Refinement};
 use crate::material::ReliefMaterial;
 use crate::parallax::{Parallax, Pom, Steep, Undisplaced};
 use crate::reference::ExactTrace;
 use crate::relief_mapping::{AdaptiveRelief, ReliefMapping};
-use crate::shade::{render_frame, Frame, FrameInput, ShadeOptions, ShadowMode};
+use crate::shade::{render_frame, trace_frame, Frame, FrameInput, ShadeOptions, ShadowMode};
 use crate::technique::{Shading, Technique};
 use glam::Vec3;
 use renderlab_core::scene::Lighting;
@@ -49,9 +49,20 @@ pub fn render(
         Technique::AdaptiveRelief { min, max, binary } => {
             render_frame(input, materials, &AdaptiveRelief { min, max, binary }, &opt, count)
         }
-        Technique::ConeStep { steps, binary } => {
-            render_frame(input, materials, &ConeStep { steps, binary }, &opt, count)
-        }
+        Technique::ConeStep { steps, binary } => render_frame(
+            input,
+            materials,
+            &ConeStep { steps, binary, refine: Refinement::Binary },
+            &opt,
+            count,
+        ),
+        Technique::ConeSecant { steps, secant } => render_frame(
+            input,
+            materials,
+            &ConeStep { steps, binary: secant, refine: Refinement::Secant },
+            &opt,
+            count,
+        ),
     }
 }
 
@@ -69,4 +80,29 @@ pub fn render_reference(
         opt.shadow = ShadowMode::Exact;
     }
     render_frame(input, materials, &ExactTrace, &opt, false)
+}
+
+/// Runs only `technique`'s trace over the frame (see [`trace_frame`]); returns a checksum.
+pub fn trace_only(input: FrameInput, materials: &[ReliefMaterial], technique: Technique) -> f64 {
+    match technique {
+        Technique::Basic | Technique::NormalMapping => trace_frame(input, materials, &Undisplaced),
+        Technique::Parallax => trace_frame(input, materials, &Parallax),
+        Technique::Steep { layers } => trace_frame(input, materials, &Steep { layers }),
+        Technique::Pom { layers } | Technique::PomShadow { layers, .. } => {
+            trace_frame(input, materials, &Pom { layers })
+        }
+        Technique::AdaptivePom { min, max } => trace_frame(input, materials, &AdaptivePom { min, max }),
+        Technique::Relief { linear, binary } => {
+            trace_frame(input, materials, &ReliefMapping { linear, binary })
+        }
+        Technique::AdaptiveRelief { min, max, binary } => {
+            trace_frame(input, materials, &AdaptiveRelief { min, max, binary })
+        }
+        Technique::ConeStep { steps, binary } => {
+            trace_frame(input, materials, &ConeStep { steps, binary, refine: Refinement::Binary })
+        }
+        Technique::ConeSecant { steps, secant } => {
+            trace_frame(input, materials, &ConeStep { steps, binary: secant, refine: Refinement::Secant })
+        }
+    }
 }

@@ -68,10 +68,21 @@ pub fn light(albedo: Vec3, n: Vec3, l: Vec3, v: Vec3, lighting: &Lighting, shado
     let ambient = albedo * lighting.ambient;
     let diff = n.dot(l).max(0.0);
     let h = (l + v).normalize_or_zero();
-    let spec = n.dot(h).max(0.0).powf(lighting.specular_exponent) * lighting.specular_strength;
+    let spec = pow_exponent(n.dot(h).max(0.0), lighting.specular_exponent) * lighting.specular_strength;
     // Light arriving from below the geometric surface reaches no point of it.
     let facing = if l.z > 0.0 { shadow } else { 0.0 };
     ambient + (albedo * diff + Vec3::splat(spec)) * facing
+}
+
+/// `x^e`, by repeated squaring when `e` is a small whole number (the thesis's 32 is five
+/// multiplications instead of a `powf`).
+#[inline]
+fn pow_exponent(x: f32, e: f32) -> f32 {
+    if (0.0..=256.0).contains(&e) && e == e.trunc() {
+        x.powi(e as i32)
+    } else {
+        x.powf(e)
+    }
 }
 
 /// Shading options shared by a technique and its reference.
@@ -87,18 +98,17 @@ pub struct ShadeOptions {
     pub background: Vec3,
 }
 
+/// Lights one pixel whose trace gave `hit`.
 #[inline]
-fn shade_point<T: ReliefTechnique, C: Counter>(
-    t: &T,
+fn shade_point<C: Counter>(
+    hit: &ReliefHit,
     sp: &SurfacePoint,
     mat: &ReliefMaterial,
     opt: &ShadeOptions,
     counter: &mut C,
-) -> (Vec3, ReliefHit) {
-    let inputs = mat.inputs();
-    let hit = t.trace(&inputs, sp.uv, sp.view_ts, counter);
+) -> Vec3 {
     let albedo = Trilinear.sample(&mat.albedo, hit.uv, sp.duv_dx, sp.duv_dy, &mut NoCount).truncate();
-    let color = match opt.shading {
+    match opt.shading {
         Shading::Unlit => albedo,
         Shading::Lit | Shading::LitShadowed => {
             let n = Trilinear.sample(&mat.normal, hit.uv, sp.duv_dx, sp.duv_dy, &mut NoCount).truncate();
@@ -114,13 +124,14 @@ fn shade_point<T: ReliefTechnique, C: Counter>(
                     counter,
                 ),
                 (Shading::LitShadowed, ShadowMode::Exact) => {
-                    if crate::reference::exact_shadowed(
+                    let blocked = crate::reference::exact_shadowed(
                         &mat.height,
                         mat.height_scale,
                         hit.uv,
                         hit.depth,
                         sp.light_ts,
-                    ) {
+                    );
+                    if blocked {
                         0.0
                     } else {
                         1.0
@@ -130,8 +141,52 @@ fn shade_point<T: ReliefTechnique, C: Counter>(
             };
             light(albedo, n, sp.light_ts, sp.view_ts, &opt.lighting, shadow)
         }
-    };
-    (color, hit)
+    }
+}
+
+/// Reusable per-thread buffers for tracing one row.
+#[derive(Default)]
+struct RowScratch {
+    rays: Vec<(Vec2, Vec3)>,
+    bases: Vec<Vec2>,
+    materials: Vec<usize>,
+    hits: Vec<ReliefHit>,
+}
+
+/// Traces every covered pixel of `row`, leaving one hit per covered pixel (in pixel order) in
+/// `scratch.hits`. Each ray starts from its UV moved into the first tile (the height field
+/// repeats, so the hit is the same and texel addressing stays in its fast range); runs of
+/// pixels with one material go to [`ReliefTechnique::trace_row`] together.
+fn trace_points<T: ReliefTechnique, C: Counter>(
+    t: &T,
+    materials: &[ReliefMaterial],
+    row: &[Option<SurfacePoint>],
+    scratch: &mut RowScratch,
+    counter: &mut C,
+) {
+    let RowScratch { rays, bases, materials: ids, hits } = scratch;
+    rays.clear();
+    bases.clear();
+    ids.clear();
+    for sp in row.iter().flatten() {
+        let base = sp.uv.floor();
+        let base = if base.is_finite() { base } else { Vec2::ZERO };
+        rays.push((sp.uv - base, sp.view_ts));
+        bases.push(base);
+        ids.push((sp.material as usize).min(materials.len() - 1));
+    }
+    hits.clear();
+    hits.resize(rays.len(), ReliefHit::default());
+    let mut start = 0;
+    while start < rays.len() {
+        let m = ids[start];
+        let end = start + ids[start..].iter().take_while(|&&i| i == m).count();
+        t.trace_row(&materials[m].inputs(), &rays[start..end], &mut hits[start..end], counter);
+        start = end;
+    }
+    for (h, b) in hits.iter_mut().zip(bases.iter()) {
+        h.uv += *b;
+    }
 }
 
 /// Renders a frame with technique `t`. With `count` set, height fetches are tallied (a
@@ -156,18 +211,22 @@ pub fn render_frame<T: ReliefTechnique>(
         .zip(depth.par_chunks_mut(w))
         .zip(layers.par_chunks_mut(w))
         .enumerate()
-        .map(|(y, (((img, uvr), dr), lr))| {
+        .map_init(RowScratch::default, |scratch, (y, (((img, uvr), dr), lr))| {
             let row = &input.points[y * w..(y + 1) * w];
             let mut tally = Tally::default();
-            for (x, p) in row.iter().enumerate() {
-                let Some(sp) = p else { continue };
+            if count {
+                trace_points(t, materials, row, scratch, &mut tally);
+            } else {
+                trace_points(t, materials, row, scratch, &mut NoCount);
+            }
+            let covered = row.iter().enumerate().filter_map(|(x, p)| p.as_ref().map(|sp| (x, sp)));
+            for ((x, sp), hit) in covered.zip(&scratch.hits) {
                 let mat = &materials[(sp.material as usize).min(materials.len() - 1)];
-                let (c, hit) = if count {
-                    shade_point(t, sp, mat, opt, &mut tally)
+                img[x] = if count {
+                    shade_point(hit, sp, mat, opt, &mut tally)
                 } else {
-                    shade_point(t, sp, mat, opt, &mut NoCount)
+                    shade_point(hit, sp, mat, opt, &mut NoCount)
                 };
-                img[x] = c;
                 uvr[x] = hit.uv;
                 dr[x] = hit.depth;
                 lr[x] = hit.layers.min(u16::MAX as u32) as u16;
@@ -185,4 +244,19 @@ pub fn render_frame<T: ReliefTechnique>(
         mask: Image::from_vec(wh.0, wh.1, mask).expect("sizes match"),
         fetches,
     }
+}
+
+/// Runs only the technique's trace for every covered pixel (no texture filtering, no
+/// lighting): the cost of the relief method itself, which is what differs between techniques.
+/// Returns a checksum of the hits so the work cannot be optimised away.
+pub fn trace_frame<T: ReliefTechnique>(input: FrameInput, materials: &[ReliefMaterial], t: &T) -> f64 {
+    let w = input.width as usize;
+    input
+        .points
+        .par_chunks(w.max(1))
+        .map_init(RowScratch::default, |scratch, row| {
+            trace_points(t, materials, row, scratch, &mut NoCount);
+            scratch.hits.iter().map(|h| (h.uv.x + h.uv.y + h.depth) as f64).sum::<f64>()
+        })
+        .sum()
 }

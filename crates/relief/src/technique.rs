@@ -55,6 +55,21 @@ pub trait ReliefTechnique: Sync {
     /// toward the eye in tangent space. Counts every height fetch through `counter`.
     fn trace<C: Counter>(&self, inputs: &ReliefInputs, uv: Vec2, view_ts: Vec3, counter: &mut C)
         -> ReliefHit;
+
+    /// Traces a run of rays `(uv, view_ts)` into `out` (same length). The default traces them
+    /// one by one; techniques whose steps form a dependent chain may interleave several rays
+    /// to overlap their fetches. Results must equal [`ReliefTechnique::trace`]'s.
+    fn trace_row<C: Counter>(
+        &self,
+        inputs: &ReliefInputs,
+        rays: &[(Vec2, Vec3)],
+        out: &mut [ReliefHit],
+        counter: &mut C,
+    ) {
+        for (o, &(uv, v)) in out.iter_mut().zip(rays) {
+            *o = self.trace(inputs, uv, v, counter);
+        }
+    }
 }
 
 /// The UV offset per unit of depth for a view direction: `−V.xy / V.z · scale`, with `V.z`
@@ -125,6 +140,14 @@ pub enum Technique {
         /// Binary refinement steps.
         binary: u32,
     },
+    /// Relaxed cone-step mapping followed by Illinois (secant) refinement: this project's
+    /// fast accurate method.
+    ConeSecant {
+        /// Maximum cone steps.
+        steps: u32,
+        /// Secant refinement steps.
+        secant: u32,
+    },
     /// POM with soft self-shadowing toward the light.
     PomShadow {
         /// Number of layers of the view march.
@@ -136,7 +159,8 @@ pub enum Technique {
 
 /// Command-line syntax of technique names, for help texts and errors.
 pub const TECHNIQUE_SYNTAX: &str = "basic, normal, parallax, steep:N, pom:N, adaptive[:MIN:MAX], \
-relief[:LINEAR:BINARY], adaptive-relief[:MIN:MAX:BINARY], cone[:STEPS:BINARY], pom-shadow[:N:SAMPLES]";
+relief[:LINEAR:BINARY], adaptive-relief[:MIN:MAX:BINARY], cone[:STEPS:BINARY], cone-secant[:STEPS:SECANT], \
+pom-shadow[:N:SAMPLES]";
 
 /// Largest layer or step count accepted (bounds every march).
 pub const MAX_LAYERS: u32 = 1024;
@@ -212,6 +236,10 @@ impl Technique {
                 max_args(2)?;
                 Technique::ConeStep { steps: num(0, 16)?, binary: num(1, 5)? }
             }
+            "cone-secant" => {
+                max_args(2)?;
+                Technique::ConeSecant { steps: num(0, 8)?, secant: num(1, 3)? }
+            }
             "pom-shadow" => {
                 max_args(2)?;
                 Technique::PomShadow { layers: num(0, 32)?, shadow_samples: num(1, 16)? }
@@ -241,6 +269,7 @@ impl Technique {
                 format!("adaptive-relief:{min}:{max}:{binary}")
             }
             Technique::ConeStep { steps, binary } => format!("cone:{steps}:{binary}"),
+            Technique::ConeSecant { steps, secant } => format!("cone-secant:{steps}:{secant}"),
             Technique::PomShadow { layers, shadow_samples } => {
                 format!("pom-shadow:{layers}:{shadow_samples}")
             }
@@ -259,6 +288,7 @@ impl Technique {
             Technique::Relief { .. } => "relief",
             Technique::AdaptiveRelief { .. } => "adaptive-relief",
             Technique::ConeStep { .. } => "cone",
+            Technique::ConeSecant { .. } => "cone-secant",
             Technique::PomShadow { .. } => "pom-shadow",
         }
     }
@@ -272,7 +302,7 @@ impl Technique {
             Technique::AdaptivePom { max, .. } => max,
             Technique::Relief { linear, .. } => linear,
             Technique::AdaptiveRelief { max, .. } => max,
-            Technique::ConeStep { steps, .. } => steps,
+            Technique::ConeStep { steps, .. } | Technique::ConeSecant { steps, .. } => steps,
             _ => 0,
         }
     }
@@ -288,7 +318,7 @@ impl Technique {
 
     /// Whether the technique reads the cone map.
     pub fn needs_cone_map(&self) -> bool {
-        matches!(self, Technique::ConeStep { .. })
+        matches!(self, Technique::ConeStep { .. } | Technique::ConeSecant { .. })
     }
 }
 
@@ -314,6 +344,7 @@ mod tests {
             "relief:16:6",
             "adaptive-relief:4:16:5",
             "cone:16:5",
+            "cone-secant:8:3",
             "pom-shadow:32:16",
         ] {
             assert_eq!(Technique::parse(s).unwrap().name(), s);

@@ -5,8 +5,8 @@
 use proptest::prelude::*;
 use renderlab_core::Image;
 use renderlab_relief::complexity::{
-    complexity_map, dilate, level_step, normalize_by_max, quantize, sobel_magnitude,
-    to_u8_levels, ComplexityParams,
+    complexity_map, dilate, level_step, normalize_by_max, quantize, sobel_magnitude, to_u8_levels,
+    ComplexityParams,
 };
 
 fn img(w: u32, h: u32, v: &[f32]) -> Image<f32> {
@@ -95,10 +95,7 @@ fn impulse_beside_the_border_uses_reflect_101() {
 
     // Whole pipeline, no dilation: max 2, so (2, 2) normalises to √2/2 = 2^−½;
     // gamma 0.8 gives 2^−0.4 = 0.757858…; ×23 = 17.43 → 17, i.e. 17/23.
-    let p = ComplexityParams {
-        dilation_iterations: 0,
-        ..Default::default()
-    };
+    let p = ComplexityParams { dilation_iterations: 0, ..Default::default() };
     let c = complexity_map(&img(4, 4, &v), &p);
     let k = 17.0 / 23.0;
     #[rustfmt::skip]
@@ -183,11 +180,23 @@ fn dilation_of_impulses_grows_squares_clipped_at_the_border() {
         for x in 0..7u32 {
             let in3 = (2..=4).contains(&x) && (2..=4).contains(&y);
             let c1 = x >= 5 && y <= 1;
-            let want1 = if in3 { 1.0 } else if c1 { 0.5 } else { 0.0 };
+            let want1 = if in3 {
+                1.0
+            } else if c1 {
+                0.5
+            } else {
+                0.0
+            };
             assert_eq!(one.get(x, y), want1, "1 iteration at ({x}, {y})");
             let in5 = (1..=5).contains(&x) && (1..=5).contains(&y);
             let c2 = x >= 4 && y <= 2;
-            let want2 = if in5 { 1.0 } else if c2 { 0.5 } else { 0.0 };
+            let want2 = if in5 {
+                1.0
+            } else if c2 {
+                0.5
+            } else {
+                0.0
+            };
             assert_eq!(two.get(x, y), want2, "2 iterations at ({x}, {y})");
         }
     }
@@ -236,8 +245,8 @@ fn eight_bit_output_truncates_like_astype_uint8() {
     assert_eq!(
         u.pixels(),
         &[
-            0, 11, 22, 33, 44, 55, 66, 77, 88, 99, 110, 121, 133, 144, 155, 166, 177, 188, 199,
-            210, 221, 232, 243, 255
+            0, 11, 22, 33, 44, 55, 66, 77, 88, 99, 110, 121, 133, 144, 155, 166, 177, 188, 199, 210, 221,
+            232, 243, 255
         ]
     );
     let odd = img(4, 1, &[f32::NAN, -1.0, 2.0, 0.999]);
@@ -249,11 +258,7 @@ fn parameters_are_validated_with_flag_names() {
     assert!(ComplexityParams::default().validate().is_ok());
     assert_eq!(
         ComplexityParams::default(),
-        ComplexityParams {
-            dilation_iterations: 5,
-            gamma: 0.8,
-            levels: 24
-        }
+        ComplexityParams { dilation_iterations: 5, gamma: 0.8, levels: 24 }
     );
     assert!(ComplexityParams::function_defaults().validate().is_ok());
     let bad = |p: ComplexityParams, flag: &str| {
@@ -268,9 +273,7 @@ fn parameters_are_validated_with_flag_names() {
     bad(ComplexityParams { levels: 1, ..d }, "--levels");
     bad(ComplexityParams { levels: 257, ..d }, "--levels");
     bad(ComplexityParams { dilation_iterations: 65, ..d }, "--dilate");
-    assert!(ComplexityParams { gamma: 10.0, levels: 256, dilation_iterations: 64 }
-        .validate()
-        .is_ok());
+    assert!(ComplexityParams { gamma: 10.0, levels: 256, dilation_iterations: 64 }.validate().is_ok());
     // Unvalidated parameters are clamped, never a panic.
     let h = Image::from_fn(5, 4, |x, y| ((x * 3 + y) % 4) as f32 / 3.0);
     for p in [
@@ -306,58 +309,58 @@ fn golden_input() -> Image<f32> {
 /// Level indices produced by `calculate_complexity(h, dilation_iterations=5,
 /// num_levels=24)` ('a' = 0 … 'x' = 23).
 const GOLDEN_24: [&str; 24] = [
-        "ppppppppppppppppppxxxxxxxxxxxxaa",
-        "ppppppppppppppppppxxxxxxxxxxxxaa",
-        "ppppppppppppppppppxxxxxxxxxxxxaa",
-        "ppppppppppppppppppxxxxxxxxxxxxaa",
-        "ppppppppppppppppppxxxxxxxxxxxxaa",
-        "ppppppppppppppppppxxxxxxxxxxxxaa",
-        "ppppppppppppppppppxxxxxxxxxxxxaa",
-        "ppppppppppppppppppxxxxxxxxxxxxaa",
-        "ppppppppppppppppppxxxxxxxxxxxxaa",
-        "ppppppppppppppppppxxxxxxxxxxxxaa",
-        "ppppppppppppppppppxxxxxxxxxxxxaa",
-        "ppppppppppppppppppxxxxxxxxxxxxaa",
-        "ppppppppppppppppppxxxxxxxxxxxxaa",
-        "ppppppppppppppppppxxxxxxxxxxxxaa",
-        "ppppppppppppppppppxxxxxxxxxxxxaa",
-        "ppppppppppppppppppxxxxxxxxxxxxaa",
-        "ppppppppppppppppppxxxxxxxxxxxxaa",
-        "ppppppppppppppppppxxxxxxxxxxxxaa",
-        "ppppppppppppppppppxxxxxxxxxxxxaa",
-        "lpppppppppppppppppxxxxxxxxxxxxaa",
-        "eknpppppppppppppppxxxxxxxxxxxxaa",
-        "cdgjllllllllllllljxxxxxxxxxxxxaa",
-        "cccccdddddddddddccxxxxxxxxxxxxaa",
-        "ccccccccccccccccccxxxxxxxxxxxxaa",
+    "ppppppppppppppppppxxxxxxxxxxxxaa",
+    "ppppppppppppppppppxxxxxxxxxxxxaa",
+    "ppppppppppppppppppxxxxxxxxxxxxaa",
+    "ppppppppppppppppppxxxxxxxxxxxxaa",
+    "ppppppppppppppppppxxxxxxxxxxxxaa",
+    "ppppppppppppppppppxxxxxxxxxxxxaa",
+    "ppppppppppppppppppxxxxxxxxxxxxaa",
+    "ppppppppppppppppppxxxxxxxxxxxxaa",
+    "ppppppppppppppppppxxxxxxxxxxxxaa",
+    "ppppppppppppppppppxxxxxxxxxxxxaa",
+    "ppppppppppppppppppxxxxxxxxxxxxaa",
+    "ppppppppppppppppppxxxxxxxxxxxxaa",
+    "ppppppppppppppppppxxxxxxxxxxxxaa",
+    "ppppppppppppppppppxxxxxxxxxxxxaa",
+    "ppppppppppppppppppxxxxxxxxxxxxaa",
+    "ppppppppppppppppppxxxxxxxxxxxxaa",
+    "ppppppppppppppppppxxxxxxxxxxxxaa",
+    "ppppppppppppppppppxxxxxxxxxxxxaa",
+    "ppppppppppppppppppxxxxxxxxxxxxaa",
+    "lpppppppppppppppppxxxxxxxxxxxxaa",
+    "eknpppppppppppppppxxxxxxxxxxxxaa",
+    "cdgjllllllllllllljxxxxxxxxxxxxaa",
+    "cccccdddddddddddccxxxxxxxxxxxxaa",
+    "ccccccccccccccccccxxxxxxxxxxxxaa",
 ];
 
 /// Level indices for the Python function's own defaults (1 iteration, 10 levels).
 const GOLDEN_10: [&str; 24] = [
-        "00000000111110000000009999000000",
-        "00000124444444210000009999000000",
-        "00002456666666542000009999000000",
-        "00024666666666664200009999000000",
-        "00146666666666666410009999000000",
-        "00256666655566666520009999000000",
-        "00466666554556666640009999000000",
-        "01466665544455666641009999000000",
-        "01466655433345566641009999000000",
-        "01466654432344566641009999000000",
-        "01466655433345566641009999000000",
-        "01466665544455666641009999000000",
-        "00466666554556666640009999000000",
-        "00256666655566666520009999000000",
-        "00146666666666666410009999000000",
-        "00024666666666664200009999000000",
-        "00002456666666542000009999000000",
-        "00000124444444210000009999000000",
-        "11101111111111111111109999000000",
-        "11111111111111111111119999000000",
-        "11111111111111111111119999000000",
-        "01111011111111011111119999000000",
-        "00000000000000000000009999000000",
-        "00000000000000000000009999000000",
+    "00000000111110000000009999000000",
+    "00000124444444210000009999000000",
+    "00002456666666542000009999000000",
+    "00024666666666664200009999000000",
+    "00146666666666666410009999000000",
+    "00256666655566666520009999000000",
+    "00466666554556666640009999000000",
+    "01466665544455666641009999000000",
+    "01466655433345566641009999000000",
+    "01466654432344566641009999000000",
+    "01466655433345566641009999000000",
+    "01466665544455666641009999000000",
+    "00466666554556666640009999000000",
+    "00256666655566666520009999000000",
+    "00146666666666666410009999000000",
+    "00024666666666664200009999000000",
+    "00002456666666542000009999000000",
+    "00000124444444210000009999000000",
+    "11101111111111111111109999000000",
+    "11111111111111111111119999000000",
+    "11111111111111111111119999000000",
+    "01111011111111011111119999000000",
+    "00000000000000000000009999000000",
+    "00000000000000000000009999000000",
 ];
 
 /// `np.sqrt(grad_x ** 2 + grad_y ** 2)` for rows 7, 8 and 9, as f32 bit patterns.
@@ -386,9 +389,7 @@ fn check_golden(params: ComplexityParams, rows: &[&str; 24], digit: impl Fn(char
 #[test]
 fn matches_the_thesis_script_bit_for_bit() {
     check_golden(ComplexityParams::default(), &GOLDEN_24, |c| c as u32 - 'a' as u32);
-    check_golden(ComplexityParams::function_defaults(), &GOLDEN_10, |c| {
-        c.to_digit(10).unwrap()
-    });
+    check_golden(ComplexityParams::function_defaults(), &GOLDEN_10, |c| c.to_digit(10).unwrap());
     let m = sobel_magnitude(&golden_input());
     assert_eq!(m.pixels().iter().copied().fold(0.0f32, f32::max).to_bits(), 1075882615);
     for (i, &bits) in GOLDEN_MAGNITUDE_ROWS_7_TO_9.iter().enumerate() {
@@ -452,12 +453,10 @@ fn arb_map(max_side: u32) -> impl Strategy<Value = Image<f32>> {
 }
 
 fn arb_params() -> impl Strategy<Value = ComplexityParams> {
-    (0u32..=7, 0.05f32..=10.0, 2u32..=256).prop_map(|(dilation_iterations, gamma, levels)| {
-        ComplexityParams {
-            dilation_iterations,
-            gamma,
-            levels,
-        }
+    (0u32..=7, 0.05f32..=10.0, 2u32..=256).prop_map(|(dilation_iterations, gamma, levels)| ComplexityParams {
+        dilation_iterations,
+        gamma,
+        levels,
     })
 }
 

@@ -22,8 +22,7 @@ fn wrapped(d: f32) -> f32 {
 fn arb_field(max_side: u32) -> impl Strategy<Value = HeightField> {
     (1..=max_side, 1..=max_side).prop_flat_map(|(w, h)| {
         prop::collection::vec(0u8..=255, (w * h) as usize).prop_map(move |v| {
-            let img =
-                Image::from_vec(w, h, v.into_iter().map(|b| b as f32 / 255.0).collect()).unwrap();
+            let img = Image::from_vec(w, h, v.into_iter().map(|b| b as f32 / 255.0).collect()).unwrap();
             HeightField::from_depth(&img)
         })
     })
@@ -57,14 +56,21 @@ fn check_empty_cones(f: &HeightField, map: &ConeMap) -> Result<(), TestCaseError
                 let uv = Vec2::new(u0 + a * du, v0 + b * dv);
                 prop_assert_eq!(map.texel_of(uv), (cx, cy));
                 let d0 = f.depth_uncounted(uv);
-                let mut check = |q: Vec2| -> Result<(), TestCaseError> {
+                let check = |q: Vec2| -> Result<(), TestCaseError> {
                     let dist = (q - uv).length();
                     let need = d0 - dist / r;
                     let got = f.depth_uncounted(q);
                     prop_assert!(
                         got >= need - 2e-5,
                         "cell ({}, {}) ratio {}: at uv {:?} (depth {}), point {:?} has depth {} < {}",
-                        cx, cy, r, uv, d0, q, got, need
+                        cx,
+                        cy,
+                        r,
+                        uv,
+                        d0,
+                        q,
+                        got,
+                        need
                     );
                     Ok(())
                 };
@@ -194,7 +200,13 @@ fn check_relaxed(f: &HeightField, cons: &ConeMap, relaxed: &ConeMap) -> Result<(
                         rr <= rc.max(bound) * (1.0 + 1e-4) + 1e-5,
                         "texel ({}, {}): relaxed {} (conservative {}) but the ray through \
                          offset ({}, {}) exits inside the cone (bound {})",
-                        px, py, rr, rc, ox, oy, bound
+                        px,
+                        py,
+                        rr,
+                        rc,
+                        ox,
+                        oy,
+                        bound
                     );
                 }
             }

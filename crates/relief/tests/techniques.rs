@@ -8,7 +8,7 @@ use renderlab_core::Image;
 use renderlab_relief::adaptive::AdaptivePom;
 use renderlab_relief::complexity::{complexity_map, ComplexityParams};
 use renderlab_relief::cone::{ConeKind, ConeMap};
-use renderlab_relief::cone_step::ConeStep;
+use renderlab_relief::cone_step::{ConeStep, Refinement};
 use renderlab_relief::parallax::{Parallax, Pom, Steep};
 use renderlab_relief::reference::exact_hit;
 use renderlab_relief::relief_mapping::{AdaptiveRelief, ReliefMapping};
@@ -47,7 +47,12 @@ fn fixture() -> Fixture {
 
 impl Fixture {
     fn inputs(&self) -> ReliefInputs<'_> {
-        ReliefInputs { height: &self.field, height_scale: SCALE, complexity: &self.complexity, cone: Some(&self.cone) }
+        ReliefInputs {
+            height: &self.field,
+            height_scale: SCALE,
+            complexity: &self.complexity,
+            cone: Some(&self.cone),
+        }
     }
 }
 
@@ -99,7 +104,7 @@ fn refinement_beats_plain_marching_at_equal_linear_steps() {
 fn cone_stepping_is_accurate() {
     let fx = fixture();
     for theta in [30.0, 60.0, 80.0] {
-        let cone = mean_error(&fx, &ConeStep { steps: 32, binary: 8 }, theta);
+        let cone = mean_error(&fx, &ConeStep { steps: 32, binary: 8, refine: Refinement::Binary }, theta);
         let pom = mean_error(&fx, &Pom { layers: 32 }, theta);
         assert!(cone <= pom * 1.5 + 0.05, "{theta}°: cone {cone} vs POM-32 {pom}");
     }
@@ -114,7 +119,7 @@ fn head_on_view_hits_the_entry_depth_exactly() {
     for hit in [
         Pom { layers: 16 }.trace(&inp, uv, Vec3::Z, &mut NoCount),
         ReliefMapping { linear: 8, binary: 8 }.trace(&inp, uv, Vec3::Z, &mut NoCount),
-        ConeStep { steps: 16, binary: 8 }.trace(&inp, uv, Vec3::Z, &mut NoCount),
+        ConeStep { steps: 16, binary: 8, refine: Refinement::Binary }.trace(&inp, uv, Vec3::Z, &mut NoCount),
     ] {
         assert!((hit.uv - uv).length() < 1e-6);
     }
@@ -144,7 +149,7 @@ fn fetches_are_bounded_by_the_layer_count() {
         AdaptiveRelief { min: 4, max: 16, binary: 5 }.trace(&inp, uv, v, &mut t);
         check(t.0, 17 + 5, "adaptive relief");
         let mut t = Tally::default();
-        ConeStep { steps: 16, binary: 5 }.trace(&inp, uv, v, &mut t);
+        ConeStep { steps: 16, binary: 5, refine: Refinement::Binary }.trace(&inp, uv, v, &mut t);
         check(t.0, 16 + 1 + 4 + 5, "cone");
     }
 }
@@ -157,7 +162,10 @@ fn all_hits(inp: &ReliefInputs, uv: Vec2, v: Vec3) -> Vec<(&'static str, renderl
         ("adaptive", AdaptivePom { min: 4, max: 32 }.trace(inp, uv, v, &mut NoCount)),
         ("relief", ReliefMapping { linear: 16, binary: 6 }.trace(inp, uv, v, &mut NoCount)),
         ("adaptive-relief", AdaptiveRelief { min: 4, max: 16, binary: 5 }.trace(inp, uv, v, &mut NoCount)),
-        ("cone", ConeStep { steps: 16, binary: 5 }.trace(inp, uv, v, &mut NoCount)),
+        (
+            "cone",
+            ConeStep { steps: 16, binary: 5, refine: Refinement::Binary }.trace(inp, uv, v, &mut NoCount),
+        ),
     ]
 }
 

@@ -1,9 +1,10 @@
 //! Texture filters. A filter turns a texture coordinate and its screen-space Jacobian
 //! (Heckbert's footprint: `duv_dx`, `duv_dy`) into a colour, counting each texel it reads.
 
-use crate::mip::Texture;
+use crate::mip::{Texture, Wrap};
 use glam::{Vec2, Vec4};
 use renderlab_core::counter::Counter;
+use renderlab_core::image::wrap_index;
 
 /// A texture reconstruction/antialiasing filter.
 pub trait Filter: Sync {
@@ -49,18 +50,32 @@ fn finite(v: f32) -> f32 {
 #[inline]
 pub fn bilinear_level<C: Counter>(tex: &Texture, level: usize, uv: Vec2, counter: &mut C) -> Vec4 {
     let img = tex.level(level);
-    let x = finite(uv.x) * img.width() as f32 - 0.5;
-    let y = finite(uv.y) * img.height() as f32 - 0.5;
+    let (w, h) = img.size();
+    let x = finite(uv.x) * w as f32 - 0.5;
+    let y = finite(uv.y) * h as f32 - 0.5;
     let x0 = x.floor();
     let y0 = y.floor();
     let fx = x - x0;
     let fy = y - y0;
     let (xi, yi) = (x0 as i64, y0 as i64);
     counter.count(4);
-    let a = tex.texel(level, xi, yi);
-    let b = tex.texel(level, xi + 1, yi);
-    let c = tex.texel(level, xi, yi + 1);
-    let d = tex.texel(level, xi + 1, yi + 1);
+    let (a, b, c, d) = match tex.wrap() {
+        Wrap::Repeat => {
+            let x0 = wrap_index(xi, w);
+            let y0 = wrap_index(yi, h);
+            let x1 = if x0 + 1 == w as usize { 0 } else { x0 + 1 };
+            let y1 = if y0 + 1 == h as usize { 0 } else { y0 + 1 };
+            let px = img.pixels();
+            let (r0, r1) = (y0 * w as usize, y1 * w as usize);
+            (px[r0 + x0], px[r0 + x1], px[r1 + x0], px[r1 + x1])
+        }
+        Wrap::Clamp => (
+            tex.texel(level, xi, yi),
+            tex.texel(level, xi + 1, yi),
+            tex.texel(level, xi, yi + 1),
+            tex.texel(level, xi + 1, yi + 1),
+        ),
+    };
     let top = a + (b - a) * fx;
     let bottom = c + (d - c) * fx;
     top + (bottom - top) * fy
@@ -134,7 +149,6 @@ impl Filter for Trilinear {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mip::Wrap;
     use renderlab_core::counter::Tally;
     use renderlab_core::Image;
 

@@ -9,7 +9,7 @@
 //! which sends u + 1 to `n·(2,−2)` and v + 1 to `2n·(1,1)`: both lattice vectors, so the
 //! pattern tiles with `n` chevron columns per tile.
 
-use super::noise::{cellular, hash2, lerp, perlin, rand, rounded_box, smoothstep, Fbm};
+use super::noise::{cellular, floor, hash2, lerp, perlin, rand, rounded_box, smoothstep, Fbm};
 use super::{srgb, Detail, Texel};
 use glam::{Vec2, Vec3};
 
@@ -42,8 +42,8 @@ fn palette(i: u32) -> Vec3 {
 /// The paver containing `q`: its identity, its centre and half extents (paver units).
 fn paver(q: Vec2) -> (u32, Vec2, Vec2) {
     let n = COLUMNS as i64;
-    let a0 = ((q.x + q.y) * 0.5).floor() as i64;
-    let b0 = ((q.x - q.y) * 0.25).floor() as i64;
+    let a0 = floor((q.x + q.y) * 0.5) as i64;
+    let b0 = floor((q.x - q.y) * 0.25) as i64;
     // Of the 4 candidate pairs around the lattice cell, exactly one paver contains q; take the
     // one q is deepest inside, which is robust at the shared edges.
     let mut best = (f32::MIN, 0u32, Vec2::ZERO, Vec2::ZERO);
@@ -80,6 +80,25 @@ pub(super) fn texel(u: f32, v: f32, d: &Detail) -> Texel {
     let sdf = rounded_box(local, half_in, CORNER) + 0.05 * chips.max(-0.15);
     let inside = -sdf;
 
+    // Blend over one texel so the outline is not aliased; each side is only evaluated where
+    // it shows.
+    let w = smoothstep(-texel_q, texel_q, inside);
+    let paver = || paver_face(u, v, lim, id, local, inside);
+    let joint = || joint(u, v, lim, inside);
+    let (albedo, height) = if w >= 1.0 {
+        paver()
+    } else if w <= 0.0 {
+        joint()
+    } else {
+        let ((pc, ph), (jc, jh)) = (paver(), joint());
+        (jc.lerp(pc, w), lerp(jh, ph, w))
+    };
+    Texel { albedo: albedo.clamp(Vec3::ZERO, Vec3::ONE), height }
+}
+
+/// Colour and height of the paver `id` at `(u, v)`, `local` from its centre and `inside` its
+/// outline (paver units).
+fn paver_face(u: f32, v: f32, lim: u32, id: u32, local: Vec2, inside: f32) -> (Vec3, f32) {
     // --- height -------------------------------------------------------------------------
     let tilt = Vec2::new(rand(id, 2) - 0.5, rand(id, 3) - 0.5) * 0.06;
     let surface = Fbm::new(10, 10, SEED + 2).octaves(5).limit(lim).fbm(u, v);
@@ -96,16 +115,7 @@ pub(super) fn texel(u: f32, v: f32, d: &Detail) -> Texel {
     // Worn, rounded bevel.
     let b = (inside / BEVEL).clamp(0.0, 1.0);
     let bevel = (1.0 - (1.0 - b) * (1.0 - b)).sqrt();
-    let paver_h = lerp(0.32, top, bevel);
-
-    // Sand in the joints, a little below the paver edges, heaped and grainy.
-    let sand_grain = Fbm::new(160, 160, SEED + 5).octaves(2).limit(lim).fbm(u, v);
-    let sand_lump = Fbm::new(24, 24, SEED + 6).octaves(3).limit(lim).fbm(u, v);
-    let out = (-inside / JOINT).clamp(0.0, 1.0);
-    let joint_h = 0.14 - 0.1 * out + 0.05 * sand_lump + 0.02 * sand_grain;
-
-    let w = smoothstep(-texel_q, texel_q, inside);
-    let height = lerp(joint_h, paver_h, w);
+    let height = lerp(0.32, top, bevel);
 
     // --- colour ---------------------------------------------------------------------------
     let base = palette((rand(id, 5) * 6.0) as u32).lerp(palette(id), 0.4 * rand(id, 6));
@@ -114,19 +124,27 @@ pub(super) fn texel(u: f32, v: f32, d: &Detail) -> Texel {
     let wear = smoothstep(-0.1, 0.3, surface) * 0.22;
     let f = lim.min(300);
     let fleck = perlin(u, v, f, f, SEED + 10);
-    let mut paver_c = base
+    let mut c = base
         * (0.82 + 0.3 * rand(id, 7))
         * (1.0 + 0.22 * mottle + 0.15 * grain)
         * (1.0 - 0.25 * smoothstep(0.4, 0.7, fleck));
-    paver_c = paver_c.lerp(srgb(170, 150, 130), wear);
-    paver_c *= (0.72 + 0.28 * bevel) * (1.0 - 0.3 * pit);
+    c = c.lerp(srgb(170, 150, 130), wear);
+    c *= (0.72 + 0.28 * bevel) * (1.0 - 0.3 * pit);
     // Pale efflorescence on a few pavers.
     let bloom = smoothstep(0.2, 0.45, mottle) * (rand(id, 8) < 0.25) as u32 as f32;
-    paver_c = paver_c.lerp(srgb(180, 165, 150), 0.35 * bloom);
+    (c.lerp(srgb(180, 165, 150), 0.35 * bloom), height)
+}
 
+/// Colour and height of a joint at `(u, v)`, `-inside` outside the nearest paver: sand a
+/// little below the paver edges, heaped and grainy, with moss in places.
+fn joint(u: f32, v: f32, lim: u32, inside: f32) -> (Vec3, f32) {
+    let sand_grain = Fbm::new(160, 160, SEED + 5).octaves(2).limit(lim).fbm(u, v);
+    let sand_lump = Fbm::new(24, 24, SEED + 6).octaves(3).limit(lim).fbm(u, v);
+    let out = (-inside / JOINT).clamp(0.0, 1.0);
+    let height = 0.14 - 0.1 * out + 0.05 * sand_lump + 0.02 * sand_grain;
     let sand_c = srgb(182, 160, 124) * (0.9 + 0.3 * sand_grain + 0.2 * sand_lump);
     let moss_mask = Fbm::new(4, 4, SEED + 9).octaves(3).fbm(u, v);
     let moss = smoothstep(0.15, 0.35, moss_mask);
-    let joint_c = sand_c.lerp(srgb(70, 78, 44) * (0.8 + 0.6 * sand_lump), 0.8 * moss) * (1.0 - 0.3 * out);
-    Texel { albedo: joint_c.lerp(paver_c, w).clamp(Vec3::ZERO, Vec3::ONE), height }
+    let c = sand_c.lerp(srgb(70, 78, 44) * (0.8 + 0.6 * sand_lump), 0.8 * moss) * (1.0 - 0.3 * out);
+    (c, height)
 }

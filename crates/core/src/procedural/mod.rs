@@ -8,10 +8,12 @@
 //! and paver layouts whose period divides the tile), so the maps tile seamlessly under wrap
 //! addressing at any size ≥ 16, power of two or not.
 
+#![warn(missing_docs)]
+
 mod bark_willow;
 mod brick_pavement;
 mod bricks;
-pub mod noise;
+mod noise;
 mod sand_rocks;
 
 use crate::error::{CoreError, Result};
@@ -286,10 +288,19 @@ mod tests {
             .and_then(|s| s.parse().ok())
             .unwrap_or(DEFAULT_SIZE);
         std::fs::create_dir_all(&dir).unwrap();
+        // CPU seconds used by this process so far (Linux), to report the build cost
+        // independently of other load on the machine.
+        let cpu = || -> Option<f64> {
+            let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+            let fields: Vec<&str> = stat.rsplit_once(')')?.1.split_whitespace().collect();
+            let ticks: f64 = fields.get(11)?.parse::<f64>().ok()? + fields.get(12)?.parse::<f64>().ok()?;
+            Some(ticks / 100.0)
+        };
         for name in MATERIAL_NAMES {
-            let t = std::time::Instant::now();
+            let (t, c) = (std::time::Instant::now(), cpu());
             let m = material(name, size).unwrap();
-            println!("{name}: {:.3} s at {size}²", t.elapsed().as_secs_f64());
+            let cpu_s = cpu().zip(c).map(|(b, a)| b - a).unwrap_or(f64::NAN);
+            println!("{name}: {:.3} s at {size}² ({cpu_s:.2} CPU s)", t.elapsed().as_secs_f64());
             crate::io::save_color(format!("{dir}/{name}_albedo.png"), &m.albedo).unwrap();
             crate::io::save_gray(format!("{dir}/{name}_height.png"), &m.height, false).unwrap();
             // A quick lit preview: albedo × Lambert with a light from the upper left.

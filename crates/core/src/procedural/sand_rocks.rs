@@ -245,9 +245,6 @@ fn texel(layers: &[Layer], u: f32, v: f32, d: &Detail) -> Texel {
     for layer in layers {
         rocks_at(layer, u, v, &mut hit);
     }
-    let rough = Fbm::new(20, 20, hit.id % 977 + SEED).octaves(4).limit(lim).fbm(u, v);
-    let rock_h = hit.top + 0.05 * rough * hit.profile.sqrt();
-
     // --- colour ---------------------------------------------------------------------------
     let sand_c =
         srgb(198, 172, 130) * (0.92 + 0.12 * ripple + 0.18 * fine + 0.14 * grain) * (1.0 + 0.15 * undulation);
@@ -256,7 +253,13 @@ fn texel(layers: &[Layer], u: f32, v: f32, d: &Detail) -> Texel {
     // Sand is darker (damp, shaded) close to a rock's foot.
     let shade = 1.0 - 0.35 * (1.0 - smoothstep(1.0, 1.3, hit.near));
     let sand_c = sand_c * shade;
+    if hit.top == f32::MIN {
+        // Open sand: no rock here, skip the rock surface.
+        return Texel { albedo: sand_c.clamp(Vec3::ZERO, Vec3::ONE), height: sand_h };
+    }
 
+    let rough = Fbm::new(20, 20, hit.id % 977 + SEED).octaves(4).limit(lim).fbm(u, v);
+    let rock_h = hit.top + 0.05 * rough * hit.profile.sqrt();
     let mottle = Fbm::new(10, 10, SEED + 24).octaves(4).limit(lim).fbm(u, v);
     let speck = smoothstep(0.3, 0.6, perlin(u, v, lim.min(300), lim.min(300), SEED + 25));
     let rock_c = hit.color

@@ -1,0 +1,188 @@
+//! The binary as a user meets it: every command answers `--help`, good input writes its
+//! output, and bad input gets one clear line naming the file or flag, a non-zero exit, no
+//! panic and no output file.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn renderlab(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_renderlab")).args(args).output().expect("binary runs")
+}
+
+/// Asserts a clean failure: exit code 1, exactly one stderr line that mentions `needle`.
+fn fails_with(args: &[&str], needle: &str) {
+    let out = renderlab(args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{args:?} should fail with 1; stderr: {err}");
+    assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
+    let lines: Vec<&str> = err.lines().filter(|l| !l.trim().is_empty()).collect();
+    assert_eq!(lines.len(), 1, "{args:?}: expected one line, got {err}");
+    assert!(err.contains(needle), "{args:?}: '{needle}' not in: {err}");
+}
+
+fn write_png(path: &Path, w: u32, h: u32) {
+    let img = renderlab_core_free_gray(w, h);
+    let mut buf = Vec::new();
+    {
+        let mut enc = png_encoder(&mut buf, w, h);
+        enc.write_image_data(&img).unwrap();
+    }
+    std::fs::write(path, buf).unwrap();
+}
+
+fn renderlab_core_free_gray(w: u32, h: u32) -> Vec<u8> {
+    (0..w * h).map(|i| ((i % w) * 255 / w.max(1)) as u8 ^ ((i / w) as u8 & 16)).collect()
+}
+
+fn png_encoder(buf: &mut Vec<u8>, w: u32, h: u32) -> png::Writer<&mut Vec<u8>> {
+    let mut e = png::Encoder::new(buf, w, h);
+    e.set_color(png::ColorType::Grayscale);
+    e.set_depth(png::BitDepth::Eight);
+    e.write_header().unwrap()
+}
+
+#[test]
+fn every_command_has_help() {
+    for args in [
+        vec!["--help"],
+        vec!["report", "--help"],
+        vec!["relief", "--help"],
+        vec!["relief", "bench", "--help"],
+        vec!["relief", "render", "--help"],
+        vec!["complexity", "--help"],
+        vec!["materials", "--help"],
+    ] {
+        let out = renderlab(&args);
+        assert!(out.status.success(), "{args:?}");
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(text.contains("Usage"), "{args:?}: {text}");
+    }
+}
+
+#[test]
+fn complexity_map_of_a_png() {
+    let dir = tempfile::tempdir().unwrap();
+    let h = dir.path().join("h.png");
+    write_png(&h, 37, 19);
+    let out_path = dir.path().join("c.png");
+    let out = renderlab(&["complexity", h.to_str().unwrap(), out_path.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("Complexity map saved as"));
+    let bytes = std::fs::read(&out_path).unwrap();
+    assert_eq!(&bytes[1..4], b"PNG");
+}
+
+#[test]
+fn bad_complexity_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
+    let out = d("c.png");
+    fails_with(&["complexity", &d("missing.png"), &out], "missing.png");
+    std::fs::write(d("empty.png"), b"").unwrap();
+    fails_with(&["complexity", &d("empty.png"), &out], "empty.png");
+    write_png(Path::new(&d("ok.png")), 20, 20);
+    let full = std::fs::read(d("ok.png")).unwrap();
+    std::fs::write(d("cut.png"), &full[..full.len() / 2]).unwrap();
+    fails_with(&["complexity", &d("cut.png"), &out], "cut.png");
+    std::fs::write(d("junk.png"), b"\x89PNG\r\n\x1a\nthis is not a png").unwrap();
+    fails_with(&["complexity", &d("junk.png"), &out], "junk.png");
+    fails_with(&["complexity", &d("ok.png"), &out, "--gamma", "nan"], "--gamma");
+    fails_with(&["complexity", &d("ok.png"), &out, "--levels", "1"], "--levels");
+    fails_with(&["complexity", &d("ok.png"), &d("c.bmp")], "c.bmp");
+    assert!(!Path::new(&out).exists(), "no output may be written on error");
+}
+
+#[test]
+fn bad_render_arguments() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("r.png");
+    let o = out.to_str().unwrap();
+    let small = ["--width", "32", "--height", "20", "--texture-size", "32"];
+    let with = |extra: &[&str]| -> Vec<String> {
+        let mut v: Vec<String> = ["relief", "render", "-o", o].iter().map(|s| s.to_string()).collect();
+        v.extend(small.iter().map(|s| s.to_string()));
+        v.extend(extra.iter().map(|s| s.to_string()));
+        v
+    };
+    let run = |extra: &[&str], needle: &str| {
+        let args = with(extra);
+        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+        fails_with(&refs, needle);
+    };
+    run(&["-t", "fancy"], "fancy");
+    run(&["-t", "pom:0"], "--technique");
+    run(&["-t", "pom:99999"], "--technique");
+    run(&["--material", "marble"], "marble");
+    run(&["--angle", "nan"], "--angle");
+    run(&["--angle", "95"], "--angle");
+    run(&["--height-scale", "inf", "--albedo", "a.png", "--height-map", "h.png"], "--height-scale");
+    let args: Vec<&str> = vec!["relief", "render", "-o", o, "--width", "100000", "--height", "20"];
+    fails_with(&args, "100000");
+    let args: Vec<&str> = vec!["relief", "render", "-o", o, "--width", "0", "--height", "20"];
+    fails_with(&args, "--width");
+    assert!(!out.exists());
+}
+
+#[test]
+fn mismatched_user_maps_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = dir.path().join("a.png");
+    let h = dir.path().join("h.png");
+    write_png(&a, 16, 16);
+    write_png(&h, 8, 8);
+    let out = dir.path().join("r.png");
+    let args = [
+        "relief",
+        "render",
+        "-o",
+        out.to_str().unwrap(),
+        "--albedo",
+        a.to_str().unwrap(),
+        "--height-map",
+        h.to_str().unwrap(),
+        "--width",
+        "32",
+        "--height",
+        "20",
+    ];
+    fails_with(&args, "sizes differ");
+    assert!(!out.exists());
+}
+
+#[test]
+fn renders_user_maps_and_builtins() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = dir.path().join("a.png");
+    let h = dir.path().join("h.png");
+    write_png(&a, 24, 40);
+    write_png(&h, 24, 40);
+    for (t, extra) in [("adaptive", vec![]), ("cone-secant", vec![]), ("pom:8", vec!["--debug", "error"])] {
+        let out = dir.path().join(format!("{}.png", t.replace(':', "_")));
+        let mut args = vec![
+            "relief",
+            "render",
+            "-t",
+            t,
+            "-o",
+            out.to_str().unwrap(),
+            "--albedo",
+            a.to_str().unwrap(),
+            "--height-map",
+            h.to_str().unwrap(),
+            "--width",
+            "48",
+            "--height",
+            "30",
+            "--angle",
+            "70",
+        ];
+        args.extend(extra.iter());
+        let o = renderlab(&args);
+        assert!(o.status.success(), "{t}: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(out.exists());
+    }
+    let maps = dir.path().join("maps");
+    let o = renderlab(&["materials", "--out", maps.to_str().unwrap(), "--size", "16"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(maps.join("bricks_height.png").exists() && maps.join("bark_willow_normal.png").exists());
+}
