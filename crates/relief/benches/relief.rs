@@ -43,6 +43,22 @@ fn run<T: ReliefTechnique>(c: &mut Criterion, group: &str, t: &T, inputs: &Relie
     g.finish();
 }
 
+/// Like [`run`], through [`ReliefTechnique::trace_row`] (packet tracing where implemented).
+fn run_rows<T: ReliefTechnique>(c: &mut Criterion, group: &str, t: &T, inputs: &ReliefInputs) {
+    let mut g = c.benchmark_group(group);
+    for angle in [0.0f32, 45.0, 60.0, 80.0] {
+        let s = samples(angle);
+        let mut out = vec![renderlab_relief::ReliefHit::default(); s.len()];
+        g.bench_with_input(BenchmarkId::from_parameter(angle), &s, |b, s| {
+            b.iter(|| {
+                t.trace_row(inputs, black_box(s), &mut out, &mut NoCount);
+                out.iter().fold(Vec2::ZERO, |a, h| a + h.uv)
+            })
+        });
+    }
+    g.finish();
+}
+
 fn kernels(c: &mut Criterion) {
     let m = procedural::material("bricks", 1024).expect("built-in material");
     let mat = ReliefMaterial::new(&m, &ComplexityParams::default(), true);
@@ -56,6 +72,10 @@ fn kernels(c: &mut Criterion) {
     run(c, "relief_16_6", &ReliefMapping { linear: 16, binary: 6 }, &inp);
     run(c, "adaptive_relief_4_16_5", &AdaptiveRelief { min: 4, max: 16, binary: 5 }, &inp);
     run(c, "cone_16_5", &ConeStep { steps: 16, binary: 5, refine: Refinement::Binary }, &inp);
+    let cs = ConeStep { steps: 24, binary: 3, refine: Refinement::Secant };
+    run(c, "cone_secant_24_3", &cs, &inp);
+    run_rows(c, "cone_secant_24_3_packets", &cs, &inp);
+    run_rows(c, "pom_32_rows", &Pom { layers: 32 }, &inp);
     run(c, "exact_reference", &ExactTrace, &inp);
 }
 

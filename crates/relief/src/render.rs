@@ -8,7 +8,7 @@ use crate::parallax::{Parallax, Pom, Steep, Undisplaced};
 use crate::reference::ExactTrace;
 use crate::relief_mapping::{AdaptiveRelief, ReliefMapping};
 use crate::shade::{render_frame, trace_frame, Frame, FrameInput, ShadeOptions, ShadowMode};
-use crate::technique::{Shading, Technique};
+use crate::technique::{ReliefTechnique, Shading, Technique};
 use glam::Vec3;
 use renderlab_core::scene::Lighting;
 
@@ -21,6 +21,35 @@ pub fn options(technique: Technique, lighting: Lighting, background: Vec3) -> Sh
     ShadeOptions { lighting, shading: technique.shading(), shadow, background }
 }
 
+/// Something to do with the concrete tracer of a [`Technique`]: the one place that maps a
+/// technique to its monomorphised implementation.
+pub trait WithTracer {
+    /// What the action returns.
+    type Output;
+    /// Runs the action with tracer `t`.
+    fn run<T: ReliefTechnique>(self, t: &T) -> Self::Output;
+}
+
+/// Calls `action` with the tracer of `technique` (shading is not the tracer's business:
+/// `PomShadow` traces like `Pom`, `Basic` like `NormalMapping`).
+pub fn with_tracer<A: WithTracer>(technique: Technique, action: A) -> A::Output {
+    match technique {
+        Technique::Basic | Technique::NormalMapping => action.run(&Undisplaced),
+        Technique::Parallax => action.run(&Parallax),
+        Technique::Steep { layers } => action.run(&Steep { layers }),
+        Technique::Pom { layers } | Technique::PomShadow { layers, .. } => action.run(&Pom { layers }),
+        Technique::AdaptivePom { min, max } => action.run(&AdaptivePom { min, max }),
+        Technique::Relief { linear, binary } => action.run(&ReliefMapping { linear, binary }),
+        Technique::AdaptiveRelief { min, max, binary } => action.run(&AdaptiveRelief { min, max, binary }),
+        Technique::ConeStep { steps, binary } => {
+            action.run(&ConeStep { steps, binary, refine: Refinement::Binary })
+        }
+        Technique::ConeSecant { steps, secant } => {
+            action.run(&ConeStep { steps, binary: secant, refine: Refinement::Secant })
+        }
+    }
+}
+
 /// Renders `technique`. With `count`, height fetches are tallied.
 pub fn render(
     input: FrameInput,
@@ -30,40 +59,20 @@ pub fn render(
     background: Vec3,
     count: bool,
 ) -> Frame {
-    let opt = options(technique, lighting, background);
-    match technique {
-        Technique::Basic | Technique::NormalMapping => {
-            render_frame(input, materials, &Undisplaced, &opt, count)
-        }
-        Technique::Parallax => render_frame(input, materials, &Parallax, &opt, count),
-        Technique::Steep { layers } => render_frame(input, materials, &Steep { layers }, &opt, count),
-        Technique::Pom { layers } | Technique::PomShadow { layers, .. } => {
-            render_frame(input, materials, &Pom { layers }, &opt, count)
-        }
-        Technique::AdaptivePom { min, max } => {
-            render_frame(input, materials, &AdaptivePom { min, max }, &opt, count)
-        }
-        Technique::Relief { linear, binary } => {
-            render_frame(input, materials, &ReliefMapping { linear, binary }, &opt, count)
-        }
-        Technique::AdaptiveRelief { min, max, binary } => {
-            render_frame(input, materials, &AdaptiveRelief { min, max, binary }, &opt, count)
-        }
-        Technique::ConeStep { steps, binary } => render_frame(
-            input,
-            materials,
-            &ConeStep { steps, binary, refine: Refinement::Binary },
-            &opt,
-            count,
-        ),
-        Technique::ConeSecant { steps, secant } => render_frame(
-            input,
-            materials,
-            &ConeStep { steps, binary: secant, refine: Refinement::Secant },
-            &opt,
-            count,
-        ),
+    struct Render<'a> {
+        input: FrameInput<'a>,
+        materials: &'a [ReliefMaterial],
+        opt: ShadeOptions,
+        count: bool,
     }
+    impl WithTracer for Render<'_> {
+        type Output = Frame;
+        fn run<T: ReliefTechnique>(self, t: &T) -> Frame {
+            render_frame(self.input, self.materials, t, &self.opt, self.count)
+        }
+    }
+    let opt = options(technique, lighting, background);
+    with_tracer(technique, Render { input, materials, opt, count })
 }
 
 /// The ground truth for `technique`: the exact intersection with the bilinear height field,
@@ -84,25 +93,15 @@ pub fn render_reference(
 
 /// Runs only `technique`'s trace over the frame (see [`trace_frame`]); returns a checksum.
 pub fn trace_only(input: FrameInput, materials: &[ReliefMaterial], technique: Technique) -> f64 {
-    match technique {
-        Technique::Basic | Technique::NormalMapping => trace_frame(input, materials, &Undisplaced),
-        Technique::Parallax => trace_frame(input, materials, &Parallax),
-        Technique::Steep { layers } => trace_frame(input, materials, &Steep { layers }),
-        Technique::Pom { layers } | Technique::PomShadow { layers, .. } => {
-            trace_frame(input, materials, &Pom { layers })
-        }
-        Technique::AdaptivePom { min, max } => trace_frame(input, materials, &AdaptivePom { min, max }),
-        Technique::Relief { linear, binary } => {
-            trace_frame(input, materials, &ReliefMapping { linear, binary })
-        }
-        Technique::AdaptiveRelief { min, max, binary } => {
-            trace_frame(input, materials, &AdaptiveRelief { min, max, binary })
-        }
-        Technique::ConeStep { steps, binary } => {
-            trace_frame(input, materials, &ConeStep { steps, binary, refine: Refinement::Binary })
-        }
-        Technique::ConeSecant { steps, secant } => {
-            trace_frame(input, materials, &ConeStep { steps, binary: secant, refine: Refinement::Secant })
+    struct TraceOnly<'a> {
+        input: FrameInput<'a>,
+        materials: &'a [ReliefMaterial],
+    }
+    impl WithTracer for TraceOnly<'_> {
+        type Output = f64;
+        fn run<T: ReliefTechnique>(self, t: &T) -> f64 {
+            trace_frame(self.input, self.materials, t)
         }
     }
+    with_tracer(technique, TraceOnly { input, materials })
 }

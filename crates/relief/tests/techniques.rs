@@ -215,3 +215,29 @@ fn fixture_cached() -> &'static Fixture {
     static F: OnceLock<Fixture> = OnceLock::new();
     F.get_or_init(fixture)
 }
+
+#[test]
+fn packet_tracing_equals_per_ray_tracing() {
+    let fx = fixture();
+    let inp = fx.inputs();
+    let rays: Vec<(Vec2, Vec3)> = (0..103)
+        .map(|i| {
+            let uv = Vec2::new((i as f32 * 0.618_034).fract(), (i as f32 * 0.754_877).fract());
+            (uv, view((i * 7 % 89) as f32, i as f32 * 2.4))
+        })
+        .collect();
+    for t in [
+        ConeStep { steps: 24, binary: 3, refine: Refinement::Secant },
+        ConeStep { steps: 16, binary: 5, refine: Refinement::Binary },
+        ConeStep { steps: 2, binary: 3, refine: Refinement::Secant },
+    ] {
+        let mut packed = vec![renderlab_relief::ReliefHit::default(); rays.len()];
+        let mut counted = Tally::default();
+        t.trace_row(&inp, &rays, &mut packed, &mut counted);
+        let mut single = Tally::default();
+        for (&(uv, v), p) in rays.iter().zip(&packed) {
+            assert_eq!(t.trace(&inp, uv, v, &mut single), *p);
+        }
+        assert_eq!(counted, single, "fetch counts must agree");
+    }
+}
