@@ -3,6 +3,10 @@
 //! This binary only parses arguments, reports progress and maps errors to exit codes; every
 //! algorithm lives in the library crates.
 
+#![warn(missing_docs)]
+// The argument structs' doc comments are `--help` texts (with `[:A:B]` syntax), not rustdoc links.
+#![allow(rustdoc::broken_intra_doc_links)]
+
 mod args;
 mod commands;
 mod progress;

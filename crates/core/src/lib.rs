@@ -5,6 +5,8 @@
 //! Everything here is deterministic and allocation-aware: images are flat arrays, sizes are
 //! validated before memory is reserved, and files are written atomically.
 
+#![warn(missing_docs)]
+
 pub mod camera;
 pub mod color;
 pub mod counter;

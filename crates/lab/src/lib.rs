@@ -12,6 +12,8 @@
 //! - draws cost-against-error charts with [`plot`] and assembles a self-contained HTML page
 //!   with [`report`], linked from an index page.
 
+#![warn(missing_docs)]
+
 pub mod error;
 mod glyphs;
 pub mod heatmap;

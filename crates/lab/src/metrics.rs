@@ -428,7 +428,7 @@ mod tests {
     use super::*;
     use renderlab_core::color::srgb_to_linear;
 
-    /// A deterministic pseudo-random number in [0,1) per (x, y, seed) (SplitMix64 hash).
+    /// A deterministic pseudo-random number in [0, 1) per (x, y, seed) (SplitMix64 hash).
     fn hash01(x: u32, y: u32, seed: u64) -> f32 {
         let mut z = (x as u64) << 32 ^ y as u64 ^ seed.wrapping_mul(0x9E37_79B9_7F4A_7C15);
         z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);

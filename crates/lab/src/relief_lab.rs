@@ -126,6 +126,8 @@ pub struct ReliefSummary {
     pub records: Vec<ReliefRecord>,
     /// Human-readable conclusions (also in the HTML).
     pub findings: Vec<String>,
+    /// One sentence for an index page.
+    pub headline: String,
     /// Path of the HTML page.
     pub index: PathBuf,
 }
@@ -290,10 +292,11 @@ pub fn run_relief_bench(
     write_json(out.join("results.json"), &records)?;
     write_csv(out.join("results.csv"), &records)?;
     let findings = findings(&records, &cfg.angles);
+    let headline = headline(&records, &cfg.angles);
     let index = out.join("index.html");
     write_report(&index, material, cfg, &records, &findings, &images)?;
     progress(total, total, "done");
-    Ok(ReliefSummary { records, findings, index })
+    Ok(ReliefSummary { records, findings, headline, index })
 }
 
 fn shading_name(s: Shading) -> &'static str {
@@ -423,6 +426,32 @@ fn findings(records: &[ReliefRecord], angles: &[f32]) -> Vec<String> {
         }
     }
     out
+}
+
+/// One sentence: how adaptive POM and the most accurate method compare with POM-32.
+fn headline(records: &[ReliefRecord], angles: &[f32]) -> String {
+    let v = versus_pom32(records, angles);
+    let mut parts = vec![format!("{} measurements over {} angles.", records.len(), angles.len())];
+    if let Some(a) = v.iter().find(|x| x.technique.starts_with("adaptive:")) {
+        parts.push(format!(
+            "Adaptive POM: {:.2}× POM-32's trace time at {:.1}× its UV error.",
+            a.time_ratio,
+            a.uv_error / a.pom32_uv_error
+        ));
+    }
+    let best = v
+        .iter()
+        .filter(|x| x.uv_error.is_finite() && !x.technique.starts_with("pom-shadow"))
+        .min_by(|a, b| a.uv_error.total_cmp(&b.uv_error));
+    if let Some(b) = best {
+        parts.push(format!(
+            "Most accurate: {} at {:.2}× POM-32's UV error and {:.2}× its trace time.",
+            b.technique,
+            b.uv_error / b.pom32_uv_error,
+            b.time_ratio
+        ));
+    }
+    parts.join(" ")
 }
 
 fn fmt_f(v: f64, digits: usize) -> String {

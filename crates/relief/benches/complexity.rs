@@ -10,7 +10,7 @@ use renderlab_relief::complexity::{complexity_map, ComplexityParams};
 use renderlab_relief::cone::{ConeKind, ConeMap};
 use renderlab_relief::HeightField;
 
-/// A tileable 1024² height map in [0,1]: low-frequency bumps, finer ripples and raised
+/// A tileable 1024² height map in [0, 1]: low-frequency bumps, finer ripples and raised
 /// bricks separated by mortar grooves.
 fn synthetic_height(size: u32) -> Image<f32> {
     let tau = std::f32::consts::TAU;

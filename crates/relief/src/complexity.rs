@@ -5,7 +5,7 @@
 //!    ksize=3)`), borders mirrored without repeating the edge pixel (OpenCV's default
 //!    `BORDER_REFLECT_101`: `gfedcb|abcdefgh|gfedcba`);
 //! 2. magnitude `sqrt(Gx² + Gy²)`;
-//! 3. division by the global maximum and clipping to [0,1] (a flat map, whose maximum is 0,
+//! 3. division by the global maximum and clipping to [0, 1] (a flat map, whose maximum is 0,
 //!    gives zeros here where the thesis's script would divide by zero);
 //! 4. grey dilation with a 3×3 square repeated `dilation_iterations` times (`cv2.dilate`:
 //!    samples outside the image never win the maximum);
@@ -98,12 +98,12 @@ impl ComplexityParams {
     }
 }
 
-/// The complexity map of a height map whose values are already in [0,1] (the first channel
+/// The complexity map of a height map whose values are already in [0, 1] (the first channel
 /// divided by 255, as the thesis's script does).
 ///
 /// Parameters should pass [`ComplexityParams::validate`] first; out-of-range values are
 /// clamped into range rather than rejected. Any size works, 1×1 included. Every output value
-/// is a multiple of `1/(levels−1)` in [0,1].
+/// is a multiple of `1/(levels−1)` in [0, 1].
 pub fn complexity_map(height: &Image<f32>, params: &ComplexityParams) -> Image<f32> {
     let p = params.sanitized();
     let magnitude = sobel_magnitude(height);
@@ -180,7 +180,7 @@ fn reflect101(i: isize, n: usize) -> usize {
     }
 }
 
-/// Divides by the global maximum and clips to [0,1] (`np.clip(G / max G, 0, 1)` in `f32`).
+/// Divides by the global maximum and clips to [0, 1] (`np.clip(G / max G, 0, 1)` in `f32`).
 ///
 /// A map whose maximum is 0 (a flat input) becomes all zeros instead of NaN; NaN pixels and
 /// non-finite maxima also give zeros. For any other map the largest value is exactly 1.
@@ -293,7 +293,7 @@ fn quantize_with_step(c: f32, step: f32) -> f32 {
 
 /// The 8-bit image the thesis's script writes: each value `v` becomes `floor(v·255)`
 /// computed in `f32` (`(C * 255).astype(np.uint8)`); NaN becomes 0 and values are clamped
-/// to [0,1] first. With the script's 24 levels this yields 0, 11, 22, …, 243, 255.
+/// to [0, 1] first. With the script's 24 levels this yields 0, 11, 22, …, 243, 255.
 pub fn to_u8_levels(map: &Image<f32>) -> Image<u8> {
     map.map(|v| {
         let v = if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };

@@ -16,7 +16,7 @@ pub struct HeightField {
 }
 
 impl HeightField {
-    /// Builds the depth map `1 − h` from a height map in [0,1].
+    /// Builds the depth map `1 − h` from a height map in [0, 1].
     pub fn from_height(h: &Image<f32>) -> Self {
         Self {
             width: h.width(),

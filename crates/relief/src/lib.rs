@@ -6,6 +6,8 @@
 //! tangent space where `view_ts` points from the surface toward the eye. A ray entering the
 //! top surface at `uv` reaches depth `d` at `uv − V.xy / V.z · height_scale · d`.
 
+#![warn(missing_docs)]
+
 pub mod adaptive;
 pub mod complexity;
 pub mod cone;

@@ -15,7 +15,7 @@ pub const MIN_VIEW_Z: f32 = 1e-3;
 pub struct ReliefHit {
     /// Displaced texture coordinate (unwrapped).
     pub uv: Vec2,
-    /// Depth of the hit below the top surface, in [0,1].
+    /// Depth of the hit below the top surface, in [0, 1].
     pub depth: f32,
     /// Number of march layers (or steps) the technique planned for this pixel; 0 for
     /// techniques without layers.

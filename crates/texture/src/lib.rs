@@ -3,6 +3,8 @@
 //! implementations. Every filter reports its texel fetches through a
 //! [`Counter`](renderlab_core::counter::Counter), so counting costs nothing when it is off.
 
+#![warn(missing_docs)]
+
 pub mod filter;
 pub mod mip;
 

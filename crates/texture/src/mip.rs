@@ -5,7 +5,7 @@
 use glam::{Vec2, Vec3, Vec4};
 use renderlab_core::Image;
 
-/// How texture coordinates outside [0,1) are addressed.
+/// How texture coordinates outside [0, 1) are addressed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Wrap {
     /// Tile the texture (GL_REPEAT).

@@ -4,7 +4,7 @@
 //! in some joints.
 //!
 //! Layout: in paver units `q` (one unit = the paver width) the 90° herringbone is the pair
-//! "horizontal paver `[0,2]×[0,1]` + vertical paver `[0,1]×[1,3]`" repeated on the lattice
+//! "horizontal paver `[0,2]×[0, 1]` + vertical paver `[0, 1]×[1,3]`" repeated on the lattice
 //! spanned by `(1,1)` and `(2,−2)`. The texture maps `q = 2n·(u + v, v − u)` (a 45° rotation),
 //! which sends u + 1 to `n·(2,−2)` and v + 1 to `2n·(1,1)`: both lattice vectors, so the
 //! pattern tiles with `n` chevron columns per tile.

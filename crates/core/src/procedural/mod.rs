@@ -65,8 +65,8 @@ fn sampler(name: &str) -> Result<(Sampler, f32)> {
     })
 }
 
-/// What a material computes for one texel: linear albedo and raw height (roughly in [0,1];
-/// [`render`] stretches it to exactly [0,1]).
+/// What a material computes for one texel: linear albedo and raw height (roughly in [0, 1];
+/// [`render`] stretches it to exactly [0, 1]).
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Texel {
     pub albedo: Vec3,
