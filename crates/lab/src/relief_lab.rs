@@ -218,7 +218,7 @@ pub fn run_relief_bench(
     let total = cfg.angles.len() * cfg.techniques.len();
     let mut done = 0;
     let mut records = Vec::new();
-    let mut images: Vec<(f32, String, String)> = Vec::new();
+    let mut images: Vec<ImageSet> = Vec::new();
     for &angle in &cfg.angles {
         let camera = Camera::benchmark(angle, cfg.width, cfg.height);
         let view = View::new(&scene, &camera, angle);
@@ -282,7 +282,7 @@ pub fn run_relief_bench(
                     let heat = with_legend(&heat_image(&l, max, Some(&frame.mask)), max, "layers");
                     save_rgb8(img_dir.join(format!("{base}_layers.png")), &heat)?;
                 }
-                images.push((angle, t.name(), base));
+                images.push(ImageSet { angle, technique: t.name(), base, has_layers: t.layers() > 0 });
             }
             records.push(rec);
             done += 1;
@@ -297,6 +297,14 @@ pub fn run_relief_bench(
     write_report(&index, material, cfg, &records, &findings, &images)?;
     progress(total, total, "done");
     Ok(ReliefSummary { records, findings, headline, index })
+}
+
+/// The images written for one technique at one angle (file names share `base`).
+struct ImageSet {
+    angle: f32,
+    technique: String,
+    base: String,
+    has_layers: bool,
 }
 
 fn shading_name(s: Shading) -> &'static str {
@@ -470,7 +478,7 @@ fn write_report(
     cfg: &ReliefBenchConfig,
     records: &[ReliefRecord],
     findings: &[String],
-    images: &[(f32, String, String)],
+    images: &[ImageSet],
 ) -> crate::Result<()> {
     let mut r = Report::new("Relief-surface lab");
     r.paragraph(&format!(
@@ -637,15 +645,12 @@ fn write_report(
             r.section(&format!("{a}°"));
             let mut items: Vec<(String, String)> =
                 vec![(format!("img/reference_lit_{a}.png"), "reference (lit)".into())];
-            for (angle, name, base) in images.iter().filter(|(x, _, _)| *x == a) {
-                let _ = angle;
+            for set in images.iter().filter(|s| s.angle == a) {
+                let (base, name) = (&set.base, &set.technique);
                 items.push((format!("img/{base}.png"), name.clone()));
                 items.push((format!("img/{base}_uverr.png"), format!("{name}: UV error")));
                 items.push((format!("img/{base}_flip.png"), format!("{name}: FLIP")));
-                if Path::new(path.parent().unwrap_or(Path::new(".")))
-                    .join(format!("img/{base}_layers.png"))
-                    .exists()
-                {
+                if set.has_layers {
                     items.push((format!("img/{base}_layers.png"), format!("{name}: layers")));
                 }
             }
