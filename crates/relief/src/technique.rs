@@ -352,6 +352,35 @@ mod tests {
         assert_eq!(Technique::parse("adaptive").unwrap(), Technique::AdaptivePom { min: 4, max: 32 });
     }
 
+    proptest::proptest! {
+        /// Any string either parses to a technique whose canonical name parses back to the
+        /// same technique, or is refused with an error; never a panic.
+        #[test]
+        fn parse_never_panics_and_round_trips(s in "[a-z:\\-0-9]{0,24}|\\PC{0,40}") {
+            if let Ok(t) = Technique::parse(&s) {
+                proptest::prop_assert_eq!(Technique::parse(&t.name()).unwrap(), t);
+                proptest::prop_assert!(t.layers() <= MAX_LAYERS);
+            }
+        }
+
+        /// Well-formed heads with arbitrary numeric parameters: accepted exactly when every
+        /// count lies in 1..=MAX_LAYERS and the parameter count fits.
+        #[test]
+        fn parameters_are_range_checked(
+            head in proptest::sample::select(vec!["steep", "pom", "adaptive", "relief", "cone", "cone-secant"]),
+            nums in proptest::collection::vec(0u32..3000, 0..4),
+        ) {
+            let s = std::iter::once(head.to_string()).chain(nums.iter().map(|n| n.to_string())).collect::<Vec<_>>().join(":");
+            let max_params = if matches!(head, "steep" | "pom") { 1 } else { 2 };
+            let in_range = nums.iter().all(|&n| (1..=MAX_LAYERS).contains(&n));
+            // adaptive's MIN (default 4) may not exceed its MAX (default 32).
+            let (lo, hi) = (nums.first().copied().unwrap_or(4), nums.get(1).copied().unwrap_or(32));
+            let ordered = head != "adaptive" || lo <= hi;
+            let ok = nums.len() <= max_params && in_range && ordered;
+            proptest::prop_assert_eq!(Technique::parse(&s).is_ok(), ok, "{}", s);
+        }
+    }
+
     #[test]
     fn bad_names_are_refused() {
         for s in ["pom:0", "pom:x", "pom:5000", "fancy", "adaptive:32:4", "basic:3", "pom:-1", ""] {
