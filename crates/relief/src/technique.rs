@@ -238,7 +238,7 @@ impl Technique {
             }
             "cone-secant" => {
                 max_args(2)?;
-                Technique::ConeSecant { steps: num(0, 8)?, secant: num(1, 3)? }
+                Technique::ConeSecant { steps: num(0, 24)?, secant: num(1, 3)? }
             }
             "pom-shadow" => {
                 max_args(2)?;
