@@ -2,11 +2,19 @@
 //! non-power-of-two included), and the [`Filter`] trait with nearest, bilinear and trilinear
 //! implementations. Every filter reports its texel fetches through a
 //! [`Counter`](renderlab_core::counter::Counter), so counting costs nothing when it is off.
+//!
+//! [`mapping`] holds Heckbert's perspective-correct (projective) mapping with the thesis's
+//! scanline evaluation modes and their operation counts; [`ellipse`] the EWA footprint
+//! Jacobian (four methods) and ellipse coefficients.
 
 #![warn(missing_docs)]
 
+pub mod ellipse;
 pub mod filter;
+pub mod mapping;
 pub mod mip;
 
+pub use ellipse::{Ellipse, EllipseError, Jacobian, JacobianMethod};
 pub use filter::{Bilinear, Filter, Nearest, Trilinear};
+pub use mapping::{MappingError, Mode, Projective, QuadScene};
 pub use mip::{Texture, Wrap};
