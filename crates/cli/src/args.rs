@@ -27,6 +27,10 @@ pub enum Command {
     Complexity(ComplexityArgs),
     /// Write the built-in procedural materials (albedo, height, normal maps) as PNG files.
     Materials(MaterialsArgs),
+    /// Perlin-noise lab: reproduce the texturing thesis's noise experiments (Fig. 3.2–3.5).
+    /// Writes the clouds image (clouds.png, grey, and one PNG per layer), the 3D-path and
+    /// octave figures (SVG), results.json/.csv and index.html to --out.
+    Noise(NoiseArgs),
 }
 
 /// `renderlab report`.
@@ -205,4 +209,26 @@ pub struct MaterialsArgs {
     /// Texture size in texels per side.
     #[arg(long, default_value_t = 1024)]
     pub size: u32,
+}
+
+/// `renderlab noise`.
+#[derive(Args, Debug)]
+pub struct NoiseArgs {
+    /// Output directory (created if missing).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Seed of the first clouds layer (layer k uses SEED+k). The 3D paths keep the thesis's
+    /// seeds 100/101/102/200/300.
+    #[arg(long, default_value_t = 100)]
+    pub seed: u32,
+    /// Side of the clouds image in pixels (1..=4096); it always covers the unit square.
+    #[arg(long, default_value_t = 100)]
+    pub size: u32,
+    /// Number of clouds layers (1..=32; the thesis: 4). Layer k has frequency
+    /// FREQUENCY·2^k and weight 2^-k; the last layer's frequency must stay below 2^24.
+    #[arg(long, default_value_t = 4)]
+    pub octaves: u32,
+    /// Frequency of the first clouds layer in lattice cells per image side (the thesis: 3).
+    #[arg(long, default_value_t = 3.0)]
+    pub frequency: f32,
 }

@@ -10,6 +10,9 @@ use renderlab_core::image::check_dimensions;
 use renderlab_core::procedural::{self, MATERIAL_NAMES};
 use renderlab_core::{io, Image, Material, Scene};
 use renderlab_lab::heatmap::heat_image;
+use renderlab_lab::noise_lab::{
+    run_noise_lab, run_noise_lab_with, CloudsConfig, NoiseLabConfig, MAX_CLOUDS_SIZE,
+};
 use renderlab_lab::relief_lab::{default_techniques, run_relief_bench, ReliefBenchConfig, View};
 use renderlab_relief::complexity::{complexity_map, ComplexityParams};
 use renderlab_relief::render::{render, render_reference};
@@ -24,6 +27,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Relief(ReliefCommand::Render(a)) => relief_render(a),
         Command::Complexity(a) => complexity(a),
         Command::Materials(a) => materials(a),
+        Command::Noise(a) => noise(a),
     }
 }
 
@@ -216,6 +220,42 @@ fn materials(a: MaterialsArgs) -> Result<()> {
     Ok(())
 }
 
+/// Checks the `noise` flags; every error is one line naming the flag.
+fn noise_config(a: &NoiseArgs) -> Result<NoiseLabConfig> {
+    if a.size == 0 || a.size > MAX_CLOUDS_SIZE {
+        bail!("--size: {} must lie in 1..={MAX_CLOUDS_SIZE}", a.size);
+    }
+    let max = renderlab_noise::MAX_OCTAVES;
+    if a.octaves == 0 || a.octaves > max {
+        bail!("--octaves: {} must lie in 1..={max}", a.octaves);
+    }
+    if !(a.frequency.is_finite() && a.frequency > 0.0) {
+        bail!("--frequency: {} must be a finite positive number", a.frequency);
+    }
+    let last = f64::from(a.frequency) * 2f64.powi(a.octaves as i32 - 1);
+    if last > renderlab_noise::MAX_FREQUENCY {
+        bail!(
+            "--octaves/--frequency: the last layer's frequency {last} exceeds 2^24 (use fewer octaves \
+             or a lower frequency)"
+        );
+    }
+    let clouds = CloudsConfig { size: a.size, seed: a.seed, layers: a.octaves, frequency: a.frequency };
+    Ok(NoiseLabConfig { clouds })
+}
+
+fn noise(a: NoiseArgs) -> Result<()> {
+    let cfg = noise_config(&a)?;
+    create_dir(&a.out)?;
+    let p = Progress::new("noise");
+    let summary = run_noise_lab_with(&a.out, &cfg, &|d, t, m| p.update(d, t, m))?;
+    p.finish();
+    for f in &summary.findings {
+        println!("{f}");
+    }
+    println!("wrote {} and {}", summary.clouds_png.display(), summary.index.display());
+    Ok(())
+}
+
 fn report(a: ReportArgs) -> Result<()> {
     create_dir(&a.out)?;
     let started = std::time::Instant::now();
@@ -233,13 +273,25 @@ fn report(a: ReportArgs) -> Result<()> {
     let summary = run_relief_bench(&material, &cfg, &relief_dir, &|d, t, m| p.update(d, t, m))?;
     p.finish();
     let findings = summary.findings.join(" ");
+    let noise_dir = a.out.join("noise");
+    create_dir(&noise_dir)?;
+    let noise_started = std::time::Instant::now();
+    let p = Progress::new("noise");
+    let noise = run_noise_lab(&noise_dir, &|d, t, m| p.update(d, t, m))?;
+    p.finish();
+    let noise_s = noise_started.elapsed().as_secs_f64();
+    let noise_findings = noise.findings.join(" ");
     renderlab_lab::report::write_index(
         &a.out,
-        &[("Relief surfaces (thesis 000)", "relief/index.html", findings.as_str())],
+        &[
+            ("Relief surfaces (thesis 000)", "relief/index.html", findings.as_str()),
+            ("Perlin noise (thesis 001, chapter 3)", "noise/index.html", noise_findings.as_str()),
+        ],
     )?;
-    for f in &summary.findings {
+    for f in summary.findings.iter().chain(&noise.findings) {
         println!("{f}");
     }
+    println!("noise lab: {noise_s:.2} s");
     println!("wrote {} in {:.1} s", a.out.join("index.html").display(), started.elapsed().as_secs_f64());
     Ok(())
 }

@@ -51,6 +51,7 @@ fn every_command_has_help() {
         vec!["relief", "render", "--help"],
         vec!["complexity", "--help"],
         vec!["materials", "--help"],
+        vec!["noise", "--help"],
     ] {
         let out = renderlab(&args);
         assert!(out.status.success(), "{args:?}");
@@ -185,4 +186,58 @@ fn renders_user_maps_and_builtins() {
     let o = renderlab(&["materials", "--out", maps.to_str().unwrap(), "--size", "16"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(maps.join("bricks_height.png").exists() && maps.join("bark_willow_normal.png").exists());
+}
+
+#[test]
+fn noise_help_and_clouds_png() {
+    let out = renderlab(&["noise", "--help"]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    for flag in ["--out", "--seed", "--size", "--octaves", "--frequency", "Usage"] {
+        assert!(text.contains(flag), "{flag} not in: {text}");
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path().join("noise");
+    let out =
+        renderlab(&["noise", "--out", d.to_str().unwrap(), "--seed", "7", "--size", "64", "--octaves", "5"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let png = std::fs::read(d.join("clouds.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    assert_eq!(u32::from_be_bytes(png[16..20].try_into().unwrap()), 64, "width");
+    assert!(d.join("clouds_layer5.png").is_file());
+    assert!(d.join("path_fig3_2_xy.svg").is_file());
+    assert!(d.join("index.html").is_file());
+    // Same flags, same bytes.
+    let d2 = dir.path().join("again");
+    assert!(renderlab(&[
+        "noise",
+        "--out",
+        d2.to_str().unwrap(),
+        "--seed",
+        "7",
+        "--size",
+        "64",
+        "--octaves",
+        "5"
+    ])
+    .status
+    .success());
+    assert_eq!(std::fs::read(d2.join("clouds.png")).unwrap(), png);
+}
+
+#[test]
+fn bad_noise_flags() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("n");
+    let o = out.to_str().unwrap();
+    fails_with(&["noise", "--out", o, "--octaves", "0"], "--octaves");
+    fails_with(&["noise", "--out", o, "--octaves", "33"], "--octaves");
+    fails_with(&["noise", "--out", o, "--octaves", "32"], "--octaves");
+    fails_with(&["noise", "--out", o, "--size", "0"], "--size");
+    fails_with(&["noise", "--out", o, "--size", "100000"], "--size");
+    fails_with(&["noise", "--out", o, "--frequency", "NaN"], "--frequency");
+    fails_with(&["noise", "--out", o, "--frequency", "inf"], "--frequency");
+    fails_with(&["noise", "--out", o, "--frequency", "0"], "--frequency");
+    fails_with(&["noise", "--out", o, "--frequency", "1e30", "--octaves", "1"], "--octaves/--frequency");
+    assert!(!out.exists(), "no output directory for rejected flags");
 }

@@ -13,6 +13,9 @@ pub enum LabError {
     /// An error from the core crate, typically a failed atomic write.
     #[error(transparent)]
     Core(#[from] CoreError),
+    /// A noise parameter was rejected (the message names the parameter).
+    #[error(transparent)]
+    Noise(#[from] renderlab_noise::NoiseError),
     /// A value could not be turned into JSON or CSV (for CSV: a field that is not a scalar,
     /// or rows whose columns differ).
     #[error("{path}: cannot serialise results: {reason}")]

@@ -18,6 +18,7 @@ pub mod error;
 mod glyphs;
 pub mod heatmap;
 pub mod metrics;
+pub mod noise_lab;
 pub mod plot;
 pub mod relief_lab;
 pub mod report;

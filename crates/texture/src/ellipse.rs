@@ -90,6 +90,44 @@ impl Jacobian {
     pub fn max_abs(&self) -> f32 {
         self.du_dx.abs().max(self.dv_dx.abs()).max(self.du_dy.abs()).max(self.dv_dy.abs())
     }
+
+    /// The principal axes of the footprint: the singular values and the major direction of
+    /// the Jacobian, i.e. the semi-axes of the image of the unit pixel circle. Unlike
+    /// [`Ellipse::from_jacobian`] this never fails on a zero-area footprint (the minor axis
+    /// is then 0); non-finite input gives non-finite lengths, which callers must check.
+    pub fn axes(&self) -> Axes {
+        let (ux, vx, uy, vy) = (self.du_dx, self.dv_dx, self.du_dy, self.dv_dy);
+        // Second moments J·Jᵀ of the footprint: [[m00, m01], [m01, m11]].
+        let m00 = ux * ux + uy * uy;
+        let m01 = ux * vx + uy * vy;
+        let m11 = vx * vx + vy * vy;
+        let half_tr = 0.5 * (m00 + m11);
+        let half_diff = 0.5 * (m00 - m11);
+        let l1 = half_tr + (half_diff * half_diff + m01 * m01).sqrt();
+        // λ₂ = det²/λ₁ keeps its precision when the footprint is very eccentric, where
+        // `half_tr − root` would cancel.
+        let det = ux * vy - uy * vx;
+        let l2 = if l1 > 0.0 { (det * det / l1).min(l1) } else { 0.0 };
+        // Eigenvector of λ₁ from whichever row of (Σ − λ₁·I) is better conditioned; no
+        // trigonometry, so it stays cheap enough for a per-lookup filter.
+        let e1 = Vec2::new(l1 - m11, m01);
+        let e2 = Vec2::new(m01, l1 - m00);
+        let e = if e1.length_squared() >= e2.length_squared() { e1 } else { e2 };
+        let len2 = e.length_squared();
+        let dir = if len2 > 0.0 && len2.is_finite() { e / len2.sqrt() } else { Vec2::X };
+        Axes { major: l1.sqrt(), minor: l2.sqrt(), dir }
+    }
+}
+
+/// Principal axes of a footprint ellipse, from [`Jacobian::axes`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Axes {
+    /// Major semi-axis length (the larger singular value).
+    pub major: f32,
+    /// Minor semi-axis length (the smaller singular value, ≥ 0).
+    pub minor: f32,
+    /// Unit vector along the major axis (`(1, 0)` for a circle).
+    pub dir: Vec2,
 }
 
 /// How the per-pixel Jacobian is computed.
@@ -449,6 +487,15 @@ impl Ellipse {
             return Err(EllipseError::Degenerate);
         }
         Ok(Ellipse { a, b, c, f })
+    }
+
+    /// The ellipse `{p : pᵀ·Σ⁻¹·p ≤ 1}` of a symmetric second-moment matrix
+    /// `Σ = [[m00, m01], [m01, m11]]` (for a footprint, `Σ = J·Jᵀ`, plus `r²·I` for Heckbert's
+    /// reconstruction term), in Heckbert's form: `A = m11`, `B = −2·m01`, `C = m00`,
+    /// `F = det Σ`. Used by EWA after it has reshaped the footprint (eccentricity clamp, mip
+    /// level); it does not validate, so `Σ` must be positive definite for a usable ellipse.
+    pub fn from_moments(m00: f32, m01: f32, m11: f32) -> Ellipse {
+        Ellipse { a: m11, b: -2.0 * m01, c: m00, f: m00 * m11 - m01 * m01 }
     }
 
     /// `A·U² + B·U·V + C·V²` at offset `(U, V)` from the centre; `< F` inside.

@@ -1,5 +1,17 @@
 //! Texture filters. A filter turns a texture coordinate and its screen-space Jacobian
 //! (Heckbert's footprint: `duv_dx`, `duv_dy`) into a colour, counting each texel it reads.
+//!
+//! Nearest, bilinear and trilinear live here; [`Bicubic`] (Catmull-Rom), [`Anisotropic`]
+//! (probes along the major axis) and [`Ewa`] (Heckbert's elliptical Gaussian) each have a
+//! file of their own under `filter/`.
+
+mod aniso;
+mod bicubic;
+mod ewa;
+
+pub use aniso::Anisotropic;
+pub use bicubic::{catmull_rom_weights, Bicubic};
+pub use ewa::{Ewa, ALPHA as EWA_ALPHA, WEIGHTS as EWA_WEIGHTS};
 
 use crate::mip::{Texture, Wrap};
 use glam::{Vec2, Vec4};

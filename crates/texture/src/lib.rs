@@ -1,6 +1,6 @@
 //! Textures and their filtering: mip pyramids for any size (non-square and
-//! non-power-of-two included), and the [`Filter`] trait with nearest, bilinear and trilinear
-//! implementations. Every filter reports its texel fetches through a
+//! non-power-of-two included), and the [`Filter`] trait with nearest, bilinear, bicubic,
+//! trilinear, anisotropic and EWA implementations. Every filter reports its texel fetches through a
 //! [`Counter`](renderlab_core::counter::Counter), so counting costs nothing when it is off.
 //!
 //! [`mapping`] holds Heckbert's perspective-correct (projective) mapping with the thesis's
@@ -14,7 +14,7 @@ pub mod filter;
 pub mod mapping;
 pub mod mip;
 
-pub use ellipse::{Ellipse, EllipseError, Jacobian, JacobianMethod};
-pub use filter::{Bilinear, Filter, Nearest, Trilinear};
+pub use ellipse::{Axes, Ellipse, EllipseError, Jacobian, JacobianMethod};
+pub use filter::{Anisotropic, Bicubic, Bilinear, Ewa, Filter, Nearest, Trilinear};
 pub use mapping::{MappingError, Mode, Projective, QuadScene};
 pub use mip::{Texture, Wrap};

@@ -1,0 +1,321 @@
+//! Heckbert's elliptical weighted average (EWA): a Gaussian over the footprint ellipse,
+//! evaluated texel by texel on one mip level.
+//!
+//! Per lookup:
+//!
+//! 1. The footprint's axes in level-0 texels ([`Jacobian::axes`]). The minor axis is grown
+//!    to at least `major / max_eccentricity` (Heckbert's and pbrt's eccentricity clamp), which
+//!    bounds the texel count of a footprint that is nearly a line.
+//! 2. The mip level from the minor axis: the finest level on which the minor semi-axis is
+//!    under 2 texels, then coarser while the exact texel count of the ellipse exceeds
+//!    `max_texels` (counted row by row before any fetch, one square root per row).
+//! 3. On that level, Heckbert's reconstruction term: a unit circle added to the footprint
+//!    (`Σ = J·Jᵀ + I`), so that the filter never falls between texels under magnification and
+//!    the ellipse can never degenerate. [`Ellipse::from_moments`] gives `A, B, C, F`.
+//! 4. Each row's span of texels inside the ellipse comes from solving the quadratic
+//!    (`U = (−B·V/2 ± √(F·(A − V²)))/A`), so no texel of the bounding box outside the ellipse is
+//!    visited, however the ellipse is rotated; along the span `Q = A·U² + B·U·V + C·V²` is
+//!    stepped by Heckbert's forward differences (two additions per texel), scaled so that it
+//!    indexes the Gaussian weight table directly.
+//!
+//! The weight is `exp(−α·Q/F)`, α = 2, truncated at the ellipse `Q = F` (pbrt's choice: a
+//! Gaussian of σ = ½ pixel cut at 2σ), normalised by the sum of the weights used.
+
+// `!(x >= t)` is deliberate: it also rejects NaN.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+use super::{finite, Filter};
+use crate::ellipse::{Ellipse, Jacobian};
+use crate::mip::{Texture, Wrap};
+use glam::{Vec2, Vec4};
+use renderlab_core::counter::Counter;
+use renderlab_core::image::wrap_index;
+use std::sync::LazyLock;
+
+/// Entries in the Gaussian weight table (indexed by `Q/F · WEIGHTS`).
+pub const WEIGHTS: usize = 256;
+
+/// The Gaussian's falloff: weight `exp(−α·Q/F)`, `e^−2 ≈ 0.135` at the ellipse's edge.
+pub const ALPHA: f32 = 2.0;
+
+static TABLE: LazyLock<[f32; WEIGHTS + 1]> = LazyLock::new(|| {
+    let mut t = [0.0; WEIGHTS + 1];
+    for (i, w) in t.iter_mut().enumerate() {
+        *w = (-ALPHA * i as f32 / WEIGHTS as f32).exp();
+    }
+    t
+});
+
+/// Heckbert's EWA filter with a precomputed Gaussian weight table, minor-axis mip selection,
+/// an eccentricity clamp and a hard bound on texels per lookup.
+#[derive(Clone, Copy, Debug)]
+pub struct Ewa {
+    /// Largest major/minor ratio filtered as such; more eccentric footprints get a wider
+    /// minor axis (more blur across, bounded work). Clamped to `1..=64`; NaN means 16.
+    pub max_eccentricity: f32,
+    /// Most texels read by one lookup; a footprint with more moves up the pyramid.
+    /// Clamped to `16..=4096`.
+    pub max_texels: u32,
+}
+
+impl Default for Ewa {
+    /// Eccentricity ≤ 16 and ≤ 96 texels: a 16:1 footprint fits on the level where its minor
+    /// semi-axis is one texel.
+    fn default() -> Self {
+        Ewa { max_eccentricity: 16.0, max_texels: 96 }
+    }
+}
+
+/// The ellipse on one level and the centre in that level's texel coordinates (texel `i` at
+/// `i`).
+struct Footprint {
+    /// Heckbert's coefficients on this level, unscaled (`F = A·C − B²/4`).
+    e: Ellipse,
+    /// The lookup point in this level's texel coordinates.
+    centre: Vec2,
+    /// Half-height of the bounding box, `√A`.
+    half_v: f32,
+}
+
+/// `⌊x⌋` as an integer without a libm call (the baseline x86-64 target has no `roundss`).
+/// Saturates for values beyond `i32`, which the callers' bounded coordinates never reach.
+#[inline(always)]
+fn floor_i(x: f32) -> i64 {
+    let i = x as i32;
+    (i - ((i as f32) > x) as i32) as i64
+}
+
+/// `⌈x⌉` as an integer, like [`floor_i`].
+#[inline(always)]
+fn ceil_i(x: f32) -> i64 {
+    let i = x as i32;
+    (i + ((i as f32) < x) as i32) as i64
+}
+
+impl Footprint {
+    /// Inclusive texel range of row `j`, empty when `lo > hi`.
+    #[inline(always)]
+    fn span(&self, j: i64) -> (i64, i64) {
+        let v = j as f32 - self.centre.y;
+        let e = &self.e;
+        // B² − 4AC = −4F, so the discriminant of A·U² + B·V·U + (C·V² − F) is 4F·(A − V²).
+        let d = e.f * (e.a - v * v);
+        if !(d >= 0.0) {
+            return (1, 0);
+        }
+        let r = d.sqrt();
+        let mid = -0.5 * e.b * v;
+        let inv_a = 1.0 / e.a;
+        (ceil_i((mid - r) * inv_a + self.centre.x), floor_i((mid + r) * inv_a + self.centre.x))
+    }
+
+    fn rows(&self) -> (i64, i64) {
+        (ceil_i(self.centre.y - self.half_v), floor_i(self.centre.y + self.half_v))
+    }
+
+    /// Exact number of texels inside, stopping once it passes `limit`. The spans of the
+    /// first [`STORED_ROWS`] rows are kept in `store` so that the scan need not solve them
+    /// again.
+    fn count(&self, limit: u64, store: &mut [(i32, i32); STORED_ROWS]) -> u64 {
+        let (j0, j1) = self.rows();
+        let mut n = 0u64;
+        for j in j0..=j1 {
+            let (lo, hi) = self.span(j);
+            if let Some(slot) = store.get_mut((j - j0) as usize) {
+                *slot = (lo as i32, hi as i32);
+            }
+            if hi >= lo {
+                n += (hi - lo + 1) as u64;
+                if n > limit {
+                    break;
+                }
+            }
+        }
+        n
+    }
+}
+
+/// Rows whose spans [`Footprint::count`] keeps for the scan.
+const STORED_ROWS: usize = 32;
+
+impl Ewa {
+    /// The footprint on `level`: the (clamped) level-0 second moments scaled to the level's
+    /// texels, plus the unit reconstruction circle.
+    #[inline]
+    fn footprint(tex: &Texture, level: usize, m: [f32; 3], uv: Vec2) -> Footprint {
+        let s0 = tex.size();
+        let (w, h) = tex.level(level).size();
+        let sl = Vec2::new(w as f32, h as f32);
+        let k = sl / s0;
+        let m00 = m[0] * k.x * k.x + 1.0;
+        let m01 = m[1] * k.x * k.y;
+        let m11 = m[2] * k.y * k.y + 1.0;
+        let e = Ellipse::from_moments(m00, m01, m11);
+        Footprint { e, centre: uv * sl - 0.5, half_v: e.a.sqrt() }
+    }
+}
+
+impl Filter for Ewa {
+    fn name(&self) -> &'static str {
+        "ewa"
+    }
+
+    fn sample<C: Counter>(
+        &self,
+        tex: &Texture,
+        uv: Vec2,
+        duv_dx: Vec2,
+        duv_dy: Vec2,
+        counter: &mut C,
+    ) -> Vec4 {
+        let top = tex.level_count() - 1;
+        let size = tex.size();
+        let (dx, dy) = (duv_dx * size, duv_dy * size);
+        let ax = Jacobian { du_dx: dx.x, dv_dx: dx.y, du_dy: dy.x, dv_dy: dy.y }.axes();
+        let ecc = if self.max_eccentricity.is_nan() { 16.0 } else { self.max_eccentricity.clamp(1.0, 64.0) };
+        let budget = self.max_texels.clamp(16, 4096) as u64;
+        // A footprint that is non-finite, or whose major axis exceeds four texture widths,
+        // is filtered by the 1×1 top level: the texture's mean.
+        let limit = 4.0 * size.max_element();
+        if top == 0 || !(ax.major <= limit && ax.minor.is_finite() && ax.dir.is_finite()) {
+            counter.count(1);
+            return tex.texel(top, 0, 0);
+        }
+        // Keep texel coordinates small and exact: one period for repeat; for clamp, no
+        // further out than the footprint's reach beyond the edge (past that every texel read
+        // is an edge texel anyway).
+        let uv = Vec2::new(finite(uv.x), finite(uv.y));
+        let uv = match tex.wrap() {
+            Wrap::Repeat => uv - Vec2::new(floor_i(uv.x) as f32, floor_i(uv.y) as f32),
+            Wrap::Clamp => {
+                let reach = 1.0 + ax.major / size.min_element();
+                uv.clamp(Vec2::splat(-reach), Vec2::splat(1.0 + reach))
+            }
+        };
+        let (major, minor) = (ax.major, ax.minor.max(ax.major / ecc));
+        // Second moments of the reshaped footprint: R·diag(major², minor²)·Rᵀ.
+        let (c, s) = (ax.dir.x, ax.dir.y);
+        let (a2, b2) = (major * major, minor * minor);
+        let m = [a2 * c * c + b2 * s * s, (a2 - b2) * c * s, a2 * s * s + b2 * c * c];
+        let mut level = if minor > 1.0 { (minor.log2().floor() as usize).min(top) } else { 0 };
+        let mut fp = Self::footprint(tex, level, m, uv);
+        let mut store = [(0i32, 0i32); STORED_ROWS];
+        let mut stored = false;
+        // Area estimate first (cheap), then the exact count (one sqrt per row).
+        while level < top {
+            // Unit squares around the texels inside are disjoint and lie in the ellipse grown
+            // by √½, whose area (Steiner) is at most π·a·b + π·√(a² + b²) + π/2, with
+            // a·b = √F and a² + b² = A + C; under that bound no exact count is needed.
+            let pi = std::f32::consts::PI;
+            let area = pi * fp.e.f.sqrt();
+            let bound = area + pi * (fp.e.a + fp.e.c).sqrt() + 0.5 * pi;
+            if bound <= budget as f32 {
+                break;
+            }
+            if area <= 1.5 * budget as f32 && fp.count(budget, &mut store) <= budget {
+                stored = true;
+                break;
+            }
+            level += 1;
+            fp = Self::footprint(tex, level, m, uv);
+        }
+        if level == top {
+            counter.count(1);
+            return tex.texel(top, 0, 0);
+        }
+        let (j0, j1) = fp.rows();
+        let spans = if stored && j1 - j0 < STORED_ROWS as i64 { Some(&store) } else { None };
+        self.scan(tex, level, &fp, spans, counter)
+    }
+}
+
+impl Ewa {
+    /// Weighted sum over the texels inside `fp` on `level`; `spans`, when given, holds every
+    /// row's span from [`Footprint::count`].
+    #[inline]
+    fn scan<C: Counter>(
+        &self,
+        tex: &Texture,
+        level: usize,
+        fp: &Footprint,
+        spans: Option<&[(i32, i32); STORED_ROWS]>,
+        counter: &mut C,
+    ) -> Vec4 {
+        let table = &*TABLE;
+        let img = tex.level(level);
+        let (w, h) = img.size();
+        let px = img.pixels();
+        let e = &fp.e;
+        // Q scaled so that the boundary is at WEIGHTS.
+        let s = WEIGHTS as f32 / e.f;
+        let (qa, qb, qc) = (e.a * s, e.b * s, e.c * s);
+        let (j0, j1) = fp.rows();
+        let mut acc = Vec4::ZERO;
+        let mut wsum = 0.0f32;
+        let mut n = 0u32;
+        let wrap = tex.wrap();
+        for j in j0..=j1 {
+            let (lo, hi) = match spans {
+                Some(s) => (s[(j - j0) as usize].0 as i64, s[(j - j0) as usize].1 as i64),
+                None => fp.span(j),
+            };
+            if hi < lo {
+                continue;
+            }
+            let yi = match wrap {
+                Wrap::Repeat => wrap_index(j, h),
+                Wrap::Clamp => j.clamp(0, h as i64 - 1) as usize,
+            };
+            let row = &px[yi * w as usize..(yi + 1) * w as usize];
+            let v = j as f32 - fp.centre.y;
+            let u = lo as f32 - fp.centre.x;
+            // Forward differences of Q along the row.
+            let mut q = (qa * u + qb * v) * u + qc * v * v;
+            let mut dq = qa * (2.0 * u + 1.0) + qb * v;
+            let ddq = 2.0 * qa;
+            n += (hi - lo + 1) as u32;
+            if lo >= 0 && hi < w as i64 {
+                // The whole span lies inside the texture: no addressing per texel.
+                for &t in &row[lo as usize..=hi as usize] {
+                    let wt = table[(q as i32).clamp(0, WEIGHTS as i32) as usize];
+                    acc += t * wt;
+                    wsum += wt;
+                    q += dq;
+                    dq += ddq;
+                }
+                continue;
+            }
+            match wrap {
+                Wrap::Repeat => {
+                    let mut xi = wrap_index(lo, w);
+                    for _ in lo..=hi {
+                        let wt = table[(q as i32).clamp(0, WEIGHTS as i32) as usize];
+                        acc += row[xi] * wt;
+                        wsum += wt;
+                        q += dq;
+                        dq += ddq;
+                        xi += 1;
+                        if xi == w as usize {
+                            xi = 0;
+                        }
+                    }
+                }
+                Wrap::Clamp => {
+                    for x in lo..=hi {
+                        let wt = table[(q as i32).clamp(0, WEIGHTS as i32) as usize];
+                        acc += row[x.clamp(0, w as i64 - 1) as usize] * wt;
+                        wsum += wt;
+                        q += dq;
+                        dq += ddq;
+                    }
+                }
+            }
+        }
+        counter.count(n);
+        if wsum > 0.0 {
+            acc / wsum
+        } else {
+            super::bilinear_level(tex, level, (fp.centre + 0.5) / Vec2::new(w as f32, h as f32), counter)
+        }
+    }
+}
