@@ -31,6 +31,9 @@ pub enum Command {
     /// Writes the clouds image (clouds.png, grey, and one PNG per layer), the 3D-path and
     /// octave figures (SVG), results.json/.csv and index.html to --out.
     Noise(NoiseArgs),
+    /// Animated water: an fBm sea with analytic normals, Fresnel reflection of a procedural
+    /// sky and a deep-water body colour. Writes --frames PNG frames (frame_0000.png, …) to --out.
+    Water(WaterArgs),
 }
 
 /// `renderlab report`.
@@ -231,4 +234,45 @@ pub struct NoiseArgs {
     /// Frequency of the first clouds layer in lattice cells per image side (the thesis: 3).
     #[arg(long, default_value_t = 3.0)]
     pub frequency: f32,
+}
+
+/// `renderlab water`.
+#[derive(Args, Debug)]
+pub struct WaterArgs {
+    /// Output directory (created if missing).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Number of frames (1..=10000).
+    #[arg(long, default_value_t = 24)]
+    pub frames: u32,
+    /// Frame size WIDTHxHEIGHT in pixels (each side 8..=8192).
+    #[arg(long, default_value = "640x360")]
+    pub size: String,
+    /// Noise seed.
+    #[arg(long, default_value_t = 7)]
+    pub seed: u32,
+    /// Seconds between frames (0 < DT <= 60).
+    #[arg(long, default_value_t = 1.0 / 24.0)]
+    pub time_step: f32,
+    /// Time of the first frame in seconds.
+    #[arg(long, default_value_t = 0.0)]
+    pub start: f32,
+    /// Wind (flow) velocity VX,VY in world units per second; waves travel along it.
+    #[arg(long, value_delimiter = ',', default_values_t = [0.35, -1.3], allow_hyphen_values = true)]
+    pub wind: Vec<f32>,
+    /// Octaves of the wave noise (1..=12).
+    #[arg(long, default_value_t = 7)]
+    pub octaves: u32,
+    /// Wave height scale in world units (0 = a flat mirror).
+    #[arg(long, default_value_t = 0.5)]
+    pub amplitude: f32,
+    /// Crest sharpening (0..=0.45).
+    #[arg(long, default_value_t = 0.3)]
+    pub choppiness: f32,
+    /// Camera height above the water in world units.
+    #[arg(long, default_value_t = 3.0)]
+    pub camera_height: f32,
+    /// Camera pitch below the horizon in degrees (-89..=89).
+    #[arg(long, default_value_t = 9.0, allow_negative_numbers = true)]
+    pub pitch: f32,
 }

@@ -28,6 +28,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Complexity(a) => complexity(a),
         Command::Materials(a) => materials(a),
         Command::Noise(a) => noise(a),
+        Command::Water(a) => water(a),
     }
 }
 
@@ -256,6 +257,115 @@ fn noise(a: NoiseArgs) -> Result<()> {
     Ok(())
 }
 
+/// Most frames `water` renders in one run.
+const MAX_WATER_FRAMES: u32 = 10_000;
+/// Most pixels (frames × width × height) `water` renders in one run, so that a typo cannot
+/// start a job of days.
+const MAX_WATER_PIXELS: u64 = 1 << 33;
+
+/// Parses `WIDTHxHEIGHT`.
+fn parse_size(flag: &str, s: &str) -> Result<(u32, u32)> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .with_context(|| format!("{flag}: '{s}' is not WIDTHxHEIGHT (e.g. 640x360)"))?;
+    let side = |v: &str| -> Result<u32> {
+        v.trim().parse::<u32>().with_context(|| format!("{flag}: '{s}' is not WIDTHxHEIGHT (e.g. 640x360)"))
+    };
+    Ok((side(w)?, side(h)?))
+}
+
+/// Maps a water-parameter error to the command-line flag that set the parameter.
+fn water_flag_error(e: renderlab_noise::NoiseError) -> anyhow::Error {
+    use renderlab_noise::NoiseError as E;
+    let flag = match &e {
+        E::Size { .. } => "--size",
+        E::Octaves { .. } => "--octaves",
+        E::Parameter { name, .. } => match *name {
+            "time_step" => "--time-step",
+            "wind" => "--wind",
+            "amplitude" => "--amplitude",
+            "choppiness" => "--choppiness",
+            "camera_height" => "--camera-height",
+            "pitch_deg" => "--pitch",
+            "t" => "--start/--frames/--time-step",
+            _ => "water parameters",
+        },
+        _ => "water parameters",
+    };
+    anyhow::anyhow!("{flag}: {e}")
+}
+
+fn water_params(a: &WaterArgs) -> Result<renderlab_noise::WaterParams> {
+    if a.frames == 0 || a.frames > MAX_WATER_FRAMES {
+        bail!("--frames: {} must lie in 1..={MAX_WATER_FRAMES}", a.frames);
+    }
+    let (width, height) = parse_size("--size", &a.size)?;
+    if !(8..=renderlab_noise::water::MAX_WATER_SIDE).contains(&width)
+        || !(8..=renderlab_noise::water::MAX_WATER_SIDE).contains(&height)
+    {
+        bail!(
+            "--size: {width}x{height}: each side must lie in 8..={}",
+            renderlab_noise::water::MAX_WATER_SIDE
+        );
+    }
+    let total = u64::from(a.frames) * u64::from(width) * u64::from(height);
+    if total > MAX_WATER_PIXELS {
+        bail!("--frames/--size: {total} pixels in all exceeds {MAX_WATER_PIXELS} (fewer frames or smaller frames)");
+    }
+    let [vx, vy] = a.wind[..] else {
+        bail!("--wind: give two numbers VX,VY (got {})", a.wind.len());
+    };
+    if !a.start.is_finite() {
+        bail!("--start: {} must be finite", a.start);
+    }
+    let params = renderlab_noise::WaterParams {
+        width,
+        height,
+        seed: a.seed,
+        time_step: a.time_step,
+        wind: [vx, vy],
+        octaves: a.octaves,
+        amplitude: a.amplitude,
+        choppiness: a.choppiness,
+        camera_height: a.camera_height,
+        pitch_deg: a.pitch,
+        ..Default::default()
+    };
+    params.validate().map_err(water_flag_error)?;
+    Ok(params)
+}
+
+fn water(a: WaterArgs) -> Result<()> {
+    let params = water_params(&a)?;
+    let last = f64::from(a.start) + f64::from(a.frames - 1) * f64::from(params.time_step);
+    if last.abs() > f64::from(renderlab_noise::water::MAX_WATER_TIME) {
+        bail!("--start/--frames/--time-step: the last frame's time {last} exceeds 10000 s");
+    }
+    create_dir(&a.out)?;
+    let p = Progress::new("water");
+    let started = std::time::Instant::now();
+    renderlab_noise::water::render_water_sequence(&params, a.start, a.frames, |i, img| -> Result<()> {
+        let path = a.out.join(format!("frame_{i:04}.png"));
+        io::save_color(&path, &img).with_context(|| format!("writing {}", path.display()))?;
+        p.update(i as usize + 1, a.frames as usize, "frames");
+        Ok(())
+    })
+    .map_err(|e| match e.downcast::<renderlab_noise::NoiseError>() {
+        Ok(n) => water_flag_error(n),
+        Err(e) => e,
+    })?;
+    p.finish();
+    let per = started.elapsed().as_secs_f64() * 1e3 / f64::from(a.frames);
+    println!(
+        "wrote {} frames ({}x{}) to {} ({per:.1} ms per frame)",
+        a.frames,
+        params.width,
+        params.height,
+        a.out.display()
+    );
+    Ok(())
+}
+
 fn report(a: ReportArgs) -> Result<()> {
     create_dir(&a.out)?;
     let started = std::time::Instant::now();
@@ -272,7 +382,6 @@ fn report(a: ReportArgs) -> Result<()> {
     let p = Progress::new("relief");
     let summary = run_relief_bench(&material, &cfg, &relief_dir, &|d, t, m| p.update(d, t, m))?;
     p.finish();
-    let findings = summary.findings.join(" ");
     let noise_dir = a.out.join("noise");
     create_dir(&noise_dir)?;
     let noise_started = std::time::Instant::now();
@@ -284,7 +393,7 @@ fn report(a: ReportArgs) -> Result<()> {
     renderlab_lab::report::write_index(
         &a.out,
         &[
-            ("Relief surfaces (thesis 000)", "relief/index.html", findings.as_str()),
+            ("Relief surfaces (thesis 000)", "relief/index.html", summary.headline.as_str()),
             ("Perlin noise (thesis 001, chapter 3)", "noise/index.html", noise_findings.as_str()),
         ],
     )?;

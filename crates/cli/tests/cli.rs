@@ -52,6 +52,7 @@ fn every_command_has_help() {
         vec!["complexity", "--help"],
         vec!["materials", "--help"],
         vec!["noise", "--help"],
+        vec!["water", "--help"],
     ] {
         let out = renderlab(&args);
         assert!(out.status.success(), "{args:?}");
@@ -240,4 +241,48 @@ fn bad_noise_flags() {
     fails_with(&["noise", "--out", o, "--frequency", "0"], "--frequency");
     fails_with(&["noise", "--out", o, "--frequency", "1e30", "--octaves", "1"], "--octaves/--frequency");
     assert!(!out.exists(), "no output directory for rejected flags");
+}
+
+#[test]
+fn water_frames_and_bad_flags() {
+    let out = renderlab(&["water", "--help"]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    for flag in ["--out", "--frames", "--size", "--wind", "--amplitude", "Usage"] {
+        assert!(text.contains(flag), "{flag} not in: {text}");
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path().join("water");
+    let o = d.to_str().unwrap();
+    let out = renderlab(&["water", "--frames", "2", "--size", "64x40", "--out", o]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let mut names: Vec<String> = std::fs::read_dir(&d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["frame_0000.png", "frame_0001.png"]);
+    let f0 = std::fs::read(d.join("frame_0000.png")).unwrap();
+    let f1 = std::fs::read(d.join("frame_0001.png")).unwrap();
+    assert_eq!(&f0[1..4], b"PNG");
+    assert_eq!(u32::from_be_bytes(f0[16..20].try_into().unwrap()), 64, "width");
+    assert_eq!(u32::from_be_bytes(f0[20..24].try_into().unwrap()), 40, "height");
+    assert_ne!(f0, f1, "frames should move");
+
+    let bad = dir.path().join("bad");
+    let b = bad.to_str().unwrap();
+    fails_with(&["water", "--out", b, "--frames", "0"], "--frames");
+    fails_with(&["water", "--out", b, "--frames", "100000"], "--frames");
+    fails_with(&["water", "--out", b, "--size", "0x0"], "--size");
+    fails_with(&["water", "--out", b, "--size", "64"], "--size");
+    fails_with(&["water", "--out", b, "--size", "99999x99999"], "--size");
+    fails_with(&["water", "--out", b, "--frames", "10000", "--size", "8192x8192"], "--frames/--size");
+    fails_with(&["water", "--out", b, "--amplitude", "NaN"], "--amplitude");
+    fails_with(&["water", "--out", b, "--time-step", "inf"], "--time-step");
+    fails_with(&["water", "--out", b, "--pitch", "95"], "--pitch");
+    fails_with(&["water", "--out", b, "--octaves", "0"], "--octaves");
+    fails_with(&["water", "--out", b, "--start", "1e9"], "--start");
+    fails_with(&["water", "--out", b, "--wind", "1"], "--wind");
+    fails_with(&["water", "--out", b, "--wind", "nan,1"], "--wind");
+    assert!(!bad.exists(), "no output directory for rejected flags");
 }

@@ -13,6 +13,7 @@
 //! * **Clouds** (Fig. 3.5): four independently seeded 2D layers at frequencies 3, 6, 12, 24,
 //!   weighted 1, ½, ¼, ⅛, summed on a 100×100 grid and min–max normalised to [0, 1]; written
 //!   as grey PNGs with each layer beside it.
+//! * **Water** (§3.2): three frames of the animated sea of [`renderlab_noise::water`].
 //!
 //! Everything is a pure function of the seeds and sizes, so the figures are identical on every
 //! run and thread count. The lab takes well under a second.
@@ -475,6 +476,38 @@ pub fn run_noise_lab_with(out_dir: &Path, cfg: &NoiseLabConfig, progress: Progre
         quantity: "normalised image".into(),
         stats: Stats::of(clouds.image.pixels()),
     });
+
+    // --- Water ---------------------------------------------------------------------------
+    report.section("Water (§3.2)");
+    let water = renderlab_noise::WaterParams { width: 320, height: 180, ..Default::default() };
+    let times = [0.0f32, 0.5, 1.0];
+    report.paragraph(&format!(
+        "The thesis's water algorithm uses noise as an animated displacement map. Here the sea is \
+         a {}-octave fBm height field (largest wavelength {} units, height scale {}) whose domain \
+         travels with the wind ({}, {}) units/s and evolves along a third noise axis, so waves both \
+         move and change shape. Each pixel casts the camera ray onto the mean water plane, takes \
+         the normal from the analytic gradient, and mixes a reflected procedural sky with a \
+         deep-water colour by Schlick's Fresnel term for n = 1.33 (2 % at normal incidence, 100 % \
+         at grazing); the slope fades where a pixel covers more than the finest wavelength, and \
+         haze blends toward the horizon. Frames at t = {} s (`renderlab water` writes whole \
+         sequences).",
+        water.octaves,
+        water.wavelength,
+        water.amplitude,
+        water.wind[0],
+        water.wind[1],
+        times.map(|t| t.to_string()).join(", "),
+    ));
+    let mut water_items = Vec::new();
+    for (i, &t) in times.iter().enumerate() {
+        let img = renderlab_noise::render_water_frame(&water, t)?;
+        let name = format!("water_frame{i}.png");
+        let path = out_dir.join(&name);
+        renderlab_core::io::save_color(&path, &img)?;
+        files.push(path);
+        water_items.push((name, format!("t = {t} s")));
+    }
+    report.image_grid(&water_items, 3);
 
     progress(3, total, "report");
     // --- Statistics ----------------------------------------------------------------------
