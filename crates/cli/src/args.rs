@@ -34,6 +34,11 @@ pub enum Command {
     /// Animated water: an fBm sea with analytic normals, Fresnel reflection of a procedural
     /// sky and a deep-water body colour. Writes --frames PNG frames (frame_0000.png, …) to --out.
     Water(WaterArgs),
+    /// Animated volumetric smoke: a rising plume of filtered noise density, moved through the
+    /// noise domain (rise + curl-noise swirl) or, with --animation thesis, by the thesis's
+    /// literal `noise + k·t`; ray-marched with Beer–Lambert absorption and single scattering.
+    /// Writes --frames PNG frames (frame_0000.png, …) to --out.
+    Smoke(SmokeArgs),
 }
 
 /// `renderlab report`.
@@ -275,4 +280,89 @@ pub struct WaterArgs {
     /// Camera pitch below the horizon in degrees (-89..=89).
     #[arg(long, default_value_t = 9.0, allow_negative_numbers = true)]
     pub pitch: f32,
+}
+
+/// How `smoke` animates.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SmokeAnimation {
+    /// Move through the noise domain: rise plus curl-noise swirl (the shape changes).
+    Advect,
+    /// The thesis's literal `noise + k·t` (only the brightness changes); k is --animation-factor.
+    Thesis,
+}
+
+/// Which filter `smoke` applies to the density grid.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SmokeFilterChoice {
+    /// No filtering.
+    None,
+    /// Gaussian blur with --sigma voxels.
+    Gaussian,
+    /// 3×3×3 median.
+    Median,
+}
+
+/// `renderlab smoke`.
+#[derive(Args, Debug)]
+pub struct SmokeArgs {
+    /// Output directory (created if missing).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Number of frames (1..=10000).
+    #[arg(long, default_value_t = 24)]
+    pub frames: u32,
+    /// Frame size WIDTHxHEIGHT in pixels (each side 8..=4096).
+    #[arg(long, default_value = "256x256")]
+    pub size: String,
+    /// Density-grid resolution per side (4..=256; the grid has N³ voxels).
+    #[arg(long, default_value_t = 128)]
+    pub grid: u32,
+    /// Noise seed.
+    #[arg(long, default_value_t = 11)]
+    pub seed: u32,
+    /// Octaves of the density noise (1..=10).
+    #[arg(long, default_value_t = 5)]
+    pub octaves: u32,
+    /// Seconds between frames (0 < DT <= 60).
+    #[arg(long, default_value_t = 1.0 / 24.0)]
+    pub time_step: f32,
+    /// Time of the first frame in seconds.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub start: f32,
+    /// Animation: advect (moves through the noise) or thesis (noise + k·t).
+    #[arg(long, value_enum, default_value_t = SmokeAnimation::Advect)]
+    pub animation: SmokeAnimation,
+    /// The thesis's animation_factor k for --animation thesis (density per second).
+    #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
+    pub animation_factor: f32,
+    /// Rise speed in box units per second (the box is 2 units tall).
+    #[arg(long, default_value_t = 0.35, allow_negative_numbers = true)]
+    pub rise_speed: f32,
+    /// Curl-noise swirl amplitude in box units (0..=10).
+    #[arg(long, default_value_t = 0.35)]
+    pub swirl: f32,
+    /// Filter applied to the density grid.
+    #[arg(long, value_enum, default_value_t = SmokeFilterChoice::Gaussian)]
+    pub filter: SmokeFilterChoice,
+    /// Gaussian σ in voxels (0 < σ <= 8), for --filter gaussian.
+    #[arg(long, default_value_t = 0.8)]
+    pub sigma: f32,
+    /// The thesis's scale_factor: peak density (0..=1000).
+    #[arg(long, default_value_t = 1.0)]
+    pub density: f32,
+    /// Absorption coefficient σa per unit density per box unit (0..=1000).
+    #[arg(long, default_value_t = 1.5)]
+    pub absorption: f32,
+    /// Scattering coefficient σs per unit density per box unit (0..=1000).
+    #[arg(long, default_value_t = 9.0)]
+    pub scattering: f32,
+    /// Direction toward the light X,Y,Z (y up, camera on +z).
+    #[arg(long, value_delimiter = ',', default_values_t = [-0.7, 0.6, 0.45], allow_hyphen_values = true)]
+    pub light: Vec<f32>,
+    /// March step in voxels (0.1..=8).
+    #[arg(long, default_value_t = 1.0)]
+    pub step: f32,
+    /// Samples per shadow ray of the light-transmittance grid (1..=256).
+    #[arg(long, default_value_t = 32)]
+    pub shadow_steps: u32,
 }

@@ -29,6 +29,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Materials(a) => materials(a),
         Command::Noise(a) => noise(a),
         Command::Water(a) => water(a),
+        Command::Smoke(a) => smoke(a),
     }
 }
 
@@ -361,6 +362,127 @@ fn water(a: WaterArgs) -> Result<()> {
         a.frames,
         params.width,
         params.height,
+        a.out.display()
+    );
+    Ok(())
+}
+
+/// Most frames `smoke` renders in one run.
+const MAX_SMOKE_FRAMES: u32 = 10_000;
+/// Most pixels (frames × width × height) `smoke` renders in one run.
+const MAX_SMOKE_PIXELS: u64 = 1 << 31;
+/// Most voxels (frames × grid³) `smoke` builds in one run.
+const MAX_SMOKE_VOXELS: u64 = 1 << 36;
+
+/// Maps a smoke-parameter error to the command-line flag that set the parameter.
+fn smoke_flag_error(e: renderlab_noise::NoiseError) -> anyhow::Error {
+    use renderlab_noise::NoiseError as E;
+    let flag = match &e {
+        E::Size { .. } => "--size",
+        E::Octaves { .. } => "--octaves",
+        E::Parameter { name, .. } => match *name {
+            "grid" => "--grid",
+            "time_step" => "--time-step",
+            "rise_speed" => "--rise-speed",
+            "swirl" => "--swirl",
+            "sigma" => "--sigma",
+            "density" => "--density",
+            "absorption" => "--absorption",
+            "scattering" => "--scattering",
+            "light_direction" => "--light",
+            "step" => "--step",
+            "shadow_steps" => "--shadow-steps",
+            "animation_factor" => "--animation-factor",
+            "t" => "--start/--frames/--time-step",
+            _ => "smoke parameters",
+        },
+        _ => "smoke parameters",
+    };
+    anyhow::anyhow!("{flag}: {e}")
+}
+
+fn smoke_params(a: &SmokeArgs) -> Result<renderlab_noise::SmokeParams> {
+    use renderlab_noise::smoke::{Animation, SmokeFilter, MAX_SMOKE_SIDE};
+    if a.frames == 0 || a.frames > MAX_SMOKE_FRAMES {
+        bail!("--frames: {} must lie in 1..={MAX_SMOKE_FRAMES}", a.frames);
+    }
+    let (width, height) = parse_size("--size", &a.size)?;
+    if !(8..=MAX_SMOKE_SIDE).contains(&width) || !(8..=MAX_SMOKE_SIDE).contains(&height) {
+        bail!("--size: {width}x{height}: each side must lie in 8..={MAX_SMOKE_SIDE}");
+    }
+    let total = u64::from(a.frames) * u64::from(width) * u64::from(height);
+    if total > MAX_SMOKE_PIXELS {
+        bail!("--frames/--size: {total} pixels in all exceeds {MAX_SMOKE_PIXELS} (fewer or smaller frames)");
+    }
+    let voxels = u64::from(a.frames) * u64::from(a.grid).pow(3);
+    if voxels > MAX_SMOKE_VOXELS {
+        bail!("--frames/--grid: {voxels} voxels in all exceeds {MAX_SMOKE_VOXELS} (fewer frames or a smaller grid)");
+    }
+    let [lx, ly, lz] = a.light[..] else {
+        bail!("--light: give three numbers X,Y,Z (got {})", a.light.len());
+    };
+    if !a.start.is_finite() {
+        bail!("--start: {} must be finite", a.start);
+    }
+    let params = renderlab_noise::SmokeParams {
+        width,
+        height,
+        grid: a.grid,
+        seed: a.seed,
+        octaves: a.octaves,
+        density: a.density,
+        rise_speed: a.rise_speed,
+        swirl: a.swirl,
+        filter: match a.filter {
+            SmokeFilterChoice::None => SmokeFilter::None,
+            SmokeFilterChoice::Gaussian => SmokeFilter::Gaussian { sigma: a.sigma },
+            SmokeFilterChoice::Median => SmokeFilter::Median3,
+        },
+        absorption: a.absorption,
+        scattering: a.scattering,
+        light_direction: Vec3::new(lx, ly, lz),
+        step: a.step,
+        shadow_steps: a.shadow_steps,
+        animation: match a.animation {
+            SmokeAnimation::Advect => Animation::Advect,
+            SmokeAnimation::Thesis => Animation::ThesisLiteral { animation_factor: a.animation_factor },
+        },
+        time_step: a.time_step,
+        ..Default::default()
+    };
+    params.validate().map_err(smoke_flag_error)?;
+    Ok(params)
+}
+
+fn smoke(a: SmokeArgs) -> Result<()> {
+    let params = smoke_params(&a)?;
+    let last = f64::from(a.start) + f64::from(a.frames - 1) * f64::from(params.time_step);
+    if a.start.abs() > renderlab_noise::smoke::MAX_SMOKE_TIME
+        || last.abs() > f64::from(renderlab_noise::smoke::MAX_SMOKE_TIME)
+    {
+        bail!("--start/--frames/--time-step: frame times must stay within ±10000 s (last: {last})");
+    }
+    create_dir(&a.out)?;
+    let p = Progress::new("smoke");
+    let started = std::time::Instant::now();
+    renderlab_noise::smoke::render_smoke_sequence(&params, a.start, a.frames, |i, img| -> Result<()> {
+        let path = a.out.join(format!("frame_{i:04}.png"));
+        io::save_color(&path, &img).with_context(|| format!("writing {}", path.display()))?;
+        p.update(i as usize + 1, a.frames as usize, "frames");
+        Ok(())
+    })
+    .map_err(|e| match e.downcast::<renderlab_noise::NoiseError>() {
+        Ok(n) => smoke_flag_error(n),
+        Err(e) => e,
+    })?;
+    p.finish();
+    let per = started.elapsed().as_secs_f64() * 1e3 / f64::from(a.frames);
+    println!(
+        "wrote {} frames ({}x{}, grid {}³) to {} ({per:.1} ms per frame)",
+        a.frames,
+        params.width,
+        params.height,
+        params.grid,
         a.out.display()
     );
     Ok(())

@@ -53,6 +53,7 @@ fn every_command_has_help() {
         vec!["materials", "--help"],
         vec!["noise", "--help"],
         vec!["water", "--help"],
+        vec!["smoke", "--help"],
     ] {
         let out = renderlab(&args);
         assert!(out.status.success(), "{args:?}");
@@ -284,5 +285,63 @@ fn water_frames_and_bad_flags() {
     fails_with(&["water", "--out", b, "--start", "1e9"], "--start");
     fails_with(&["water", "--out", b, "--wind", "1"], "--wind");
     fails_with(&["water", "--out", b, "--wind", "nan,1"], "--wind");
+    assert!(!bad.exists(), "no output directory for rejected flags");
+}
+
+#[test]
+fn smoke_frames_and_bad_flags() {
+    let out = renderlab(&["smoke", "--help"]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    for flag in ["--out", "--frames", "--size", "--grid", "--animation", "--filter", "--sigma", "Usage"] {
+        assert!(text.contains(flag), "{flag} not in: {text}");
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path().join("smoke");
+    let o = d.to_str().unwrap();
+    let out = renderlab(&["smoke", "--frames", "2", "--size", "64x64", "--grid", "32", "--out", o]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let mut names: Vec<String> = std::fs::read_dir(&d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["frame_0000.png", "frame_0001.png"]);
+    let f0 = std::fs::read(d.join("frame_0000.png")).unwrap();
+    let f1 = std::fs::read(d.join("frame_0001.png")).unwrap();
+    assert_eq!(&f0[1..4], b"PNG");
+    assert_eq!(u32::from_be_bytes(f0[16..20].try_into().unwrap()), 64, "width");
+    assert_eq!(u32::from_be_bytes(f0[20..24].try_into().unwrap()), 64, "height");
+    assert_ne!(f0, f1, "frames should move");
+    let t = dir.path().join("thesis");
+    let args = ["smoke", "--frames", "1", "--size", "32x32", "--grid", "16", "--animation", "thesis"];
+    let out = renderlab(&[&args[..], &["--filter", "median", "--out", t.to_str().unwrap()]].concat());
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(t.join("frame_0000.png").exists());
+
+    let bad = dir.path().join("bad");
+    let b = bad.to_str().unwrap();
+    fails_with(&["smoke", "--out", b, "--frames", "0"], "--frames");
+    fails_with(&["smoke", "--out", b, "--frames", "100000"], "--frames");
+    fails_with(&["smoke", "--out", b, "--size", "0x0"], "--size");
+    fails_with(&["smoke", "--out", b, "--size", "64"], "--size");
+    fails_with(&["smoke", "--out", b, "--size", "99999x99999"], "--size");
+    fails_with(&["smoke", "--out", b, "--grid", "0"], "--grid");
+    fails_with(&["smoke", "--out", b, "--grid", "100000"], "--grid");
+    fails_with(&["smoke", "--out", b, "--frames", "10000", "--size", "4096x4096"], "--frames/--size");
+    fails_with(&["smoke", "--out", b, "--frames", "10000", "--grid", "256"], "--frames/--grid");
+    fails_with(&["smoke", "--out", b, "--sigma", "NaN"], "--sigma");
+    fails_with(&["smoke", "--out", b, "--absorption", "inf"], "--absorption");
+    fails_with(&["smoke", "--out", b, "--light", "0,0,0"], "--light");
+    fails_with(&["smoke", "--out", b, "--light", "1,2"], "--light");
+    fails_with(&["smoke", "--out", b, "--octaves", "0"], "--octaves");
+    fails_with(&["smoke", "--out", b, "--shadow-steps", "0"], "--shadow-steps");
+    fails_with(&["smoke", "--out", b, "--step", "0"], "--step");
+    fails_with(&["smoke", "--out", b, "--time-step", "nan"], "--time-step");
+    fails_with(&["smoke", "--out", b, "--start", "1e9"], "--start");
+    fails_with(
+        &["smoke", "--out", b, "--animation", "thesis", "--animation-factor", "inf"],
+        "--animation-factor",
+    );
     assert!(!bad.exists(), "no output directory for rejected flags");
 }

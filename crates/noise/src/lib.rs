@@ -7,6 +7,8 @@
 //! * [`Fractal`] with validated [`FractalParams`]: the thesis's octave sum
 //!   `P_i = P_{i−1} + noise(2^i·x)/2^i` with min–max normalisation ([`normalize_min_max`]),
 //!   fBm with lacunarity and gain, turbulence and ridged sums.
+//! * [`smoke`]: a rising smoke plume (filtered noise density, curl-noise advection, ray
+//!   marching with single scattering), beside the thesis's literal `noise + k·t`.
 //! * [`water`]: an animated sea (fBm height field, analytic normals, Fresnel sky reflection).
 //! * [`batch`]: whole rows, planes and volumes at once, hoisting per-row work; this is the
 //!   fast path (see `benches/noise.rs`, which compares it with the `noise` crate).
@@ -42,12 +44,16 @@ pub mod error;
 pub mod fractal;
 pub mod periodic;
 pub mod perlin;
+pub mod smoke;
 pub mod water;
 
 pub use error::{NoiseError, Result};
 pub use fractal::{normalize_min_max, Fractal, FractalKind, FractalParams, MAX_FREQUENCY, MAX_OCTAVES};
 pub use periodic::{Period, MAX_PERIOD};
 pub use perlin::{fade, fade_derivative, Perlin};
+pub use smoke::{
+    build_density, render_smoke_frame, Animation, DensityGrid, SmokeFilter, SmokeParams, SmokeVolume,
+};
 pub use water::{render_water_frame, WaterParams, WaterSurface};
 
 /// Largest number of samples a batch call accepts (2^31), so that a size typo fails fast
