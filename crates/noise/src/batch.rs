@@ -233,38 +233,8 @@ fn octave_row2<const KIND: u8, W: Wrap>(
         }
         (gx, gc)
     };
-    if two_pass_row::<KIND>(ox, sx, f, amp, scale, acc, sc, face) {
-        return;
-    }
-    let (mut cell, mut have_cell) = (0i32, false);
-    let (mut ax, mut ac, mut bx, mut bc) = (0.0f32, 0.0f32, 0.0f32, 0.0f32);
-    for (i, o) in acc.iter_mut().enumerate() {
-        let x = (ox + i as f32 * sx) * f;
-        if !x.is_finite() {
-            *o += amp * shape(kind, 0.0);
-            continue;
-        }
-        let (xi, t) = split(x);
-        if !have_cell || xi != cell {
-            // The face shared with the previous cell keeps its coefficients: stepping right,
-            // the old B face becomes the new A face (and vice versa stepping left).
-            if have_cell && xi == cell.wrapping_add(1) {
-                (ax, ac) = (bx, bc);
-                (bx, bc) = face(xi.wrapping_add(1));
-            } else if have_cell && xi == cell.wrapping_sub(1) {
-                (bx, bc) = (ax, ac);
-                (ax, ac) = face(xi);
-            } else {
-                (ax, ac) = face(xi);
-                (bx, bc) = face(xi.wrapping_add(1));
-            }
-            cell = xi;
-            have_cell = true;
-        }
-        let a = ax * t + ac;
-        let b = bx * (t - 1.0) + bc;
-        let n = (a + fade(t) * (b - a)) * scale;
-        *o += amp * shape(kind, n);
+    if !two_pass_row::<KIND>(ox, sx, f, amp, scale, acc, sc, &face) {
+        walk_row(kind, ox, sx, f, amp, scale, acc, face);
     }
 }
 
@@ -388,9 +358,25 @@ fn row3<const KIND: u8, W: Wrap>(
         }
         (gx, gc)
     };
-    if two_pass_row::<KIND>(ox, sx, f, amp, 1.0, acc, sc, face) {
-        return;
+    if !two_pass_row::<KIND>(ox, sx, f, amp, 1.0, acc, sc, &face) {
+        walk_row(kind, ox, sx, f, amp, 1.0, acc, face);
     }
+}
+
+/// The per-sample fallback of [`two_pass_row`] for rows whose coordinates leave the range
+/// where its branch-free cell split is exact: the same face coefficients and face reuse, one
+/// sample at a time with the exact `split`; non-finite samples contribute the shape of 0.
+#[allow(clippy::too_many_arguments)]
+fn walk_row(
+    kind: FractalKind,
+    ox: f32,
+    sx: f32,
+    f: f32,
+    amp: f32,
+    scale: f32,
+    acc: &mut [f32],
+    face: impl Fn(i32) -> (f32, f32),
+) {
     let (mut cell, mut have_cell) = (0i32, false);
     let (mut ax, mut ac, mut bx, mut bc) = (0.0f32, 0.0f32, 0.0f32, 0.0f32);
     for (i, o) in acc.iter_mut().enumerate() {
@@ -418,7 +404,7 @@ fn row3<const KIND: u8, W: Wrap>(
         }
         let a = ax * t + ac;
         let b = bx * (t - 1.0) + bc;
-        let n = a + fade(t) * (b - a);
+        let n = (a + fade(t) * (b - a)) * scale;
         *o += amp * shape(kind, n);
     }
 }
@@ -426,7 +412,7 @@ fn row3<const KIND: u8, W: Wrap>(
 /// The vectorising row kernel shared by 2D and 3D: `face(x)` gives the coefficients of the
 /// lattice face at x-index `x`; the octave's shaped, scaled noise is added to `acc`. Returns
 /// `false` (having done nothing) when some coordinate is beyond 2^31 or not finite, so that the
-/// caller's per-sample loop handles the row with `split`'s exact semantics.
+/// per-sample [`walk_row`] handles the row with `split`'s exact semantics.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn two_pass_row<const KIND: u8>(
