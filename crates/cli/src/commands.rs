@@ -147,14 +147,10 @@ fn relief_render(a: RenderArgs) -> Result<()> {
         scene.materials.iter().map(|m| ReliefMaterial::new(m, &cp, technique.needs_cone_map())).collect();
     let view = View::new(&scene, &camera, a.angle);
     let lit = |t| render(view.input(), &mats, t, scene.lighting, scene.background, false);
+    // Heat maps come display-encoded; decode them so `save_color` (PNG or EXR) can take them.
+    let table = renderlab_core::color::srgb8_to_linear_table();
     let rgb8 = |img: Image<[u8; 3]>| -> Image<Vec3> {
-        img.map(|c| Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32) / 255.0).map(|c| {
-            Vec3::new(
-                renderlab_core::color::srgb_to_linear(c.x),
-                renderlab_core::color::srgb_to_linear(c.y),
-                renderlab_core::color::srgb_to_linear(c.z),
-            )
-        })
+        img.map(|c| Vec3::new(table[c[0] as usize], table[c[1] as usize], table[c[2] as usize]))
     };
     let out = match a.debug {
         DebugView::None => {

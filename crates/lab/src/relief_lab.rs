@@ -6,7 +6,7 @@
 use crate::heatmap::{heat_image, with_legend};
 use crate::metrics::compare;
 use crate::plot::{scatter_svg, Series};
-use crate::report::Report;
+use crate::report::{format_number, Report};
 use crate::results::{write_csv, write_json};
 use crate::timing::{measure, Timing};
 use glam::Vec2;
@@ -480,16 +480,6 @@ fn headline(records: &[ReliefRecord], angles: &[f32]) -> String {
     parts.join(" ")
 }
 
-fn fmt_f(v: f64, digits: usize) -> String {
-    if v.is_infinite() {
-        "∞".into()
-    } else if v.is_nan() {
-        "–".into()
-    } else {
-        format!("{v:.digits$}")
-    }
-}
-
 fn write_report(
     path: &Path,
     material: &Material,
@@ -530,7 +520,7 @@ fn write_report(
     for (i, &a) in BENCH_ANGLES_DEG.iter().enumerate() {
         let mut row = vec![format!("{a}°")];
         for (j, c) in cols.iter().enumerate() {
-            let ours = find(records, c, a).map(|r| fmt_f(r.fps_equivalent, 1)).unwrap_or("–".into());
+            let ours = find(records, c, a).map(|r| format_number(r.fps_equivalent, 1)).unwrap_or("–".into());
             row.push(format!("{:.0} | {}", THESIS_TABLE_4_1[i][j], ours));
         }
         rows.push(row);
@@ -572,7 +562,7 @@ fn write_report(
                 format!("{:.3}", v.time_ratio),
                 format!("{:.3}", v.pass_ratio),
                 format!("{:.3} / {:.3}", v.uv_error, v.pom32_uv_error),
-                format!("{} / {}", fmt_f(v.psnr_db, 2), fmt_f(v.pom32_psnr_db, 2)),
+                format!("{} / {}", format_number(v.psnr_db, 2), format_number(v.pom32_psnr_db, 2)),
                 if v.passes { "yes".into() } else { "no".into() },
             ]
         })
@@ -634,16 +624,16 @@ fn write_report(
             vec![
                 r.technique.clone(),
                 format!("{}°", r.angle_deg),
-                fmt_f(r.time_ms, 2),
-                fmt_f(r.trace_ms, 2),
-                fmt_f(r.fps_equivalent, 1),
-                fmt_f(r.samples_per_pixel, 2),
-                fmt_f(r.mean_layers, 1),
-                fmt_f(r.psnr_db, 2),
-                fmt_f(r.ssim, 4),
-                fmt_f(r.flip, 4),
-                fmt_f(r.uv_error_texels, 3),
-                fmt_f(r.uv_error_p95_texels, 3),
+                format_number(r.time_ms, 2),
+                format_number(r.trace_ms, 2),
+                format_number(r.fps_equivalent, 1),
+                format_number(r.samples_per_pixel, 2),
+                format_number(r.mean_layers, 1),
+                format_number(r.psnr_db, 2),
+                format_number(r.ssim, 4),
+                format_number(r.flip, 4),
+                format_number(r.uv_error_texels, 3),
+                format_number(r.uv_error_p95_texels, 3),
             ]
         })
         .collect();
