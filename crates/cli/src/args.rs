@@ -29,15 +29,18 @@ pub enum Command {
     Materials(MaterialsArgs),
     /// Perlin-noise lab: reproduce the texturing thesis's noise experiments (Fig. 3.2–3.5).
     /// Writes the clouds image (clouds.png, grey, and one PNG per layer), the 3D-path and
-    /// octave figures (SVG), results.json/.csv and index.html to --out.
+    /// octave figures (SVG), the water and smoke animations (APNG) with stills and per-frame
+    /// smoke measurements, results.json/.csv and index.html to --out.
     Noise(NoiseArgs),
     /// Animated water: an fBm sea with analytic normals, Fresnel reflection of a procedural
-    /// sky and a deep-water body colour. Writes --frames PNG frames (frame_0000.png, …) to --out.
+    /// sky and a deep-water body colour. Writes --frames PNG frames (frame_0000.png, …) and the same
+    /// frames as one looping animation (animation.png, APNG) to --out.
     Water(WaterArgs),
     /// Animated volumetric smoke: a rising plume of filtered noise density, moved through the
     /// noise domain (rise + curl-noise swirl) or, with --animation thesis, by the thesis's
     /// literal `noise + k·t`; ray-marched with Beer–Lambert absorption and single scattering.
-    /// Writes --frames PNG frames (frame_0000.png, …) to --out.
+    /// Writes --frames PNG frames (frame_0000.png, …) and the same frames as one looping
+    /// animation (animation.png, APNG) to --out.
     Smoke(SmokeArgs),
 }
 
@@ -225,6 +228,9 @@ pub struct NoiseArgs {
     /// Output directory (created if missing).
     #[arg(long)]
     pub out: PathBuf,
+    /// Small, short water and smoke animations (seconds less work; not for figures).
+    #[arg(long)]
+    pub quick: bool,
     /// Seed of the first clouds layer (layer k uses SEED+k). The 3D paths keep the thesis's
     /// seeds 100/101/102/200/300.
     #[arg(long, default_value_t = 100)]
@@ -250,6 +256,9 @@ pub struct WaterArgs {
     /// Number of frames (1..=10000).
     #[arg(long, default_value_t = 24)]
     pub frames: u32,
+    /// Playback rate of the animation DIR/animation.png (APNG), frames per second (1..=1000).
+    #[arg(long, default_value_t = 24)]
+    pub fps: u32,
     /// Frame size WIDTHxHEIGHT in pixels (each side 8..=8192).
     #[arg(long, default_value = "640x360")]
     pub size: String,
@@ -311,6 +320,9 @@ pub struct SmokeArgs {
     /// Number of frames (1..=10000).
     #[arg(long, default_value_t = 24)]
     pub frames: u32,
+    /// Playback rate of the animation DIR/animation.png (APNG), frames per second (1..=1000).
+    #[arg(long, default_value_t = 24)]
+    pub fps: u32,
     /// Frame size WIDTHxHEIGHT in pixels (each side 8..=4096).
     #[arg(long, default_value = "256x256")]
     pub size: String,

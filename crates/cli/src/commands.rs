@@ -10,9 +10,8 @@ use renderlab_core::image::check_dimensions;
 use renderlab_core::procedural::{self, MATERIAL_NAMES};
 use renderlab_core::{io, Image, Material, Scene};
 use renderlab_lab::heatmap::heat_image;
-use renderlab_lab::noise_lab::{
-    run_noise_lab, run_noise_lab_with, CloudsConfig, NoiseLabConfig, MAX_CLOUDS_SIZE,
-};
+use renderlab_lab::noise_lab::{run_noise_lab_with, CloudsConfig, NoiseLabConfig, MAX_CLOUDS_SIZE};
+use renderlab_lab::noise_motion::MotionConfig;
 use renderlab_lab::relief_lab::{default_techniques, run_relief_bench, ReliefBenchConfig, View};
 use renderlab_relief::complexity::{complexity_map, ComplexityParams};
 use renderlab_relief::render::{render, render_reference};
@@ -238,7 +237,8 @@ fn noise_config(a: &NoiseArgs) -> Result<NoiseLabConfig> {
         );
     }
     let clouds = CloudsConfig { size: a.size, seed: a.seed, layers: a.octaves, frequency: a.frequency };
-    Ok(NoiseLabConfig { clouds })
+    let motion = if a.quick { MotionConfig::quick() } else { MotionConfig::default() };
+    Ok(NoiseLabConfig { clouds, motion })
 }
 
 fn noise(a: NoiseArgs) -> Result<()> {
@@ -332,8 +332,43 @@ fn water_params(a: &WaterArgs) -> Result<renderlab_noise::WaterParams> {
     Ok(params)
 }
 
+/// Where `water` and `smoke` put each frame: `DIR/frame_NNNN.png` and the looping animation
+/// `DIR/animation.png` (APNG), which appears only once its last frame is in.
+struct FrameSink<'a> {
+    dir: &'a Path,
+    animation: renderlab_core::apng::ApngWriter,
+}
+
+impl<'a> FrameSink<'a> {
+    fn new(dir: &'a Path, width: u32, height: u32, frames: u32, fps: u32) -> Result<Self> {
+        check_fps(fps)?;
+        let animation =
+            renderlab_core::apng::ApngWriter::create(dir.join("animation.png"), width, height, frames, fps)?;
+        Ok(FrameSink { dir, animation })
+    }
+
+    fn push(&mut self, i: u32, img: &Image<Vec3>) -> Result<()> {
+        let path = self.dir.join(format!("frame_{i:04}.png"));
+        io::save_color(&path, img).with_context(|| format!("writing {}", path.display()))?;
+        self.animation.push(img)?;
+        Ok(())
+    }
+
+    fn finish(self) -> Result<()> {
+        Ok(self.animation.finish()?)
+    }
+}
+
+fn check_fps(fps: u32) -> Result<()> {
+    if !(1..=1000).contains(&fps) {
+        bail!("--fps: {fps} must lie in 1..=1000");
+    }
+    Ok(())
+}
+
 fn water(a: WaterArgs) -> Result<()> {
     let params = water_params(&a)?;
+    check_fps(a.fps)?;
     let last = f64::from(a.start) + f64::from(a.frames - 1) * f64::from(params.time_step);
     if last.abs() > f64::from(renderlab_noise::water::MAX_WATER_TIME) {
         bail!("--start/--frames/--time-step: the last frame's time {last} exceeds 10000 s");
@@ -341,9 +376,9 @@ fn water(a: WaterArgs) -> Result<()> {
     create_dir(&a.out)?;
     let p = Progress::new("water");
     let started = std::time::Instant::now();
+    let mut sink = FrameSink::new(&a.out, params.width, params.height, a.frames, a.fps)?;
     renderlab_noise::water::render_water_sequence(&params, a.start, a.frames, |i, img| -> Result<()> {
-        let path = a.out.join(format!("frame_{i:04}.png"));
-        io::save_color(&path, &img).with_context(|| format!("writing {}", path.display()))?;
+        sink.push(i, &img)?;
         p.update(i as usize + 1, a.frames as usize, "frames");
         Ok(())
     })
@@ -351,10 +386,11 @@ fn water(a: WaterArgs) -> Result<()> {
         Ok(n) => water_flag_error(n),
         Err(e) => e,
     })?;
+    sink.finish()?;
     p.finish();
     let per = started.elapsed().as_secs_f64() * 1e3 / f64::from(a.frames);
     println!(
-        "wrote {} frames ({}x{}) to {} ({per:.1} ms per frame)",
+        "wrote {} frames ({}x{}) and animation.png to {} ({per:.1} ms per frame)",
         a.frames,
         params.width,
         params.height,
@@ -452,6 +488,7 @@ fn smoke_params(a: &SmokeArgs) -> Result<renderlab_noise::SmokeParams> {
 
 fn smoke(a: SmokeArgs) -> Result<()> {
     let params = smoke_params(&a)?;
+    check_fps(a.fps)?;
     let last = f64::from(a.start) + f64::from(a.frames - 1) * f64::from(params.time_step);
     if a.start.abs() > renderlab_noise::smoke::MAX_SMOKE_TIME
         || last.abs() > f64::from(renderlab_noise::smoke::MAX_SMOKE_TIME)
@@ -461,9 +498,9 @@ fn smoke(a: SmokeArgs) -> Result<()> {
     create_dir(&a.out)?;
     let p = Progress::new("smoke");
     let started = std::time::Instant::now();
+    let mut sink = FrameSink::new(&a.out, params.width, params.height, a.frames, a.fps)?;
     renderlab_noise::smoke::render_smoke_sequence(&params, a.start, a.frames, |i, img| -> Result<()> {
-        let path = a.out.join(format!("frame_{i:04}.png"));
-        io::save_color(&path, &img).with_context(|| format!("writing {}", path.display()))?;
+        sink.push(i, &img)?;
         p.update(i as usize + 1, a.frames as usize, "frames");
         Ok(())
     })
@@ -471,10 +508,11 @@ fn smoke(a: SmokeArgs) -> Result<()> {
         Ok(n) => smoke_flag_error(n),
         Err(e) => e,
     })?;
+    sink.finish()?;
     p.finish();
     let per = started.elapsed().as_secs_f64() * 1e3 / f64::from(a.frames);
     println!(
-        "wrote {} frames ({}x{}, grid {}³) to {} ({per:.1} ms per frame)",
+        "wrote {} frames ({}x{}, grid {}³) and animation.png to {} ({per:.1} ms per frame)",
         a.frames,
         params.width,
         params.height,
@@ -504,7 +542,11 @@ fn report(a: ReportArgs) -> Result<()> {
     create_dir(&noise_dir)?;
     let noise_started = std::time::Instant::now();
     let p = Progress::new("noise");
-    let noise = run_noise_lab(&noise_dir, &|d, t, m| p.update(d, t, m))?;
+    let noise_cfg = NoiseLabConfig {
+        motion: if a.quick { MotionConfig::quick() } else { MotionConfig::default() },
+        ..NoiseLabConfig::default()
+    };
+    let noise = run_noise_lab_with(&noise_dir, &noise_cfg, &|d, t, m| p.update(d, t, m))?;
     p.finish();
     let noise_s = noise_started.elapsed().as_secs_f64();
     let noise_findings = noise.findings.join(" ");

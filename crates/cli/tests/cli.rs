@@ -200,8 +200,18 @@ fn noise_help_and_clouds_png() {
     }
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path().join("noise");
-    let out =
-        renderlab(&["noise", "--out", d.to_str().unwrap(), "--seed", "7", "--size", "64", "--octaves", "5"]);
+    let out = renderlab(&[
+        "noise",
+        "--out",
+        d.to_str().unwrap(),
+        "--seed",
+        "7",
+        "--size",
+        "64",
+        "--octaves",
+        "5",
+        "--quick",
+    ]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let png = std::fs::read(d.join("clouds.png")).unwrap();
     assert_eq!(&png[1..4], b"PNG");
@@ -220,7 +230,8 @@ fn noise_help_and_clouds_png() {
         "--size",
         "64",
         "--octaves",
-        "5"
+        "5",
+        "--quick"
     ])
     .status
     .success());
@@ -262,7 +273,9 @@ fn water_frames_and_bad_flags() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     names.sort();
-    assert_eq!(names, ["frame_0000.png", "frame_0001.png"]);
+    assert_eq!(names, ["animation.png", "frame_0000.png", "frame_0001.png"]);
+    let anim = std::fs::read(d.join("animation.png")).unwrap();
+    assert!(anim.windows(4).any(|w| w == b"acTL"), "animation.png is an APNG");
     let f0 = std::fs::read(d.join("frame_0000.png")).unwrap();
     let f1 = std::fs::read(d.join("frame_0001.png")).unwrap();
     assert_eq!(&f0[1..4], b"PNG");
@@ -273,6 +286,7 @@ fn water_frames_and_bad_flags() {
     let bad = dir.path().join("bad");
     let b = bad.to_str().unwrap();
     fails_with(&["water", "--out", b, "--frames", "0"], "--frames");
+    fails_with(&["water", "--out", b, "--fps", "0"], "--fps");
     fails_with(&["water", "--out", b, "--frames", "100000"], "--frames");
     fails_with(&["water", "--out", b, "--size", "0x0"], "--size");
     fails_with(&["water", "--out", b, "--size", "64"], "--size");
@@ -306,7 +320,9 @@ fn smoke_frames_and_bad_flags() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     names.sort();
-    assert_eq!(names, ["frame_0000.png", "frame_0001.png"]);
+    assert_eq!(names, ["animation.png", "frame_0000.png", "frame_0001.png"]);
+    let anim = std::fs::read(d.join("animation.png")).unwrap();
+    assert!(anim.windows(4).any(|w| w == b"acTL"), "animation.png is an APNG");
     let f0 = std::fs::read(d.join("frame_0000.png")).unwrap();
     let f1 = std::fs::read(d.join("frame_0001.png")).unwrap();
     assert_eq!(&f0[1..4], b"PNG");
@@ -322,6 +338,7 @@ fn smoke_frames_and_bad_flags() {
     let bad = dir.path().join("bad");
     let b = bad.to_str().unwrap();
     fails_with(&["smoke", "--out", b, "--frames", "0"], "--frames");
+    fails_with(&["smoke", "--out", b, "--fps", "5000"], "--fps");
     fails_with(&["smoke", "--out", b, "--frames", "100000"], "--frames");
     fails_with(&["smoke", "--out", b, "--size", "0x0"], "--size");
     fails_with(&["smoke", "--out", b, "--size", "64"], "--size");

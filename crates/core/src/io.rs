@@ -293,6 +293,25 @@ impl Drop for TempFile<'_> {
 /// renamed over the target. On any error the temporary file is removed and the target is
 /// left untouched.
 pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> Result<()> {
+    let werr = |source| CoreError::Write { path: path.to_path_buf(), source };
+    let (tmp, file) = create_temp_beside(path)?;
+    let mut guard = TempFile { path: &tmp, keep: false };
+    let result = (|| {
+        let mut bw = std::io::BufWriter::new(file);
+        write(&mut bw)?;
+        let f = bw.into_inner().map_err(|e| e.into_error())?;
+        f.sync_all()?;
+        drop(f);
+        std::fs::rename(&tmp, path)
+    })();
+    result.map_err(werr)?;
+    guard.keep = true;
+    Ok(())
+}
+
+/// Creates a new, empty temporary file beside `path` (named `.<name>.<pid>.<n>.tmp`, unique
+/// per process and call) for a write that is renamed over `path` once complete.
+pub(crate) fn create_temp_beside(path: &Path) -> Result<(PathBuf, std::fs::File)> {
     use std::sync::atomic::{AtomicU64, Ordering};
     static NEXT: AtomicU64 = AtomicU64::new(0);
     let werr = |source| CoreError::Write { path: path.to_path_buf(), source };
@@ -311,18 +330,7 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> std::io::
     ));
     // `create_new` never follows or clobbers something already at the temporary path.
     let file = std::fs::OpenOptions::new().write(true).create_new(true).open(&tmp).map_err(werr)?;
-    let mut guard = TempFile { path: &tmp, keep: false };
-    let result = (|| {
-        let mut bw = std::io::BufWriter::new(file);
-        write(&mut bw)?;
-        let f = bw.into_inner().map_err(|e| e.into_error())?;
-        f.sync_all()?;
-        drop(f);
-        std::fs::rename(&tmp, path)
-    })();
-    result.map_err(werr)?;
-    guard.keep = true;
-    Ok(())
+    Ok((tmp, file))
 }
 
 fn encode_png(path: &Path, w: u32, h: u32, data: &[u8], color: image::ExtendedColorType) -> Result<()> {

@@ -19,6 +19,7 @@ mod glyphs;
 pub mod heatmap;
 pub mod metrics;
 pub mod noise_lab;
+pub mod noise_motion;
 pub mod plot;
 pub mod relief_lab;
 pub mod report;

@@ -13,10 +13,13 @@
 //! * **Clouds** (Fig. 3.5): four independently seeded 2D layers at frequencies 3, 6, 12, 24,
 //!   weighted 1, ½, ¼, ⅛, summed on a 100×100 grid and min–max normalised to [0, 1]; written
 //!   as grey PNGs with each layer beside it.
-//! * **Water** (§3.2): three frames of the animated sea of [`renderlab_noise::water`].
+//! * **Water** (§3.2) and **smoke** (§3.3): animations (APNG) and stills, from
+//!   [`crate::noise_motion`], with the per-frame measurements that separate the two ways of
+//!   animating smoke.
 //!
 //! Everything is a pure function of the seeds and sizes, so the figures are identical on every
-//! run and thread count. The lab takes well under a second.
+//! run and thread count. The still experiments take well under a second, the animations about
+//! 12 s on 2 cores at the default [`crate::noise_motion::MotionConfig`].
 
 use crate::error::Result;
 use crate::heatmap::gray_image;
@@ -258,6 +261,8 @@ pub struct StatRow {
 pub struct NoiseLabConfig {
     /// The clouds experiment (the path experiments always use the thesis's settings).
     pub clouds: CloudsConfig,
+    /// The water and smoke animations.
+    pub motion: crate::noise_motion::MotionConfig,
 }
 
 /// What a noise-lab run wrote and found.
@@ -283,7 +288,7 @@ pub fn run_noise_lab(out_dir: &Path, progress: Progress) -> Result<NoiseSummary>
 
 /// Like [`run_noise_lab`] with the clouds settings of `cfg`.
 pub fn run_noise_lab_with(out_dir: &Path, cfg: &NoiseLabConfig, progress: Progress) -> Result<NoiseSummary> {
-    let total = 4;
+    let total = 5;
     let mut files = Vec::new();
     let mut stats = Vec::new();
     let mut report = Report::new("Perlin noise: the thesis's experiments");
@@ -477,39 +482,14 @@ pub fn run_noise_lab_with(out_dir: &Path, cfg: &NoiseLabConfig, progress: Progre
         stats: Stats::of(clouds.image.pixels()),
     });
 
-    // --- Water ---------------------------------------------------------------------------
-    report.section("Water (§3.2)");
-    let water = renderlab_noise::WaterParams { width: 320, height: 180, ..Default::default() };
-    let times = [0.0f32, 0.5, 1.0];
-    report.paragraph(&format!(
-        "The thesis's water algorithm uses noise as an animated displacement map. Here the sea is \
-         a {}-octave fBm height field (largest wavelength {} units, height scale {}) whose domain \
-         travels with the wind ({}, {}) units/s and evolves along a third noise axis, so waves both \
-         move and change shape. Each pixel casts the camera ray onto the mean water plane, takes \
-         the normal from the analytic gradient, and mixes a reflected procedural sky with a \
-         deep-water colour by Schlick's Fresnel term for n = 1.33 (2 % at normal incidence, 100 % \
-         at grazing); the slope fades where a pixel covers more than the finest wavelength, and \
-         haze blends toward the horizon. Frames at t = {} s (`renderlab water` writes whole \
-         sequences).",
-        water.octaves,
-        water.wavelength,
-        water.amplitude,
-        water.wind[0],
-        water.wind[1],
-        times.map(|t| t.to_string()).join(", "),
-    ));
-    let mut water_items = Vec::new();
-    for (i, &t) in times.iter().enumerate() {
-        let img = renderlab_noise::render_water_frame(&water, t)?;
-        let name = format!("water_frame{i}.png");
-        let path = out_dir.join(&name);
-        renderlab_core::io::save_color(&path, &img)?;
-        files.push(path);
-        water_items.push((name, format!("t = {t} s")));
-    }
-    report.image_grid(&water_items, 3);
+    // --- Water and smoke -----------------------------------------------------------------
+    progress(3, total, "water and smoke");
+    let motion = crate::noise_motion::water_and_smoke(out_dir, &cfg.motion, &mut report, &|d, t, m| {
+        progress(d, t, m)
+    })?;
+    files.extend(motion.files);
 
-    progress(3, total, "report");
+    progress(4, total, "report");
     // --- Statistics ----------------------------------------------------------------------
     report.section("Statistics");
     report.paragraph(
@@ -554,6 +534,8 @@ pub fn run_noise_lab_with(out_dir: &Path, cfg: &NoiseLabConfig, progress: Progre
             s = c.size
         ),
     ];
+    let mut findings = findings;
+    findings.extend(motion.findings);
     progress(total, total, "done");
     Ok(NoiseSummary { index, clouds_png, files, stats, findings })
 }

@@ -1,16 +1,18 @@
 //! The noise lab: its files, the thesis's straight-line path, and deterministic clouds.
 
 use renderlab_lab::noise_lab::{
-    clouds, max_distance_from_diagonal, noise_path, run_noise_lab, run_noise_lab_with, thesis_paths,
-    AxisNoise, CloudsConfig, NoiseLabConfig, Stats,
+    clouds, max_distance_from_diagonal, noise_path, run_noise_lab_with, thesis_paths, AxisNoise,
+    CloudsConfig, NoiseLabConfig, Stats,
 };
+use renderlab_lab::noise_motion::MotionConfig;
 
 fn quiet(_: usize, _: usize, _: &str) {}
 
 #[test]
 fn lab_writes_its_files_and_index() {
     let dir = tempfile::tempdir().unwrap();
-    let s = run_noise_lab(dir.path(), &quiet).unwrap();
+    let cfg = NoiseLabConfig { motion: MotionConfig::quick(), ..NoiseLabConfig::default() };
+    let s = run_noise_lab_with(dir.path(), &cfg, &quiet).unwrap();
     assert_eq!(s.index, dir.path().join("index.html"));
     for f in &s.files {
         assert!(f.exists(), "{} missing", f.display());
@@ -26,11 +28,17 @@ fn lab_writes_its_files_and_index() {
         "octaves_thesis_sum.svg",
         "results.json",
         "results.csv",
+        "water.png",
+        "smoke_advect.png",
+        "smoke_thesis.png",
+        "smoke_frames.csv",
     ] {
         assert!(dir.path().join(name).is_file(), "{name} missing");
     }
     let html = std::fs::read_to_string(&s.index).unwrap();
-    for needle in ["clouds.png", "path_fig3_2_xy.svg", "x = y = z", "Statistics", "Fig. 3.5"] {
+    for needle in
+        ["clouds.png", "path_fig3_2_xy.svg", "x = y = z", "Statistics", "Fig. 3.5", "smoke_advect.png"]
+    {
         assert!(html.contains(needle), "index.html lacks {needle}");
     }
     let png = std::fs::read(&s.clouds_png).unwrap();
@@ -123,7 +131,10 @@ fn clouds_reject_bad_parameters_naming_them() {
 #[test]
 fn lab_uses_the_clouds_settings() {
     let dir = tempfile::tempdir().unwrap();
-    let cfg = NoiseLabConfig { clouds: CloudsConfig { size: 37, layers: 2, ..CloudsConfig::default() } };
+    let cfg = NoiseLabConfig {
+        clouds: CloudsConfig { size: 37, layers: 2, ..CloudsConfig::default() },
+        motion: MotionConfig::quick(),
+    };
     let s = run_noise_lab_with(dir.path(), &cfg, &quiet).unwrap();
     let png = std::fs::read(&s.clouds_png).unwrap();
     // IHDR width and height.
