@@ -22,6 +22,10 @@ pub enum Command {
     /// Relief-surface lab: render one technique, or benchmark them all.
     #[command(subcommand)]
     Relief(ReliefCommand),
+    /// Texture mapping and filtering lab: benchmark every filter and mapping mode against a
+    /// supersampled reference, or render one scene with one filter.
+    #[command(subcommand)]
+    Texture(TextureCommand),
     /// Compute the thesis's Sobel complexity map of a height map (first channel, 8 or 16 bit)
     /// and write it as an 8-bit grey PNG.
     Complexity(ComplexityArgs),
@@ -377,4 +381,80 @@ pub struct SmokeArgs {
     /// Samples per shadow ray of the light-transmittance grid (1..=256).
     #[arg(long, default_value_t = 32)]
     pub shadow_steps: u32,
+}
+
+/// `renderlab texture …`.
+#[derive(Subcommand, Debug)]
+pub enum TextureCommand {
+    /// Render every test scene (checkerboard plane to the horizon, the thesis's quad, a quad at
+    /// several tilts, a zone plate) with every filter; time it (ns per pixel), count its texel
+    /// fetches and measure PSNR, SSIM and FLIP against a supersampled reference under two pixel
+    /// filters (Gaussian σ = 0.5 px, the primary, and box); time every perspective-mapping mode
+    /// side by side. Writes results.json, results.csv, convergence.csv, images and index.html
+    /// to --out.
+    Bench(TextureBenchArgs),
+    /// Render one test scene with one filter (or the reference) to a PNG.
+    Render(TextureRenderArgs),
+}
+
+/// `renderlab texture bench`.
+#[derive(Args, Debug)]
+pub struct TextureBenchArgs {
+    /// Output directory (created if missing).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Frame width in pixels (8..=4096).
+    #[arg(long, default_value_t = 320)]
+    pub width: u32,
+    /// Frame height in pixels (8..=4096).
+    #[arg(long, default_value_t = 240)]
+    pub height: u32,
+    /// Timed repetitions per measurement (the median is reported; filters and modes take
+    /// turns and are timed on one thread; 1..=1000).
+    #[arg(long, default_value_t = 5)]
+    pub reps: u32,
+    /// Untimed warm-up runs per measurement (0..=100).
+    #[arg(long, default_value_t = 1)]
+    pub warmup: u32,
+    /// Reference strata per axis (1..=64; samples per pixel = N²). The convergence study also
+    /// computes N/4 and N/2.
+    #[arg(long, default_value_t = 16)]
+    pub samples: u32,
+    /// Filters, comma-separated: nearest, bilinear, bicubic, trilinear, anisoN (N probes at
+    /// most, 1..=64), ewa (eccentricity clamp 16, at most 96 texels), ewa:ECC:TEXELS
+    /// (eccentricity clamp 1..=64, texel budget 16..=4096). Default: nearest, bilinear,
+    /// bicubic, trilinear, aniso2, aniso4, aniso8, aniso16, ewa and the tuned ewa:16:24.
+    #[arg(long, value_delimiter = ',')]
+    pub filters: Vec<String>,
+    /// Scenes, comma-separated (default: all): checkerboard, thesis_quad, quad_tilt_DEG
+    /// (DEG in 0..=89.9), zone_plate.
+    #[arg(long, value_delimiter = ',')]
+    pub scenes: Vec<String>,
+    /// Skip writing images (results and report only).
+    #[arg(long)]
+    pub no_images: bool,
+}
+
+/// `renderlab texture render`.
+#[derive(Args, Debug)]
+pub struct TextureRenderArgs {
+    /// Output PNG (or EXR) file.
+    #[arg(long, short)]
+    pub out: PathBuf,
+    /// Scene (see `texture bench --help`).
+    #[arg(long, default_value = "checkerboard")]
+    pub scene: String,
+    /// Filter (see `texture bench --help`), or `reference` for the Gaussian reference or
+    /// `reference-box` for the box one.
+    #[arg(long, short, default_value = "ewa")]
+    pub filter: String,
+    /// Frame width in pixels (8..=4096).
+    #[arg(long, default_value_t = 640)]
+    pub width: u32,
+    /// Frame height in pixels (8..=4096).
+    #[arg(long, default_value_t = 480)]
+    pub height: u32,
+    /// Reference strata per axis, for --filter reference (1..=64).
+    #[arg(long, default_value_t = 16)]
+    pub samples: u32,
 }

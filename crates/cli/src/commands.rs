@@ -13,9 +13,11 @@ use renderlab_lab::heatmap::heat_image;
 use renderlab_lab::noise_lab::{run_noise_lab_with, CloudsConfig, NoiseLabConfig, MAX_CLOUDS_SIZE};
 use renderlab_lab::noise_motion::MotionConfig;
 use renderlab_lab::relief_lab::{default_techniques, run_relief_bench, ReliefBenchConfig, View};
+use renderlab_lab::texture_lab::{run_texture_bench, FilterChoice, TextureBenchConfig};
 use renderlab_relief::complexity::{complexity_map, ComplexityParams};
 use renderlab_relief::render::{render, render_reference};
 use renderlab_relief::{ReliefMaterial, Technique};
+use renderlab_texture::scene::{SceneKind, TestScene};
 use std::path::Path;
 
 /// Dispatches a parsed command line.
@@ -24,6 +26,8 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Report(a) => report(a),
         Command::Relief(ReliefCommand::Bench(a)) => relief_bench(a),
         Command::Relief(ReliefCommand::Render(a)) => relief_render(a),
+        Command::Texture(TextureCommand::Bench(a)) => texture_bench(a),
+        Command::Texture(TextureCommand::Render(a)) => texture_render(a),
         Command::Complexity(a) => complexity(a),
         Command::Materials(a) => materials(a),
         Command::Noise(a) => noise(a),
@@ -550,17 +554,139 @@ fn report(a: ReportArgs) -> Result<()> {
     p.finish();
     let noise_s = noise_started.elapsed().as_secs_f64();
     let noise_findings = noise.findings.join(" ");
+    let texture_dir = a.out.join("texture");
+    let mut texture_cfg = TextureBenchConfig { reps: 3, ..TextureBenchConfig::default() };
+    if a.quick {
+        texture_cfg.width = 160;
+        texture_cfg.height = 120;
+        texture_cfg.reps = 1;
+        texture_cfg.warmup = 0;
+        texture_cfg.strata = 8;
+    }
+    let p = Progress::new("texture");
+    let texture = run_texture_bench(&texture_cfg, &texture_dir, &|d, t, m| p.update(d, t, m))?;
+    p.finish();
     renderlab_lab::report::write_index(
         &a.out,
         &[
             ("Relief surfaces (thesis 000)", "relief/index.html", summary.headline.as_str()),
             ("Perlin noise (thesis 001, chapter 3)", "noise/index.html", noise_findings.as_str()),
+            (
+                "Texture mapping and filtering (thesis 001, chapter 2)",
+                "texture/index.html",
+                texture.headline.as_str(),
+            ),
         ],
     )?;
     for f in summary.findings.iter().chain(&noise.findings) {
         println!("{f}");
     }
     println!("noise lab: {noise_s:.2} s");
+    println!("texture lab: {:.1} s", texture.seconds);
     println!("wrote {} in {:.1} s", a.out.join("index.html").display(), started.elapsed().as_secs_f64());
+    Ok(())
+}
+
+/// Checks the `texture bench` flags and builds the lab's configuration.
+fn texture_config(a: &TextureBenchArgs) -> Result<TextureBenchConfig> {
+    if !(8..=4096).contains(&a.width) || !(8..=4096).contains(&a.height) {
+        bail!("--width/--height: {}x{}: each side must lie in 8..=4096", a.width, a.height);
+    }
+    if a.reps == 0 || a.reps > 1000 {
+        bail!("--reps: {} must lie in 1..=1000", a.reps);
+    }
+    if a.warmup > 100 {
+        bail!("--warmup: {} must lie in 0..=100", a.warmup);
+    }
+    if a.samples == 0 || a.samples > 64 {
+        bail!("--samples: {} must lie in 1..=64", a.samples);
+    }
+    let filters = if a.filters.is_empty() {
+        FilterChoice::defaults()
+    } else {
+        a.filters
+            .iter()
+            .map(|f| FilterChoice::parse(f).map_err(|e| anyhow::anyhow!("--filters: {e}")))
+            .collect::<Result<_>>()?
+    };
+    let scenes = if a.scenes.is_empty() {
+        SceneKind::defaults()
+    } else {
+        a.scenes
+            .iter()
+            .map(|s| SceneKind::parse(s).map_err(|e| anyhow::anyhow!("--scenes: {e}")))
+            .collect::<Result<_>>()?
+    };
+    Ok(TextureBenchConfig {
+        width: a.width,
+        height: a.height,
+        scenes,
+        filters,
+        reps: a.reps,
+        warmup: a.warmup,
+        strata: a.samples,
+        write_images: !a.no_images,
+        ..TextureBenchConfig::default()
+    })
+}
+
+fn texture_bench(a: TextureBenchArgs) -> Result<()> {
+    let cfg = texture_config(&a)?;
+    create_dir(&a.out)?;
+    let p = Progress::new("texture");
+    let summary = run_texture_bench(&cfg, &a.out, &|d, t, m| p.update(d, t, m))?;
+    p.finish();
+    for f in &summary.findings {
+        println!("{f}");
+    }
+    println!(
+        "wrote {} ({} records) in {:.1} s",
+        summary.index.display(),
+        summary.records.len(),
+        summary.seconds
+    );
+    Ok(())
+}
+
+fn texture_render(a: TextureRenderArgs) -> Result<()> {
+    use renderlab_texture::reference::{reference, PixelFilter};
+    use renderlab_texture::{Anisotropic, Bicubic, Bilinear, Nearest, Trilinear};
+    if !(8..=4096).contains(&a.width) || !(8..=4096).contains(&a.height) {
+        bail!("--width/--height: {}x{}: each side must lie in 8..=4096", a.width, a.height);
+    }
+    if a.samples == 0 || a.samples > 64 {
+        bail!("--samples: {} must lie in 1..=64", a.samples);
+    }
+    io::format_of(&a.out)?;
+    let kind = SceneKind::parse(&a.scene).map_err(|e| anyhow::anyhow!("--scene: {e}"))?;
+    let choice = match a.filter.as_str() {
+        "reference" | "reference-box" => None,
+        f => Some(FilterChoice::parse(f).map_err(|e| anyhow::anyhow!("--filter: {e}"))?),
+    };
+    let scene = TestScene::new(kind, a.width, a.height)?;
+    let surface = scene.surface();
+    let started = std::time::Instant::now();
+    let img = match choice {
+        None => {
+            let pf = if a.filter == "reference" { PixelFilter::GAUSSIAN } else { PixelFilter::Box };
+            reference(&scene, pf, a.samples, 1)?.image
+        }
+        Some(FilterChoice::Nearest) => scene.render(&surface, &Nearest),
+        Some(FilterChoice::Bilinear) => scene.render(&surface, &Bilinear),
+        Some(FilterChoice::Bicubic) => scene.render(&surface, &Bicubic),
+        Some(FilterChoice::Trilinear) => scene.render(&surface, &Trilinear),
+        Some(FilterChoice::Anisotropic(n)) => scene.render(&surface, &Anisotropic { max_probes: n }),
+        Some(FilterChoice::Ewa(e)) => scene.render(&surface, &e),
+    };
+    let ms = started.elapsed().as_secs_f64() * 1e3;
+    io::save_color(&a.out, &img)?;
+    println!(
+        "{} with {}: {}x{}, {ms:.0} ms; wrote {}",
+        kind.name(),
+        a.filter,
+        a.width,
+        a.height,
+        a.out.display()
+    );
     Ok(())
 }

@@ -362,3 +362,103 @@ fn smoke_frames_and_bad_flags() {
     );
     assert!(!bad.exists(), "no output directory for rejected flags");
 }
+
+#[test]
+fn texture_help() {
+    for args in
+        [vec!["texture", "--help"], vec!["texture", "bench", "--help"], vec!["texture", "render", "--help"]]
+    {
+        let out = renderlab(&args);
+        assert!(out.status.success(), "{args:?}");
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(text.contains("Usage"), "{args:?}: {text}");
+    }
+}
+
+#[test]
+fn texture_bench_on_a_tiny_frame_writes_the_expected_records() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().join("tex");
+    let out = renderlab(&[
+        "texture",
+        "bench",
+        "--out",
+        out_dir.to_str().unwrap(),
+        "--width",
+        "48",
+        "--height",
+        "32",
+        "--reps",
+        "1",
+        "--warmup",
+        "0",
+        "--samples",
+        "4",
+        "--scenes",
+        "checkerboard,quad_tilt_70",
+        "--filters",
+        "trilinear,aniso16,ewa",
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("results.json")).unwrap()).unwrap();
+    let records = json["records"].as_array().unwrap();
+    // 2 scenes × 3 filters × 2 references, plus 8 mapping modes × 2 references on the checkerboard.
+    let filters: Vec<_> = records.iter().filter(|r| r["kind"] == "filter").collect();
+    assert_eq!(filters.len(), 12);
+    assert_eq!(records.iter().filter(|r| r["kind"] == "mapping").count(), 16);
+    for r in &filters {
+        for key in
+            ["scene", "method", "reference", "ns_per_pixel", "fetches_per_pixel", "psnr_db", "ssim", "flip"]
+        {
+            assert!(!r[key].is_null(), "{key} missing in {r}");
+        }
+    }
+    assert!(
+        filters.iter().any(|r| r["reference"] == "box")
+            && filters.iter().any(|r| r["reference"] == "gaussian")
+    );
+    assert!(!json["convergence"].as_array().unwrap().is_empty());
+    for f in [
+        "results.csv",
+        "convergence.csv",
+        "index.html",
+        "img/checkerboard_ewa.png",
+        "img/checkerboard_ewa_crop.png",
+    ] {
+        assert!(out_dir.join(f).exists(), "{f} missing");
+    }
+}
+
+#[test]
+fn texture_render_and_bad_texture_flags() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("t.png");
+    let p = png.to_str().unwrap();
+    let out = renderlab(&[
+        "texture",
+        "render",
+        "-o",
+        p,
+        "--scene",
+        "zone_plate",
+        "--filter",
+        "aniso4",
+        "--width",
+        "32",
+        "--height",
+        "24",
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(&std::fs::read(&png).unwrap()[1..4], b"PNG");
+    let o = dir.path().join("b");
+    let o = o.to_str().unwrap();
+    fails_with(&["texture", "bench", "--out", o, "--filters", "aniso99"], "--filters");
+    fails_with(&["texture", "bench", "--out", o, "--filters", "blur"], "unknown filter");
+    fails_with(&["texture", "bench", "--out", o, "--scenes", "quad_tilt_90"], "--scenes");
+    fails_with(&["texture", "bench", "--out", o, "--samples", "0"], "--samples");
+    fails_with(&["texture", "bench", "--out", o, "--width", "100000"], "--width");
+    fails_with(&["texture", "render", "-o", p, "--scene", "teapot"], "--scene");
+    fails_with(&["texture", "render", "-o", p, "--filter", "ewa:0:10"], "--filter");
+    assert!(!dir.path().join("b").exists(), "no output for bad flags");
+}

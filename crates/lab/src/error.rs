@@ -16,6 +16,15 @@ pub enum LabError {
     /// A noise parameter was rejected (the message names the parameter).
     #[error(transparent)]
     Noise(#[from] renderlab_noise::NoiseError),
+    /// A texture-lab scene was rejected (degenerate geometry, bad size).
+    #[error(transparent)]
+    TextureScene(#[from] renderlab_texture::scene::SceneError),
+    /// A texture-lab reference parameter was rejected.
+    #[error(transparent)]
+    TextureReference(#[from] renderlab_texture::reference::ReferenceError),
+    /// A perspective-mapping parameter was rejected.
+    #[error(transparent)]
+    Mapping(#[from] renderlab_texture::MappingError),
     /// A value could not be turned into JSON or CSV (for CSV: a field that is not a scalar,
     /// or rows whose columns differ).
     #[error("{path}: cannot serialise results: {reason}")]

@@ -24,6 +24,7 @@ pub mod plot;
 pub mod relief_lab;
 pub mod report;
 pub mod results;
+pub mod texture_lab;
 pub mod timing;
 
 pub use error::{LabError, Result};

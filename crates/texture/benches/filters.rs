@@ -52,10 +52,16 @@ fn filters(c: &mut Criterion) {
     run(c, Trilinear, &tex, MODERATE, "");
     run(c, Anisotropic { max_probes: 16 }, &tex, MODERATE, "");
     run(c, Ewa::default(), &tex, MODERATE, "");
+    for n in [2, 4, 8] {
+        run(c, Anisotropic { max_probes: n }, &tex, MODERATE, &format!("{n}"));
+    }
+    // The texture lab's tuned EWA (at most 24 texels per lookup).
+    run(c, Ewa { max_eccentricity: 16.0, max_texels: 24 }, &tex, MODERATE, "_24");
     // How the cost of the footprint-sized filters grows at a grazing angle.
     run(c, Trilinear, &tex, heavy(), "_heavy");
     run(c, Anisotropic { max_probes: 16 }, &tex, heavy(), "_heavy");
     run(c, Ewa::default(), &tex, heavy(), "_heavy");
+    run(c, Ewa { max_eccentricity: 16.0, max_texels: 24 }, &tex, heavy(), "_24_heavy");
 }
 
 criterion_group!(benches, filters);

@@ -7,7 +7,7 @@
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::Vec2;
 use renderlab_texture::ellipse::{jacobian_block, Jacobian, JacobianMethod};
-use renderlab_texture::mapping::modes::{eval_row, Mode};
+use renderlab_texture::mapping::modes::{eval_row, eval_spans, Mode, Span};
 use renderlab_texture::mapping::ops::NoOps;
 use renderlab_texture::mapping::{Coeffs, QuadScene};
 use std::hint::black_box;
@@ -63,6 +63,30 @@ fn mapping_modes(c: &mut Criterion) {
     g.finish();
 }
 
+/// Every mode over a whole block through the frame evaluator, where the four-row
+/// incremental form can take four rows at a time.
+fn mapping_frame(c: &mut Criterion) {
+    let (coeffs, x0, y0) = scene();
+    let mut g = c.benchmark_group("mapping_frame1024x64");
+    g.throughput(Throughput::Elements(ROW as u64 * ROWS as u64));
+    g.warm_up_time(Duration::from_millis(500));
+    g.measurement_time(Duration::from_secs(2));
+    g.sample_size(40);
+    let xs = x0.max(0) as usize;
+    let width = xs + ROW;
+    let spans = vec![Span { x0: xs as u32, len: ROW as u32 }; ROWS as usize];
+    let mut out = vec![Vec2::ZERO; width * ROWS as usize];
+    for mode in Mode::ALL {
+        g.bench_function(mode.name(), |b| {
+            b.iter(|| {
+                eval_spans(black_box(&coeffs), mode, y0, &spans, width, &mut out, &mut NoOps).unwrap();
+                out[width * 32 + xs + ROW / 2]
+            })
+        });
+    }
+    g.finish();
+}
+
 fn jacobians(c: &mut Criterion) {
     let (coeffs, x0, y0) = scene();
     let mut g = c.benchmark_group("jacobian_1024x64");
@@ -82,5 +106,5 @@ fn jacobians(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, mapping_modes, jacobians);
+criterion_group!(benches, mapping_modes, mapping_frame, jacobians);
 criterion_main!(benches);

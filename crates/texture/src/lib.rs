@@ -5,7 +5,9 @@
 //!
 //! [`mapping`] holds Heckbert's perspective-correct (projective) mapping with the thesis's
 //! scanline evaluation modes and their operation counts; [`ellipse`] the EWA footprint
-//! Jacobian (four methods) and ellipse coefficients.
+//! Jacobian (four methods) and ellipse coefficients. [`scene`] holds the texture lab's test
+//! scenes (exact mappings with analytic Jacobians) and [`reference`] their supersampled ground
+//! truth.
 
 #![warn(missing_docs)]
 
@@ -13,6 +15,8 @@ pub mod ellipse;
 pub mod filter;
 pub mod mapping;
 pub mod mip;
+pub mod reference;
+pub mod scene;
 
 pub use ellipse::{Axes, Ellipse, EllipseError, Jacobian, JacobianMethod};
 pub use filter::{Anisotropic, Bicubic, Bilinear, Ewa, Filter, Nearest, Trilinear};

@@ -48,7 +48,7 @@ static TABLE: LazyLock<[f32; WEIGHTS + 1]> = LazyLock::new(|| {
 
 /// Heckbert's EWA filter with a precomputed Gaussian weight table, minor-axis mip selection,
 /// an eccentricity clamp and a hard bound on texels per lookup.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ewa {
     /// Largest major/minor ratio filtered as such; more eccentric footprints get a wider
     /// minor axis (more blur across, bounded work). Clamped to `1..=64`; NaN means 16.
@@ -85,6 +85,19 @@ fn floor_i(x: f32) -> i64 {
     (i - ((i as f32) > x) as i32) as i64
 }
 
+/// Index into the weight table of a scaled `Q`: clamped to `0..=WEIGHTS` before the
+/// conversion (`max`/`min` also map NaN to 0), so the conversion needs no saturation.
+#[inline(always)]
+fn weight_index(q: f32) -> usize {
+    q.max(0.0).min(WEIGHTS as f32) as usize
+}
+
+/// `⌊log₂ x⌋` of a finite `x ≥ 1` from its exponent bits (no libm call).
+#[inline(always)]
+fn floor_log2(x: f32) -> i32 {
+    ((x.to_bits() >> 23) & 0xFF) as i32 - 127
+}
+
 /// `⌈x⌉` as an integer, like [`floor_i`].
 #[inline(always)]
 fn ceil_i(x: f32) -> i64 {
@@ -107,6 +120,16 @@ impl Footprint {
         let mid = -0.5 * e.b * v;
         let inv_a = 1.0 / e.a;
         (ceil_i((mid - r) * inv_a + self.centre.x), floor_i((mid + r) * inv_a + self.centre.x))
+    }
+
+    /// The spans of rows `j0 ..= j1` (at most [`STORED_ROWS`]) into `store`.
+    #[inline]
+    fn spans_into(&self, store: &mut [(i32, i32); STORED_ROWS]) {
+        let (j0, j1) = self.rows();
+        for (j, slot) in (j0..=j1).zip(store.iter_mut()) {
+            let (lo, hi) = self.span(j);
+            *slot = (lo as i32, hi as i32);
+        }
     }
 
     fn rows(&self) -> (i64, i64) {
@@ -197,7 +220,7 @@ impl Filter for Ewa {
         let (c, s) = (ax.dir.x, ax.dir.y);
         let (a2, b2) = (major * major, minor * minor);
         let m = [a2 * c * c + b2 * s * s, (a2 - b2) * c * s, a2 * s * s + b2 * c * c];
-        let mut level = if minor > 1.0 { (minor.log2().floor() as usize).min(top) } else { 0 };
+        let mut level = if minor > 1.0 { (floor_log2(minor) as usize).min(top) } else { 0 };
         let mut fp = Self::footprint(tex, level, m, uv);
         let mut store = [(0i32, 0i32); STORED_ROWS];
         let mut stored = false;
@@ -224,7 +247,16 @@ impl Filter for Ewa {
             return tex.texel(top, 0, 0);
         }
         let (j0, j1) = fp.rows();
-        let spans = if stored && j1 - j0 < STORED_ROWS as i64 { Some(&store) } else { None };
+        let spans = if j1 - j0 < STORED_ROWS as i64 {
+            if !stored {
+                // Every row's span first: the rows' square roots are independent, so they
+                // overlap in the pipeline instead of each row waiting on its own.
+                fp.spans_into(&mut store);
+            }
+            Some(&store)
+        } else {
+            None
+        };
         self.scan(tex, level, &fp, spans, counter)
     }
 }
@@ -275,21 +307,47 @@ impl Ewa {
             let ddq = 2.0 * qa;
             n += (hi - lo + 1) as u32;
             if lo >= 0 && hi < w as i64 {
-                // The whole span lies inside the texture: no addressing per texel.
-                for &t in &row[lo as usize..=hi as usize] {
-                    let wt = table[(q as i32).clamp(0, WEIGHTS as i32) as usize];
-                    acc += t * wt;
-                    wsum += wt;
-                    q += dq;
-                    dq += ddq;
+                // The whole span lies inside the texture: no addressing per texel. Q is
+                // evaluated directly, four texels at a time (`Q(U) = (A·U + B·V)·U + C·V²`),
+                // with two accumulators, so that no addition waits on the previous texel's.
+                let span = &row[lo as usize..=hi as usize];
+                let (bv, cv) = (qb * v, qc * v * v);
+                let lanes = Vec4::new(0.0, 1.0, 2.0, 3.0);
+                let mut chunks = span.chunks_exact(4);
+                let mut uk = u;
+                let (mut acc1, mut wsum4) = (Vec4::ZERO, Vec4::ZERO);
+                for t in &mut chunks {
+                    let uu = Vec4::splat(uk) + lanes;
+                    let q4 = (uu * qa + bv) * uu + cv;
+                    // max/min first (they also send NaN to 0), then an in-range conversion.
+                    let i4 = q4.max(Vec4::ZERO).min(Vec4::splat(WEIGHTS as f32)).as_ivec4();
+                    let w4 = Vec4::new(
+                        table[i4.x as usize],
+                        table[i4.y as usize],
+                        table[i4.z as usize],
+                        table[i4.w as usize],
+                    );
+                    acc += t[0] * w4.x + t[1] * w4.y;
+                    acc1 += t[2] * w4.z + t[3] * w4.w;
+                    wsum4 += w4;
+                    uk += 4.0;
                 }
+                for &t in chunks.remainder() {
+                    let qq = (qa * uk + bv) * uk + cv;
+                    let wt = table[weight_index(qq)];
+                    acc1 += t * wt;
+                    wsum += wt;
+                    uk += 1.0;
+                }
+                acc += acc1;
+                wsum += wsum4.element_sum();
                 continue;
             }
             match wrap {
                 Wrap::Repeat => {
                     let mut xi = wrap_index(lo, w);
                     for _ in lo..=hi {
-                        let wt = table[(q as i32).clamp(0, WEIGHTS as i32) as usize];
+                        let wt = table[weight_index(q)];
                         acc += row[xi] * wt;
                         wsum += wt;
                         q += dq;
@@ -302,7 +360,7 @@ impl Ewa {
                 }
                 Wrap::Clamp => {
                     for x in lo..=hi {
-                        let wt = table[(q as i32).clamp(0, WEIGHTS as i32) as usize];
+                        let wt = table[weight_index(q)];
                         acc += row[x.clamp(0, w as i64 - 1) as usize] * wt;
                         wsum += wt;
                         q += dq;

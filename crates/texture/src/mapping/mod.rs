@@ -24,7 +24,7 @@ pub mod ops;
 
 use glam::{DVec2, DVec3};
 
-pub use modes::{eval_row, Mode};
+pub use modes::{eval_row, eval_spans, Mode, Span};
 pub use ops::{NoOps, OpCounter, OpRate, OpTally, RowCost};
 
 /// Why a quad, an eye or a matrix cannot give a usable perspective mapping.

@@ -8,6 +8,7 @@
 //! | [`Mode::Direct`] (2.4) | `u = (A·x+B·y+C)/(G·x+H·y+I)`, `v` alike: 8 mul, 8 add, 2 div |
 //! | [`Mode::PerRow`] (2.5) | `u = (u_t + A·n)/(u_b + G·n)`, `v` alike: 4 mul, 4 add, 2 div |
 //! | [`Mode::Incremental`] (2.6) | `w += A`, `q += G`, one reciprocal shared by `u` and `v`: 3 add, 2 mul, 1 div |
+//! | [`Mode::IncrementalRows`] | (2.6) on 4 rows at once, one SIMD lane per row: as incremental |
 //! | [`Mode::KStride`] (2.7) | `k` independent lanes, `w_n = w_{n−k} + k·A`: as incremental |
 //! | [`Mode::TwoWay`] (Fig. 2.4) | incremental from both ends toward the middle |
 //! | [`Mode::Affine`] | `u += du`, `v += dv` between exact end points: 2 add (not exact) |
@@ -39,6 +40,13 @@ pub enum Mode {
     /// (2.6): numerators and denominator stepped by one addition each per pixel; `u` and `v`
     /// share one reciprocal of the common denominator.
     Incremental,
+    /// (2.6) run on four rows at once, each row in one lane of a 4-wide SIMD register
+    /// ([`incremental_rows4`], through [`eval_spans`]): every lane performs exactly the
+    /// sequential recurrence of [`Mode::Incremental`] — same operations, same order, same
+    /// rounding for the same start pixel — but the four independent chains fill the vector
+    /// unit that the one-row form leaves idle. On a single row ([`eval_row`]) it *is*
+    /// [`Mode::Incremental`].
+    IncrementalRows,
     /// (2.7): `k` interleaved lanes (the thesis's `k` threads; here SIMD-friendly lanes), each
     /// stepping `w_n = w_{n−k} + k·A`, `q_n = q_{n−k} + k·G`; the first `k` pixels come from
     /// (2.5). Needs `1 ≤ k ≤` [`MAX_STRIDE`].
@@ -59,10 +67,11 @@ pub enum Mode {
 
 impl Mode {
     /// Every mode, with `k = 8` for the stride, in report order.
-    pub const ALL: [Mode; 7] = [
+    pub const ALL: [Mode; 8] = [
         Mode::Direct,
         Mode::PerRow,
         Mode::Incremental,
+        Mode::IncrementalRows,
         Mode::KStride(8),
         Mode::TwoWay,
         Mode::Affine,
@@ -75,6 +84,7 @@ impl Mode {
             Mode::Direct => "direct".into(),
             Mode::PerRow => "per_row".into(),
             Mode::Incremental => "incremental".into(),
+            Mode::IncrementalRows => "incremental_rows4".into(),
             Mode::KStride(k) => format!("k_stride_{k}"),
             Mode::TwoWay => "two_way".into(),
             Mode::Affine => "affine".into(),
@@ -103,7 +113,7 @@ pub fn eval_row<O: OpCounter>(
     match mode {
         Mode::Direct => direct(c, x0, y, out, ops),
         Mode::PerRow => per_row(c, x0, y, out, ops),
-        Mode::Incremental => incremental(c, x0, y, out, ops),
+        Mode::Incremental | Mode::IncrementalRows => incremental(c, x0, y, out, ops),
         Mode::KStride(k) => k_stride(c, k, x0, y, out, ops)?,
         Mode::TwoWay => two_way(c, x0, y, out, ops),
         Mode::Affine => affine(c, x0, y, out, ops),
@@ -165,6 +175,107 @@ pub fn incremental<O: OpCounter>(c: &Coeffs, x0: i32, y: i32, out: &mut [Vec2], 
         ops.mul(2);
         ops.add(3);
     }
+}
+
+/// (2.6) on four rows at once. `rows[j]` receives row `y0 + j` for pixels `x0 .. x0 + len`
+/// (each slice must hold `len` values). Each lane is the recurrence of [`incremental`]:
+/// `r = 1/q; (u, v) = (w_u·r, w_v·r); w_u += A; w_v += D; q += G`.
+#[inline]
+pub fn incremental_rows4<O: OpCounter>(c: &Coeffs, x0: i32, y0: i32, rows: [&mut [Vec2]; 4], ops: &mut O) {
+    use glam::Vec4;
+    let x = x0 as f32;
+    let mut lane = [(0.0f32, 0.0f32, 0.0f32); 4];
+    for (j, l) in lane.iter_mut().enumerate() {
+        *l = row_constants(c, x, y0.wrapping_add(j as i32) as f32, ops);
+    }
+    let mut wu = Vec4::new(lane[0].0, lane[1].0, lane[2].0, lane[3].0);
+    let mut wv = Vec4::new(lane[0].1, lane[1].1, lane[2].1, lane[3].1);
+    let mut q = Vec4::new(lane[0].2, lane[1].2, lane[2].2, lane[3].2);
+    let (sa, sd, sg) = (Vec4::splat(c.a), Vec4::splat(c.d), Vec4::splat(c.g));
+    let [r0, r1, r2, r3] = rows;
+    let len = r0.len().min(r1.len()).min(r2.len()).min(r3.len());
+    let (r0, r1, r2, r3) = (&mut r0[..len], &mut r1[..len], &mut r2[..len], &mut r3[..len]);
+    for (((a, b), cc), d) in r0.iter_mut().zip(r1.iter_mut()).zip(r2.iter_mut()).zip(r3.iter_mut()) {
+        let r = Vec4::ONE / q;
+        let u = wu * r;
+        let v = wv * r;
+        *a = Vec2::new(u.x, v.x);
+        *b = Vec2::new(u.y, v.y);
+        *cc = Vec2::new(u.z, v.z);
+        *d = Vec2::new(u.w, v.w);
+        wu += sa;
+        wv += sd;
+        q += sg;
+    }
+    ops.div(4 * len as u32);
+    ops.mul(8 * len as u32);
+    ops.add(12 * len as u32);
+}
+
+/// The pixels of one row that a frame evaluation fills: `len` pixels from column `x0`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Span {
+    /// First column.
+    pub x0: u32,
+    /// Number of pixels (0: none).
+    pub len: u32,
+}
+
+/// Evaluates a whole frame: row `y0 + k` gets `(u, v)` for `spans[k]`, written into
+/// `out[k·width + x]` (`out` holds `spans.len()` rows of `width`). Spans reaching past
+/// `width` are cut. [`Mode::IncrementalRows`] takes four rows at a time over the union of
+/// their spans (so it may also write pixels of those rows outside their own spans, inside
+/// the union); every other mode evaluates each span with [`eval_row`].
+pub fn eval_spans<O: OpCounter>(
+    c: &Coeffs,
+    mode: Mode,
+    y0: i32,
+    spans: &[Span],
+    width: usize,
+    out: &mut [Vec2],
+    ops: &mut O,
+) -> Result<(), MappingError> {
+    let clip = |s: &Span| {
+        let x0 = (s.x0 as usize).min(width);
+        (x0, (s.len as usize).min(width - x0))
+    };
+    let rows_out = out.chunks_mut(width.max(1));
+    if mode != Mode::IncrementalRows {
+        for (k, (s, row)) in spans.iter().zip(rows_out).enumerate() {
+            let (x0, len) = clip(s);
+            if len > 0 {
+                eval_row(c, mode, x0 as i32, y0.wrapping_add(k as i32), &mut row[x0..x0 + len], ops)?;
+            }
+        }
+        return Ok(());
+    }
+    let mut rows: Vec<&mut [Vec2]> = rows_out.collect();
+    let mut k = 0;
+    while k < spans.len().min(rows.len()) {
+        let group = &spans[k..(k + 4).min(spans.len())];
+        let clipped: Vec<(usize, usize)> = group.iter().map(clip).collect();
+        let y = y0.wrapping_add(k as i32);
+        if clipped.len() == 4 && clipped.iter().all(|&(_, l)| l > 0) && k + 4 <= rows.len() {
+            let lo = clipped.iter().map(|&(x, _)| x).min().unwrap_or(0);
+            let hi = clipped.iter().map(|&(x, l)| x + l).max().unwrap_or(0);
+            let [a, b, cc, d] = &mut rows[k..k + 4] else { unreachable!("four rows") };
+            incremental_rows4(
+                c,
+                lo as i32,
+                y,
+                [&mut a[lo..hi], &mut b[lo..hi], &mut cc[lo..hi], &mut d[lo..hi]],
+                ops,
+            );
+            k += 4;
+        } else {
+            let (x0, len) = clipped[0];
+            if len > 0 {
+                incremental(c, x0 as i32, y, &mut rows[k][x0..x0 + len], ops);
+            }
+            k += 1;
+        }
+    }
+    Ok(())
 }
 
 /// (2.7) k interleaved lanes. Errors on `k = 0` or `k >` [`MAX_STRIDE`].
