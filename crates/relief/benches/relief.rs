@@ -7,8 +7,11 @@ use renderlab_core::counter::NoCount;
 use renderlab_core::procedural;
 use renderlab_relief::adaptive::AdaptivePom;
 use renderlab_relief::complexity::ComplexityParams;
+use renderlab_relief::cone_fast::{FastCone, JUMP};
 use renderlab_relief::cone_step::{ConeStep, Refinement};
+use renderlab_relief::packed::PackedPom;
 use renderlab_relief::parallax::{Parallax, Pom, Steep};
+use renderlab_relief::pom_simd::SimdPom;
 use renderlab_relief::reference::ExactTrace;
 use renderlab_relief::relief_mapping::{AdaptiveRelief, ReliefMapping};
 use renderlab_relief::{ReliefInputs, ReliefMaterial, ReliefTechnique};
@@ -76,6 +79,12 @@ fn kernels(c: &mut Criterion) {
     run(c, "cone_secant_24_3", &cs, &inp);
     run_rows(c, "cone_secant_24_3_packets", &cs, &inp);
     run_rows(c, "pom_32_rows", &Pom { layers: 32 }, &inp);
+    // The fast cone stepper (packed map, vector lanes) and POM given the same treatment.
+    let fast = FastCone { steps: 64, secant: 3, tol: 0.25, jump: JUMP };
+    run(c, "cone_fast_64_3_25_scalar", &fast, &inp);
+    run_rows(c, "cone_fast_64_3_25_rows", &fast, &inp);
+    run_rows(c, "pom_packed_32_rows", &PackedPom { layers: 32 }, &inp);
+    run_rows(c, "pom_simd_32_rows", &SimdPom { layers: 32 }, &inp);
     run(c, "exact_reference", &ExactTrace, &inp);
 }
 

@@ -11,10 +11,13 @@
 pub mod adaptive;
 pub mod complexity;
 pub mod cone;
+pub mod cone_fast;
 pub mod cone_step;
 pub mod height;
 pub mod material;
+pub mod packed;
 pub mod parallax;
+pub mod pom_simd;
 pub mod reference;
 pub mod relief_mapping;
 pub mod render;

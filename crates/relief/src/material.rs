@@ -4,6 +4,7 @@
 use crate::complexity::{complexity_map, ComplexityParams};
 use crate::cone::{ConeKind, ConeMap};
 use crate::height::HeightField;
+use crate::packed::PackedRelief;
 use crate::technique::ReliefInputs;
 use renderlab_core::{Image, Material};
 use renderlab_texture::{Texture, Wrap};
@@ -28,6 +29,8 @@ pub struct ReliefMaterial {
     pub complexity: Image<f32>,
     /// Relaxed cone map, if built.
     pub cone: Option<ConeMap>,
+    /// The depth field packed with the cone ratios (ratios 0 without a cone map).
+    pub packed: PackedRelief,
 }
 
 impl ReliefMaterial {
@@ -42,6 +45,7 @@ impl ReliefMaterial {
     pub fn with_cone_size(m: &Material, params: &ComplexityParams, cone_size: Option<u32>) -> Self {
         let height = HeightField::from_height(&m.height);
         let cone = cone_size.map(|size| ConeMap::build(&height, ConeKind::Relaxed, size));
+        let packed = PackedRelief::build(&height, cone.as_ref());
         Self {
             name: m.name.clone(),
             albedo: Texture::from_rgb(&m.albedo, Wrap::Repeat),
@@ -50,6 +54,7 @@ impl ReliefMaterial {
             height,
             height_scale: m.height_scale,
             cone,
+            packed,
         }
     }
 
@@ -60,6 +65,7 @@ impl ReliefMaterial {
             height_scale: self.height_scale,
             complexity: &self.complexity,
             cone: self.cone.as_ref(),
+            packed: Some(&self.packed),
         }
     }
 }

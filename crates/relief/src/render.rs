@@ -2,9 +2,12 @@
 //! frame (so the per-pixel loop is monomorphised), and renders the matching reference.
 
 use crate::adaptive::AdaptivePom;
+use crate::cone_fast::FastCone;
 use crate::cone_step::{ConeStep, Refinement};
 use crate::material::ReliefMaterial;
+use crate::packed::PackedPom;
 use crate::parallax::{Parallax, Pom, Steep, Undisplaced};
+use crate::pom_simd::SimdPom;
 use crate::reference::ExactTrace;
 use crate::relief_mapping::{AdaptiveRelief, ReliefMapping};
 use crate::shade::{render_frame, trace_frame, Frame, FrameInput, ShadeOptions, ShadowMode};
@@ -47,6 +50,11 @@ pub fn with_tracer<A: WithTracer>(technique: Technique, action: A) -> A::Output 
         Technique::ConeSecant { steps, secant } => {
             action.run(&ConeStep { steps, binary: secant, refine: Refinement::Secant })
         }
+        Technique::ConeFast { steps, secant, tol } => {
+            action.run(&FastCone { steps, secant, tol: tol as f32 / 100.0, jump: crate::cone_fast::JUMP })
+        }
+        Technique::PomPacked { layers } => action.run(&PackedPom { layers }),
+        Technique::PomSimd { layers } => action.run(&SimdPom { layers }),
     }
 }
 

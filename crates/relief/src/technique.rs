@@ -33,6 +33,9 @@ pub struct ReliefInputs<'a> {
     pub complexity: &'a Image<f32>,
     /// Cone ratios for cone-step mapping, when built.
     pub cone: Option<&'a crate::cone::ConeMap>,
+    /// The packed depth field (with the cone ratios when a cone map was built), for the
+    /// techniques that read it; they fall back to `height` and `cone` without it.
+    pub packed: Option<&'a crate::packed::PackedRelief>,
 }
 
 impl ReliefInputs<'_> {
@@ -148,6 +151,28 @@ pub enum Technique {
         /// Secant refinement steps.
         secant: u32,
     },
+    /// Fast relaxed cone stepping on the packed map, in packets (see
+    /// [`crate::cone_fast`]): this project's fast method.
+    ConeFast {
+        /// Maximum cone steps.
+        steps: u32,
+        /// Maximum secant refinement steps.
+        secant: u32,
+        /// Stopping tolerance in hundredths of a texel.
+        tol: u32,
+    },
+    /// POM on the packed map, with the same fetch and build as `ConeFast` (for comparing
+    /// like with like).
+    PomPacked {
+        /// Number of layers.
+        layers: u32,
+    },
+    /// POM on the packed map in AVX2 vector lanes (see [`crate::pom_simd`]): POM given all
+    /// of `ConeFast`'s treatment.
+    PomSimd {
+        /// Number of layers.
+        layers: u32,
+    },
     /// POM with soft self-shadowing toward the light.
     PomShadow {
         /// Number of layers of the view march.
@@ -160,7 +185,7 @@ pub enum Technique {
 /// Command-line syntax of technique names, for help texts and errors.
 pub const TECHNIQUE_SYNTAX: &str = "basic, normal, parallax, steep:N, pom:N, adaptive[:MIN:MAX], \
 relief[:LINEAR:BINARY], adaptive-relief[:MIN:MAX:BINARY], cone[:STEPS:BINARY], cone-secant[:STEPS:SECANT], \
-pom-shadow[:N:SAMPLES]";
+cone-fast[:STEPS:SECANT:TOL_HUNDREDTHS], pom-packed:N, pom-simd:N, pom-shadow[:N:SAMPLES]";
 
 /// Largest layer or step count accepted (bounds every march).
 pub const MAX_LAYERS: u32 = 1024;
@@ -240,6 +265,18 @@ impl Technique {
                 max_args(2)?;
                 Technique::ConeSecant { steps: num(0, 24)?, secant: num(1, 3)? }
             }
+            "cone-fast" => {
+                max_args(3)?;
+                Technique::ConeFast { steps: num(0, 64)?, secant: num(1, 3)?, tol: num(2, 25)? }
+            }
+            "pom-packed" => {
+                max_args(1)?;
+                Technique::PomPacked { layers: num(0, 32)? }
+            }
+            "pom-simd" => {
+                max_args(1)?;
+                Technique::PomSimd { layers: num(0, 32)? }
+            }
             "pom-shadow" => {
                 max_args(2)?;
                 Technique::PomShadow { layers: num(0, 32)?, shadow_samples: num(1, 16)? }
@@ -270,6 +307,9 @@ impl Technique {
             }
             Technique::ConeStep { steps, binary } => format!("cone:{steps}:{binary}"),
             Technique::ConeSecant { steps, secant } => format!("cone-secant:{steps}:{secant}"),
+            Technique::ConeFast { steps, secant, tol } => format!("cone-fast:{steps}:{secant}:{tol}"),
+            Technique::PomPacked { layers } => format!("pom-packed:{layers}"),
+            Technique::PomSimd { layers } => format!("pom-simd:{layers}"),
             Technique::PomShadow { layers, shadow_samples } => {
                 format!("pom-shadow:{layers}:{shadow_samples}")
             }
@@ -289,6 +329,9 @@ impl Technique {
             Technique::AdaptiveRelief { .. } => "adaptive-relief",
             Technique::ConeStep { .. } => "cone",
             Technique::ConeSecant { .. } => "cone-secant",
+            Technique::ConeFast { .. } => "cone-fast",
+            Technique::PomPacked { .. } => "pom-packed",
+            Technique::PomSimd { .. } => "pom-simd",
             Technique::PomShadow { .. } => "pom-shadow",
         }
     }
@@ -296,13 +339,17 @@ impl Technique {
     /// The nominal layer (or step) count for tables; 0 when not applicable.
     pub fn layers(&self) -> u32 {
         match *self {
-            Technique::Steep { layers } | Technique::Pom { layers } | Technique::PomShadow { layers, .. } => {
-                layers
-            }
+            Technique::Steep { layers }
+            | Technique::Pom { layers }
+            | Technique::PomPacked { layers }
+            | Technique::PomSimd { layers }
+            | Technique::PomShadow { layers, .. } => layers,
             Technique::AdaptivePom { max, .. } => max,
             Technique::Relief { linear, .. } => linear,
             Technique::AdaptiveRelief { max, .. } => max,
-            Technique::ConeStep { steps, .. } | Technique::ConeSecant { steps, .. } => steps,
+            Technique::ConeStep { steps, .. }
+            | Technique::ConeSecant { steps, .. }
+            | Technique::ConeFast { steps, .. } => steps,
             _ => 0,
         }
     }
@@ -318,7 +365,7 @@ impl Technique {
 
     /// Whether the technique reads the cone map.
     pub fn needs_cone_map(&self) -> bool {
-        matches!(self, Technique::ConeStep { .. } | Technique::ConeSecant { .. })
+        matches!(self, Technique::ConeStep { .. } | Technique::ConeSecant { .. } | Technique::ConeFast { .. })
     }
 }
 
@@ -345,6 +392,9 @@ mod tests {
             "adaptive-relief:4:16:5",
             "cone:16:5",
             "cone-secant:8:3",
+            "cone-fast:8:2:25",
+            "pom-packed:32",
+            "pom-simd:32",
             "pom-shadow:32:16",
         ] {
             assert_eq!(Technique::parse(s).unwrap().name(), s);

@@ -52,6 +52,7 @@ impl Fixture {
             height_scale: SCALE,
             complexity: &self.complexity,
             cone: Some(&self.cone),
+            packed: None,
         }
     }
 }

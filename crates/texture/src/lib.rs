@@ -6,7 +6,7 @@
 //! [`mapping`] holds Heckbert's perspective-correct (projective) mapping with the thesis's
 //! scanline evaluation modes and their operation counts; [`ellipse`] the EWA footprint
 //! Jacobian (four methods) and ellipse coefficients. [`scene`] holds the texture lab's test
-//! scenes (exact mappings with analytic Jacobians) and [`reference`] their supersampled ground
+//! scenes (exact mappings with analytic Jacobians) and [`reference`](mod@reference) their supersampled ground
 //! truth.
 
 #![warn(missing_docs)]

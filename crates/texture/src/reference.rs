@@ -2,7 +2,7 @@
 //! supersampling of the exact mapping, reconstructing the texture bilinearly from level 0.
 //!
 //! A pixel's value is `∫ k(s) · T(uv(c + s)) ds` for the pixel filter `k` centred on the
-//! pixel centre `c`, the exact screen→texture map `uv` ([`PlanarView`]) and the level-0
+//! pixel centre `c`, the exact screen→texture map `uv` ([`PlanarView`](crate::scene::PlanarView)) and the level-0
 //! bilinear reconstruction `T`. The integral is estimated with `n × n` jittered strata:
 //!
 //! * [`PixelFilter::Box`]: the pixel square, strata of side `1/n` pixel, equal weights;

@@ -1,0 +1,421 @@
+//! A packed, padded copy of the depth field and the cone ratios, for fast fetches.
+//!
+//! Each texel is one `u32`: the depth quantised to 16 bits (high half, rounded to nearest) and
+//! the cone ratio quantised to 16 bits (low half, rounded *down*, so a cone read back is never
+//! wider than the one built). The grid is padded with one wrapped column and row, so a
+//! bilinear fetch reads texels `(x, y)`, `(x + 1, y)`, `(x, y + 1)`, `(x + 1, y + 1)` without
+//! wrapping the second index, and the ratio stored with texel `(x, y)` is the one for the
+//! whole bilinear cell whose top-left corner it is: one fetch gives the depth and the cone
+//! ratio from the same two cache lines.
+//!
+//! The stored ratio for cell `(x, y)` (UV `[(x + ½)/W, (x + 1½)/W] × [(y + ½)/H, (y + 1½)/H]`)
+//! is the smallest ratio of every cone-map texel whose cell that range touches, so it is
+//! valid (a subset of each cone that may apply) wherever in the cell the ray stands.
+
+use crate::cone::{ConeMap, MAX_RATIO};
+use crate::height::HeightField;
+use crate::parallax::{interpolate, March};
+use crate::technique::{uv_per_depth, ReliefHit, ReliefInputs, ReliefTechnique};
+use glam::{Vec2, Vec3};
+use renderlab_core::counter::Counter;
+
+/// Largest quantised value of a depth or a ratio.
+const Q: f32 = 65535.0;
+/// Depth per quantisation step.
+pub(crate) const DEPTH_STEP: f32 = 1.0 / Q;
+/// Ratio per quantisation step.
+pub(crate) const RATIO_STEP: f32 = MAX_RATIO / Q;
+
+/// Quantises a depth in `[0, 1]` to 16 bits (nearest).
+#[inline]
+pub fn quantise_depth(d: f32) -> u16 {
+    let d = if d.is_finite() { d.clamp(0.0, 1.0) } else { 0.0 };
+    (d * Q).round() as u16
+}
+
+/// The depth a quantised value stands for.
+#[inline]
+pub fn dequantise_depth(q: u16) -> f32 {
+    q as f32 * DEPTH_STEP
+}
+
+/// Quantises a cone ratio to 16 bits, rounding down: [`dequantise_ratio`] of the result never
+/// exceeds `r` (a quantised cone is never wider than the exact one).
+pub fn quantise_ratio(r: f32) -> u16 {
+    if r.is_nan() || r <= 0.0 {
+        return 0;
+    }
+    let mut q = (r.min(MAX_RATIO) / RATIO_STEP).floor().min(Q) as u16;
+    // Guard against the rounding of the division and of the decoding multiplication.
+    while q > 0 && dequantise_ratio(q) > r {
+        q -= 1;
+    }
+    q
+}
+
+/// The ratio a quantised value stands for.
+#[inline]
+pub fn dequantise_ratio(q: u16) -> f32 {
+    q as f32 * RATIO_STEP
+}
+
+/// One fetch from a [`PackedRelief`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample {
+    /// Bilinear depth.
+    pub depth: f32,
+    /// Cone ratio of the cell.
+    pub ratio: f32,
+    /// Depth change per texel along x (the bilinear patch's derivative at the point).
+    pub ddx: f32,
+    /// Depth change per texel along y.
+    pub ddy: f32,
+}
+
+/// The packed depth field and cone ratios (see the module documentation).
+#[derive(Clone, Debug)]
+pub struct PackedRelief {
+    width: u32,
+    height: u32,
+    /// `width + 1`: the padded row length.
+    stride: usize,
+    /// Width and height as floats.
+    wf: f32,
+    hf: f32,
+    /// `width − 1` and `height − 1` when both are powers of two (wrap by masking).
+    masks: Option<(i32, i32)>,
+    /// Whether cone ratios are stored (otherwise every ratio is 0).
+    has_cones: bool,
+    texels: Vec<u32>,
+}
+
+/// The cone-map texels (inclusive, unwrapped) whose cells the closed UV range
+/// `[(i + ½)/fine, (i + 1½)/fine]` touches on an axis of `coarse` cone texels.
+fn cone_span(i: u32, fine: u32, coarse: u32) -> (i64, i64) {
+    let (i, n, c) = (i as i64, fine as i64, coarse as i64);
+    // floor((2i + 1)·c / 2n) ..= floor((2i + 3)·c / 2n)
+    ((2 * i + 1) * c / (2 * n), (2 * i + 3) * c / (2 * n))
+}
+
+impl PackedRelief {
+    /// Packs `field` with the ratios of `cone` (all 0 without one).
+    pub fn build(field: &HeightField, cone: Option<&ConeMap>) -> Self {
+        let (w, h) = (field.width(), field.height());
+        let stride = w as usize + 1;
+        let mut texels = vec![0u32; stride * (h as usize + 1)];
+        for (y, row) in texels.chunks_mut(stride).enumerate() {
+            for (x, t) in row.iter_mut().enumerate() {
+                let d = quantise_depth(field.texel(x as i64, y as i64));
+                let r = match cone {
+                    None => 0,
+                    Some(c) => {
+                        let (xw, yw) = ((x as u32) % w, (y as u32) % h);
+                        let (x0, x1) = cone_span(xw, w, c.width());
+                        let (y0, y1) = cone_span(yw, h, c.height());
+                        let mut r = f32::INFINITY;
+                        for cy in y0..=y1 {
+                            for cx in x0..=x1 {
+                                r = r.min(c.texel(cx, cy));
+                            }
+                        }
+                        quantise_ratio(r)
+                    }
+                };
+                *t = (d as u32) << 16 | r as u32;
+            }
+        }
+        let masks = (w.is_power_of_two() && h.is_power_of_two()).then(|| (w as i32 - 1, h as i32 - 1));
+        Self {
+            width: w,
+            height: h,
+            stride,
+            wf: w as f32,
+            hf: h as f32,
+            masks,
+            has_cones: cone.is_some(),
+            texels,
+        }
+    }
+
+    /// Width in texels.
+    #[inline]
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in texels.
+    #[inline]
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Whether cone ratios were packed.
+    #[inline]
+    pub fn has_cones(&self) -> bool {
+        self.has_cones
+    }
+
+    /// The quantised depth and ratio of texel `(x, y)` of the padded grid (`x ≤ width`,
+    /// `y ≤ height`).
+    pub fn texel(&self, x: u32, y: u32) -> (u16, u16) {
+        let t = self.texels[y as usize * self.stride + x as usize];
+        ((t >> 16) as u16, t as u16)
+    }
+
+    /// Bilinear depth at `uv` (repeat wrap, as [`HeightField::depth_uncounted`] on the
+    /// quantised depths) and the cone ratio of the bilinear cell holding `uv`.
+    #[inline(always)]
+    pub fn sample(&self, uv: Vec2) -> (f32, f32) {
+        let s = self.sample_grad(uv);
+        (s.depth, s.ratio)
+    }
+
+    /// Like [`PackedRelief::sample`], with the bilinear patch's depth gradient at `uv`.
+    #[inline(always)]
+    pub fn sample_grad(&self, uv: Vec2) -> Sample {
+        let (i, fx, fy) = self.locate(uv);
+        self.bilinear(i, fx, fy)
+    }
+
+    #[inline(always)]
+    fn bilinear(&self, i: usize, fx: f32, fy: f32) -> Sample {
+        // SAFETY: callers pass the index of a texel of the unpadded grid, so `i + stride + 1`
+        // lies inside the padded one.
+        let (t00, t10, t01, t11) = unsafe {
+            (
+                *self.texels.get_unchecked(i),
+                *self.texels.get_unchecked(i + 1),
+                *self.texels.get_unchecked(i + self.stride),
+                *self.texels.get_unchecked(i + self.stride + 1),
+            )
+        };
+        let hi = |t: u32| (t >> 16) as f32;
+        let (d00, d10, d01, d11) = (hi(t00), hi(t10), hi(t01), hi(t11));
+        let (dx0, dx1) = (d10 - d00, d11 - d01);
+        let top = d00 + dx0 * fx;
+        let bottom = d01 + dx1 * fx;
+        let dy = bottom - top;
+        Sample {
+            depth: (top + dy * fy) * DEPTH_STEP,
+            ratio: (t00 & 0xffff) as f32 * RATIO_STEP,
+            ddx: (dx0 + (dx1 - dx0) * fy) * DEPTH_STEP,
+            ddy: dy * DEPTH_STEP,
+        }
+    }
+
+    /// [`PackedRelief::sample_grad`] at texel coordinates `(x, y)` (`uv · size − ½`), which
+    /// must be finite and within ±2²⁴.
+    #[inline(always)]
+    pub fn sample_texel(&self, x: f32, y: f32) -> Sample {
+        let x0 = x.floor();
+        let y0 = y.floor();
+        let (fx, fy) = (x - x0, y - y0);
+        let (xi, yi) = (x0 as i32, y0 as i32);
+        let (xw, yw) = match self.masks {
+            Some((mx, my)) => ((xi & mx) as usize, (yi & my) as usize),
+            None => (xi.rem_euclid(self.width as i32) as usize, yi.rem_euclid(self.height as i32) as usize),
+        };
+        self.bilinear(yw * self.stride + xw, fx, fy)
+    }
+
+    /// The wrap masks `(width − 1, height − 1)` when both sides are powers of two.
+    #[inline]
+    pub fn masks(&self) -> Option<(i32, i32)> {
+        self.masks
+    }
+
+    /// The padded row length, `width + 1`.
+    #[inline]
+    pub fn stride(&self) -> usize {
+        self.stride
+    }
+
+    /// The packed texels, row-major on the padded grid.
+    #[inline]
+    pub fn texels(&self) -> &[u32] {
+        &self.texels
+    }
+
+    /// Bilinear depth at `uv` only.
+    #[inline(always)]
+    pub fn depth(&self, uv: Vec2) -> f32 {
+        self.sample(uv).0
+    }
+
+    /// The padded-grid index of the bilinear cell holding `uv` and the fractions within it.
+    #[inline(always)]
+    #[allow(clippy::manual_clamp)] // `clamp` would keep NaN; `max`/`min` replace it.
+    fn locate(&self, uv: Vec2) -> (usize, f32, f32) {
+        // `max`/`min` map NaN to the bound and keep the float-to-int conversion in range.
+        let x = (uv.x * self.wf - 0.5).max(-1.0e7).min(1.0e7);
+        let y = (uv.y * self.hf - 0.5).max(-1.0e7).min(1.0e7);
+        let x0 = x.floor();
+        let y0 = y.floor();
+        let (fx, fy) = (x - x0, y - y0);
+        let (xi, yi) = (x0 as i32, y0 as i32);
+        let (xw, yw) = match self.masks {
+            Some((mx, my)) => ((xi & mx) as usize, (yi & my) as usize),
+            None => (xi.rem_euclid(self.width as i32) as usize, yi.rem_euclid(self.height as i32) as usize),
+        };
+        (yw * self.stride + xw, fx, fy)
+    }
+}
+
+/// Parallax occlusion mapping exactly as [`crate::parallax::Pom`] (same layers, same march,
+/// same interpolation) but fetching from the packed map, with the same run-time AVX2 build as
+/// [`crate::cone_fast::FastCone`]: POM given the same treatment, for fair comparisons.
+#[derive(Clone, Copy, Debug)]
+pub struct PackedPom {
+    /// Number of layers.
+    pub layers: u32,
+}
+
+impl PackedPom {
+    #[inline(always)]
+    fn march<C: Counter>(
+        &self,
+        inp: &ReliefInputs,
+        map: &PackedRelief,
+        uv0: Vec2,
+        v: Vec3,
+        counter: &mut C,
+    ) -> ReliefHit {
+        let n = self.layers.max(1);
+        let layer_depth = 1.0 / n as f32;
+        let step = uv_per_depth(v, inp.height_scale) * layer_depth;
+        let mut uv = uv0;
+        counter.count(1);
+        let mut map_d = map.depth(uv);
+        let mut prev_uv = uv;
+        let mut prev_map = map_d;
+        let mut i = 0u32;
+        while (i as f32) * layer_depth < map_d && i < n {
+            prev_uv = uv;
+            prev_map = map_d;
+            i += 1;
+            uv = uv0 + step * i as f32;
+            counter.count(1);
+            map_d = map.depth(uv);
+        }
+        let layer = i as f32 * layer_depth;
+        let prev_layer = if i == 0 { 0.0 } else { layer - layer_depth };
+        let m = March { prev_uv, prev_map, prev_layer, uv, map: map_d, layer };
+        let (uv, depth) = interpolate(&m);
+        ReliefHit { uv, depth, layers: self.layers }
+    }
+
+    #[inline(always)]
+    fn row<C: Counter>(
+        &self,
+        inp: &ReliefInputs,
+        map: &PackedRelief,
+        rays: &[(Vec2, Vec3)],
+        out: &mut [ReliefHit],
+        counter: &mut C,
+    ) {
+        for (o, &(uv, v)) in out.iter_mut().zip(rays) {
+            *o = self.march(inp, map, uv, v, counter);
+        }
+    }
+
+    /// [`ReliefTechnique::trace_row`] with the kernel chosen explicitly (`simd`: the AVX2
+    /// build where available; the results are the same).
+    pub fn trace_row_with<C: Counter>(
+        &self,
+        inp: &ReliefInputs,
+        rays: &[(Vec2, Vec3)],
+        out: &mut [ReliefHit],
+        counter: &mut C,
+        simd: bool,
+    ) {
+        let Some(map) = inp.packed else {
+            let pom = crate::parallax::Pom { layers: self.layers };
+            for (o, &(uv, v)) in out.iter_mut().zip(rays) {
+                *o = pom.trace(inp, uv, v, counter);
+            }
+            return;
+        };
+        #[cfg(target_arch = "x86_64")]
+        if simd && crate::cone_fast::has_avx2() {
+            // SAFETY: the CPU supports the features the function is compiled for.
+            unsafe { pom_row_avx2(self, inp, map, rays, out, counter) };
+            return;
+        }
+        let _ = simd;
+        self.row(inp, map, rays, out, counter);
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,sse4.1")]
+fn pom_row_avx2<C: Counter>(
+    pom: &PackedPom,
+    inp: &ReliefInputs,
+    map: &PackedRelief,
+    rays: &[(Vec2, Vec3)],
+    out: &mut [ReliefHit],
+    counter: &mut C,
+) {
+    pom.row(inp, map, rays, out, counter)
+}
+
+impl ReliefTechnique for PackedPom {
+    fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
+        let mut out = [ReliefHit::default()];
+        self.trace_row_with(inp, &[(uv, v)], &mut out, counter, false);
+        out[0]
+    }
+
+    fn trace_row<C: Counter>(
+        &self,
+        inp: &ReliefInputs,
+        rays: &[(Vec2, Vec3)],
+        out: &mut [ReliefHit],
+        counter: &mut C,
+    ) {
+        self.trace_row_with(inp, rays, out, counter, true);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cone::ConeKind;
+    use renderlab_core::Image;
+
+    #[test]
+    fn ratios_round_down_and_depths_round_to_nearest() {
+        for i in 0..=10_000 {
+            let r = i as f32 / 10_000.0 * MAX_RATIO;
+            let q = quantise_ratio(r);
+            assert!(dequantise_ratio(q) <= r, "{r}");
+            assert!(r - dequantise_ratio(q) <= 2.0 * RATIO_STEP, "{r}");
+            let d = i as f32 / 10_000.0;
+            assert!((dequantise_depth(quantise_depth(d)) - d).abs() <= 0.51 * DEPTH_STEP);
+        }
+        assert_eq!(quantise_ratio(f32::NAN), 0);
+        assert_eq!(quantise_ratio(-1.0), 0);
+        assert_eq!(quantise_ratio(5.0), 65535);
+    }
+
+    #[test]
+    fn samples_match_the_height_field_and_cover_the_cone_cells() {
+        for (w, h) in [(16, 16), (12, 10)] {
+            let img = Image::from_fn(w, h, |x, y| ((x * 7 + y * 13) % 11) as f32 / 10.0);
+            let field = HeightField::from_height(&img);
+            let cone = ConeMap::build(&field, ConeKind::Relaxed, 8);
+            let p = PackedRelief::build(&field, Some(&cone));
+            for i in 0..4000 {
+                let uv = Vec2::new(
+                    (i as f32 * 0.618_034).fract() * 3.0 - 1.0,
+                    (i as f32 * 0.414_2).fract() * 3.0 - 1.0,
+                );
+                let (d, r) = p.sample(uv);
+                assert!((d - field.depth_uncounted(uv)).abs() < 2e-5, "{uv}");
+                // The packed ratio is never wider than the cone map's at any point of the cell.
+                assert!(r <= cone.ratio_uncounted(uv) + 1e-7, "{uv}: {r}");
+            }
+            assert!(p.sample(Vec2::new(f32::NAN, f32::INFINITY)).0.is_finite());
+        }
+    }
+}

@@ -1,0 +1,313 @@
+//! POM given the same treatment as [`crate::cone_fast::FastCone`]: the packed map, and eight
+//! rays per vector in AVX2 lanes, a finished lane taking the row's next ray at once. The
+//! march, its bound and its interpolation are [`crate::parallax::Pom`]'s; only the 16-bit
+//! depths differ. Non-finite inputs count as zero (as in the fast cone stepper). Scalar and
+//! vector kernels give bit-identical results.
+
+use crate::packed::PackedRelief;
+use crate::parallax::{interpolate, March};
+use crate::technique::{uv_per_depth, ReliefHit, ReliefInputs, ReliefTechnique};
+use glam::{Vec2, Vec3};
+use renderlab_core::counter::Counter;
+
+/// POM with `layers` layers on the packed map, in vector lanes.
+#[derive(Clone, Copy, Debug)]
+pub struct SimdPom {
+    /// Number of layers.
+    pub layers: u32,
+}
+
+/// Entry and per-layer step of one ray (non-finite values replaced by zero).
+#[inline(always)]
+fn setup(inp: &ReliefInputs, layers: u32, uv: Vec2, v: Vec3) -> (Vec2, Vec2) {
+    let layer_depth = 1.0 / layers.max(1) as f32;
+    let dp = uv_per_depth(v, inp.height_scale);
+    let dp = if dp.is_finite() { dp } else { Vec2::ZERO };
+    let uv0 = if uv.is_finite() { uv } else { Vec2::ZERO };
+    (uv0, dp * layer_depth)
+}
+
+/// The UV of layer `i`.
+#[inline(always)]
+fn layer_uv(uv0: Vec2, step: Vec2, i: u32) -> Vec2 {
+    if i == 0 {
+        uv0
+    } else {
+        uv0 + step * i as f32
+    }
+}
+
+/// The result once the march stopped at layer `i` with depth-map values `map` there and
+/// `prev_map` one layer up (as [`crate::parallax::Pom`] interpolates).
+#[inline(always)]
+fn finish(layers: u32, uv0: Vec2, step: Vec2, i: u32, map: f32, prev_map: f32) -> ReliefHit {
+    let layer_depth = 1.0 / layers.max(1) as f32;
+    let layer = i as f32 * layer_depth;
+    let prev_layer = if i == 0 { 0.0 } else { layer - layer_depth };
+    let m = March {
+        prev_uv: layer_uv(uv0, step, i.saturating_sub(1)),
+        prev_map,
+        prev_layer,
+        uv: layer_uv(uv0, step, i),
+        map,
+        layer,
+    };
+    let (uv, depth) = interpolate(&m);
+    ReliefHit { uv, depth, layers }
+}
+
+impl SimdPom {
+    #[inline(always)]
+    fn march<C: Counter>(
+        &self,
+        inp: &ReliefInputs,
+        map: &PackedRelief,
+        uv: Vec2,
+        v: Vec3,
+        counter: &mut C,
+    ) -> ReliefHit {
+        let n = self.layers.max(1);
+        let layer_depth = 1.0 / n as f32;
+        let (uv0, step) = setup(inp, self.layers, uv, v);
+        counter.count(1);
+        let mut m = map.depth(uv0);
+        let mut prev = m;
+        let mut i = 0u32;
+        while (i as f32) * layer_depth < m && i < n {
+            prev = m;
+            i += 1;
+            counter.count(1);
+            m = map.depth(layer_uv(uv0, step, i));
+        }
+        finish(self.layers, uv0, step, i, m, prev)
+    }
+
+    /// [`ReliefTechnique::trace_row`] with the kernel chosen explicitly (`simd`: the vector
+    /// kernel where the CPU and the map allow it; the results are the same).
+    pub fn trace_row_with<C: Counter>(
+        &self,
+        inp: &ReliefInputs,
+        rays: &[(Vec2, Vec3)],
+        out: &mut [ReliefHit],
+        counter: &mut C,
+        simd: bool,
+    ) {
+        let Some(map) = inp.packed else {
+            let pom = crate::parallax::Pom { layers: self.layers };
+            for (o, &(uv, v)) in out.iter_mut().zip(rays) {
+                *o = pom.trace(inp, uv, v, counter);
+            }
+            return;
+        };
+        #[cfg(target_arch = "x86_64")]
+        if simd && crate::cone_fast::simd_usable(map) {
+            // SAFETY: the CPU supports the kernel's features and the map suits it.
+            unsafe {
+                if crate::cone_fast::has_avx512() {
+                    avx2::trace_row_avx512(self, inp, map, rays, out, counter)
+                } else {
+                    avx2::trace_row(self, inp, map, rays, out, counter)
+                }
+            }
+            return;
+        }
+        let _ = simd;
+        for (o, &(uv, v)) in out.iter_mut().zip(rays) {
+            *o = self.march(inp, map, uv, v, counter);
+        }
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+mod avx2 {
+    use super::*;
+    use std::arch::x86_64::*;
+
+    const LANES: usize = 8;
+
+    #[derive(Clone, Copy)]
+    struct Group {
+        u0: __m256,
+        v0: __m256,
+        su: __m256,
+        sv: __m256,
+        /// Layer to fetch next.
+        i: __m256i,
+        prev: __m256,
+        owner: __m256i,
+        active: u32,
+    }
+
+    macro_rules! kernel {
+        ($name:ident, $features:literal) => {
+            #[target_feature(enable = $features)]
+            pub(super) unsafe fn $name<C: Counter>(
+                pom: &SimdPom,
+                inp: &ReliefInputs,
+                map: &PackedRelief,
+                rays: &[(Vec2, Vec3)],
+                out: &mut [ReliefHit],
+                counter: &mut C,
+            ) {
+                let n = rays.len().min(out.len());
+                let len = n.div_ceil(LANES) * LANES + LANES;
+                let (mut cu, mut cv, mut csu, mut csv) =
+                    (vec![0.0f32; len], vec![0.0f32; len], vec![0.0f32; len], vec![0.0f32; len]);
+                for (i, &(uv, v)) in rays[..n].iter().enumerate() {
+                    let (uv0, step) = setup(inp, pom.layers, uv, v);
+                    cu[i] = uv0.x;
+                    cv[i] = uv0.y;
+                    csu[i] = step.x;
+                    csv[i] = step.y;
+                }
+                let (mxk, myk) = map.masks().expect("power-of-two map");
+                let base = map.texels().as_ptr() as *const i32;
+                let stride = map.stride() as i32;
+                let layers = pom.layers.max(1);
+                let ld = _mm256_set1_ps(1.0 / layers as f32);
+                let n_layers = _mm256_set1_epi32(layers as i32);
+                let wf = _mm256_set1_ps(map.width() as f32);
+                let hf = _mm256_set1_ps(map.height() as f32);
+                let half = _mm256_set1_ps(0.5);
+                let lo = _mm256_set1_ps(-1.0e7);
+                let hi = _mm256_set1_ps(1.0e7);
+                let mask_x = _mm256_set1_epi32(mxk);
+                let mask_y = _mm256_set1_epi32(myk);
+                let stride_v = _mm256_set1_epi32(stride);
+                let lane_order = _mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7);
+                let depth_step = _mm256_set1_ps(crate::packed::DEPTH_STEP);
+                let zero_i = _mm256_setzero_si256();
+                let one_i = _mm256_set1_epi32(1);
+                let bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+
+                let refill = |g: &mut Group, free: u32, next: usize| -> usize {
+                    if free == 0 {
+                        return next;
+                    }
+                    let rank =
+                        _mm256_loadu_si256(crate::cone_fast::RANKS[free as usize].as_ptr() as *const __m256i);
+                    let idx = _mm256_add_epi32(_mm256_set1_epi32(next as i32), rank);
+                    let is_free =
+                        _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(free as i32), bits), bits);
+                    let take =
+                        _mm256_and_si256(is_free, _mm256_cmpgt_epi32(_mm256_set1_epi32(n as i32), idx));
+                    let take_ps = _mm256_castsi256_ps(take);
+                    let col = |src: __m256, v: &Vec<f32>| {
+                        let vals = _mm256_loadu_ps(v.as_ptr().add(next));
+                        _mm256_blendv_ps(src, _mm256_permutevar8x32_ps(vals, rank), take_ps)
+                    };
+                    g.u0 = col(g.u0, &cu);
+                    g.v0 = col(g.v0, &cv);
+                    g.su = col(g.su, &csu);
+                    g.sv = col(g.sv, &csv);
+                    g.i = _mm256_blendv_epi8(g.i, zero_i, take);
+                    g.owner = _mm256_blendv_epi8(g.owner, idx, take);
+                    g.active = (g.active & !free) | _mm256_movemask_ps(take_ps) as u32;
+                    (next + free.count_ones() as usize).min(n)
+                };
+
+                let z = _mm256_setzero_ps();
+                let empty =
+                    Group { u0: z, v0: z, su: z, sv: z, i: zero_i, prev: z, owner: zero_i, active: 0 };
+                let mut groups = [empty; 2];
+                let mut next = 0usize;
+                for g in groups.iter_mut() {
+                    next = refill(g, 0xff, next);
+                }
+                while groups.iter().any(|g| g.active != 0) {
+                    for g in groups.iter_mut() {
+                        if g.active == 0 {
+                            continue;
+                        }
+                        counter.count(g.active.count_ones());
+                        // The UV of layer i (the entry itself for layer 0).
+                        let fi = _mm256_cvtepi32_ps(g.i);
+                        let first = _mm256_castsi256_ps(_mm256_cmpeq_epi32(g.i, zero_i));
+                        let u = _mm256_blendv_ps(_mm256_add_ps(g.u0, _mm256_mul_ps(g.su, fi)), g.u0, first);
+                        let v = _mm256_blendv_ps(_mm256_add_ps(g.v0, _mm256_mul_ps(g.sv, fi)), g.v0, first);
+                        // PackedRelief::depth.
+                        let x =
+                            _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(u, wf), half), lo), hi);
+                        let y =
+                            _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(v, hf), half), lo), hi);
+                        let x0 = _mm256_floor_ps(x);
+                        let y0 = _mm256_floor_ps(y);
+                        let (fx, fy) = (_mm256_sub_ps(x, x0), _mm256_sub_ps(y, y0));
+                        let xi = _mm256_and_si256(_mm256_cvttps_epi32(x0), mask_x);
+                        let yi = _mm256_and_si256(_mm256_cvttps_epi32(y0), mask_y);
+                        let idx = _mm256_add_epi32(_mm256_mullo_epi32(yi, stride_v), xi);
+                        let perm = _mm256_permutevar8x32_epi32(idx, lane_order);
+                        let (ia, ib) = (_mm256_castsi256_si128(perm), _mm256_extracti128_si256::<1>(perm));
+                        let row0 = base as *const i64;
+                        let row1 = base.add(stride as usize) as *const i64;
+                        let r0a = _mm256_castsi256_ps(_mm256_i32gather_epi64::<4>(row0, ia));
+                        let r0b = _mm256_castsi256_ps(_mm256_i32gather_epi64::<4>(row0, ib));
+                        let r1a = _mm256_castsi256_ps(_mm256_i32gather_epi64::<4>(row1, ia));
+                        let r1b = _mm256_castsi256_ps(_mm256_i32gather_epi64::<4>(row1, ib));
+                        let hi16 =
+                            |t: __m256| _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(_mm256_castps_si256(t)));
+                        let d00 = hi16(_mm256_shuffle_ps::<0b10_00_10_00>(r0a, r0b));
+                        let d10 = hi16(_mm256_shuffle_ps::<0b11_01_11_01>(r0a, r0b));
+                        let d01 = hi16(_mm256_shuffle_ps::<0b10_00_10_00>(r1a, r1b));
+                        let d11 = hi16(_mm256_shuffle_ps::<0b11_01_11_01>(r1a, r1b));
+                        let top = _mm256_add_ps(d00, _mm256_mul_ps(_mm256_sub_ps(d10, d00), fx));
+                        let bottom = _mm256_add_ps(d01, _mm256_mul_ps(_mm256_sub_ps(d11, d01), fx));
+                        let dy = _mm256_sub_ps(bottom, top);
+                        let m = _mm256_mul_ps(_mm256_add_ps(top, _mm256_mul_ps(dy, fy)), depth_step);
+                        // Layer 0 has no layer above: its own value.
+                        let prev = _mm256_blendv_ps(g.prev, m, first);
+                        let go_on = _mm256_and_ps(
+                            _mm256_cmp_ps::<_CMP_LT_OQ>(_mm256_mul_ps(fi, ld), m),
+                            _mm256_castsi256_ps(_mm256_cmpgt_epi32(n_layers, g.i)),
+                        );
+                        let done = (!(_mm256_movemask_ps(go_on) as u32)) & 0xff & g.active;
+                        if done != 0 {
+                            let (mut mi, mut mm, mut mp, mut own) =
+                                ([0i32; LANES], [0.0f32; LANES], [0.0f32; LANES], [0i32; LANES]);
+                            _mm256_storeu_si256(mi.as_mut_ptr() as *mut __m256i, g.i);
+                            _mm256_storeu_ps(mm.as_mut_ptr(), m);
+                            _mm256_storeu_ps(mp.as_mut_ptr(), prev);
+                            _mm256_storeu_si256(own.as_mut_ptr() as *mut __m256i, g.owner);
+                            let mut f = done;
+                            while f != 0 {
+                                let l = f.trailing_zeros() as usize;
+                                f &= f - 1;
+                                let r = own[l] as usize;
+                                let (uv0, step) = (Vec2::new(cu[r], cv[r]), Vec2::new(csu[r], csv[r]));
+                                out[r] = finish(pom.layers, uv0, step, mi[l] as u32, mm[l], mp[l]);
+                            }
+                        }
+                        // Going on: this layer becomes the previous one.
+                        g.prev = m;
+                        g.i = _mm256_add_epi32(g.i, _mm256_and_si256(_mm256_castps_si256(go_on), one_i));
+                        let _ = prev;
+                        if done != 0 {
+                            next = refill(g, done, next);
+                        }
+                    }
+                }
+            }
+        };
+    }
+
+    kernel!(trace_row, "avx2");
+    kernel!(trace_row_avx512, "avx2,avx512f,avx512vl");
+}
+
+impl ReliefTechnique for SimdPom {
+    fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
+        let mut out = [ReliefHit::default()];
+        self.trace_row_with(inp, &[(uv, v)], &mut out, counter, false);
+        out[0]
+    }
+
+    fn trace_row<C: Counter>(
+        &self,
+        inp: &ReliefInputs,
+        rays: &[(Vec2, Vec3)],
+        out: &mut [ReliefHit],
+        counter: &mut C,
+    ) {
+        self.trace_row_with(inp, rays, out, counter, true);
+    }
+}

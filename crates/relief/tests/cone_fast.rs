@@ -1,0 +1,274 @@
+//! The fast cone stepper and the packed map: vector and scalar kernels agree bit for bit,
+//! quantised cones stay conservative, every trace is bounded and finite, and the results are
+//! at least as accurate as POM-32's.
+
+use glam::{Vec2, Vec3};
+use renderlab_core::counter::{NoCount, Tally};
+use renderlab_core::Image;
+use renderlab_relief::complexity::{complexity_map, ComplexityParams};
+use renderlab_relief::cone::{ConeKind, ConeMap};
+use renderlab_relief::cone_fast::FastCone;
+use renderlab_relief::packed::{PackedPom, PackedRelief};
+use renderlab_relief::parallax::Pom;
+use renderlab_relief::pom_simd::SimdPom;
+use renderlab_relief::reference::{exact_hit, first_crossing};
+use renderlab_relief::technique::uv_per_depth;
+use renderlab_relief::{HeightField, ReliefHit, ReliefInputs, ReliefTechnique};
+
+const SCALE: f32 = 0.06;
+
+/// A bumpy, bricky height map with sharp edges and smooth domes.
+fn heights(w: u32, h: u32) -> Image<f32> {
+    Image::from_fn(w, h, |x, y| {
+        let bx = (x + if (y / 8) % 2 == 0 { 0 } else { 8 }) % 16;
+        let by = y % 8;
+        if bx == 0 || by == 0 {
+            0.1
+        } else {
+            let fx = (x as f32 * 0.3).sin() * 0.5 + 0.5;
+            let fy = (y as f32 * 0.45).cos() * 0.5 + 0.5;
+            0.6 + 0.35 * fx * fy
+        }
+    })
+}
+
+struct Fixture {
+    field: HeightField,
+    complexity: Image<f32>,
+    cone: ConeMap,
+    packed: PackedRelief,
+}
+
+fn fixture(w: u32, h: u32, cone_size: u32) -> Fixture {
+    let img = heights(w, h);
+    let field = HeightField::from_height(&img);
+    let cone = ConeMap::build(&field, ConeKind::Relaxed, cone_size);
+    let packed = PackedRelief::build(&field, Some(&cone));
+    Fixture { complexity: complexity_map(&img, &ComplexityParams::default()), field, cone, packed }
+}
+
+impl Fixture {
+    fn inputs(&self) -> ReliefInputs<'_> {
+        ReliefInputs {
+            height: &self.field,
+            height_scale: SCALE,
+            complexity: &self.complexity,
+            cone: Some(&self.cone),
+            packed: Some(&self.packed),
+        }
+    }
+}
+
+fn view(theta_deg: f32, phi: f32) -> Vec3 {
+    let a = theta_deg.to_radians();
+    Vec3::new(a.sin() * phi.cos(), a.sin() * phi.sin(), a.cos())
+}
+
+fn rays(n: usize) -> Vec<(Vec2, Vec3)> {
+    let mut r: Vec<(Vec2, Vec3)> = (0..n)
+        .map(|i| {
+            let uv = Vec2::new((i as f32 * 0.618_034).fract(), (i as f32 * 0.754_877).fract());
+            (uv, view((i * 7 % 90) as f32, i as f32 * 2.4))
+        })
+        .collect();
+    // Degenerate and extreme inputs.
+    r.extend([
+        (Vec2::new(0.5, 0.5), Vec3::new(1.0, 0.0, 0.0)),
+        (Vec2::new(0.25, 0.75), Vec3::new(0.0, -1.0, 1e-9)),
+        (Vec2::new(0.1, 0.9), Vec3::new(0.7, 0.7, -0.1)),
+        (Vec2::new(0.3, 0.3), Vec3::ZERO),
+        (Vec2::new(0.3, 0.3), Vec3::new(f32::NAN, 0.0, 1.0)),
+        (Vec2::new(f32::NAN, 0.3), Vec3::Z),
+        (Vec2::new(3.0e9, -7.0e8), Vec3::new(0.5, 0.1, 0.8)),
+        (Vec2::new(-1.25, 2.5), Vec3::new(-0.3, 0.4, 0.5)),
+    ]);
+    r
+}
+
+fn bits(h: &ReliefHit) -> (u32, u32, u32, u32) {
+    (h.uv.x.to_bits(), h.uv.y.to_bits(), h.depth.to_bits(), h.layers)
+}
+
+fn techniques() -> Vec<FastCone> {
+    vec![
+        FastCone { steps: 64, secant: 3, tol: 0.25, jump: 1.0 },
+        FastCone { steps: 64, secant: 3, tol: 0.25, jump: 4.0 },
+        FastCone { steps: 8, secant: 2, tol: 0.5, jump: 2.0 },
+        FastCone { steps: 3, secant: 1, tol: 0.05, jump: 1.0 },
+        FastCone { steps: 1, secant: 4, tol: 1.0, jump: 1e9 },
+    ]
+}
+
+#[test]
+fn vector_and_scalar_kernels_agree_bit_for_bit() {
+    // Power-of-two sides take the vector kernel where the CPU has AVX2; the others always
+    // take the scalar one, and must agree with it too.
+    for fx in [fixture(64, 64, 64), fixture(64, 32, 32), fixture(48, 40, 24)] {
+        let inp = fx.inputs();
+        let rays = rays(203);
+        for t in techniques() {
+            let mut scalar = vec![ReliefHit::default(); rays.len()];
+            let mut scalar_count = Tally::default();
+            t.trace_row_with(&inp, &rays, &mut scalar, &mut scalar_count, false);
+            // Rows of every length, as the renderer hands them over.
+            for chunk in [1usize, 3, 8, 17, 64, rays.len()] {
+                let mut vector = vec![ReliefHit::default(); rays.len()];
+                let mut vector_count = Tally::default();
+                for (r, o) in rays.chunks(chunk).zip(vector.chunks_mut(chunk)) {
+                    t.trace_row_with(&inp, r, o, &mut vector_count, true);
+                }
+                for (i, (a, b)) in scalar.iter().zip(&vector).enumerate() {
+                    assert_eq!(bits(a), bits(b), "{t:?}, ray {i} {:?}, rows of {chunk}", rays[i]);
+                }
+                assert_eq!(scalar_count, vector_count, "{t:?}: fetch counts");
+            }
+            let mut single = Tally::default();
+            for (&(uv, v), a) in rays.iter().zip(&scalar) {
+                assert_eq!(bits(&t.trace(&inp, uv, v, &mut single)), bits(a));
+            }
+            assert_eq!(single, scalar_count);
+        }
+    }
+}
+
+#[test]
+fn traces_are_bounded_and_finite() {
+    let fx = fixture(64, 64, 64);
+    let inp = fx.inputs();
+    for t in techniques() {
+        for &(uv, v) in &rays(300) {
+            let mut tally = Tally::default();
+            let hit = t.trace(&inp, uv, v, &mut tally);
+            assert!(tally.0 <= (t.steps + t.secant) as u64 + 1, "{t:?}: {} fetches", tally.0);
+            assert!(hit.uv.is_finite(), "{t:?} at {uv}, {v}: {hit:?}");
+            assert!((0.0..=1.0).contains(&hit.depth), "{t:?}: depth {}", hit.depth);
+            if uv.is_finite() && v.is_finite() && uv.abs().max_element() < 10.0 {
+                let expect = uv + uv_per_depth(v, SCALE) * hit.depth;
+                assert!((hit.uv - expect).length() <= 1e-4, "{t:?}: off the ray");
+            }
+        }
+    }
+}
+
+/// Mean UV error in texels against the exact hit.
+fn mean_error<T: ReliefTechnique>(fx: &Fixture, t: &T, theta: f32) -> f32 {
+    let inp = fx.inputs();
+    let n = 600;
+    let mut sum = 0.0;
+    for i in 0..n {
+        let uv = Vec2::new((i as f32 * 0.618_034).fract(), (i as f32 * 0.754_877).fract());
+        let v = view(theta, i as f32 * 2.4);
+        let got = t.trace(&inp, uv, v, &mut NoCount).uv;
+        let (exact, _) = exact_hit(&fx.field, SCALE, uv, v);
+        sum += ((got - exact) * 64.0).length();
+    }
+    sum / n as f32
+}
+
+#[test]
+fn default_fast_cone_errors_stay_within_its_tolerance() {
+    // On this small, steep field POM-32's layers are dense (fractions of a texel), so the
+    // fast stepper's 0.25-texel tolerance dominates its error; on the 1024² bricks of the
+    // relief bench it is the other way round (see the relief lab).
+    let fx = fixture(64, 64, 64);
+    for jump in [1.0, renderlab_relief::cone_fast::JUMP] {
+        let t = FastCone { steps: 64, secant: 3, tol: 0.25, jump };
+        for theta in [0.0, 30.0, 45.0, 60.0, 75.0] {
+            let pom = mean_error(&fx, &Pom { layers: 32 }, theta);
+            let fast = mean_error(&fx, &t, theta);
+            eprintln!("{theta}° jump {jump}: fast cone {fast} vs POM-32 {pom}");
+            assert!(fast <= pom + 0.1 * t.tol, "{theta}°, jump {jump}: fast cone {fast} vs POM-32 {pom}");
+        }
+    }
+}
+
+#[test]
+fn packed_pom_matches_pom_and_its_kernels_agree() {
+    let fx = fixture(64, 64, 64);
+    let inp = fx.inputs();
+    let rays = rays(150);
+    let pp = PackedPom { layers: 32 };
+    let mut scalar = vec![ReliefHit::default(); rays.len()];
+    let mut vector = vec![ReliefHit::default(); rays.len()];
+    pp.trace_row_with(&inp, &rays, &mut scalar, &mut NoCount, false);
+    pp.trace_row_with(&inp, &rays, &mut vector, &mut NoCount, true);
+    for ((a, b), &(uv, v)) in scalar.iter().zip(&vector).zip(&rays) {
+        assert_eq!(bits(a), bits(b));
+        if uv.is_finite() && v.is_finite() && uv.abs().max_element() < 10.0 && v.z > 0.05 {
+            // Only the 16-bit depths differ from POM's.
+            let pom = Pom { layers: 32 }.trace(&inp, uv, v, &mut NoCount);
+            assert!(((pom.uv - a.uv) * 64.0).length() < 0.05, "{uv} {v}: {pom:?} vs {a:?}");
+        }
+    }
+}
+
+#[test]
+fn simd_pom_kernels_agree_and_match_pom() {
+    for fx in [fixture(64, 64, 64), fixture(48, 40, 24)] {
+        let inp = fx.inputs();
+        let rays = rays(211);
+        for layers in [1, 8, 32] {
+            let t = SimdPom { layers };
+            let mut scalar = vec![ReliefHit::default(); rays.len()];
+            let mut scalar_count = Tally::default();
+            t.trace_row_with(&inp, &rays, &mut scalar, &mut scalar_count, false);
+            for chunk in [1usize, 5, 16, rays.len()] {
+                let mut vector = vec![ReliefHit::default(); rays.len()];
+                let mut vector_count = Tally::default();
+                for (r, o) in rays.chunks(chunk).zip(vector.chunks_mut(chunk)) {
+                    t.trace_row_with(&inp, r, o, &mut vector_count, true);
+                }
+                for (i, (a, b)) in scalar.iter().zip(&vector).enumerate() {
+                    assert_eq!(bits(a), bits(b), "pom-simd:{layers}, ray {i} {:?}, rows of {chunk}", rays[i]);
+                }
+                assert_eq!(scalar_count, vector_count);
+            }
+            for (&(uv, v), a) in rays.iter().zip(&scalar) {
+                assert!(a.uv.is_finite() && (0.0..=1.0).contains(&a.depth), "{uv} {v}: {a:?}");
+                if uv.is_finite() && v.is_finite() && uv.abs().max_element() < 10.0 {
+                    let mut n = Tally::default();
+                    let pom = Pom { layers }.trace(&inp, uv, v, &mut n);
+                    let mut m = Tally::default();
+                    t.trace(&inp, uv, v, &mut m);
+                    assert_eq!(n, m, "{uv} {v}: same march");
+                    assert!(((pom.uv - a.uv) * 64.0).length() < 0.05, "{uv} {v}: {pom:?} vs {a:?}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn quantised_conservative_cones_never_pass_through_the_surface() {
+    // Cone steps with the packed (rounded-down, cell-pooled) conservative ratios and the
+    // packed depths never go past the exact first crossing with the bilinear field.
+    for (w, h, size) in [(64u32, 64u32, 64u32), (64, 64, 32), (40, 24, 16)] {
+        let img = heights(w, h);
+        let field = HeightField::from_height(&img);
+        let cone = ConeMap::build(&field, ConeKind::Conservative, size);
+        let packed = PackedRelief::build(&field, Some(&cone));
+        for i in 0..400 {
+            let uv = Vec2::new((i as f32 * 0.618_034).fract(), (i as f32 * 0.754_877).fract());
+            let v = view((i * 11 % 88) as f32, i as f32 * 2.4);
+            let dp = uv_per_depth(v, SCALE);
+            let s = dp.length();
+            let exact =
+                first_crossing(&field, uv.as_dvec2(), dp.as_dvec2(), 0.0, 1.0, 0.0, 1.0).unwrap_or(1.0);
+            let mut t = 0.0f32;
+            for _ in 0..200 {
+                let (d, r) = packed.sample(uv + dp * t);
+                let gap = d - t;
+                if gap <= 0.0 {
+                    break;
+                }
+                t += if s > 0.0 { r * gap / (s + r) } else { gap };
+                // Quantised depths may sit 1/131070 from the field's, which moves a crossing
+                // by that divided by the rate the ray nears the surface.
+                assert!(
+                    t as f64 <= exact + 1e-4,
+                    "{w}x{h}/{size}, ray {i}: stepped to {t}, surface at {exact}"
+                );
+            }
+        }
+    }
+}
