@@ -133,7 +133,7 @@ fn create_dir(dir: &Path) -> Result<()> {
 fn relief_render(a: RenderArgs) -> Result<()> {
     frame_size(a.width, a.height)?;
     check_range("--angle", a.angle, 0.0, 89.0)?;
-    io::format_of(&a.out)?;
+    io::check_output(&a.out)?;
     let technique = Technique::parse(&a.technique)?;
     let cp = params(&a.complexity)?;
     let (scene, camera) = match a.scene {
@@ -199,7 +199,7 @@ fn relief_render(a: RenderArgs) -> Result<()> {
 
 fn complexity(a: ComplexityArgs) -> Result<()> {
     let p = params(&a.params)?;
-    io::format_of(&a.out)?;
+    io::check_output(&a.out)?;
     let h = io::load_height(&a.height)?;
     let c = complexity_map(&h, &p);
     io::save_gray(&a.out, &c, false)?;
@@ -657,7 +657,7 @@ fn texture_render(a: TextureRenderArgs) -> Result<()> {
     if a.samples == 0 || a.samples > 64 {
         bail!("--samples: {} must lie in 1..=64", a.samples);
     }
-    io::format_of(&a.out)?;
+    io::check_output(&a.out)?;
     let kind = SceneKind::parse(&a.scene).map_err(|e| anyhow::anyhow!("--scene: {e}"))?;
     let choice = match a.filter.as_str() {
         "reference" | "reference-box" => None,

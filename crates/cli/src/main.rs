@@ -17,8 +17,24 @@ fn main() {
     let cli = args::Cli::parse();
     if let Err(e) = commands::run(cli) {
         // One line, naming the file or flag at fault.
-        let msg = format!("{e:#}").replace('\n', " ");
-        eprintln!("renderlab: error: {msg}");
+        eprintln!("renderlab: error: {}", one_line(&e));
         std::process::exit(1);
     }
+}
+
+/// The error and its causes on one line, each cause added only if the text so far does not
+/// already contain it (the library errors print their source inside their own message).
+fn one_line(e: &anyhow::Error) -> String {
+    let mut msg = String::new();
+    for cause in e.chain() {
+        let text = cause.to_string();
+        if msg.contains(&text) {
+            continue;
+        }
+        if !msg.is_empty() {
+            msg.push_str(": ");
+        }
+        msg.push_str(&text);
+    }
+    msg.replace('\n', " ")
 }

@@ -462,3 +462,30 @@ fn texture_render_and_bad_texture_flags() {
     fails_with(&["texture", "render", "-o", p, "--filter", "ewa:0:10"], "--filter");
     assert!(!dir.path().join("b").exists(), "no output for bad flags");
 }
+
+#[test]
+fn errors_name_their_cause_once_and_unwritable_outputs_are_refused_before_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let missing = dir.path().join("missing.png");
+    let out =
+        renderlab(&["complexity", missing.to_str().unwrap(), dir.path().join("c.png").to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("missing.png: cannot read"), "{err}");
+    assert_eq!(err.matches("No such file").count(), 1, "the cause is printed once: {err}");
+    // A JPEG output is refused by name before anything is rendered or written.
+    for args in [
+        vec!["relief", "render", "--width", "16", "--height", "16", "-o"],
+        vec!["texture", "render", "--width", "16", "--height", "16", "-o"],
+    ] {
+        let jpg = dir.path().join("out.jpg");
+        let mut a = args.clone();
+        a.push(jpg.to_str().unwrap());
+        fails_with(&a, "out.jpg");
+        let out = renderlab(&a);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(err.matches("writes only .png and .exr").count(), 1, "{err}");
+        assert!(String::from_utf8_lossy(&out.stdout).is_empty(), "nothing rendered: {:?}", out.stdout);
+        assert!(!jpg.exists());
+    }
+}

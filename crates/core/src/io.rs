@@ -46,6 +46,15 @@ pub fn format_of(path: &Path) -> Result<Format> {
     }
 }
 
+/// The output format of `path`, refusing what renderlab cannot write (JPEG, TGA, unknown
+/// extensions), so that a command can reject its output path before spending time on a render.
+pub fn check_output(path: &Path) -> Result<Format> {
+    match format_of(path)? {
+        f @ (Format::Png | Format::Exr) => Ok(f),
+        _ => Err(unsupported_output(path)),
+    }
+}
+
 /// Pixels as decoded, before any colour interpretation: RGBA values scaled to [0, 1] (or as
 /// stored, for EXR).
 struct Raw {
