@@ -9,6 +9,7 @@ use rayon::prelude::*;
 use renderlab_core::counter::{Counter, NoCount, Tally};
 use renderlab_core::scene::Lighting;
 use renderlab_core::{Image, SurfacePoint};
+use renderlab_texture::filter::{lod, trilinear_at};
 use renderlab_texture::{Filter, Trilinear};
 
 /// How shadows are computed for [`Shading::LitShadowed`].
@@ -107,11 +108,19 @@ fn shade_point<C: Counter>(
     opt: &ShadeOptions,
     counter: &mut C,
 ) -> Vec3 {
-    let albedo = Trilinear.sample(&mat.albedo, hit.uv, sp.duv_dx, sp.duv_dy, &mut NoCount).truncate();
+    // One LOD serves the albedo and the normal map when they have the same size (the usual
+    // case), as one footprint gives one level in both.
+    let l = lod(&mat.albedo, sp.duv_dx, sp.duv_dy);
+    let albedo = trilinear_at(&mat.albedo, hit.uv, l, &mut NoCount).truncate();
     match opt.shading {
         Shading::Unlit => albedo,
         Shading::Lit | Shading::LitShadowed => {
-            let n = Trilinear.sample(&mat.normal, hit.uv, sp.duv_dx, sp.duv_dy, &mut NoCount).truncate();
+            let n = if mat.normal.size() == mat.albedo.size() {
+                trilinear_at(&mat.normal, hit.uv, l, &mut NoCount)
+            } else {
+                Trilinear.sample(&mat.normal, hit.uv, sp.duv_dx, sp.duv_dy, &mut NoCount)
+            }
+            .truncate();
             let n = n.try_normalize().unwrap_or(Vec3::Z);
             let shadow = match (opt.shading, opt.shadow) {
                 (Shading::LitShadowed, ShadowMode::Soft(samples)) => crate::shadow::soft_shadow(

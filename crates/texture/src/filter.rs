@@ -146,16 +146,23 @@ impl Filter for Trilinear {
         duv_dy: Vec2,
         counter: &mut C,
     ) -> Vec4 {
-        let l = lod(tex, duv_dx, duv_dy);
-        let l0 = l.floor() as usize;
-        let t = l - l0 as f32;
-        let a = bilinear_level(tex, l0, uv, counter);
-        if t <= 0.0 || l0 + 1 >= tex.level_count() {
-            return a;
-        }
-        let b = bilinear_level(tex, l0 + 1, uv, counter);
-        a + (b - a) * t
+        trilinear_at(tex, uv, lod(tex, duv_dx, duv_dy), counter)
     }
+}
+
+/// Trilinear lookup at an explicit level of detail `l` (in `[0, levels − 1]`, as [`lod`]
+/// returns it): bilinear in the two nearest levels, blended. Lets a caller that samples several
+/// same-sized textures with one footprint compute the LOD once.
+#[inline]
+pub fn trilinear_at<C: Counter>(tex: &Texture, uv: Vec2, l: f32, counter: &mut C) -> Vec4 {
+    let l0 = l.floor() as usize;
+    let t = l - l0 as f32;
+    let a = bilinear_level(tex, l0, uv, counter);
+    if t <= 0.0 || l0 + 1 >= tex.level_count() {
+        return a;
+    }
+    let b = bilinear_level(tex, l0 + 1, uv, counter);
+    a + (b - a) * t
 }
 
 #[cfg(test)]

@@ -16,7 +16,7 @@
 // `!(x >= t)` is deliberate: it also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-use super::{Filter, Trilinear};
+use super::{trilinear_at, Filter, Trilinear};
 use crate::ellipse::Jacobian;
 use crate::mip::Texture;
 use glam::{Vec2, Vec4};
@@ -59,19 +59,6 @@ impl Anisotropic {
         let step = ax.dir * (ax.major / n as f32) / size;
         Some((n, lod, step))
     }
-}
-
-/// Trilinear lookup at an explicit LOD.
-#[inline]
-fn trilinear_at<C: Counter>(tex: &Texture, uv: Vec2, l: f32, counter: &mut C) -> Vec4 {
-    let l0 = l.floor() as usize;
-    let t = l - l0 as f32;
-    let a = super::bilinear_level(tex, l0, uv, counter);
-    if t <= 0.0 || l0 + 1 >= tex.level_count() {
-        return a;
-    }
-    let b = super::bilinear_level(tex, l0 + 1, uv, counter);
-    a + (b - a) * t
 }
 
 impl Filter for Anisotropic {
