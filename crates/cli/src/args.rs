@@ -426,10 +426,14 @@ pub struct TextureBenchArgs {
     /// bicubic, trilinear, aniso2, aniso4, aniso8, aniso16, ewa and the tuned ewa:16:24.
     #[arg(long, value_delimiter = ',')]
     pub filters: Vec<String>,
-    /// Scenes, comma-separated (default: all): checkerboard, thesis_quad, quad_tilt_DEG
-    /// (DEG in 0..=89.9), zone_plate.
+    /// Scenes, comma-separated (default: all): checkerboard, thesis_quad (checker),
+    /// thesis_quad_circuit, thesis_quad_earth, quad_tilt_DEG (DEG in 0..=89.9), zone_plate.
     #[arg(long, value_delimiter = ',')]
     pub scenes: Vec<String>,
+    /// Your texture (PNG, JPEG, TGA or EXR, any size) in place of every scene's built-in one,
+    /// once per surface unit, repeated.
+    #[arg(long)]
+    pub texture: Option<PathBuf>,
     /// Skip writing images (results and report only).
     #[arg(long)]
     pub no_images: bool,
@@ -457,4 +461,8 @@ pub struct TextureRenderArgs {
     /// Reference strata per axis, for --filter reference (1..=64).
     #[arg(long, default_value_t = 16)]
     pub samples: u32,
+    /// Your texture (PNG, JPEG, TGA or EXR, any size) in place of the scene's built-in one,
+    /// once per surface unit, repeated.
+    #[arg(long)]
+    pub texture: Option<PathBuf>,
 }

@@ -626,6 +626,7 @@ fn texture_config(a: &TextureBenchArgs) -> Result<TextureBenchConfig> {
         warmup: a.warmup,
         strata: a.samples,
         write_images: !a.no_images,
+        texture: user_texture(a.texture.as_deref())?,
         ..TextureBenchConfig::default()
     })
 }
@@ -648,6 +649,15 @@ fn texture_bench(a: TextureBenchArgs) -> Result<()> {
     Ok(())
 }
 
+/// Loads the user's `--texture` (linear RGBA, opaque) with its file name as the label.
+fn user_texture(path: Option<&Path>) -> Result<Option<(String, Image<glam::Vec4>)>> {
+    let Some(path) = path else { return Ok(None) };
+    let img = io::load_color(path)?;
+    let label =
+        path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
+    Ok(Some((label, img.map(|c| c.extend(1.0)))))
+}
+
 fn texture_render(a: TextureRenderArgs) -> Result<()> {
     use renderlab_texture::reference::{reference, PixelFilter};
     use renderlab_texture::{Anisotropic, Bicubic, Bilinear, Nearest, Trilinear};
@@ -663,7 +673,11 @@ fn texture_render(a: TextureRenderArgs) -> Result<()> {
         "reference" | "reference-box" => None,
         f => Some(FilterChoice::parse(f).map_err(|e| anyhow::anyhow!("--filter: {e}"))?),
     };
-    let scene = TestScene::new(kind, a.width, a.height)?;
+    let user = user_texture(a.texture.as_deref())?;
+    let mut scene = TestScene::new(kind, a.width, a.height)?;
+    if let Some((label, img)) = user {
+        scene = scene.with_texture(img, &label);
+    }
     let surface = scene.surface();
     let started = std::time::Instant::now();
     let img = match choice {

@@ -460,7 +460,39 @@ fn texture_render_and_bad_texture_flags() {
     fails_with(&["texture", "bench", "--out", o, "--width", "100000"], "--width");
     fails_with(&["texture", "render", "-o", p, "--scene", "teapot"], "--scene");
     fails_with(&["texture", "render", "-o", p, "--filter", "ewa:0:10"], "--filter");
+    let missing = dir.path().join("no_such_texture.png");
+    fails_with(
+        &["texture", "bench", "--out", o, "--texture", missing.to_str().unwrap()],
+        "no_such_texture.png",
+    );
     assert!(!dir.path().join("b").exists(), "no output for bad flags");
+
+    // The user's texture replaces the built-in one: a flat mid-grey image gives a flat frame
+    // wherever the quad is, with every filter.
+    let grey = dir.path().join("grey.png");
+    let mut buf = Vec::new();
+    png_encoder(&mut buf, 8, 8).write_image_data(&[128u8; 64]).unwrap();
+    std::fs::write(&grey, buf).unwrap();
+    let user = dir.path().join("user.png");
+    let out = renderlab(&[
+        "texture",
+        "render",
+        "-o",
+        user.to_str().unwrap(),
+        "--scene",
+        "thesis_quad_circuit",
+        "--texture",
+        grey.to_str().unwrap(),
+        "--width",
+        "32",
+        "--height",
+        "24",
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let img = renderlab_core::io::load_color(&user).unwrap();
+    let centre = img.get(16, 12);
+    let texel = renderlab_core::io::load_color(&grey).unwrap().get(0, 0);
+    assert!((centre - texel).abs().max_element() < 2.0 / 255.0, "{centre} vs {texel}");
 }
 
 #[test]

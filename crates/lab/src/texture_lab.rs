@@ -15,7 +15,7 @@ use crate::plot::{scatter_svg, Series};
 use crate::relief_lab::Progress;
 use crate::report::{format_number, Report};
 use crate::results::{write_csv, write_json};
-use glam::{DVec2, Vec2, Vec3};
+use glam::{DVec2, Vec2, Vec3, Vec4};
 use renderlab_core::io::{save_color, save_rgb8};
 use renderlab_core::{CoreError, Image};
 use renderlab_texture::filter::{Anisotropic, Bicubic, Bilinear, Ewa, Filter, Nearest, Trilinear};
@@ -143,6 +143,9 @@ pub struct TextureBenchConfig {
     pub write_images: bool,
     /// Seed of the reference's jitter.
     pub seed: u64,
+    /// The user's texture (a label for reports, linear RGBA) in place of every scene's
+    /// built-in one, or `None` for the built-in textures.
+    pub texture: Option<(String, Image<Vec4>)>,
 }
 
 impl Default for TextureBenchConfig {
@@ -158,6 +161,7 @@ impl Default for TextureBenchConfig {
             reps: 5,
             write_images: true,
             seed: 1,
+            texture: None,
         }
     }
 }
@@ -416,7 +420,10 @@ pub fn run_texture_bench(cfg: &TextureBenchConfig, out: &Path, progress: Progres
     let mut mode_ratios = Vec::new();
     let mut scene_notes = Vec::new();
     for &kind in &cfg.scenes {
-        let scene = TestScene::new(kind, cfg.width, cfg.height)?;
+        let mut scene = TestScene::new(kind, cfg.width, cfg.height)?;
+        if let Some((label, img)) = &cfg.texture {
+            scene = scene.with_texture(img.clone(), label);
+        }
         let name = kind.name();
         scene_notes.push((name.clone(), scene.description.clone()));
         progress(done, total, &format!("{name}: reference"));

@@ -27,6 +27,7 @@ fn lab_writes_records_images_and_index() {
         reps: 1,
         write_images: true,
         seed: 3,
+        texture: None,
     };
     let s = run_texture_bench(&cfg, dir.path(), &quiet).unwrap();
     // 2 scenes × 3 filters × 2 references + 3 modes × 2 references on the thesis quad.

@@ -15,6 +15,7 @@ pub mod ellipse;
 pub mod filter;
 pub mod mapping;
 pub mod mip;
+pub mod procedural;
 pub mod reference;
 pub mod scene;
 

@@ -10,6 +10,8 @@
 //! |---|---|---|
 //! | [`SceneKind::Checkerboard`] | infinite ground plane to the horizon, sky above | 8×8 checks, repeat |
 //! | [`SceneKind::ThesisQuad`] | the thesis's quad ([`QuadScene::thesis_default`]) | checks (the thesis's chess-board.bmp) |
+//! | [`SceneKind::ThesisCircuit`] | the thesis's quad | circuit board ([`crate::procedural`]) |
+//! | [`SceneKind::ThesisEarth`] | the thesis's quad | earth-like map ([`crate::procedural`]) |
 //! | [`SceneKind::TiltedQuad`] | a square tilted by an angle about the horizontal axis | bricks albedo |
 //! | [`SceneKind::ZonePlate`] | the ground plane again | zone plate `½ + ½·cos(k·r²)` |
 //!
@@ -54,7 +56,10 @@ pub enum SceneError {
         reason: String,
     },
     /// An unknown scene name.
-    #[error("unknown scene '{0}' (expected checkerboard, thesis_quad, quad_tilt_DEG or zone_plate)")]
+    #[error(
+        "unknown scene '{0}' (expected checkerboard, thesis_quad, thesis_quad_circuit, thesis_quad_earth, \
+         quad_tilt_DEG or zone_plate)"
+    )]
     UnknownScene(String),
 }
 
@@ -245,6 +250,10 @@ pub enum SceneKind {
     Checkerboard,
     /// The thesis's quad (Fig. 4.1) with a checker texture, scaled to fill the frame.
     ThesisQuad,
+    /// The thesis's quad with the circuit-board texture ([`crate::procedural::circuit_texture`]).
+    ThesisCircuit,
+    /// The thesis's quad with the earth-like map ([`crate::procedural::earth_texture`]).
+    ThesisEarth,
     /// A square tilted by this many degrees (0 = facing the camera) with the bricks texture.
     TiltedQuad(f64),
     /// A zone plate on the ground plane.
@@ -252,11 +261,14 @@ pub enum SceneKind {
 }
 
 impl SceneKind {
-    /// The default set: checkerboard, thesis quad, quads at 0°, 45°, 70° and 85°, zone plate.
+    /// The default set: checkerboard, the thesis's quad with its three textures (checker,
+    /// circuit, earth), quads at 0°, 45°, 70° and 85°, zone plate.
     pub fn defaults() -> Vec<SceneKind> {
         vec![
             SceneKind::Checkerboard,
             SceneKind::ThesisQuad,
+            SceneKind::ThesisCircuit,
+            SceneKind::ThesisEarth,
             SceneKind::TiltedQuad(0.0),
             SceneKind::TiltedQuad(45.0),
             SceneKind::TiltedQuad(70.0),
@@ -270,6 +282,8 @@ impl SceneKind {
         match self {
             SceneKind::Checkerboard => "checkerboard".into(),
             SceneKind::ThesisQuad => "thesis_quad".into(),
+            SceneKind::ThesisCircuit => "thesis_quad_circuit".into(),
+            SceneKind::ThesisEarth => "thesis_quad_earth".into(),
             SceneKind::TiltedQuad(t) => format!("quad_tilt_{t}"),
             SceneKind::ZonePlate => "zone_plate".into(),
         }
@@ -280,6 +294,8 @@ impl SceneKind {
         match s.trim() {
             "checkerboard" => Ok(SceneKind::Checkerboard),
             "thesis_quad" => Ok(SceneKind::ThesisQuad),
+            "thesis_quad_circuit" => Ok(SceneKind::ThesisCircuit),
+            "thesis_quad_earth" => Ok(SceneKind::ThesisEarth),
             "zone_plate" => Ok(SceneKind::ZonePlate),
             other => {
                 let deg = other
@@ -438,7 +454,7 @@ impl TestScene {
                     horizon_crop: crop(),
                 })
             }
-            SceneKind::ThesisQuad => {
+            SceneKind::ThesisQuad | SceneKind::ThesisCircuit | SceneKind::ThesisEarth => {
                 let q = QuadScene::thesis_default();
                 let s = q.project()?;
                 let (lo, hi) =
@@ -449,17 +465,28 @@ impl TestScene {
                 // Fill 90% of the frame, centred.
                 let a = (ext.x / (0.9 * w)).max(ext.y / (0.9 * h));
                 let b = 0.5 * (lo + hi) - a * DVec2::new(0.5 * w, 0.5 * h);
+                let (tex, uv_scale, what) = match kind {
+                    SceneKind::ThesisCircuit => (
+                        crate::procedural::circuit_texture(512, 1)?,
+                        1.0,
+                        "circuit-board texture (512², 32×32 routing cells) once",
+                    ),
+                    SceneKind::ThesisEarth => {
+                        (crate::procedural::earth_texture(512, 1)?, 1.0, "earth-like map (512²) once")
+                    }
+                    _ => (checker_texture(256, 8)?, 2.0, "checker texture (256², 8×8 checks) repeated 2×2"),
+                };
                 Ok(TestScene {
                     kind,
-                    description:
+                    description: format!(
                         "the thesis's quad P1(80,50,1600) P2(240,80,1500) P3(200,280,1100) P4(40,250,1200), \
-                                  eye (130,240,0), checker texture (256², 8×8 checks) repeated 2×2"
-                            .into(),
+                         eye (130,240,0), {what}"
+                    ),
                     width,
                     height,
                     view: PlanarView::quad(&q, a, b)?,
-                    texture: Texture::new(checker_texture(256, 8)?, Wrap::Repeat),
-                    uv_scale: 2.0,
+                    texture: Texture::new(tex, Wrap::Repeat),
+                    uv_scale,
                     background: Vec3::splat(0.18),
                     horizon_crop: None,
                 })
@@ -495,6 +522,21 @@ impl TestScene {
                 })
             }
         }
+    }
+
+    /// The same scene with the user's `texture` (linear RGBA, any size) in place of the
+    /// built-in one, shown once per surface unit and repeated: the camera, the surface and the
+    /// mapping stay as they are. `label` (the file name) goes into the description.
+    pub fn with_texture(mut self, texture: Image<Vec4>, label: &str) -> TestScene {
+        self.description = format!(
+            "{}; texture replaced by {label} ({}×{}) once per surface unit",
+            self.description,
+            texture.width(),
+            texture.height()
+        );
+        self.texture = Texture::new(texture, Wrap::Repeat);
+        self.uv_scale = 1.0;
+        self
     }
 
     /// A scene from its parts (for tests and user experiments).
