@@ -110,3 +110,17 @@ fn filter_names_round_trip() {
     assert!(FilterChoice::parse("ewa:nan:100").is_err());
     assert!(FilterChoice::parse("gauss").is_err());
 }
+
+proptest::proptest! {
+    /// Filter and scene names from the command line never panic the parsers, and whatever
+    /// parses names itself back.
+    #[test]
+    fn filter_and_scene_parsers_never_panic(s in "[a-z_:0-9.\\-]{0,24}|\\PC{0,32}") {
+        if let Ok(f) = FilterChoice::parse(&s) {
+            proptest::prop_assert_eq!(FilterChoice::parse(&f.name()).unwrap(), f);
+        }
+        if let Ok(k) = SceneKind::parse(&s) {
+            proptest::prop_assert_eq!(SceneKind::parse(&k.name()).unwrap(), k);
+        }
+    }
+}
