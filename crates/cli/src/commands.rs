@@ -363,6 +363,35 @@ impl<'a> FrameSink<'a> {
     }
 }
 
+/// Renders a `water` or `smoke` sequence into `out` (PNG frames and the APNG, see
+/// [`FrameSink`]) with a progress bar, mapping a noise-parameter error to its flag with
+/// `flag_error`. Returns the milliseconds per frame.
+fn write_sequence(
+    name: &str,
+    out: &Path,
+    (width, height): (u32, u32),
+    (frames, fps): (u32, u32),
+    flag_error: fn(renderlab_noise::NoiseError) -> anyhow::Error,
+    render: impl FnOnce(&mut dyn FnMut(u32, Image<Vec3>) -> Result<()>) -> Result<()>,
+) -> Result<f64> {
+    create_dir(out)?;
+    let p = Progress::new(name);
+    let started = std::time::Instant::now();
+    let mut sink = FrameSink::new(out, width, height, frames, fps)?;
+    render(&mut |i, img| {
+        sink.push(i, &img)?;
+        p.update(i as usize + 1, frames as usize, "frames");
+        Ok(())
+    })
+    .map_err(|e| match e.downcast::<renderlab_noise::NoiseError>() {
+        Ok(n) => flag_error(n),
+        Err(e) => e,
+    })?;
+    sink.finish()?;
+    p.finish();
+    Ok(started.elapsed().as_secs_f64() * 1e3 / f64::from(frames))
+}
+
 fn check_fps(fps: u32) -> Result<()> {
     if !(1..=1000).contains(&fps) {
         bail!("--fps: {fps} must lie in 1..=1000");
@@ -377,22 +406,14 @@ fn water(a: WaterArgs) -> Result<()> {
     if last.abs() > f64::from(renderlab_noise::water::MAX_WATER_TIME) {
         bail!("--start/--frames/--time-step: the last frame's time {last} exceeds 10000 s");
     }
-    create_dir(&a.out)?;
-    let p = Progress::new("water");
-    let started = std::time::Instant::now();
-    let mut sink = FrameSink::new(&a.out, params.width, params.height, a.frames, a.fps)?;
-    renderlab_noise::water::render_water_sequence(&params, a.start, a.frames, |i, img| -> Result<()> {
-        sink.push(i, &img)?;
-        p.update(i as usize + 1, a.frames as usize, "frames");
-        Ok(())
-    })
-    .map_err(|e| match e.downcast::<renderlab_noise::NoiseError>() {
-        Ok(n) => water_flag_error(n),
-        Err(e) => e,
-    })?;
-    sink.finish()?;
-    p.finish();
-    let per = started.elapsed().as_secs_f64() * 1e3 / f64::from(a.frames);
+    let per = write_sequence(
+        "water",
+        &a.out,
+        (params.width, params.height),
+        (a.frames, a.fps),
+        water_flag_error,
+        |sink| renderlab_noise::water::render_water_sequence(&params, a.start, a.frames, sink),
+    )?;
     println!(
         "wrote {} frames ({}x{}) and animation.png to {} ({per:.1} ms per frame)",
         a.frames,
@@ -499,22 +520,14 @@ fn smoke(a: SmokeArgs) -> Result<()> {
     {
         bail!("--start/--frames/--time-step: frame times must stay within ±10000 s (last: {last})");
     }
-    create_dir(&a.out)?;
-    let p = Progress::new("smoke");
-    let started = std::time::Instant::now();
-    let mut sink = FrameSink::new(&a.out, params.width, params.height, a.frames, a.fps)?;
-    renderlab_noise::smoke::render_smoke_sequence(&params, a.start, a.frames, |i, img| -> Result<()> {
-        sink.push(i, &img)?;
-        p.update(i as usize + 1, a.frames as usize, "frames");
-        Ok(())
-    })
-    .map_err(|e| match e.downcast::<renderlab_noise::NoiseError>() {
-        Ok(n) => smoke_flag_error(n),
-        Err(e) => e,
-    })?;
-    sink.finish()?;
-    p.finish();
-    let per = started.elapsed().as_secs_f64() * 1e3 / f64::from(a.frames);
+    let per = write_sequence(
+        "smoke",
+        &a.out,
+        (params.width, params.height),
+        (a.frames, a.fps),
+        smoke_flag_error,
+        |sink| renderlab_noise::smoke::render_smoke_sequence(&params, a.start, a.frames, sink),
+    )?;
     println!(
         "wrote {} frames ({}x{}, grid {}³) and animation.png to {} ({per:.1} ms per frame)",
         a.frames,

@@ -329,11 +329,7 @@ impl PackedPom {
         simd: bool,
     ) {
         let Some(map) = inp.packed else {
-            let pom = crate::parallax::Pom { layers: self.layers };
-            for (o, &(uv, v)) in out.iter_mut().zip(rays) {
-                *o = pom.trace(inp, uv, v, counter);
-            }
-            return;
+            return plain_pom_row(self.layers, inp, rays, out, counter);
         };
         #[cfg(target_arch = "x86_64")]
         if simd && crate::cone_fast::has_avx2() {
@@ -343,6 +339,21 @@ impl PackedPom {
         }
         let _ = simd;
         self.row(inp, map, rays, out, counter);
+    }
+}
+
+/// Plain [`crate::parallax::Pom`] over a row: the fallback of the packed POM variants when the
+/// inputs carry no packed map (same images, the original fetches).
+pub(crate) fn plain_pom_row<C: Counter>(
+    layers: u32,
+    inp: &ReliefInputs,
+    rays: &[(Vec2, Vec3)],
+    out: &mut [ReliefHit],
+    counter: &mut C,
+) {
+    let pom = crate::parallax::Pom { layers };
+    for (o, &(uv, v)) in out.iter_mut().zip(rays) {
+        *o = pom.trace(inp, uv, v, counter);
     }
 }
 

@@ -93,11 +93,7 @@ impl SimdPom {
         simd: bool,
     ) {
         let Some(map) = inp.packed else {
-            let pom = crate::parallax::Pom { layers: self.layers };
-            for (o, &(uv, v)) in out.iter_mut().zip(rays) {
-                *o = pom.trace(inp, uv, v, counter);
-            }
-            return;
+            return crate::packed::plain_pom_row(self.layers, inp, rays, out, counter);
         };
         #[cfg(target_arch = "x86_64")]
         if simd && crate::cone_fast::simd_usable(map) {
