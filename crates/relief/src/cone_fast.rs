@@ -674,27 +674,9 @@ mod avx2 {
                         // Fetch.
                         let x = _mm256_add_ps(px, _mm256_mul_ps(tu, c));
                         let y = _mm256_add_ps(py, _mm256_mul_ps(tv, c));
-                        let x0 = _mm256_floor_ps(x);
-                        let y0 = _mm256_floor_ps(y);
-                        let (fx, fy) = (_mm256_sub_ps(x, x0), _mm256_sub_ps(y, y0));
-                        let xi = _mm256_and_si256(_mm256_cvttps_epi32(x0), mask_x);
-                        let yi = _mm256_and_si256(_mm256_cvttps_epi32(y0), mask_y);
-                        let idx = _mm256_add_epi32(_mm256_mullo_epi32(yi, stride_v), xi);
-                        // Texels (x, y) and (x + 1, y) are adjacent: one 64-bit gather element fetches
-                        // both. Lanes (0, 1, 4, 5) go to the first gather and (2, 3, 6, 7) to the second,
-                        // so that the shuffles below put them back in order.
-                        let perm = _mm256_permutevar8x32_epi32(idx, lane_order);
-                        let (ia, ib) = (_mm256_castsi256_si128(perm), _mm256_extracti128_si256::<1>(perm));
-                        let base64 = base as *const i64;
-                        let row1 = base.add(stride as usize) as *const i64;
-                        let r0a = _mm256_castsi256_ps(_mm256_i32gather_epi64::<4>(base64, ia));
-                        let r0b = _mm256_castsi256_ps(_mm256_i32gather_epi64::<4>(base64, ib));
-                        let r1a = _mm256_castsi256_ps(_mm256_i32gather_epi64::<4>(row1, ia));
-                        let r1b = _mm256_castsi256_ps(_mm256_i32gather_epi64::<4>(row1, ib));
-                        let t00 = _mm256_castps_si256(_mm256_shuffle_ps::<0b10_00_10_00>(r0a, r0b));
-                        let t10 = _mm256_castps_si256(_mm256_shuffle_ps::<0b11_01_11_01>(r0a, r0b));
-                        let t01 = _mm256_castps_si256(_mm256_shuffle_ps::<0b10_00_10_00>(r1a, r1b));
-                        let t11 = _mm256_castps_si256(_mm256_shuffle_ps::<0b11_01_11_01>(r1a, r1b));
+                        let (fx, fy, t00, t10, t01, t11) = crate::packed::gather_cell!(
+                            base, stride, x, y, mask_x, mask_y, stride_v, lane_order
+                        );
                         let hi = |t: __m256i| _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t));
                         let (d00, d10, d01, d11) = (hi(t00), hi(t10), hi(t01), hi(t11));
                         let dx0 = _mm256_sub_ps(d10, d00);

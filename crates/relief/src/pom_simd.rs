@@ -226,26 +226,11 @@ mod avx2 {
                             _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(u, wf), half), lo), hi);
                         let y =
                             _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(v, hf), half), lo), hi);
-                        let x0 = _mm256_floor_ps(x);
-                        let y0 = _mm256_floor_ps(y);
-                        let (fx, fy) = (_mm256_sub_ps(x, x0), _mm256_sub_ps(y, y0));
-                        let xi = _mm256_and_si256(_mm256_cvttps_epi32(x0), mask_x);
-                        let yi = _mm256_and_si256(_mm256_cvttps_epi32(y0), mask_y);
-                        let idx = _mm256_add_epi32(_mm256_mullo_epi32(yi, stride_v), xi);
-                        let perm = _mm256_permutevar8x32_epi32(idx, lane_order);
-                        let (ia, ib) = (_mm256_castsi256_si128(perm), _mm256_extracti128_si256::<1>(perm));
-                        let row0 = base as *const i64;
-                        let row1 = base.add(stride as usize) as *const i64;
-                        let r0a = _mm256_castsi256_ps(_mm256_i32gather_epi64::<4>(row0, ia));
-                        let r0b = _mm256_castsi256_ps(_mm256_i32gather_epi64::<4>(row0, ib));
-                        let r1a = _mm256_castsi256_ps(_mm256_i32gather_epi64::<4>(row1, ia));
-                        let r1b = _mm256_castsi256_ps(_mm256_i32gather_epi64::<4>(row1, ib));
-                        let hi16 =
-                            |t: __m256| _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(_mm256_castps_si256(t)));
-                        let d00 = hi16(_mm256_shuffle_ps::<0b10_00_10_00>(r0a, r0b));
-                        let d10 = hi16(_mm256_shuffle_ps::<0b11_01_11_01>(r0a, r0b));
-                        let d01 = hi16(_mm256_shuffle_ps::<0b10_00_10_00>(r1a, r1b));
-                        let d11 = hi16(_mm256_shuffle_ps::<0b11_01_11_01>(r1a, r1b));
+                        let (fx, fy, t00, t10, t01, t11) = crate::packed::gather_cell!(
+                            base, stride, x, y, mask_x, mask_y, stride_v, lane_order
+                        );
+                        let hi16 = |t: __m256i| _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t));
+                        let (d00, d10, d01, d11) = (hi16(t00), hi16(t10), hi16(t01), hi16(t11));
                         let top = _mm256_add_ps(d00, _mm256_mul_ps(_mm256_sub_ps(d10, d00), fx));
                         let bottom = _mm256_add_ps(d01, _mm256_mul_ps(_mm256_sub_ps(d11, d01), fx));
                         let dy = _mm256_sub_ps(bottom, top);
