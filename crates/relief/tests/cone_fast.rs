@@ -4,64 +4,20 @@
 
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::{NoCount, Tally};
-use renderlab_core::Image;
-use renderlab_relief::complexity::{complexity_map, ComplexityParams};
 use renderlab_relief::cone::{ConeKind, ConeMap};
 use renderlab_relief::cone_fast::FastCone;
 use renderlab_relief::packed::{PackedPom, PackedRelief};
 use renderlab_relief::parallax::Pom;
 use renderlab_relief::pom_simd::SimdPom;
-use renderlab_relief::reference::{exact_hit, first_crossing};
+use renderlab_relief::reference::first_crossing;
 use renderlab_relief::technique::uv_per_depth;
-use renderlab_relief::{HeightField, ReliefHit, ReliefInputs, ReliefTechnique};
+use renderlab_relief::{HeightField, ReliefHit, ReliefTechnique};
 
-const SCALE: f32 = 0.06;
-
-/// A bumpy, bricky height map with sharp edges and smooth domes.
-fn heights(w: u32, h: u32) -> Image<f32> {
-    Image::from_fn(w, h, |x, y| {
-        let bx = (x + if (y / 8) % 2 == 0 { 0 } else { 8 }) % 16;
-        let by = y % 8;
-        if bx == 0 || by == 0 {
-            0.1
-        } else {
-            let fx = (x as f32 * 0.3).sin() * 0.5 + 0.5;
-            let fy = (y as f32 * 0.45).cos() * 0.5 + 0.5;
-            0.6 + 0.35 * fx * fy
-        }
-    })
-}
-
-struct Fixture {
-    field: HeightField,
-    complexity: Image<f32>,
-    cone: ConeMap,
-    packed: PackedRelief,
-}
+mod common;
+use common::{heights, view, Fixture, SCALE};
 
 fn fixture(w: u32, h: u32, cone_size: u32) -> Fixture {
-    let img = heights(w, h);
-    let field = HeightField::from_height(&img);
-    let cone = ConeMap::build(&field, ConeKind::Relaxed, cone_size);
-    let packed = PackedRelief::build(&field, Some(&cone));
-    Fixture { complexity: complexity_map(&img, &ComplexityParams::default()), field, cone, packed }
-}
-
-impl Fixture {
-    fn inputs(&self) -> ReliefInputs<'_> {
-        ReliefInputs {
-            height: &self.field,
-            height_scale: SCALE,
-            complexity: &self.complexity,
-            cone: Some(&self.cone),
-            packed: Some(&self.packed),
-        }
-    }
-}
-
-fn view(theta_deg: f32, phi: f32) -> Vec3 {
-    let a = theta_deg.to_radians();
-    Vec3::new(a.sin() * phi.cos(), a.sin() * phi.sin(), a.cos())
+    Fixture::new(w, h, cone_size, true)
 }
 
 fn rays(n: usize) -> Vec<(Vec2, Vec3)> {
@@ -150,19 +106,9 @@ fn traces_are_bounded_and_finite() {
     }
 }
 
-/// Mean UV error in texels against the exact hit.
+/// Mean UV error in texels against the exact hit over 600 fixed rays.
 fn mean_error<T: ReliefTechnique>(fx: &Fixture, t: &T, theta: f32) -> f32 {
-    let inp = fx.inputs();
-    let n = 600;
-    let mut sum = 0.0;
-    for i in 0..n {
-        let uv = Vec2::new((i as f32 * 0.618_034).fract(), (i as f32 * 0.754_877).fract());
-        let v = view(theta, i as f32 * 2.4);
-        let got = t.trace(&inp, uv, v, &mut NoCount).uv;
-        let (exact, _) = exact_hit(&fx.field, SCALE, uv, v);
-        sum += ((got - exact) * 64.0).length();
-    }
-    sum / n as f32
+    common::mean_error(fx, t, theta, 600)
 }
 
 #[test]

@@ -4,77 +4,23 @@
 use glam::{Vec2, Vec3};
 use proptest::prelude::*;
 use renderlab_core::counter::{NoCount, Tally};
-use renderlab_core::Image;
 use renderlab_relief::adaptive::AdaptivePom;
-use renderlab_relief::complexity::{complexity_map, ComplexityParams};
-use renderlab_relief::cone::{ConeKind, ConeMap};
 use renderlab_relief::cone_step::{ConeStep, Refinement};
 use renderlab_relief::parallax::{Parallax, Pom, Steep};
-use renderlab_relief::reference::exact_hit;
 use renderlab_relief::relief_mapping::{AdaptiveRelief, ReliefMapping};
 use renderlab_relief::technique::uv_per_depth;
-use renderlab_relief::{HeightField, ReliefInputs, ReliefTechnique};
+use renderlab_relief::{ReliefInputs, ReliefTechnique};
 
-const SCALE: f32 = 0.06;
-
-/// A bumpy, bricky 64² height map with sharp edges and smooth domes.
-fn heights() -> Image<f32> {
-    Image::from_fn(64, 64, |x, y| {
-        let bx = (x + if (y / 8) % 2 == 0 { 0 } else { 8 }) % 16;
-        let by = y % 8;
-        if bx == 0 || by == 0 {
-            0.1
-        } else {
-            let fx = (x as f32 * 0.3).sin() * 0.5 + 0.5;
-            let fy = (y as f32 * 0.45).cos() * 0.5 + 0.5;
-            0.6 + 0.35 * fx * fy
-        }
-    })
-}
-
-struct Fixture {
-    field: HeightField,
-    complexity: Image<f32>,
-    cone: ConeMap,
-}
+mod common;
+use common::{view, Fixture, SCALE};
 
 fn fixture() -> Fixture {
-    let h = heights();
-    let field = HeightField::from_height(&h);
-    let cone = ConeMap::build(&field, ConeKind::Relaxed, 64);
-    Fixture { complexity: complexity_map(&h, &ComplexityParams::default()), field, cone }
+    Fixture::new(64, 64, 64, false)
 }
 
-impl Fixture {
-    fn inputs(&self) -> ReliefInputs<'_> {
-        ReliefInputs {
-            height: &self.field,
-            height_scale: SCALE,
-            complexity: &self.complexity,
-            cone: Some(&self.cone),
-            packed: None,
-        }
-    }
-}
-
-fn view(theta_deg: f32, phi: f32) -> Vec3 {
-    let a = theta_deg.to_radians();
-    Vec3::new(a.sin() * phi.cos(), a.sin() * phi.sin(), a.cos())
-}
-
-/// Mean UV error in texels of `t` against the exact hit over a fixed set of rays.
+/// Mean UV error in texels of `t` against the exact hit over 400 fixed rays.
 fn mean_error<T: ReliefTechnique>(fx: &Fixture, t: &T, theta: f32) -> f32 {
-    let inp = fx.inputs();
-    let mut sum = 0.0;
-    let n = 400;
-    for i in 0..n {
-        let uv = Vec2::new((i as f32 * 0.618_034).fract(), (i as f32 * 0.754_877).fract());
-        let v = view(theta, i as f32 * 2.4);
-        let got = t.trace(&inp, uv, v, &mut NoCount).uv;
-        let (exact, _) = exact_hit(&fx.field, SCALE, uv, v);
-        sum += ((got - exact) * 64.0).length();
-    }
-    sum / n as f32
+    common::mean_error(fx, t, theta, 400)
 }
 
 #[test]
