@@ -268,20 +268,7 @@ fn water_frames_and_bad_flags() {
     let o = d.to_str().unwrap();
     let out = renderlab(&["water", "--frames", "2", "--size", "64x40", "--out", o]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let mut names: Vec<String> = std::fs::read_dir(&d)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    assert_eq!(names, ["animation.png", "frame_0000.png", "frame_0001.png"]);
-    let anim = std::fs::read(d.join("animation.png")).unwrap();
-    assert!(anim.windows(4).any(|w| w == b"acTL"), "animation.png is an APNG");
-    let f0 = std::fs::read(d.join("frame_0000.png")).unwrap();
-    let f1 = std::fs::read(d.join("frame_0001.png")).unwrap();
-    assert_eq!(&f0[1..4], b"PNG");
-    assert_eq!(u32::from_be_bytes(f0[16..20].try_into().unwrap()), 64, "width");
-    assert_eq!(u32::from_be_bytes(f0[20..24].try_into().unwrap()), 40, "height");
-    assert_ne!(f0, f1, "frames should move");
+    assert_two_frames_and_animation(&d, 64, 40);
 
     let bad = dir.path().join("bad");
     let b = bad.to_str().unwrap();
@@ -302,6 +289,24 @@ fn water_frames_and_bad_flags() {
     assert!(!bad.exists(), "no output directory for rejected flags");
 }
 
+/// `d` holds exactly two PNG frames of `w × h` that differ, and their APNG animation.
+fn assert_two_frames_and_animation(d: &Path, w: u32, h: u32) {
+    let mut names: Vec<String> = std::fs::read_dir(d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["animation.png", "frame_0000.png", "frame_0001.png"]);
+    let anim = std::fs::read(d.join("animation.png")).unwrap();
+    assert!(anim.windows(4).any(|w| w == b"acTL"), "animation.png is an APNG");
+    let f0 = std::fs::read(d.join("frame_0000.png")).unwrap();
+    let f1 = std::fs::read(d.join("frame_0001.png")).unwrap();
+    assert_eq!(&f0[1..4], b"PNG");
+    assert_eq!(u32::from_be_bytes(f0[16..20].try_into().unwrap()), w, "width");
+    assert_eq!(u32::from_be_bytes(f0[20..24].try_into().unwrap()), h, "height");
+    assert_ne!(f0, f1, "frames should move");
+}
+
 #[test]
 fn smoke_frames_and_bad_flags() {
     let out = renderlab(&["smoke", "--help"]);
@@ -315,20 +320,7 @@ fn smoke_frames_and_bad_flags() {
     let o = d.to_str().unwrap();
     let out = renderlab(&["smoke", "--frames", "2", "--size", "64x64", "--grid", "32", "--out", o]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let mut names: Vec<String> = std::fs::read_dir(&d)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    assert_eq!(names, ["animation.png", "frame_0000.png", "frame_0001.png"]);
-    let anim = std::fs::read(d.join("animation.png")).unwrap();
-    assert!(anim.windows(4).any(|w| w == b"acTL"), "animation.png is an APNG");
-    let f0 = std::fs::read(d.join("frame_0000.png")).unwrap();
-    let f1 = std::fs::read(d.join("frame_0001.png")).unwrap();
-    assert_eq!(&f0[1..4], b"PNG");
-    assert_eq!(u32::from_be_bytes(f0[16..20].try_into().unwrap()), 64, "width");
-    assert_eq!(u32::from_be_bytes(f0[20..24].try_into().unwrap()), 64, "height");
-    assert_ne!(f0, f1, "frames should move");
+    assert_two_frames_and_animation(&d, 64, 64);
     let t = dir.path().join("thesis");
     let args = ["smoke", "--frames", "1", "--size", "32x32", "--grid", "16", "--animation", "thesis"];
     let out = renderlab(&[&args[..], &["--filter", "median", "--out", t.to_str().unwrap()]].concat());
