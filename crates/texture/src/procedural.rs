@@ -1,5 +1,5 @@
-//! Procedural textures for the thesis's quad: a circuit board and an earth-like map, beside
-//! the checker of [`crate::scene::checker_texture`].
+//! The texture lab's procedural textures: the checker, the zone plate and the bricks albedo of
+//! the test scenes, and, for the thesis's quad, a circuit board and an earth-like map.
 //!
 //! The texturing thesis maps three images onto its quad: a chess board, a circuit-board photo
 //! and a map of the earth. Those images are not ours to ship, so the lab makes textures with the
@@ -9,19 +9,60 @@
 //! light, and tile seamlessly (the circuit's grid and the earth's noise both wrap), so the
 //! scenes can repeat them.
 
-use crate::scene::SceneError;
+use crate::scene::{size_error, SceneError};
 use glam::{Vec3, Vec4};
 use renderlab_core::Image;
 use renderlab_noise::{Fractal, FractalKind, FractalParams, Perlin};
 
 /// Largest side of a procedural texture.
-pub const MAX_SIDE: u32 = 8192;
+pub const MAX_TEXTURE_SIDE: u32 = 8192;
 
+/// Checks a texture side: `min..=`[`MAX_TEXTURE_SIDE`].
 fn check_side(what: &'static str, size: u32, min: u32) -> Result<(), SceneError> {
-    if size < min || size > MAX_SIDE {
-        return Err(SceneError::Size { what, reason: format!("{size} must lie in {min}..={MAX_SIDE}") });
+    if size < min || size > MAX_TEXTURE_SIDE {
+        return Err(size_error(what, format!("{size} must lie in {min}..={MAX_TEXTURE_SIDE}")));
     }
     Ok(())
+}
+
+/// A checkerboard of `checks × checks` squares, black (0) and white (1) in linear light, on a
+/// `size × size` texture. Errors for a size outside 1..=8192 or zero checks.
+pub fn checker_texture(size: u32, checks: u32) -> Result<Image<Vec4>, SceneError> {
+    check_side("checker size", size, 1)?;
+    if checks == 0 || checks > size {
+        return Err(size_error("checks", format!("{checks} must lie in 1..={size}")));
+    }
+    Ok(Image::from_fn_par(size, size, |x, y| {
+        let cx = (x as u64 * checks as u64 / size as u64) as u32;
+        let cy = (y as u64 * checks as u64 / size as u64) as u32;
+        Vec4::splat(((cx + cy) % 2) as f32).with_w(1.0)
+    }))
+}
+
+/// A zone plate `½ + ½·cos(k·r²)` (r in texels from the centre) inside the inscribed disc and
+/// ½ outside. `k` puts the ring frequency `k·r/π` at just under ½ cycle per texel (Nyquist) on
+/// the disc's edge, where the cosine is 0, so the texture is continuous and tiles seamlessly.
+pub fn zone_plate_texture(size: u32) -> Result<Image<Vec4>, SceneError> {
+    check_side("zone plate size", size, 1)?;
+    let r_max = size as f64 / 2.0;
+    // k·R² = π·(⌊R²/(2R)·…⌋) chosen as (m + ½)·π with m the largest keeping k·R/π ≤ ½.
+    let m = (r_max / 2.0 - 0.5).floor().max(0.0);
+    let k = (m + 0.5) * std::f64::consts::PI / (r_max * r_max);
+    Ok(Image::from_fn_par(size, size, |x, y| {
+        let dx = x as f64 + 0.5 - r_max;
+        let dy = y as f64 + 0.5 - r_max;
+        let r2 = dx * dx + dy * dy;
+        let v = if r2 < r_max * r_max { 0.5 + 0.5 * (k * r2).cos() } else { 0.5 };
+        Vec4::splat(v as f32).with_w(1.0)
+    }))
+}
+
+/// The bricks material's albedo (from `renderlab-core`) as an RGBA texture.
+pub fn bricks_texture(size: u32) -> Result<Image<Vec4>, SceneError> {
+    check_side("bricks size", size, 1)?;
+    let m = renderlab_core::procedural::material("bricks", size.max(8))
+        .map_err(|e| size_error("bricks size", e.to_string()))?;
+    Ok(m.albedo.map(|c| c.extend(1.0)))
 }
 
 /// A 32-bit integer hash (lowbias32) of a cell and a channel, mixed with the seed.
@@ -136,8 +177,7 @@ pub fn circuit_texture(size: u32, seed: u32) -> Result<Image<Vec4>, SceneError> 
 /// `size` texels per side (16..=8192).
 pub fn earth_texture(size: u32, seed: u32) -> Result<Image<Vec4>, SceneError> {
     check_side("earth size", size, 16)?;
-    let noise_err =
-        |e: renderlab_noise::NoiseError| SceneError::Size { what: "earth noise", reason: e.to_string() };
+    let noise_err = |e: renderlab_noise::NoiseError| size_error("earth noise", e.to_string());
     let relief_params =
         FractalParams::new(8, 3.0, 2.0, 0.5).and_then(|p| p.with_period(&[1, 1])).map_err(noise_err)?;
     let moist_params =
@@ -256,8 +296,8 @@ mod tests {
     fn bad_sizes_are_errors() {
         assert!(circuit_texture(0, 1).is_err());
         assert!(circuit_texture(32, 1).is_err());
-        assert!(circuit_texture(MAX_SIDE + 1, 1).is_err());
+        assert!(circuit_texture(MAX_TEXTURE_SIDE + 1, 1).is_err());
         assert!(earth_texture(0, 1).is_err());
-        assert!(earth_texture(MAX_SIDE + 1, 1).is_err());
+        assert!(earth_texture(MAX_TEXTURE_SIDE + 1, 1).is_err());
     }
 }

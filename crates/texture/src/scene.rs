@@ -29,6 +29,7 @@
 use crate::filter::Filter;
 use crate::mapping::{MappingError, Projective, QuadScene};
 use crate::mip::{Texture, Wrap};
+use crate::procedural::{bricks_texture, checker_texture, zone_plate_texture};
 use glam::{DVec2, DVec3, Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 use renderlab_core::counter::{NoCount, Tally};
@@ -37,9 +38,6 @@ use renderlab_core::Image;
 
 /// A ground-plane pixel is clipped once its footprint spans this many texture tiles.
 pub const FAR_CLIP_TILES: f64 = 1.0;
-
-/// Largest side of a procedural texture.
-pub const MAX_TEXTURE_SIDE: u32 = 8192;
 
 /// Why a scene cannot be built.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -63,56 +61,8 @@ pub enum SceneError {
     UnknownScene(String),
 }
 
-fn size_error(what: &'static str, reason: impl Into<String>) -> SceneError {
+pub(crate) fn size_error(what: &'static str, reason: impl Into<String>) -> SceneError {
     SceneError::Size { what, reason: reason.into() }
-}
-
-/// Checks a texture side: 1..=[`MAX_TEXTURE_SIDE`].
-fn check_texture_side(what: &'static str, n: u32) -> Result<(), SceneError> {
-    if n == 0 || n > MAX_TEXTURE_SIDE {
-        return Err(size_error(what, format!("{n} must lie in 1..={MAX_TEXTURE_SIDE}")));
-    }
-    Ok(())
-}
-
-/// A checkerboard of `checks × checks` squares, black (0) and white (1) in linear light, on a
-/// `size × size` texture. Errors for a size outside 1..=8192 or zero checks.
-pub fn checker_texture(size: u32, checks: u32) -> Result<Image<Vec4>, SceneError> {
-    check_texture_side("checker size", size)?;
-    if checks == 0 || checks > size {
-        return Err(size_error("checks", format!("{checks} must lie in 1..={size}")));
-    }
-    Ok(Image::from_fn_par(size, size, |x, y| {
-        let cx = (x as u64 * checks as u64 / size as u64) as u32;
-        let cy = (y as u64 * checks as u64 / size as u64) as u32;
-        Vec4::splat(((cx + cy) % 2) as f32).with_w(1.0)
-    }))
-}
-
-/// A zone plate `½ + ½·cos(k·r²)` (r in texels from the centre) inside the inscribed disc and
-/// ½ outside. `k` puts the ring frequency `k·r/π` at just under ½ cycle per texel (Nyquist) on
-/// the disc's edge, where the cosine is 0, so the texture is continuous and tiles seamlessly.
-pub fn zone_plate_texture(size: u32) -> Result<Image<Vec4>, SceneError> {
-    check_texture_side("zone plate size", size)?;
-    let r_max = size as f64 / 2.0;
-    // k·R² = π·(⌊R²/(2R)·…⌋) chosen as (m + ½)·π with m the largest keeping k·R/π ≤ ½.
-    let m = (r_max / 2.0 - 0.5).floor().max(0.0);
-    let k = (m + 0.5) * std::f64::consts::PI / (r_max * r_max);
-    Ok(Image::from_fn_par(size, size, |x, y| {
-        let dx = x as f64 + 0.5 - r_max;
-        let dy = y as f64 + 0.5 - r_max;
-        let r2 = dx * dx + dy * dy;
-        let v = if r2 < r_max * r_max { 0.5 + 0.5 * (k * r2).cos() } else { 0.5 };
-        Vec4::splat(v as f32).with_w(1.0)
-    }))
-}
-
-/// The bricks material's albedo (from `renderlab-core`) as an RGBA texture.
-pub fn bricks_texture(size: u32) -> Result<Image<Vec4>, SceneError> {
-    check_texture_side("bricks size", size)?;
-    let m = renderlab_core::procedural::material("bricks", size.max(8))
-        .map_err(|e| size_error("bricks size", e.to_string()))?;
-    Ok(m.albedo.map(|c| c.extend(1.0)))
 }
 
 /// Which part of the plane a scene shows.

@@ -7,8 +7,9 @@ use renderlab_core::counter::Tally;
 use renderlab_core::Image;
 use renderlab_texture::filter::{Anisotropic, Bicubic, Bilinear, Ewa, Filter, Nearest, Trilinear};
 use renderlab_texture::mapping::{MappingError, QuadScene};
+use renderlab_texture::procedural::checker_texture;
 use renderlab_texture::reference::{reference, PixelFilter, Reference, ReferenceError};
-use renderlab_texture::scene::{checker_texture, PlanarView, SceneError, SceneKind, TestScene};
+use renderlab_texture::scene::{PlanarView, SceneError, SceneKind, TestScene};
 use renderlab_texture::{Texture, Wrap};
 
 fn masked_abs_diff(a: &Reference, b: &Reference) -> (f64, f64) {
