@@ -220,6 +220,8 @@ pub fn water_and_smoke(
         k = THESIS_FACTOR,
     ));
     let mut smoke_stats = Vec::new();
+    // The first frame of the animation with the base parameters, reused as its filter still.
+    let mut base_first_frame = None;
     let mut anim_items = Vec::new();
     let mut done = cfg.water_frames as usize;
     for (key, animation) in [
@@ -238,6 +240,9 @@ pub fn water_and_smoke(
             let started = std::time::Instant::now();
             let volume = SmokeVolume::build(&params, t)?;
             let img = volume.render();
+            if i == 0 && params == base {
+                base_first_frame = Some(img.clone());
+            }
             let seconds = started.elapsed().as_secs_f64();
             ms += seconds * 1e3;
             anim.push(&img)?;
@@ -311,7 +316,10 @@ pub fn water_and_smoke(
         ("median", SmokeFilter::Median3, "3×3×3 median"),
     ] {
         let params = SmokeParams { filter, ..base };
-        let img = SmokeVolume::build(&params, 0.0)?.render();
+        let img = match &base_first_frame {
+            Some(img) if params == base => img.clone(),
+            _ => SmokeVolume::build(&params, 0.0)?.render(),
+        };
         let name = format!("smoke_filter_{key}.png");
         let path = out_dir.join(&name);
         renderlab_core::io::save_color(&path, &img)?;
