@@ -408,23 +408,33 @@ fn pom_row_avx2<C: Counter>(
     pom.row(inp, map, rays, out, counter)
 }
 
-impl ReliefTechnique for PackedPom {
-    fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
-        let mut out = [ReliefHit::default()];
-        self.trace_row_with(inp, &[(uv, v)], &mut out, counter, false);
-        out[0]
-    }
+/// Implements [`ReliefTechnique`] for a type with a `trace_row_with(inp, rays, out, counter,
+/// simd)` method: one ray through the scalar kernel, rows through the vector kernel (the two
+/// give the same results).
+macro_rules! technique_from_rows {
+    ($t:ty) => {
+        impl ReliefTechnique for $t {
+            fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
+                let mut out = [ReliefHit::default()];
+                self.trace_row_with(inp, &[(uv, v)], &mut out, counter, false);
+                out[0]
+            }
 
-    fn trace_row<C: Counter>(
-        &self,
-        inp: &ReliefInputs,
-        rays: &[(Vec2, Vec3)],
-        out: &mut [ReliefHit],
-        counter: &mut C,
-    ) {
-        self.trace_row_with(inp, rays, out, counter, true);
-    }
+            fn trace_row<C: Counter>(
+                &self,
+                inp: &ReliefInputs,
+                rays: &[(Vec2, Vec3)],
+                out: &mut [ReliefHit],
+                counter: &mut C,
+            ) {
+                self.trace_row_with(inp, rays, out, counter, true);
+            }
+        }
+    };
 }
+pub(crate) use technique_from_rows;
+
+technique_from_rows!(PackedPom);
 
 #[cfg(test)]
 mod tests {

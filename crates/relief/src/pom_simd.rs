@@ -275,20 +275,4 @@ mod avx2 {
     kernel!(trace_row_avx512, "avx2,avx512f,avx512vl");
 }
 
-impl ReliefTechnique for SimdPom {
-    fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
-        let mut out = [ReliefHit::default()];
-        self.trace_row_with(inp, &[(uv, v)], &mut out, counter, false);
-        out[0]
-    }
-
-    fn trace_row<C: Counter>(
-        &self,
-        inp: &ReliefInputs,
-        rays: &[(Vec2, Vec3)],
-        out: &mut [ReliefHit],
-        counter: &mut C,
-    ) {
-        self.trace_row_with(inp, rays, out, counter, true);
-    }
-}
+crate::packed::technique_from_rows!(SimdPom);
