@@ -1,6 +1,8 @@
 //! Command-line arguments.
 
 use clap::{Args, Parser, Subcommand};
+use renderlab_texture::filter::FilterSpec;
+use renderlab_texture::reference::PixelFilter;
 use std::path::PathBuf;
 
 /// renderlab: forms images of textured and relief surfaces and measures rendering methods
@@ -388,10 +390,12 @@ pub struct SmokeArgs {
 pub enum TextureCommand {
     /// Render every test scene (checkerboard plane to the horizon, the thesis's quad, a quad at
     /// several tilts, a zone plate) with every filter; time it (ns per pixel), count its texel
-    /// fetches and measure PSNR, SSIM and FLIP against a supersampled reference under two pixel
-    /// filters (Gaussian σ = 0.5 px, the primary, and box); time every perspective-mapping mode
-    /// side by side. Writes results.json, results.csv, convergence.csv, images and index.html
-    /// to --out.
+    /// fetches and measure PSNR, SSIM and FLIP against a supersampled reference under two
+    /// pixel-filter models (the --model Gaussian, σ = 0.5 px cut at 3σ by default, and the box);
+    /// the reference is refined until its own noise sits 10 dB below the best filter's error.
+    /// Then the σ study (EWA and the reference at σ 0.35–0.6, cut 2σ and 3σ) and every
+    /// perspective-mapping mode side by side. Writes results.json, results.csv, noise.csv,
+    /// sigma.csv, images and index.html to --out.
     Bench(TextureBenchArgs),
     /// Render one test scene with one filter (or the reference) to a PNG.
     Render(TextureRenderArgs),
@@ -416,16 +420,25 @@ pub struct TextureBenchArgs {
     /// Untimed warm-up runs per measurement (0..=100).
     #[arg(long, default_value_t = 1)]
     pub warmup: u32,
-    /// Reference strata per axis (1..=64; samples per pixel = N²). The convergence study also
-    /// computes N/4 and N/2.
-    #[arg(long, default_value_t = 16)]
-    pub samples: u32,
-    /// Filters, comma-separated: nearest, bilinear, bicubic, trilinear, anisoN (N probes at
-    /// most, 1..=64), ewa (eccentricity clamp 16, at most 96 texels), ewa:ECC:TEXELS
-    /// (eccentricity clamp 1..=64, texel budget 16..=4096). Default: nearest, bilinear,
-    /// bicubic, trilinear, aniso2, aniso4, aniso8, aniso16, ewa and the tuned ewa:16:24.
-    #[arg(long, value_delimiter = ',')]
-    pub filters: Vec<String>,
+    /// The pixel-filter model every filter with a kernel follows and the primary reference
+    /// integrates: `sigma=S:cut=C` (a Gaussian of σ = S px, 0.1..=2, truncated on a disc at C·σ,
+    /// C in 1..=4; either part may be left out).
+    #[arg(long, default_value = "sigma=0.5:cut=3", value_parser = parse_model)]
+    pub model: PixelFilter,
+    /// The reference's first adaptive tolerance: the standard error a screen cell's mean may
+    /// keep (linear units, 0.0005..=0.2). Tightened, with more strata everywhere, while the
+    /// reference's noise is within 10 dB of the best filter's error.
+    #[arg(long, default_value_t = 0.02)]
+    pub tolerance: f32,
+    /// Most strata per axis a screen cell of the reference gets (8..=128; samples = N²).
+    #[arg(long, default_value_t = 64)]
+    pub max_strata: u32,
+    /// Skip the σ study.
+    #[arg(long)]
+    pub no_sigma_study: bool,
+    #[arg(long, value_delimiter = ',', value_parser = parse_filter, long_help = filters_help())]
+    /// Filters, comma-separated (default: the lab's set).
+    pub filters: Vec<FilterSpec>,
     /// Scenes, comma-separated (default: all): checkerboard, thesis_quad (checker),
     /// thesis_quad_circuit, thesis_quad_earth, quad_tilt_DEG (DEG in 0..=89.9), zone_plate.
     #[arg(long, value_delimiter = ',')]
@@ -458,11 +471,40 @@ pub struct TextureRenderArgs {
     /// Frame height in pixels (8..=4096).
     #[arg(long, default_value_t = 480)]
     pub height: u32,
-    /// Reference strata per axis, for --filter reference (1..=64).
+    /// Reference strata per axis of every screen cell, for --filter reference (1..=128;
+    /// samples per cell = N²).
     #[arg(long, default_value_t = 16)]
     pub samples: u32,
     /// Your texture (PNG, JPEG, TGA or EXR, any size) in place of the scene's built-in one,
     /// once per surface unit, repeated.
     #[arg(long)]
     pub texture: Option<PathBuf>,
+}
+
+/// Parses a `--filters` entry through the filter catalogue.
+fn parse_filter(s: &str) -> Result<FilterSpec, String> {
+    s.parse::<FilterSpec>().map_err(|e| e.to_string())
+}
+
+/// Parses `--model`.
+fn parse_model(s: &str) -> Result<PixelFilter, String> {
+    match PixelFilter::parse(s).map_err(|e| e.to_string())? {
+        PixelFilter::Box => Err("the model must be a Gaussian (the box is always the second model)".into()),
+        g => Ok(g),
+    }
+}
+
+/// `--filters` help, generated from the filter catalogue.
+fn filters_help() -> String {
+    let list: Vec<String> = renderlab_texture::filter::FILTERS
+        .iter()
+        .map(|f| format!("  {}\n      {}", f.syntax, f.description))
+        .collect();
+    let defaults: Vec<String> =
+        renderlab_lab::texture_lab::default_filters().iter().map(|f| f.name()).collect();
+    format!(
+        "Filters, comma-separated. Parameters follow the name, ':'-separated, in any order:\n{}\nDefault: {}",
+        list.join("\n"),
+        defaults.join(", ")
+    )
 }

@@ -13,10 +13,12 @@ use renderlab_lab::heatmap::heat_image;
 use renderlab_lab::noise_lab::{run_noise_lab_with, CloudsConfig, NoiseLabConfig, MAX_CLOUDS_SIZE};
 use renderlab_lab::noise_motion::MotionConfig;
 use renderlab_lab::relief_lab::{default_techniques, run_relief_bench, ReliefBenchConfig, View};
-use renderlab_lab::texture_lab::{run_texture_bench, FilterChoice, TextureBenchConfig};
+use renderlab_lab::texture_lab::{run_texture_bench, TextureBenchConfig};
 use renderlab_relief::complexity::{complexity_map, ComplexityParams};
 use renderlab_relief::render::{render, render_reference};
 use renderlab_relief::{ReliefMaterial, Technique};
+use renderlab_texture::filter::FilterSpec;
+use renderlab_texture::reference::Sampling;
 use renderlab_texture::scene::{SceneKind, TestScene};
 use std::path::Path;
 
@@ -568,14 +570,11 @@ fn report(a: ReportArgs) -> Result<()> {
     let noise_s = noise_started.elapsed().as_secs_f64();
     let noise_findings = noise.findings.join(" ");
     let texture_dir = a.out.join("texture");
-    let mut texture_cfg = TextureBenchConfig { reps: 3, ..TextureBenchConfig::default() };
-    if a.quick {
-        texture_cfg.width = 160;
-        texture_cfg.height = 120;
-        texture_cfg.reps = 1;
-        texture_cfg.warmup = 0;
-        texture_cfg.strata = 8;
-    }
+    let texture_cfg = if a.quick {
+        TextureBenchConfig::quick()
+    } else {
+        TextureBenchConfig { reps: 3, ..TextureBenchConfig::default() }
+    };
     let p = Progress::new("texture");
     let texture = run_texture_bench(&texture_cfg, &texture_dir, &|d, t, m| p.update(d, t, m))?;
     p.finish();
@@ -611,17 +610,14 @@ fn texture_config(a: &TextureBenchArgs) -> Result<TextureBenchConfig> {
     if a.warmup > 100 {
         bail!("--warmup: {} must lie in 0..=100", a.warmup);
     }
-    if a.samples == 0 || a.samples > 64 {
-        bail!("--samples: {} must lie in 1..=64", a.samples);
+    if !(a.tolerance >= 0.0005 && a.tolerance <= 0.2) {
+        bail!("--tolerance: {} must lie in 0.0005..=0.2", a.tolerance);
     }
-    let filters = if a.filters.is_empty() {
-        FilterChoice::defaults()
-    } else {
-        a.filters
-            .iter()
-            .map(|f| FilterChoice::parse(f).map_err(|e| anyhow::anyhow!("--filters: {e}")))
-            .collect::<Result<_>>()?
-    };
+    if !(8..=128).contains(&a.max_strata) {
+        bail!("--max-strata: {} must lie in 8..=128", a.max_strata);
+    }
+    let defaults = TextureBenchConfig::default();
+    let filters = if a.filters.is_empty() { defaults.filters.clone() } else { a.filters.clone() };
     let scenes = if a.scenes.is_empty() {
         SceneKind::defaults()
     } else {
@@ -637,7 +633,9 @@ fn texture_config(a: &TextureBenchArgs) -> Result<TextureBenchConfig> {
         filters,
         reps: a.reps,
         warmup: a.warmup,
-        strata: a.samples,
+        model: a.model,
+        sampling: Sampling { max_strata: a.max_strata, tolerance: a.tolerance, ..defaults.sampling },
+        sigma_study: if a.no_sigma_study { None } else { defaults.sigma_study.clone() },
         write_images: !a.no_images,
         texture: user_texture(a.texture.as_deref())?,
         ..TextureBenchConfig::default()
@@ -673,18 +671,17 @@ fn user_texture(path: Option<&Path>) -> Result<Option<(String, Image<glam::Vec4>
 
 fn texture_render(a: TextureRenderArgs) -> Result<()> {
     use renderlab_texture::reference::{reference, PixelFilter};
-    use renderlab_texture::{Anisotropic, Bicubic, Bilinear, Nearest, Trilinear};
     if !(8..=4096).contains(&a.width) || !(8..=4096).contains(&a.height) {
         bail!("--width/--height: {}x{}: each side must lie in 8..=4096", a.width, a.height);
     }
-    if a.samples == 0 || a.samples > 64 {
-        bail!("--samples: {} must lie in 1..=64", a.samples);
+    if a.samples == 0 || a.samples > 128 {
+        bail!("--samples: {} must lie in 1..=128", a.samples);
     }
     io::check_output(&a.out)?;
     let kind = SceneKind::parse(&a.scene).map_err(|e| anyhow::anyhow!("--scene: {e}"))?;
     let choice = match a.filter.as_str() {
         "reference" | "reference-box" => None,
-        f => Some(FilterChoice::parse(f).map_err(|e| anyhow::anyhow!("--filter: {e}"))?),
+        f => Some(f.parse::<FilterSpec>().map_err(|e| anyhow::anyhow!("--filter: {e}"))?),
     };
     let user = user_texture(a.texture.as_deref())?;
     let mut scene = TestScene::new(kind, a.width, a.height)?;
@@ -698,12 +695,7 @@ fn texture_render(a: TextureRenderArgs) -> Result<()> {
             let pf = if a.filter == "reference" { PixelFilter::GAUSSIAN } else { PixelFilter::Box };
             reference(&scene, pf, a.samples, 1)?.image
         }
-        Some(FilterChoice::Nearest) => scene.render(&surface, &Nearest),
-        Some(FilterChoice::Bilinear) => scene.render(&surface, &Bilinear),
-        Some(FilterChoice::Bicubic) => scene.render(&surface, &Bicubic),
-        Some(FilterChoice::Trilinear) => scene.render(&surface, &Trilinear),
-        Some(FilterChoice::Anisotropic(n)) => scene.render(&surface, &Anisotropic { max_probes: n }),
-        Some(FilterChoice::Ewa(e)) => scene.render(&surface, &e),
+        Some(f) => f.visit(RenderWith(&scene, &surface)),
     };
     let ms = started.elapsed().as_secs_f64() * 1e3;
     io::save_color(&a.out, &img)?;
@@ -716,4 +708,14 @@ fn texture_render(a: TextureRenderArgs) -> Result<()> {
         a.out.display()
     );
     Ok(())
+}
+
+/// Renders a scene through the visited filter.
+struct RenderWith<'a>(&'a TestScene, &'a renderlab_texture::scene::Surface);
+
+impl renderlab_texture::filter::FilterVisitor for RenderWith<'_> {
+    type Output = Image<glam::Vec3>;
+    fn visit<F: renderlab_texture::Filter>(self, filter: &F) -> Image<glam::Vec3> {
+        self.0.render(self.1, filter)
+    }
 }

@@ -14,7 +14,18 @@ mod progress;
 use clap::Parser;
 
 fn main() {
-    let cli = args::Cli::parse();
+    let cli = match args::Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) if !e.use_stderr() => e.exit(), // --help, --version
+        Err(e) => {
+            // Clap's own message, on one line like every other error (its first line names the
+            // flag and the value; the rest is a usage hint).
+            let text = e.to_string();
+            let first = text.lines().find(|l| !l.trim().is_empty()).unwrap_or("invalid arguments");
+            eprintln!("renderlab: error: {}", first.trim_start_matches("error: "));
+            std::process::exit(1);
+        }
+    };
     if let Err(e) = commands::run(cli) {
         // One line, naming the file or flag at fault.
         eprintln!("renderlab: error: {}", one_line(&e));

@@ -384,12 +384,15 @@ fn texture_bench_on_a_tiny_frame_writes_the_expected_records() {
         "1",
         "--warmup",
         "0",
-        "--samples",
-        "4",
+        "--tolerance",
+        "0.05",
+        "--max-strata",
+        "16",
+        "--no-sigma-study",
         "--scenes",
         "checkerboard,quad_tilt_70",
         "--filters",
-        "trilinear,aniso16,ewa",
+        "trilinear,aniso16:box,ewa",
     ]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let json: serde_json::Value =
@@ -410,10 +413,12 @@ fn texture_bench_on_a_tiny_frame_writes_the_expected_records() {
         filters.iter().any(|r| r["reference"] == "box")
             && filters.iter().any(|r| r["reference"] == "gaussian")
     );
-    assert!(!json["convergence"].as_array().unwrap().is_empty());
+    // The reference's noise for 2 scenes × 2 models; no σ study.
+    assert_eq!(json["noise"].as_array().unwrap().len(), 4);
+    assert!(json["sigma_study"].as_array().unwrap().is_empty());
     for f in [
         "results.csv",
-        "convergence.csv",
+        "noise.csv",
         "index.html",
         "img/checkerboard_ewa.png",
         "img/checkerboard_ewa_crop.png",
@@ -448,7 +453,11 @@ fn texture_render_and_bad_texture_flags() {
     fails_with(&["texture", "bench", "--out", o, "--filters", "aniso99"], "--filters");
     fails_with(&["texture", "bench", "--out", o, "--filters", "blur"], "unknown filter");
     fails_with(&["texture", "bench", "--out", o, "--scenes", "quad_tilt_90"], "--scenes");
-    fails_with(&["texture", "bench", "--out", o, "--samples", "0"], "--samples");
+    fails_with(&["texture", "bench", "--out", o, "--tolerance", "0"], "--tolerance");
+    fails_with(&["texture", "bench", "--out", o, "--max-strata", "500"], "--max-strata");
+    fails_with(&["texture", "bench", "--out", o, "--model", "box"], "--model");
+    fails_with(&["texture", "bench", "--out", o, "--model", "sigma=9"], "--model");
+    fails_with(&["texture", "bench", "--out", o, "--filters", "ewa:cut=0.5"], "--filters");
     fails_with(&["texture", "bench", "--out", o, "--width", "100000"], "--width");
     fails_with(&["texture", "render", "-o", p, "--scene", "teapot"], "--scene");
     fails_with(&["texture", "render", "-o", p, "--filter", "ewa:0:10"], "--filter");

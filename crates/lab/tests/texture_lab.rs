@@ -1,11 +1,12 @@
-//! The texture lab: its files and records, the EWA verdict's arithmetic, filter names.
+//! The texture lab: its files and records, the rankings' arithmetic, the reference's noise
+//! bookkeeping, the σ study's matched kernels, filter names.
 
-use renderlab_lab::texture_lab::{
-    ewa_verdicts, run_texture_bench, FilterChoice, TextureBenchConfig, TextureRecord,
-};
+use proptest::prelude::*;
+use renderlab_lab::texture_lab::{rank, run_texture_bench, SigmaStudy, TextureBenchConfig, TextureRecord};
+use renderlab_texture::filter::{Anisotropic, Ewa, FilterSpec};
 use renderlab_texture::mapping::Mode;
+use renderlab_texture::reference::{PixelFilter, Sampling};
 use renderlab_texture::scene::SceneKind;
-use renderlab_texture::Ewa;
 
 fn quiet(_: usize, _: usize, _: &str) {}
 
@@ -17,17 +18,25 @@ fn lab_writes_records_images_and_index() {
         height: 32,
         scenes: vec![SceneKind::ThesisQuad, SceneKind::ZonePlate],
         filters: vec![
-            FilterChoice::Trilinear,
-            FilterChoice::Anisotropic(16),
-            FilterChoice::Ewa(Ewa::default()),
+            FilterSpec::Trilinear,
+            FilterSpec::Anisotropic(Anisotropic::box_probes(16)),
+            FilterSpec::Ewa(Ewa::default()),
         ],
         modes: vec![Mode::Direct, Mode::Incremental, Mode::IncrementalRows],
-        strata: 4,
+        sampling: Sampling { min_strata: 4, max_strata: 16, tolerance: 0.02 },
+        sigma_study: Some(SigmaStudy {
+            scenes: vec![SceneKind::ZonePlate],
+            sigmas: vec![0.4, 0.5],
+            cuts: vec![3.0],
+            sampling: Sampling { min_strata: 4, max_strata: 16, tolerance: 0.02 },
+            width: 40,
+            height: 32,
+        }),
         warmup: 0,
         reps: 1,
         write_images: true,
         seed: 3,
-        texture: None,
+        ..TextureBenchConfig::default()
     };
     let s = run_texture_bench(&cfg, dir.path(), &quiet).unwrap();
     // 2 scenes × 3 filters × 2 references + 3 modes × 2 references on the thesis quad.
@@ -41,28 +50,45 @@ fn lab_writes_records_images_and_index() {
     for r in s.records.iter().filter(|r| r.kind == "mapping") {
         assert!(r.uv_err_vs_direct_max_texels < 0.05, "{r:?}");
     }
-    // Convergence: two steps per scene and pixel filter.
-    assert_eq!(s.convergence.len(), 2 * 2 * 2);
+    // Noise: two kernels per scene, two in the study; floors are the halves' PSNR + 6.02 dB
+    // and margins are against the best filter.
+    assert_eq!(s.noise.len(), 2 * 2 + 2);
+    for n in &s.noise {
+        assert!((n.floor_db - n.halves_psnr_db - 6.0206).abs() < 1e-3, "{n:?}");
+        assert!((n.margin_db - (n.floor_db - n.best_psnr_db)).abs() < 1e-9, "{n:?}");
+        assert!(n.samples_per_pixel >= 2.0 * 16.0 && n.rounds >= 1, "{n:?}");
+    }
+    // σ study: 2 kernels × (2 EWA + 2 Gaussian aniso + box aniso + trilinear).
+    assert_eq!(s.sigma.len(), 2 * 6);
+    assert_eq!(s.sigma.iter().filter(|r| r.matched).count(), 4);
+    // Rankings: 3 filters under each model, ranks 1..=3.
+    assert_eq!(s.rankings.len(), 6);
     for f in [
         "results.json",
         "results.csv",
-        "convergence.csv",
+        "noise.csv",
+        "sigma.csv",
         "index.html",
         "img/zone_plate_reference_gaussian.png",
         "img/zone_plate_reference_box_crop.png",
         "img/thesis_quad_ewa_err.png",
+        "img/thesis_quad_aniso16-box.png",
     ] {
         assert!(dir.path().join(f).is_file(), "{f} missing");
     }
     let html = std::fs::read_to_string(&s.index).unwrap();
-    for needle in
-        ["Reference convergence", "EWA against anisotropic-16", "incremental_rows4", "Why the Gaussian"]
-    {
+    for needle in [
+        "The pixel-filter model",
+        "noise floor",
+        "σ study",
+        "Ranking under the box model",
+        "incremental_rows4",
+    ] {
         assert!(html.contains(needle), "{needle} not in the page");
     }
 }
 
-fn rec(scene: &str, method: &str, reference: &'static str, ns: f64, psnr: f64, flip: f64) -> TextureRecord {
+fn rec(scene: &str, method: &str, reference: &'static str, ns: f64, psnr: f64) -> TextureRecord {
     TextureRecord {
         scene: scene.into(),
         kind: "filter",
@@ -72,7 +98,7 @@ fn rec(scene: &str, method: &str, reference: &'static str, ns: f64, psnr: f64, f
         fetches_per_pixel: 8.0,
         psnr_db: psnr,
         ssim: 1.0,
-        flip,
+        flip: 0.1,
         uv_err_vs_direct_max_texels: f64::NAN,
         uv_err_vs_direct_mean_texels: f64::NAN,
         uv_err_vs_exact_max_texels: f64::NAN,
@@ -80,47 +106,82 @@ fn rec(scene: &str, method: &str, reference: &'static str, ns: f64, psnr: f64, f
     }
 }
 
+/// Pooled PSNR is from the mean squared error, the cost ratio from total times, and each model
+/// ranks on its own records.
 #[test]
-fn verdict_needs_better_psnr_and_flip_within_four_trilinears() {
-    let scenes = [SceneKind::Checkerboard, SceneKind::ZonePlate];
+fn rankings_pool_error_and_cost_per_model() {
     let mut recs = Vec::new();
-    for s in ["checkerboard", "zone_plate"] {
-        recs.push(rec(s, "trilinear", "gaussian", 10.0, 20.0, 0.1));
-        recs.push(rec(s, "aniso16", "gaussian", 30.0, 25.0, 0.05));
+    for (s, ewa_db) in [("a", 30.0), ("b", 40.0)] {
+        recs.push(rec(s, "trilinear", "gaussian", 10.0, 20.0));
+        recs.push(rec(s, "ewa", "gaussian", 40.0, ewa_db));
+        recs.push(rec(s, "trilinear", "box", 10.0, 35.0));
+        recs.push(rec(s, "ewa", "box", 40.0, 25.0));
     }
-    recs.push(rec("checkerboard", "ewa", "gaussian", 35.0, 30.0, 0.03));
-    recs.push(rec("zone_plate", "ewa", "gaussian", 50.0, 30.0, 0.03));
-    let v = ewa_verdicts(&recs, &scenes);
-    let get = |s: &str| v.iter().find(|x| x.scene == s).unwrap();
-    assert!(get("checkerboard").met, "3.5× trilinear, better error");
-    assert!(!get("zone_plate").met, "5× trilinear is too slow");
-    let all = get("overall");
-    assert!((all.cost_vs_trilinear - 4.25).abs() < 1e-9);
-    assert!(!all.met);
-    assert!((all.ewa_psnr_db - 30.0).abs() < 1e-9);
+    let r = rank(&recs, &[PixelFilter::GAUSSIAN, PixelFilter::Box]);
+    let g: Vec<_> = r.iter().filter(|x| x.reference == "gaussian").collect();
+    assert_eq!((g[0].filter.as_str(), g[0].rank), ("ewa", 1));
+    // MSE (1e-3 + 1e-4)/2 = 5.5e-4: 32.596 dB.
+    assert!((g[0].pooled_psnr_db - 32.5964).abs() < 1e-3, "{}", g[0].pooled_psnr_db);
+    assert!((g[0].cost_vs_trilinear - 4.0).abs() < 1e-12);
+    assert_eq!(g[0].scenes_best, 2);
+    let b: Vec<_> = r.iter().filter(|x| x.reference == "box").collect();
+    assert_eq!(b[0].filter, "trilinear");
+}
+
+/// EWA whose kernel is the reference's scores higher against that reference than EWA with a
+/// mismatched σ, on the zone plate, where the kernel's width decides the residual aliasing.
+#[test]
+fn matched_ewa_beats_mismatched_ewa() {
+    use renderlab_lab::metrics::psnr;
+    use renderlab_texture::reference::{references, Sampling};
+    use renderlab_texture::scene::TestScene;
+    let scene = TestScene::new(SceneKind::ZonePlate, 96, 72).unwrap();
+    let surface = scene.surface();
+    let kernels =
+        [PixelFilter::Gaussian { sigma: 0.35, cut: 3.0 }, PixelFilter::Gaussian { sigma: 0.6, cut: 3.0 }];
+    let refs = references(&scene, &kernels, &Sampling { min_strata: 8, max_strata: 32, tolerance: 0.01 }, 5)
+        .unwrap();
+    let ewa = |k: PixelFilter| scene.render(&surface, &Ewa::with_kernel(k).unwrap());
+    let imgs = [ewa(kernels[0]), ewa(kernels[1])];
+    for (i, r) in refs.iter().enumerate() {
+        let matched = psnr(&imgs[i], &r.image, Some(&r.mask));
+        let other = psnr(&imgs[1 - i], &r.image, Some(&r.mask));
+        assert!(
+            matched > other + 1.0,
+            "reference {:?}: matched {matched} dB, mismatched {other} dB",
+            r.filter
+        );
+    }
 }
 
 #[test]
-fn filter_names_round_trip() {
-    for f in FilterChoice::defaults() {
-        assert_eq!(FilterChoice::parse(&f.name()).unwrap(), f);
+fn default_filters_round_trip() {
+    for f in renderlab_lab::texture_lab::default_filters() {
+        assert_eq!(f.name().parse::<FilterSpec>().unwrap(), f);
     }
-    assert!(FilterChoice::parse("aniso0").is_err());
-    assert!(FilterChoice::parse("ewa:99:10").is_err());
-    assert!(FilterChoice::parse("ewa:nan:100").is_err());
-    assert!(FilterChoice::parse("gauss").is_err());
 }
 
-proptest::proptest! {
+proptest! {
     /// Filter and scene names from the command line never panic the parsers, and whatever
     /// parses names itself back.
     #[test]
-    fn filter_and_scene_parsers_never_panic(s in "[a-z_:0-9.\\-]{0,24}|\\PC{0,32}") {
-        if let Ok(f) = FilterChoice::parse(&s) {
-            proptest::prop_assert_eq!(FilterChoice::parse(&f.name()).unwrap(), f);
+    fn filter_and_scene_parsers_never_panic(s in "[a-z_:0-9.=\\-]{0,24}|\\PC{0,32}") {
+        if let Ok(f) = s.parse::<FilterSpec>() {
+            prop_assert_eq!(f.name().parse::<FilterSpec>().unwrap(), f);
         }
         if let Ok(k) = SceneKind::parse(&s) {
-            proptest::prop_assert_eq!(SceneKind::parse(&k.name()).unwrap(), k);
+            prop_assert_eq!(SceneKind::parse(&k.name()).unwrap(), k);
         }
+    }
+
+    /// Any valid filter's name parses back to it.
+    #[test]
+    fn valid_filters_round_trip(n in 1u32..=64, sigma in 0.1f32..2.0, cut in 1.0f32..4.0, ecc in 1.0f32..64.0, texels in 16u32..=4096, which in 0..3) {
+        let f = match which {
+            0 => FilterSpec::Anisotropic(Anisotropic { max_probes: n, kernel: PixelFilter::Gaussian { sigma, cut } }),
+            1 => FilterSpec::Anisotropic(Anisotropic::box_probes(n)),
+            _ => FilterSpec::Ewa(Ewa { sigma, cut, max_eccentricity: ecc, max_texels: texels }),
+        };
+        prop_assert_eq!(f.name().parse::<FilterSpec>().unwrap(), f);
     }
 }

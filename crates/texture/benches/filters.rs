@@ -50,18 +50,21 @@ fn filters(c: &mut Criterion) {
     run(c, Bilinear, &tex, MODERATE, "");
     run(c, Bicubic, &tex, MODERATE, "");
     run(c, Trilinear, &tex, MODERATE, "");
-    run(c, Anisotropic { max_probes: 16 }, &tex, MODERATE, "");
+    run(c, Anisotropic::default(), &tex, MODERATE, "");
+    run(c, Anisotropic::box_probes(16), &tex, MODERATE, "_box");
     run(c, Ewa::default(), &tex, MODERATE, "");
     for n in [2, 4, 8] {
-        run(c, Anisotropic { max_probes: n }, &tex, MODERATE, &format!("{n}"));
+        run(c, Anisotropic { max_probes: n, ..Anisotropic::default() }, &tex, MODERATE, &format!("{n}"));
     }
     // The texture lab's tuned EWA (at most 24 texels per lookup).
-    run(c, Ewa { max_eccentricity: 16.0, max_texels: 24 }, &tex, MODERATE, "_24");
+    run(c, Ewa { max_texels: 64, ..Ewa::default() }, &tex, MODERATE, "_64");
+    run(c, Ewa { cut: 2.0, max_texels: 96, ..Ewa::default() }, &tex, MODERATE, "_cut2");
     // How the cost of the footprint-sized filters grows at a grazing angle.
     run(c, Trilinear, &tex, heavy(), "_heavy");
-    run(c, Anisotropic { max_probes: 16 }, &tex, heavy(), "_heavy");
+    run(c, Anisotropic::default(), &tex, heavy(), "_heavy");
+    run(c, Anisotropic::box_probes(16), &tex, heavy(), "_box_heavy");
     run(c, Ewa::default(), &tex, heavy(), "_heavy");
-    run(c, Ewa { max_eccentricity: 16.0, max_texels: 24 }, &tex, heavy(), "_24_heavy");
+    run(c, Ewa { max_texels: 64, ..Ewa::default() }, &tex, heavy(), "_64_heavy");
 }
 
 criterion_group!(benches, filters);

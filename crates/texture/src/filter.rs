@@ -7,11 +7,13 @@
 
 mod aniso;
 mod bicubic;
+mod catalogue;
 mod ewa;
 
 pub use aniso::Anisotropic;
 pub use bicubic::{catmull_rom_weights, Bicubic};
-pub use ewa::{Ewa, ALPHA as EWA_ALPHA, WEIGHTS as EWA_WEIGHTS};
+pub use catalogue::{FilterInfo, FilterParseError, FilterSpec, FilterVisitor, FILTERS};
+pub use ewa::Ewa;
 
 use crate::mip::{Texture, Wrap};
 use glam::{Vec2, Vec4};
@@ -43,8 +45,8 @@ pub struct Nearest;
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Bilinear;
 
-/// Trilinear mip-mapping (8 fetches): bilinear on the two levels around the LOD
-/// `log2(max(|∂uv/∂x|, |∂uv/∂y|) · size)`, blended linearly.
+/// Trilinear mip-mapping (8 fetches): bilinear on the two levels around the LOD of [`lod`],
+/// blended linearly.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Trilinear;
 
@@ -58,6 +60,15 @@ fn finite(v: f32) -> f32 {
     }
 }
 
+/// `⌊x⌋` without a libm call (the baseline x86-64 target has no rounding instruction):
+/// truncate, then step down where truncation rounded up. Exact for the coordinates
+/// [`finite`] lets through (below 2⁶³ in magnitude; beyond 2²⁴ every f32 is an integer).
+#[inline(always)]
+fn floor_i64(x: f32) -> i64 {
+    let i = x as i64;
+    i - ((i as f32) > x) as i64
+}
+
 /// Bilinear lookup on one level (4 fetches), texel centres at `(i + 0.5) / size`.
 #[inline]
 pub fn bilinear_level<C: Counter>(tex: &Texture, level: usize, uv: Vec2, counter: &mut C) -> Vec4 {
@@ -65,11 +76,9 @@ pub fn bilinear_level<C: Counter>(tex: &Texture, level: usize, uv: Vec2, counter
     let (w, h) = img.size();
     let x = finite(uv.x) * w as f32 - 0.5;
     let y = finite(uv.y) * h as f32 - 0.5;
-    let x0 = x.floor();
-    let y0 = y.floor();
-    let fx = x - x0;
-    let fy = y - y0;
-    let (xi, yi) = (x0 as i64, y0 as i64);
+    let (xi, yi) = (floor_i64(x), floor_i64(y));
+    let fx = x - xi as f32;
+    let fy = y - yi as f32;
     counter.count(4);
     let (a, b, c, d) = match tex.wrap() {
         Wrap::Repeat => {
@@ -93,8 +102,10 @@ pub fn bilinear_level<C: Counter>(tex: &Texture, level: usize, uv: Vec2, counter
     top + (bottom - top) * fy
 }
 
-/// The continuous level of detail of a footprint: `log2` of the longer Jacobian column in
-/// level-0 texels, clamped to the pyramid.
+/// The continuous level of detail of a footprint as the Vulkan specification defines it (and
+/// so GPUs and OpenImageIO choose it): with the derivatives in level-0 texels,
+/// `ρx = |(w·∂u/∂x, h·∂v/∂x)|` and `ρy = |(w·∂u/∂y, h·∂v/∂y)|`, `λ = log2(max(ρx, ρy))`,
+/// clamped to `[0, levels − 1]` (no bias). Non-finite derivatives give the top level.
 #[inline]
 pub fn lod(tex: &Texture, duv_dx: Vec2, duv_dy: Vec2) -> f32 {
     let size = tex.size();
@@ -193,6 +204,27 @@ mod tests {
         assert!((lod(&t, Vec2::new(4.0 / 64.0, 0.0), Vec2::new(0.0, 1.0 / 64.0)) - 2.0).abs() < 1e-5);
         assert_eq!(lod(&t, Vec2::splat(f32::INFINITY), Vec2::ZERO), 6.0);
         assert_eq!(lod(&t, Vec2::splat(f32::NAN), Vec2::ZERO), 6.0);
+    }
+
+    /// The Vulkan formula on hand-computed Jacobians of a non-square texture: each axis'
+    /// footprint length in texels, the larger one, log2, clamped.
+    #[test]
+    fn lod_is_the_vulkan_formula() {
+        let t = Texture::from_gray(&Image::new(256, 64, 0.0), Wrap::Repeat); // 9 levels
+                                                                             // ∂/∂x = (2, 0) texels, ∂/∂y = (0, 0.5) texels ⇒ ρx = 2, ρy = 0.5 ⇒ λ = 1.
+        assert_eq!(lod(&t, Vec2::new(2.0 / 256.0, 0.0), Vec2::new(0.0, 0.5 / 64.0)), 1.0);
+        // ∂/∂x = (3, 4) texels ⇒ ρx = 5; ∂/∂y = (1, 1) ⇒ ρy = √2 ⇒ λ = log2 5.
+        let l = lod(&t, Vec2::new(3.0 / 256.0, 4.0 / 64.0), Vec2::new(1.0 / 256.0, 1.0 / 64.0));
+        assert!((l - 5f32.log2()).abs() < 1e-6, "{l}");
+        // ∂/∂x = (1, 1) ⇒ √2; ∂/∂y = (−6, 8) ⇒ 10 ⇒ λ = log2 10 (the y axis decides).
+        let l = lod(&t, Vec2::new(1.0 / 256.0, 1.0 / 64.0), Vec2::new(-6.0 / 256.0, 8.0 / 64.0));
+        assert!((l - 10f32.log2()).abs() < 1e-6, "{l}");
+        // Magnification clamps at 0, a huge footprint at the top level (8).
+        assert_eq!(lod(&t, Vec2::new(0.25 / 256.0, 0.0), Vec2::new(0.0, 0.1 / 64.0)), 0.0);
+        assert_eq!(lod(&t, Vec2::new(4096.0 / 256.0, 0.0), Vec2::ZERO), 8.0);
+        // Not the length of the whole Jacobian: ρ = (3, 0) and (0, 4) give log2 4, not log2 5.
+        let l = lod(&t, Vec2::new(3.0 / 256.0, 0.0), Vec2::new(0.0, 4.0 / 64.0));
+        assert!((l - 2.0).abs() < 1e-6, "{l}");
     }
 
     #[test]

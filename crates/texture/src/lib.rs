@@ -1,6 +1,7 @@
 //! Textures and their filtering: mip pyramids for any size (non-square and
 //! non-power-of-two included), and the [`Filter`] trait with nearest, bilinear, bicubic,
-//! trilinear, anisotropic and EWA implementations. Every filter reports its texel fetches through a
+//! trilinear, anisotropic and EWA implementations and their catalogue ([`FilterSpec`]); [`kernel`]
+//! the pixel-filter model that the filters with a kernel and the reference share. Every filter reports its texel fetches through a
 //! [`Counter`](renderlab_core::counter::Counter), so counting costs nothing when it is off.
 //!
 //! [`mapping`] holds Heckbert's perspective-correct (projective) mapping with the thesis's
@@ -13,6 +14,7 @@
 
 pub mod ellipse;
 pub mod filter;
+pub mod kernel;
 pub mod mapping;
 pub mod mip;
 pub mod procedural;
@@ -20,6 +22,7 @@ pub mod reference;
 pub mod scene;
 
 pub use ellipse::{Axes, Ellipse, EllipseError, Jacobian, JacobianMethod};
-pub use filter::{Anisotropic, Bicubic, Bilinear, Ewa, Filter, Nearest, Trilinear};
+pub use filter::{Anisotropic, Bicubic, Bilinear, Ewa, Filter, FilterSpec, Nearest, Trilinear};
+pub use kernel::PixelFilter;
 pub use mapping::{MappingError, Mode, Projective, QuadScene};
 pub use mip::{Texture, Wrap};

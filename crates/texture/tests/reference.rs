@@ -8,7 +8,7 @@ use renderlab_core::Image;
 use renderlab_texture::filter::{Anisotropic, Bicubic, Bilinear, Ewa, Filter, Nearest, Trilinear};
 use renderlab_texture::mapping::{MappingError, QuadScene};
 use renderlab_texture::procedural::checker_texture;
-use renderlab_texture::reference::{reference, PixelFilter, Reference, ReferenceError};
+use renderlab_texture::reference::{reference, references, PixelFilter, Reference, ReferenceError, Sampling};
 use renderlab_texture::scene::{PlanarView, SceneError, SceneKind, TestScene};
 use renderlab_texture::{Texture, Wrap};
 
@@ -132,7 +132,7 @@ fn checkerboard_far_beyond_nyquist_averages_to_the_mean() {
     let s = scene.surface();
     for img in [
         scene.render(&s, &Trilinear),
-        scene.render(&s, &Anisotropic { max_probes: 16 }),
+        scene.render(&s, &Anisotropic::default()),
         scene.render(&s, &Ewa::default()),
     ] {
         for p in img.pixels() {
@@ -176,7 +176,7 @@ fn filters_agree_with_the_reference_under_magnification() {
         ("bilinear", 0.01, scene.render(&s, &Bilinear)),
         ("bicubic", 0.01, scene.render(&s, &Bicubic)),
         ("trilinear", 0.01, scene.render(&s, &Trilinear)),
-        ("anisotropic", 0.01, scene.render(&s, &Anisotropic { max_probes: 16 })),
+        ("anisotropic", 0.01, scene.render(&s, &Anisotropic::default())),
         ("ewa", 0.03, scene.render(&s, &Ewa::default())),
         ("nearest", 0.06, scene.render(&s, &Nearest)),
     ];
@@ -188,15 +188,66 @@ fn filters_agree_with_the_reference_under_magnification() {
 
 #[test]
 fn reference_is_deterministic_across_thread_counts() {
-    let scene = TestScene::new(SceneKind::Checkerboard, 40, 30).unwrap();
+    // 70×40 spans 3×2 tiles; adaptive density, two kernels from one set of samples.
+    let scene = TestScene::new(SceneKind::Checkerboard, 70, 40).unwrap();
+    let sampling = Sampling { min_strata: 2, max_strata: 8, tolerance: 0.05 };
     let run = |threads| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap()
-            .install(|| reference(&scene, PixelFilter::GAUSSIAN, 4, 9).unwrap().image)
+        rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(|| {
+            references(&scene, &[PixelFilter::GAUSSIAN, PixelFilter::Box], &sampling, 9)
+                .unwrap()
+                .into_iter()
+                .map(|r| r.image)
+                .collect::<Vec<_>>()
+        })
     };
     assert_eq!(run(1), run(3));
+}
+
+/// The screen-splatted estimate of a pixel equals a brute-force integral of the same kernel
+/// around that pixel alone (a 160×160 midpoint grid over the kernel's square, weighted by the
+/// kernel): the splatting's offsets, weights and normalisation are right, for the Gaussian and
+/// the box, at tile corners and edges too.
+#[test]
+fn splatted_reference_equals_a_per_pixel_integral() {
+    let base = TestScene::new(SceneKind::TiltedQuad(45.0), 72, 48).unwrap();
+    let scene = TestScene::custom(base.view, Texture::new(smooth_texture(64, 64), Wrap::Repeat), 2.0, 72, 48);
+    let kernels = [PixelFilter::GAUSSIAN, PixelFilter::Gaussian { sigma: 0.4, cut: 2.0 }, PixelFilter::Box];
+    let refs = references(&scene, &kernels, &Sampling::fixed(24), 3).unwrap();
+    let tex = &scene.texture;
+    for (k, r) in kernels.iter().zip(&refs) {
+        for (x, y) in [(31u32, 31u32), (32, 32), (31, 32), (40, 20), (63, 12), (36, 24)] {
+            if !r.mask.get(x, y) {
+                continue;
+            }
+            let reach = k.reach() as f64;
+            let n = 160;
+            let (mut acc, mut wsum) = (glam::DVec3::ZERO, 0.0);
+            for j in 0..n {
+                for i in 0..n {
+                    let dx = -reach + (i as f64 + 0.5) / n as f64 * 2.0 * reach;
+                    let dy = -reach + (j as f64 + 0.5) / n as f64 * 2.0 * reach;
+                    let w = k.weight(dx as f32, dy as f32) as f64;
+                    if w == 0.0 {
+                        continue;
+                    }
+                    let uv = scene.view.hit(x as f64 + 0.5 + dx, y as f64 + 0.5 + dy).unwrap();
+                    let t = scene.tex_uv(uv).as_vec2();
+                    let v = renderlab_texture::filter::bilinear_level(
+                        tex,
+                        0,
+                        t,
+                        &mut renderlab_core::counter::NoCount,
+                    );
+                    acc += v.truncate().as_dvec3() * w;
+                    wsum += w;
+                }
+            }
+            let want = acc / wsum;
+            let got = r.image.get(x, y).as_dvec3();
+            let d = (got - want).abs().max_element();
+            assert!(d < 4e-3, "{k:?} at ({x}, {y}): splatted {got:?}, integral {want:?}");
+        }
+    }
 }
 
 #[test]
@@ -258,10 +309,17 @@ fn bad_input_is_an_error_not_a_panic() {
     assert!(SceneKind::parse("teapot").is_err());
     // Reference parameters.
     let s = TestScene::new(SceneKind::ThesisQuad, 16, 16).unwrap();
-    assert_eq!(reference(&s, PixelFilter::Box, 0, 0).unwrap_err(), ReferenceError::Strata(0));
+    assert_eq!(reference(&s, PixelFilter::Box, 0, 0).unwrap_err(), ReferenceError::Strata(0, 0));
     assert!(reference(&s, PixelFilter::Box, 1000, 0).is_err());
-    assert!(reference(&s, PixelFilter::Gaussian { sigma: f64::NAN, radius: 1.0 }, 2, 0).is_err());
-    assert!(reference(&s, PixelFilter::Gaussian { sigma: 0.5, radius: -1.0 }, 2, 0).is_err());
+    assert!(reference(&s, PixelFilter::Gaussian { sigma: f32::NAN, cut: 1.0 }, 2, 0).is_err());
+    assert!(reference(&s, PixelFilter::Gaussian { sigma: 0.5, cut: -1.0 }, 2, 0).is_err());
+    let adaptive = |min, max, tolerance| {
+        references(&s, &[PixelFilter::GAUSSIAN], &Sampling { min_strata: min, max_strata: max, tolerance }, 0)
+    };
+    assert!(adaptive(8, 4, 0.01).is_err(), "maximum below minimum");
+    assert!(adaptive(4, 8, f32::NAN).is_err());
+    assert!(adaptive(4, 8, -1.0).is_err());
+    assert!(references(&s, &[], &Sampling::fixed(2), 0).is_err());
 }
 
 #[test]
@@ -275,7 +333,7 @@ fn one_by_one_texture_gives_its_colour_everywhere() {
         scene.render(&s, &Bilinear),
         scene.render(&s, &Bicubic),
         scene.render(&s, &Trilinear),
-        scene.render(&s, &Anisotropic { max_probes: 16 }),
+        scene.render(&s, &Anisotropic::default()),
         scene.render(&s, &Ewa::default()),
     ];
     for img in &imgs {
@@ -295,7 +353,7 @@ fn all_filters_finite(uv: Vec2, dx: Vec2, dy: Vec2) {
         Bilinear.sample(&tex, uv, dx, dy, &mut t),
         Bicubic.sample(&tex, uv, dx, dy, &mut t),
         Trilinear.sample(&tex, uv, dx, dy, &mut t),
-        Anisotropic { max_probes: 16 }.sample(&tex, uv, dx, dy, &mut t),
+        Anisotropic::default().sample(&tex, uv, dx, dy, &mut t),
         Ewa::default().sample(&tex, uv, dx, dy, &mut t),
     ] {
         assert!(v.is_finite(), "{uv} {dx} {dy}: {v}");

@@ -9,39 +9,62 @@
 //! 2. The mip level from the minor axis: the finest level on which the minor semi-axis is
 //!    under 2 texels, then coarser while the exact texel count of the ellipse exceeds
 //!    `max_texels` (counted row by row before any fetch, one square root per row).
-//! 3. On that level, Heckbert's reconstruction term: a unit circle added to the footprint
-//!    (`Σ = J·Jᵀ + I`), so that the filter never falls between texels under magnification and
-//!    the ellipse can never degenerate. [`Ellipse::from_moments`] gives `A, B, C, F`.
+//! 3. On that level, Heckbert's reconstruction term: a circle added to the footprint
+//!    (`Σ = J·Jᵀ + (ρ²/σ²)·I`), so that the filter never falls between texels under
+//!    magnification and the ellipse can never degenerate. [`Ellipse::from_moments`] gives `A, B, C, F`.
 //! 4. Each row's span of texels inside the ellipse comes from solving the quadratic
 //!    (`U = (−B·V/2 ± √(F·(A − V²)))/A`), so no texel of the bounding box outside the ellipse is
 //!    visited, however the ellipse is rotated; along the span `Q = A·U² + B·U·V + C·V²` is
 //!    stepped by Heckbert's forward differences (two additions per texel), scaled so that it
 //!    indexes the Gaussian weight table directly.
 //!
-//! The weight is `exp(−α·Q/F)`, α = 2, truncated at the ellipse `Q = F` (pbrt's choice: a
-//! Gaussian of σ = ½ pixel cut at 2σ), normalised by the sum of the weights used.
+//! The weight is the pixel-filter model's Gaussian ([`PixelFilter::Gaussian`]) carried to
+//! texture space: with `Σ = J·Jᵀ + (ρ²/σ²)·I`, `Q/F = pᵀ·Σ⁻¹·p` is the squared screen distance
+//! `r²` in pixels, so the weight is `exp(−r²/(2σ²))` on the ellipse `r ≤ cut·σ`, normalised by
+//! the sum of the weights used. The ellipse is built for the truncation radius (`Σ` scaled by
+//! `(cut·σ)²`), so along a span `Q/F = t ∈ [0, 1]` and the weight is `exp(−t·cut²/2)`, read
+//! from one table of `exp(−x)`.
+//!
+//! The reconstruction variance `ρ²` (texel², on the level filtered) is chosen so that the
+//! filter's whole blur matches the pixel-filter model over a texture reconstructed bilinearly
+//! from level 0 (what the lab's reference integrates): on level 0, `ρ² = ⅙`, the variance of
+//! the bilinear tent; on a coarser level the mip texels are already box means (variance
+//! `1/12` of a level texel), so only a small floor `ρ² = 1/48` is added to keep the ellipse
+//! from degenerating. Heckbert's original is `ρ² = σ² = ¼` (a unit circle at σ = ½), which
+//! blurs by about 0.1 pixel σ more than the model states.
 
 // `!(x >= t)` is deliberate: it also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 use super::{finite, Filter};
 use crate::ellipse::{Ellipse, Jacobian};
+use crate::kernel::PixelFilter;
 use crate::mip::{Texture, Wrap};
 use glam::{Vec2, Vec4};
 use renderlab_core::counter::Counter;
 use renderlab_core::image::wrap_index;
 use std::sync::LazyLock;
 
-/// Entries in the Gaussian weight table (indexed by `Q/F · WEIGHTS`).
-pub const WEIGHTS: usize = 256;
+/// Entries of the weight table per unit of the exponent: entry `i` holds `exp(−i/PER_UNIT)`.
+pub const PER_UNIT: usize = 128;
 
-/// The Gaussian's falloff: weight `exp(−α·Q/F)`, `e^−2 ≈ 0.135` at the ellipse's edge.
-pub const ALPHA: f32 = 2.0;
+/// Largest exponent in the table, `cut²/2` for the largest cut (4σ).
+const MAX_EXPONENT: usize = 8;
+
+/// Entries of the weight table.
+const WEIGHTS: usize = PER_UNIT * MAX_EXPONENT;
+
+/// Reconstruction variance in texels² added to the footprint on level 0 (the bilinear tent's).
+pub const RECONSTRUCTION_VARIANCE: f32 = 1.0 / 6.0;
+
+/// Reconstruction variance in level texels² added on coarser levels (whose texels are box
+/// means already): a floor that keeps the ellipse from degenerating.
+pub const COARSE_RECONSTRUCTION_VARIANCE: f32 = 1.0 / 48.0;
 
 static TABLE: LazyLock<[f32; WEIGHTS + 1]> = LazyLock::new(|| {
     let mut t = [0.0; WEIGHTS + 1];
     for (i, w) in t.iter_mut().enumerate() {
-        *w = (-ALPHA * i as f32 / WEIGHTS as f32).exp();
+        *w = (-(i as f32) / PER_UNIT as f32).exp();
     }
     t
 });
@@ -50,6 +73,10 @@ static TABLE: LazyLock<[f32; WEIGHTS + 1]> = LazyLock::new(|| {
 /// an eccentricity clamp and a hard bound on texels per lookup.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ewa {
+    /// The pixel filter's σ in pixels (see [`PixelFilter::Gaussian`]); clamped to its range.
+    pub sigma: f32,
+    /// Truncation radius in multiples of σ; clamped to `1..=4`.
+    pub cut: f32,
     /// Largest major/minor ratio filtered as such; more eccentric footprints get a wider
     /// minor axis (more blur across, bounded work). Clamped to `1..=64`; NaN means 16.
     pub max_eccentricity: f32,
@@ -59,10 +86,37 @@ pub struct Ewa {
 }
 
 impl Default for Ewa {
-    /// Eccentricity ≤ 16 and ≤ 96 texels: a 16:1 footprint fits on the level where its minor
-    /// semi-axis is one texel.
+    /// The lab's pixel filter ([`PixelFilter::GAUSSIAN`]: σ = ½ cut at 3σ), eccentricity ≤ 16
+    /// and ≤ 216 texels: a 16:1 footprint fits on the level where its minor semi-axis is one
+    /// texel (the 96 texels that fit at a 2σ cut, grown by the area ratio (3/2)²).
     fn default() -> Self {
-        Ewa { max_eccentricity: 16.0, max_texels: 96 }
+        Ewa { sigma: 0.5, cut: 3.0, max_eccentricity: 16.0, max_texels: 216 }
+    }
+}
+
+impl Ewa {
+    /// EWA with the default bounds whose weights follow `kernel`, or `None` for a kernel EWA
+    /// cannot apply (the box: its texture-space footprint is a parallelogram, not an
+    /// ellipse).
+    pub fn with_kernel(kernel: PixelFilter) -> Option<Ewa> {
+        match kernel {
+            PixelFilter::Gaussian { sigma, cut } => Some(Ewa { sigma, cut, ..Ewa::default() }),
+            PixelFilter::Box => None,
+        }
+    }
+
+    /// The pixel filter this EWA applies.
+    pub fn kernel(&self) -> PixelFilter {
+        PixelFilter::Gaussian { sigma: self.sigma, cut: self.cut }
+    }
+
+    /// σ and cut clamped to the model's ranges (NaN becomes the default).
+    fn params(&self) -> (f32, f32) {
+        let (lo, hi) = crate::kernel::SIGMA_RANGE;
+        let sigma = if self.sigma.is_nan() { 0.5 } else { self.sigma.clamp(lo, hi) };
+        let (lo, hi) = crate::kernel::CUT_RANGE;
+        let cut = if self.cut.is_nan() { 3.0 } else { self.cut.clamp(lo, hi) };
+        (sigma, cut)
     }
 }
 
@@ -85,11 +139,12 @@ fn floor_i(x: f32) -> i64 {
     (i - ((i as f32) > x) as i32) as i64
 }
 
-/// Index into the weight table of a scaled `Q`: clamped to `0..=WEIGHTS` before the
-/// conversion (`max`/`min` also map NaN to 0), so the conversion needs no saturation.
+/// Index into the weight table of a scaled `Q`: clamped to `0..=limit` (the ellipse's edge,
+/// at most `WEIGHTS`) before the conversion (`max`/`min` also map NaN to 0), so the conversion
+/// needs no saturation.
 #[inline(always)]
-fn weight_index(q: f32) -> usize {
-    q.max(0.0).min(WEIGHTS as f32) as usize
+fn weight_index(q: f32, limit: f32) -> usize {
+    q.max(0.0).min(limit) as usize
 }
 
 /// `⌊log₂ x⌋` of a finite `x ≥ 1` from its exponent bits (no libm call).
@@ -163,16 +218,20 @@ const STORED_ROWS: usize = 32;
 
 impl Ewa {
     /// The footprint on `level`: the (clamped) level-0 second moments scaled to the level's
-    /// texels, plus the unit reconstruction circle.
+    /// texels, plus the reconstruction circle `ρ²/σ²` of the level (`inv_s2 = 1/σ²`), all
+    /// scaled by the squared truncation radius `r2` (pixels²) so that the ellipse is the
+    /// kernel's support.
     #[inline]
-    fn footprint(tex: &Texture, level: usize, m: [f32; 3], uv: Vec2) -> Footprint {
+    fn footprint(tex: &Texture, level: usize, m: [f32; 3], uv: Vec2, inv_s2: f32, r2: f32) -> Footprint {
+        let recon =
+            if level == 0 { RECONSTRUCTION_VARIANCE } else { COARSE_RECONSTRUCTION_VARIANCE } * inv_s2;
         let s0 = tex.size();
         let (w, h) = tex.level(level).size();
         let sl = Vec2::new(w as f32, h as f32);
         let k = sl / s0;
-        let m00 = m[0] * k.x * k.x + 1.0;
-        let m01 = m[1] * k.x * k.y;
-        let m11 = m[2] * k.y * k.y + 1.0;
+        let m00 = (m[0] * k.x * k.x + recon) * r2;
+        let m01 = m[1] * k.x * k.y * r2;
+        let m11 = (m[2] * k.y * k.y + recon) * r2;
         let e = Ellipse::from_moments(m00, m01, m11);
         Footprint { e, centre: uv * sl - 0.5, half_v: e.a.sqrt() }
     }
@@ -197,6 +256,9 @@ impl Filter for Ewa {
         let ax = Jacobian { du_dx: dx.x, dv_dx: dx.y, du_dy: dy.x, dv_dy: dy.y }.axes();
         let ecc = if self.max_eccentricity.is_nan() { 16.0 } else { self.max_eccentricity.clamp(1.0, 64.0) };
         let budget = self.max_texels.clamp(16, 4096) as u64;
+        let (sigma, cut) = self.params();
+        let inv_s2 = 1.0 / (sigma * sigma);
+        let r2 = cut * cut * sigma * sigma;
         // A footprint that is non-finite, or whose major axis exceeds four texture widths,
         // is filtered by the 1×1 top level: the texture's mean.
         let limit = 4.0 * size.max_element();
@@ -220,8 +282,10 @@ impl Filter for Ewa {
         let (c, s) = (ax.dir.x, ax.dir.y);
         let (a2, b2) = (major * major, minor * minor);
         let m = [a2 * c * c + b2 * s * s, (a2 - b2) * c * s, a2 * s * s + b2 * c * c];
-        let mut level = if minor > 1.0 { (floor_log2(minor) as usize).min(top) } else { 0 };
-        let mut fp = Self::footprint(tex, level, m, uv);
+        // The level on which the kernel's σ across the minor axis spans ½ to 1 texel.
+        let across = 2.0 * sigma * minor;
+        let mut level = if across > 1.0 { (floor_log2(across) as usize).min(top) } else { 0 };
+        let mut fp = Self::footprint(tex, level, m, uv, inv_s2, r2);
         let mut store = [(0i32, 0i32); STORED_ROWS];
         let mut stored = false;
         // Area estimate first (cheap), then the exact count (one sqrt per row).
@@ -240,7 +304,7 @@ impl Filter for Ewa {
                 break;
             }
             level += 1;
-            fp = Self::footprint(tex, level, m, uv);
+            fp = Self::footprint(tex, level, m, uv, inv_s2, r2);
         }
         if level == top {
             counter.count(1);
@@ -257,7 +321,7 @@ impl Filter for Ewa {
         } else {
             None
         };
-        self.scan(tex, level, &fp, spans, counter)
+        self.scan(tex, level, &fp, spans, cut, counter)
     }
 }
 
@@ -271,15 +335,18 @@ impl Ewa {
         level: usize,
         fp: &Footprint,
         spans: Option<&[(i32, i32); STORED_ROWS]>,
+        cut: f32,
         counter: &mut C,
     ) -> Vec4 {
         let table = &*TABLE;
+        // Table index at the ellipse's edge: the exponent cut²/2 in table units.
+        let edge = 0.5 * cut * cut * PER_UNIT as f32;
         let img = tex.level(level);
         let (w, h) = img.size();
         let px = img.pixels();
         let e = &fp.e;
-        // Q scaled so that the boundary is at WEIGHTS.
-        let s = WEIGHTS as f32 / e.f;
+        // Q scaled so that it indexes the table (the boundary at `edge`).
+        let s = edge / e.f;
         let (qa, qb, qc) = (e.a * s, e.b * s, e.c * s);
         let (j0, j1) = fp.rows();
         let mut acc = Vec4::ZERO;
@@ -320,7 +387,7 @@ impl Ewa {
                     let uu = Vec4::splat(uk) + lanes;
                     let q4 = (uu * qa + bv) * uu + cv;
                     // max/min first (they also send NaN to 0), then an in-range conversion.
-                    let i4 = q4.max(Vec4::ZERO).min(Vec4::splat(WEIGHTS as f32)).as_ivec4();
+                    let i4 = q4.max(Vec4::ZERO).min(Vec4::splat(edge)).as_ivec4();
                     let w4 = Vec4::new(
                         table[i4.x as usize],
                         table[i4.y as usize],
@@ -334,7 +401,7 @@ impl Ewa {
                 }
                 for &t in chunks.remainder() {
                     let qq = (qa * uk + bv) * uk + cv;
-                    let wt = table[weight_index(qq)];
+                    let wt = table[weight_index(qq, edge)];
                     acc1 += t * wt;
                     wsum += wt;
                     uk += 1.0;
@@ -347,7 +414,7 @@ impl Ewa {
                 Wrap::Repeat => {
                     let mut xi = wrap_index(lo, w);
                     for _ in lo..=hi {
-                        let wt = table[weight_index(q)];
+                        let wt = table[weight_index(q, edge)];
                         acc += row[xi] * wt;
                         wsum += wt;
                         q += dq;
@@ -360,7 +427,7 @@ impl Ewa {
                 }
                 Wrap::Clamp => {
                     for x in lo..=hi {
-                        let wt = table[weight_index(q)];
+                        let wt = table[weight_index(q, edge)];
                         acc += row[x.clamp(0, w as i64 - 1) as usize] * wt;
                         wsum += wt;
                         q += dq;
