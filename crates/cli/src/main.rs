@@ -14,7 +14,18 @@ mod progress;
 use clap::Parser;
 
 fn main() {
-    let cli = args::Cli::parse();
+    let cli = match args::Cli::try_parse() {
+        Ok(cli) => cli,
+        // A refused value (a technique name, a kernel): one line and exit 1, like every other
+        // bad input; usage errors, help and version keep clap's own output.
+        Err(e) if e.kind() == clap::error::ErrorKind::ValueValidation => {
+            let text = e.to_string();
+            let first = text.lines().next().unwrap_or_default();
+            eprintln!("renderlab: error: {}", first.trim_start_matches("error: "));
+            std::process::exit(1);
+        }
+        Err(e) => e.exit(),
+    };
     if let Err(e) = commands::run(cli) {
         // One line, naming the file or flag at fault.
         eprintln!("renderlab: error: {}", one_line(&e));
