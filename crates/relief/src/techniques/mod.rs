@@ -6,18 +6,7 @@
 //! A technique is written `NAME[:P1[:P2…]]`; parameters left out from the end take their
 //! defaults, and the canonical name ([`Technique::name`]) writes them all.
 
-pub mod adaptive_pom;
-pub mod adaptive_relief;
-pub mod basic;
-pub mod cone;
-pub mod cone_newton;
 pub mod descriptor;
-pub mod normal;
-pub mod parallax;
-pub mod pom;
-pub mod pom_shadow;
-pub mod relief;
-pub mod steep;
 
 use crate::error::ReliefError;
 use crate::kernel::{Kernel, KernelChoice};
@@ -28,10 +17,16 @@ use renderlab_core::CoreError;
 use std::fmt;
 use std::str::FromStr;
 
-/// Declares the catalogue: the [`Technique`] enum (one variant per technique, holding its
-/// typed parameters), [`DESCRIPTORS`], and the dispatch from a variant to its [`Entry`].
+/// Declares the catalogue: each technique's module, the [`Technique`] enum (one variant per
+/// technique, holding its typed parameters), [`DESCRIPTORS`], and the dispatch from a variant
+/// to its [`Entry`].
 macro_rules! registry {
-    ($($variant:ident($ty:ty),)*) => {
+    ($($variant:ident($module:ident::$name:ident),)*) => {
+        $(pub mod $module;)*
+
+        registry!(@items $($variant($module::$name),)*);
+    };
+    (@items $($variant:ident($ty:ty),)*) => {
         /// Every technique renderlab implements, with its parameters (see [`DESCRIPTORS`]).
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
         pub enum Technique {
