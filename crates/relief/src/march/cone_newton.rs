@@ -34,7 +34,7 @@ pub(crate) const MIN_SLOPE: f32 = 0.25;
 /// by Newton's estimate goes straight there, and a fetch there checks it. Measured: on the
 /// 1024² bricks 0.3–0.5 fewer fetches per pixel than without (0) at equal or smaller error;
 /// 32 saves a little more there but doubles the 75° error on the steep 64² test field of
-/// `tests/cone_fast.rs`; 128 loses accuracy on the bricks too.
+/// `tests/cone_newton.rs`; 128 loses accuracy on the bricks too.
 pub const JUMP: f32 = 16.0;
 
 /// Largest stopping tolerance in depth units.

@@ -72,3 +72,23 @@ pub fn pom_row<C: Counter>(
     let _ = (pom, inp, map, rays, out, counter);
     false
 }
+
+/// Traces `rays` with the scalar twin of POM's vector kernel, built with the CPU's AVX2 and
+/// SSE4.1 where present (bit-identical results either way).
+#[inline]
+pub fn pom_twin_row<C: Counter>(
+    pom: &PomLanes,
+    inp: &ReliefInputs,
+    map: &PackedRelief,
+    rays: &[(Vec2, Vec3)],
+    out: &mut [ReliefHit],
+    counter: &mut C,
+) {
+    #[cfg(target_arch = "x86_64")]
+    if crate::cpu::has_avx2() {
+        // SAFETY: the CPU supports the features the function is compiled for.
+        unsafe { avx2::pom::twin_row(pom, inp, map, rays, out, counter) };
+        return;
+    }
+    pom.scalar_row(inp, map, rays, out, counter)
+}

@@ -59,7 +59,7 @@ impl ReliefTechnique for PomSimd {
     ) {
         let map = inp.packed.expect(NO_PACKED_MAP);
         if !(self.lanes && crate::simd::pom_row(&self.march, inp, map, rays, out, counter)) {
-            self.march.scalar_row(inp, map, rays, out, counter);
+            crate::simd::pom_twin_row(&self.march, inp, map, rays, out, counter);
         }
     }
 }

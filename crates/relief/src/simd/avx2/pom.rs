@@ -158,3 +158,17 @@ macro_rules! kernel {
 
 kernel!(trace_row, "avx2");
 kernel!(trace_row_avx512, "avx2,avx512f,avx512vl");
+
+/// The scalar twin, compiled with AVX2 and SSE4.1 (a single instruction for each `floor`):
+/// what runs where the lanes cannot; results are the same as without the features.
+#[target_feature(enable = "avx2,sse4.1")]
+pub(crate) fn twin_row<C: Counter>(
+    pom: &PomLanes,
+    inp: &ReliefInputs,
+    map: &PackedRelief,
+    rays: &[(Vec2, Vec3)],
+    out: &mut [ReliefHit],
+    counter: &mut C,
+) {
+    pom.scalar_row(inp, map, rays, out, counter)
+}
