@@ -1,9 +1,32 @@
 //! Command-line arguments.
 
 use clap::{Args, Parser, Subcommand};
+use renderlab_relief::{KernelChoice, Technique};
 use renderlab_texture::filter::FilterSpec;
 use renderlab_texture::reference::PixelFilter;
 use std::path::PathBuf;
+
+/// Reads one technique name for clap (the error names the problem; clap adds the flag).
+fn parse_technique(s: &str) -> Result<Technique, String> {
+    Technique::parse(s).map_err(|e| e.to_string())
+}
+
+/// The technique list of `--help`, generated from the catalogue.
+fn techniques_help() -> String {
+    format!(
+        "Techniques, comma-separated (default: the lab's list). NAME[:P1[:P2…]], parameters left \
+         out from the end take their defaults:\n{}",
+        renderlab_relief::techniques::help()
+    )
+}
+
+/// The one-line technique syntax of `-h`, generated from the catalogue.
+fn techniques_syntax() -> String {
+    format!(
+        "Techniques, comma-separated (default: the lab's list): {}",
+        renderlab_relief::techniques::syntax()
+    )
+}
 
 /// renderlab: forms images of textured and relief surfaces and measures rendering methods
 /// for cost and for error against a ground-truth reference.
@@ -127,11 +150,15 @@ pub struct BenchArgs {
     /// View angles in degrees from the wall normal, comma-separated (each in [0, 89]).
     #[arg(long, value_delimiter = ',', default_value = "0,45,60,80")]
     pub angles: Vec<f32>,
-    /// Techniques, comma-separated (default: all). Syntax: basic, normal, parallax, steep:N,
-    /// pom:N, adaptive[:MIN:MAX], relief[:LINEAR:BINARY], adaptive-relief[:MIN:MAX:BINARY],
-    /// cone[:STEPS:BINARY], pom-shadow[:N:SAMPLES].
-    #[arg(long, value_delimiter = ',')]
-    pub techniques: Vec<String>,
+    /// Techniques (the list is generated from the catalogue; see --help).
+    #[arg(long, value_delimiter = ',', value_parser = parse_technique,
+          help = techniques_syntax(), long_help = techniques_help())]
+    pub techniques: Vec<Technique>,
+    /// Kernel of every technique: auto (the fastest each offers on this CPU), scalar or simd
+    /// (an error for a technique without one). Default: auto for --techniques; the lab's
+    /// default list runs the thesis's POM settings on scalar and the rest on auto.
+    #[arg(long)]
+    pub kernel: Option<KernelChoice>,
     /// Timed repetitions per measurement (the median is reported).
     #[arg(long, default_value_t = 5)]
     pub reps: u32,
@@ -176,9 +203,13 @@ pub enum SceneChoice {
 /// `renderlab relief render`.
 #[derive(Args, Debug)]
 pub struct RenderArgs {
-    /// Technique (see `relief bench --help` for the syntax).
-    #[arg(long, short, default_value = "adaptive")]
-    pub technique: String,
+    /// Technique (the list is generated from the catalogue; see --help).
+    #[arg(long, short, default_value = "adaptive", value_parser = parse_technique,
+          long_help = techniques_help().replace("Techniques, comma-separated (default: the lab's list)", "Technique (default: adaptive)"))]
+    pub technique: Technique,
+    /// Kernel: auto (the fastest the technique offers on this CPU), scalar or simd.
+    #[arg(long, default_value = "auto")]
+    pub kernel: KernelChoice,
     /// Output PNG (or EXR) file.
     #[arg(long, short)]
     pub out: PathBuf,

@@ -12,11 +12,12 @@ use renderlab_core::{io, Image, Material, Scene};
 use renderlab_lab::heatmap::heat_image;
 use renderlab_lab::noise_lab::{run_noise_lab_with, CloudsConfig, NoiseLabConfig, MAX_CLOUDS_SIZE};
 use renderlab_lab::noise_motion::MotionConfig;
-use renderlab_lab::relief_lab::{default_techniques, run_relief_bench, ReliefBenchConfig, View};
+use renderlab_lab::relief_lab::{default_techniques, run_relief_bench, Method, ReliefBenchConfig, View};
 use renderlab_lab::texture_lab::{run_texture_bench, TextureBenchConfig};
-use renderlab_relief::complexity::{complexity_map, ComplexityParams};
+use renderlab_relief::maps::complexity::{complexity_map, ComplexityParams};
 use renderlab_relief::render::{render, render_reference};
-use renderlab_relief::{ReliefMaterial, Technique};
+use renderlab_relief::techniques::basic::Basic;
+use renderlab_relief::{Kernel, KernelChoice, Map, ReliefMaterial, Technique};
 use renderlab_texture::filter::FilterSpec;
 use renderlab_texture::reference::Sampling;
 use renderlab_texture::scene::{SceneKind, TestScene};
@@ -76,11 +77,25 @@ fn load_material(m: &MaterialArgs) -> Result<Material> {
     }
 }
 
-fn parse_techniques(list: &[String]) -> Result<Vec<Technique>> {
+/// The methods `relief bench` measures: the given techniques on `kernel` (default auto), or
+/// the lab's default list, whose kernels `kernel` replaces where a technique offers it.
+fn methods(list: &[Technique], kernel: Option<KernelChoice>) -> Vec<Method> {
     if list.is_empty() {
-        return Ok(default_techniques());
+        let mut methods = default_techniques();
+        if let Some(choice) = kernel {
+            for m in &mut methods {
+                let offered = match choice {
+                    KernelChoice::Auto => true,
+                    KernelChoice::Exactly(k) => m.technique.descriptor().kernels.contains(&k),
+                };
+                if offered {
+                    m.kernel = choice;
+                }
+            }
+        }
+        return methods;
     }
-    list.iter().map(|s| Technique::parse(s).map_err(Into::into)).collect()
+    list.iter().map(|&technique| Method { technique, kernel: kernel.unwrap_or_default() }).collect()
 }
 
 fn check_angles(angles: &[f32]) -> Result<()> {
@@ -106,7 +121,7 @@ fn relief_bench(a: BenchArgs) -> Result<()> {
         width: a.width,
         height: a.height,
         angles: a.angles.clone(),
-        techniques: parse_techniques(&a.techniques)?,
+        techniques: methods(&a.techniques, a.kernel),
         warmup: a.warmup,
         reps: a.reps,
         complexity: params(&a.complexity)?,
@@ -136,7 +151,8 @@ fn relief_render(a: RenderArgs) -> Result<()> {
     frame_size(a.width, a.height)?;
     check_range("--angle", a.angle, 0.0, 89.0)?;
     io::check_output(&a.out)?;
-    let technique = Technique::parse(&a.technique)?;
+    let technique = a.technique;
+    let kernel = technique.kernel(a.kernel)?;
     let cp = params(&a.complexity)?;
     let (scene, camera) = match a.scene {
         SceneChoice::Bench => {
@@ -149,9 +165,10 @@ fn relief_render(a: RenderArgs) -> Result<()> {
         }
     };
     let mats: Vec<ReliefMaterial> =
-        scene.materials.iter().map(|m| ReliefMaterial::new(m, &cp, technique.needs_cone_map())).collect();
+        scene.materials.iter().map(|m| ReliefMaterial::new(m, &cp, technique.needs_map(Map::Cone))).collect();
     let view = View::new(&scene, &camera, a.angle);
-    let lit = |t| render(view.input(), &mats, t, scene.lighting, scene.background, false);
+    let lit =
+        |t: Technique, k: Kernel| render(view.input(), &mats, t, k, scene.lighting, scene.background, false);
     // Heat maps come display-encoded; decode them so `save_color` (PNG or EXR) can take them.
     let table = renderlab_core::color::srgb8_to_linear_table();
     let rgb8 = |img: Image<[u8; 3]>| -> Image<Vec3> {
@@ -160,10 +177,10 @@ fn relief_render(a: RenderArgs) -> Result<()> {
     let out = match a.debug {
         DebugView::None => {
             let started = std::time::Instant::now();
-            let f = render(view.input(), &mats, technique, scene.lighting, scene.background, true);
+            let f = render(view.input(), &mats, technique, kernel, scene.lighting, scene.background, true)?;
             let ms = started.elapsed().as_secs_f64() * 1e3;
             println!(
-                "{technique}: {} pixels, {:.2} height fetches per pixel, {ms:.0} ms (counted run)",
+                "{technique} ({kernel} kernel): {} pixels, {:.2} height fetches per pixel, {ms:.0} ms (counted run)",
                 f.mask.pixels().iter().filter(|&&m| m).count(),
                 f.fetches_per_pixel()
             );
@@ -173,12 +190,12 @@ fn relief_render(a: RenderArgs) -> Result<()> {
             render_reference(view.input(), &mats, technique, scene.lighting, scene.background).image
         }
         DebugView::Layers => {
-            let f = render(view.input(), &mats, technique, scene.lighting, scene.background, false);
+            let f = lit(technique, kernel)?;
             let max = technique.layers().max(1) as f32;
             rgb8(heat_image(&f.layers.map(|l| l as f32), max, Some(&f.mask)))
         }
         DebugView::Complexity => {
-            let f = render(view.input(), &mats, Technique::Basic, scene.lighting, scene.background, false);
+            let f = lit(Technique::Basic(Basic), Kernel::Scalar)?;
             let c = Image::from_fn(a.width, a.height, |x, y| match view.gbuffer.get(x, y) {
                 Some(sp) => mats[sp.material as usize].inputs().complexity_at(sp.uv),
                 None => 0.0,
@@ -186,7 +203,7 @@ fn relief_render(a: RenderArgs) -> Result<()> {
             rgb8(heat_image(&c, 1.0, Some(&f.mask)))
         }
         DebugView::Error => {
-            let f = lit(technique);
+            let f = lit(technique, kernel)?;
             let r = render_reference(view.input(), &mats, technique, scene.lighting, scene.background);
             let size = glam::Vec2::new(mats[0].height.width() as f32, mats[0].height.height() as f32);
             let e =

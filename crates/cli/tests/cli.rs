@@ -159,7 +159,12 @@ fn renders_user_maps_and_builtins() {
     let h = dir.path().join("h.png");
     write_png(&a, 24, 40);
     write_png(&h, 24, 40);
-    for (t, extra) in [("adaptive", vec![]), ("cone-secant", vec![]), ("pom:8", vec!["--debug", "error"])] {
+    for (t, extra) in [
+        ("adaptive", vec![]),
+        ("cone:24:3:secant", vec![]),
+        ("cone-newton", vec!["--kernel", "scalar"]),
+        ("pom:8", vec!["--debug", "error"]),
+    ] {
         let out = dir.path().join(format!("{}.png", t.replace(':', "_")));
         let mut args = vec![
             "relief",

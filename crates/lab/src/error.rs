@@ -13,6 +13,9 @@ pub enum LabError {
     /// An error from the core crate, typically a failed atomic write.
     #[error(transparent)]
     Core(#[from] CoreError),
+    /// A relief technique cannot run (missing map, kernel not offered or not runnable here).
+    #[error(transparent)]
+    Relief(#[from] renderlab_relief::ReliefError),
     /// A noise parameter was rejected (the message names the parameter).
     #[error(transparent)]
     Noise(#[from] renderlab_noise::NoiseError),

@@ -14,9 +14,17 @@ use renderlab_core::camera::{Camera, BENCH_ANGLES_DEG, BENCH_HEIGHT, BENCH_WIDTH
 use renderlab_core::io::{save_color, save_rgb8};
 use renderlab_core::{CoreError, Image, Material, Scene};
 use renderlab_raster::{rasterize, GBuffer};
-use renderlab_relief::complexity::ComplexityParams;
-use renderlab_relief::render::{render, render_reference, trace_only};
-use renderlab_relief::{Frame, FrameInput, ReliefMaterial, Shading, Technique};
+use renderlab_relief::maps::complexity::ComplexityParams;
+use renderlab_relief::march::cone_step::Refinement;
+use renderlab_relief::render::{check, render, render_reference, trace_only};
+use renderlab_relief::techniques::adaptive_pom::AdaptivePom;
+use renderlab_relief::techniques::cone::ConeStepping;
+use renderlab_relief::techniques::cone_newton::ConeNewton;
+use renderlab_relief::techniques::pom::Pom;
+use renderlab_relief::techniques::pom_shadow::PomShadow;
+use renderlab_relief::techniques::{adaptive_relief::AdaptiveRelief, relief::ReliefMapping, steep::Steep};
+use renderlab_relief::techniques::{basic::Basic, normal::NormalMapping, parallax::Parallax};
+use renderlab_relief::{Frame, FrameInput, Kernel, KernelChoice, Map, ReliefMaterial, Shading, Technique};
 use serde::Serialize;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -30,8 +38,9 @@ pub struct ReliefBenchConfig {
     pub height: u32,
     /// View angles in degrees (thesis: 0, 45, 60, 80).
     pub angles: Vec<f32>,
-    /// Techniques to measure.
-    pub techniques: Vec<Technique>,
+    /// Techniques to measure, each with its kernel choice (duplicates after resolving the
+    /// choices are measured once).
+    pub techniques: Vec<Method>,
     /// Untimed renders before timing.
     pub warmup: u32,
     /// Timed renders; the median is reported.
@@ -44,26 +53,73 @@ pub struct ReliefBenchConfig {
     pub cone_size: u32,
 }
 
-/// The thesis's POM settings and adaptive POM, then the methods beyond the thesis.
-pub fn default_techniques() -> Vec<Technique> {
+/// One technique on one kernel choice.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Method {
+    /// The technique.
+    pub technique: Technique,
+    /// Its kernel (`auto`: the fastest the technique offers on this CPU).
+    pub kernel: KernelChoice,
+}
+
+impl Method {
+    /// `technique` on its fastest kernel.
+    pub fn auto(technique: impl Into<Technique>) -> Self {
+        Method { technique: technique.into(), kernel: KernelChoice::Auto }
+    }
+
+    /// `technique` on `kernel`.
+    pub fn on(technique: impl Into<Technique>, kernel: Kernel) -> Self {
+        Method { technique: technique.into(), kernel: KernelChoice::Exactly(kernel) }
+    }
+}
+
+/// POM-32 on the scalar kernel: the thesis's setting every method is measured against.
+pub const POM_32: Technique = Technique::Pom(Pom { layers: 32 });
+
+/// The thesis's POM settings (its scalar march on the `f32` depths) and adaptive POM, then
+/// the methods beyond the thesis on their fastest kernels, POM-32 among them (on the packed
+/// map in vector lanes where the CPU has them, the like-for-like baseline of cone-newton).
+pub fn default_techniques() -> Vec<Method> {
     let mut t = vec![
-        Technique::Basic,
-        Technique::NormalMapping,
-        Technique::Parallax,
-        Technique::Steep { layers: 32 },
+        Method::auto(Basic),
+        Method::auto(NormalMapping),
+        Method::auto(Parallax),
+        Method::auto(Steep { layers: 32 }),
     ];
     for layers in [4, 8, 16, 24, 32] {
-        t.push(Technique::Pom { layers });
+        t.push(Method::on(Pom { layers }, Kernel::Scalar));
     }
-    t.push(Technique::AdaptivePom { min: 4, max: 32 });
-    t.push(Technique::Relief { linear: 16, binary: 6 });
-    t.push(Technique::AdaptiveRelief { min: 4, max: 16, binary: 5 });
-    t.push(Technique::ConeStep { steps: 16, binary: 5 });
-    t.push(Technique::ConeSecant { steps: 24, secant: 3 });
-    t.push(Technique::ConeFast { steps: 64, secant: 3, tol: 25 });
-    t.push(Technique::PomSimd { layers: 32 });
-    t.push(Technique::PomShadow { layers: 32, shadow_samples: 16 });
+    t.push(Method::auto(AdaptivePom { min: 4, max: 32 }));
+    t.push(Method::auto(ReliefMapping { linear: 16, binary: 6 }));
+    t.push(Method::auto(AdaptiveRelief { min: 4, max: 16, binary: 5 }));
+    t.push(Method::auto(ConeStepping { steps: 16, refine_steps: 5, refinement: Refinement::Binary }));
+    t.push(Method::auto(ConeStepping { steps: 24, refine_steps: 3, refinement: Refinement::Secant }));
+    t.push(Method::auto(ConeNewton { steps: 64, secant: 3, tol_hundredths: 25 }));
+    t.push(Method::auto(Pom { layers: 32 }));
+    t.push(Method::auto(PomShadow { layers: 32, shadow_samples: 16 }));
     t
+}
+
+/// Resolves each method's kernel choice on this CPU, keeping the first of any duplicates.
+pub fn resolve(methods: &[Method]) -> Result<Vec<(Technique, Kernel)>, renderlab_relief::ReliefError> {
+    let mut out: Vec<(Technique, Kernel)> = Vec::new();
+    for m in methods {
+        let r = (m.technique, m.technique.kernel(m.kernel)?);
+        if !out.contains(&r) {
+            out.push(r);
+        }
+    }
+    Ok(out)
+}
+
+/// How a technique on a kernel is labelled in tables and findings: its name, with the kernel
+/// when that is not the scalar one.
+pub fn label(technique: Technique, kernel: Kernel) -> String {
+    match kernel {
+        Kernel::Scalar => technique.name(),
+        k => format!("{} ({k})", technique.name()),
+    }
 }
 
 impl Default for ReliefBenchConfig {
@@ -77,7 +133,7 @@ impl Default for ReliefBenchConfig {
             reps: 5,
             complexity: ComplexityParams::default(),
             write_images: true,
-            cone_size: renderlab_relief::material::CONE_MAP_SIZE,
+            cone_size: renderlab_relief::render::material::CONE_MAP_SIZE,
         }
     }
 }
@@ -85,10 +141,12 @@ impl Default for ReliefBenchConfig {
 /// One technique at one angle: cost and error.
 #[derive(Clone, Debug, Serialize)]
 pub struct ReliefRecord {
-    /// Canonical technique name (e.g. `pom:32`).
-    pub technique: String,
+    /// The technique (written as its canonical name, e.g. `pom:32`).
+    pub technique: Technique,
     /// Technique family (e.g. `pom`).
-    pub family: String,
+    pub family: &'static str,
+    /// The kernel it ran on (`scalar`, `simd`).
+    pub kernel: Kernel,
     /// Nominal layer or step count (0 when not applicable).
     pub layers: u32,
     /// View angle from the wall normal, degrees.
@@ -153,8 +211,14 @@ pub fn thesis_weighted_gain(pom_means: [f64; 5], adaptive_mean: f64) -> (f64, f6
     (x1, adaptive_mean, (adaptive_mean - x1) / x1)
 }
 
-fn slug(t: &Technique) -> String {
-    t.name().replace(':', "-")
+/// File-name stem of a technique on a kernel: its name with `-` for `:`, and the kernel when
+/// that is not the scalar one.
+fn slug(t: Technique, kernel: Kernel) -> String {
+    let name = t.name().replace(':', "-");
+    match kernel {
+        Kernel::Scalar => name,
+        k => format!("{name}-{k}"),
+    }
 }
 
 /// Mean and 95th percentile of the UV distance in texels over the mask.
@@ -212,12 +276,16 @@ pub fn run_relief_bench(
     cfg.complexity.validate()?;
     let img_dir = out.join("img");
     std::fs::create_dir_all(&img_dir).map_err(|source| CoreError::Write { path: img_dir.clone(), source })?;
-    let needs_cone = cfg.techniques.iter().any(Technique::needs_cone_map);
+    let methods = resolve(&cfg.techniques)?;
+    let needs_cone = methods.iter().any(|(t, _)| t.needs_map(Map::Cone));
     progress(0, 1, "preparing material (pyramids, complexity map, cone map)");
     let mat = ReliefMaterial::with_cone_size(material, &cfg.complexity, needs_cone.then_some(cfg.cone_size));
+    for &(t, kernel) in &methods {
+        check(t, kernel, std::slice::from_ref(&mat))?;
+    }
     let tex_size = Vec2::new(material.size().0 as f32, material.size().1 as f32);
     let scene = Scene::benchmark(material.clone());
-    let total = cfg.angles.len() * cfg.techniques.len();
+    let total = cfg.angles.len() * methods.len();
     let mut done = 0;
     let mut records = Vec::new();
     let mut images: Vec<ImageSet> = Vec::new();
@@ -226,11 +294,11 @@ pub fn run_relief_bench(
         let view = View::new(&scene, &camera, angle);
         let mats = std::slice::from_ref(&mat);
         let mut refs: HashMap<Shading, Frame> = HashMap::new();
-        for t in &cfg.techniques {
-            progress(done, total, &format!("{angle}°: {t}"));
+        for &(t, kernel) in &methods {
+            progress(done, total, &format!("{angle}°: {}", label(t, kernel)));
             let shading = t.shading();
             if let std::collections::hash_map::Entry::Vacant(slot) = refs.entry(shading) {
-                let r = render_reference(view.input(), mats, *t, scene.lighting, scene.background);
+                let r = render_reference(view.input(), mats, t, scene.lighting, scene.background);
                 if cfg.write_images {
                     let name = format!("reference_{}_{}.png", shading_name(shading), angle);
                     save_color(img_dir.join(&name), &r.image)?;
@@ -238,11 +306,12 @@ pub fn run_relief_bench(
                 slot.insert(r);
             }
             let reference = &refs[&shading];
-            let (timing, _): (Timing, Frame) = measure(cfg.warmup, cfg.reps, || {
-                render(view.input(), mats, *t, scene.lighting, scene.background, false)
+            let (timing, _): (Timing, _) = measure(cfg.warmup, cfg.reps, || {
+                render(view.input(), mats, t, kernel, scene.lighting, scene.background, false)
             });
-            let (trace_timing, _) = measure(cfg.warmup, cfg.reps, || trace_only(view.input(), mats, *t));
-            let frame = render(view.input(), mats, *t, scene.lighting, scene.background, true);
+            let (trace_timing, _) =
+                measure(cfg.warmup, cfg.reps, || trace_only(view.input(), mats, t, kernel));
+            let frame: Frame = render(view.input(), mats, t, kernel, scene.lighting, scene.background, true)?;
             let cmp = compare(&frame.image, &reference.image, Some(&frame.mask));
             let (uv_mean, uv_p95, uv_map) = uv_error(&frame, reference, tex_size);
             let covered = frame.mask.pixels().iter().filter(|&&m| m).count();
@@ -252,8 +321,9 @@ pub fn run_relief_bench(
                 frame.layers.pixels().iter().map(|&l| l as f64).sum::<f64>() / covered as f64
             };
             let rec = ReliefRecord {
-                technique: t.name(),
-                family: t.family().into(),
+                technique: t,
+                family: t.family(),
+                kernel,
                 layers: t.layers(),
                 angle_deg: angle,
                 time_ms: timing.median_ms,
@@ -271,7 +341,7 @@ pub fn run_relief_bench(
                 covered_pixels: covered,
             };
             if cfg.write_images {
-                let base = format!("{}_{}", slug(t), angle);
+                let base = format!("{}_{}", slug(t, kernel), angle);
                 save_color(img_dir.join(format!("{base}.png")), &frame.image)?;
                 let heat =
                     with_legend(&heat_image(&uv_map, 4.0, Some(&frame.mask)), 4.0, "UV error (texels)");
@@ -284,7 +354,7 @@ pub fn run_relief_bench(
                     let heat = with_legend(&heat_image(&l, max, Some(&frame.mask)), max, "layers");
                     save_rgb8(img_dir.join(format!("{base}_layers.png")), &heat)?;
                 }
-                images.push(ImageSet { angle, technique: t.name(), base, has_layers: t.layers() > 0 });
+                images.push(ImageSet { angle, label: label(t, kernel), base, has_layers: t.layers() > 0 });
             }
             records.push(rec);
             done += 1;
@@ -301,20 +371,26 @@ pub fn run_relief_bench(
     Ok(ReliefSummary { records, findings, headline, index })
 }
 
-/// One scatter series per technique family: (cost, UV error) points labelled with the
-/// technique and angle; basic texturing and normal mapping are left out (no parallax at all).
+/// One scatter series per technique family and kernel: (cost, UV error) points labelled with
+/// the technique and angle; basic texturing and normal mapping are left out (no parallax at
+/// all).
 fn cost_error_series(records: &[ReliefRecord], cost: fn(&ReliefRecord) -> f64) -> Vec<Series> {
     let mut series: Vec<Series> = Vec::new();
-    for rec in records.iter().filter(|r| r.family != "basic" && r.family != "normal") {
-        let idx = match series.iter().position(|s| s.name == rec.family) {
+    let undisplaced = |r: &&ReliefRecord| matches!(r.technique, Technique::Basic(_) | Technique::Normal(_));
+    for rec in records.iter().filter(|r| !undisplaced(r)) {
+        let name = match rec.kernel {
+            Kernel::Scalar => rec.family.to_string(),
+            k => format!("{} ({k})", rec.family),
+        };
+        let idx = match series.iter().position(|s| s.name == name) {
             Some(i) => i,
             None => {
-                series.push(Series::new(rec.family.clone(), vec![]));
+                series.push(Series::new(name, vec![]));
                 series.len() - 1
             }
         };
         series[idx].points.push((cost(rec), rec.uv_error_texels.max(1e-4)));
-        series[idx].labels.push(format!("{} {}°", rec.technique, rec.angle_deg));
+        series[idx].labels.push(format!("{} {}°", label(rec.technique, rec.kernel), rec.angle_deg));
     }
     series
 }
@@ -322,7 +398,7 @@ fn cost_error_series(records: &[ReliefRecord], cost: fn(&ReliefRecord) -> f64) -
 /// The images written for one technique at one angle (file names share `base`).
 struct ImageSet {
     angle: f32,
-    technique: String,
+    label: String,
     base: String,
     has_layers: bool,
 }
@@ -335,18 +411,54 @@ fn shading_name(s: Shading) -> &'static str {
     }
 }
 
-fn find<'a>(records: &'a [ReliefRecord], technique: &str, angle: f32) -> Option<&'a ReliefRecord> {
-    records.iter().find(|r| r.technique == technique && r.angle_deg == angle)
+/// A technique on a kernel: how records are looked up.
+type Key = (Technique, Kernel);
+
+/// The POM-32 every method is measured against: the thesis's scalar march.
+const POM_32_SCALAR: Key = (POM_32, Kernel::Scalar);
+
+/// The thesis's POM settings, in its table's order.
+const THESIS_POMS: [Key; 5] = [
+    (Technique::Pom(Pom { layers: 4 }), Kernel::Scalar),
+    (Technique::Pom(Pom { layers: 8 }), Kernel::Scalar),
+    (Technique::Pom(Pom { layers: 16 }), Kernel::Scalar),
+    (Technique::Pom(Pom { layers: 24 }), Kernel::Scalar),
+    POM_32_SCALAR,
+];
+
+/// The thesis's adaptive POM.
+const THESIS_ADAPTIVE: Key = (Technique::AdaptivePom(AdaptivePom { min: 4, max: 32 }), Kernel::Scalar);
+
+fn key(r: &ReliefRecord) -> Key {
+    (r.technique, r.kernel)
+}
+
+fn find(records: &[ReliefRecord], k: Key, angle: f32) -> Option<&ReliefRecord> {
+    records.iter().find(|r| key(r) == k && r.angle_deg == angle)
 }
 
 /// Mean over the angles of `f(record)` for one technique; `None` if any angle is missing.
 fn mean_over_angles(
     records: &[ReliefRecord],
-    technique: &str,
+    k: Key,
     angles: &[f32],
     f: impl Fn(&ReliefRecord) -> f64,
 ) -> Option<f64> {
-    let v: Option<Vec<f64>> = angles.iter().map(|&a| find(records, technique, a).map(&f)).collect();
+    let v: Option<Vec<f64>> = angles.iter().map(|&a| find(records, k, a).map(&f)).collect();
+    let v = v?;
+    Some(v.iter().sum::<f64>() / v.len() as f64)
+}
+
+/// Mean over the angles of `f(a) / f(b)`; `None` if any angle is missing.
+fn mean_ratio(
+    records: &[ReliefRecord],
+    a: Key,
+    b: Key,
+    angles: &[f32],
+    f: impl Fn(&ReliefRecord) -> f64,
+) -> Option<f64> {
+    let v: Option<Vec<f64>> =
+        angles.iter().map(|&x| Some(f(find(records, a, x)?) / f(find(records, b, x)?))).collect();
     let v = v?;
     Some(v.iter().sum::<f64>() / v.len() as f64)
 }
@@ -355,7 +467,9 @@ fn mean_over_angles(
 #[derive(Clone, Debug, Serialize)]
 pub struct VersusPom32 {
     /// Candidate technique.
-    pub technique: String,
+    pub technique: Technique,
+    /// The kernel it ran on.
+    pub kernel: Kernel,
     /// Mean over angles of trace time(candidate) / trace time(POM-32): the techniques' own cost.
     pub time_ratio: f64,
     /// Mean over angles of the whole shading pass's time ratio (shared filtering and lighting
@@ -373,35 +487,27 @@ pub struct VersusPom32 {
     pub passes: bool,
 }
 
-/// Every technique measured against POM-32 at the same angles.
+/// Every technique measured against POM-32 (scalar) at the same angles.
 pub fn versus_pom32(records: &[ReliefRecord], angles: &[f32]) -> Vec<VersusPom32> {
-    let mut names: Vec<String> = Vec::new();
+    let mut keys: Vec<Key> = Vec::new();
     for r in records {
-        if !names.contains(&r.technique) {
-            names.push(r.technique.clone());
+        if !keys.contains(&key(r)) {
+            keys.push(key(r));
         }
     }
-    let pom = "pom:32";
+    let pom = POM_32_SCALAR;
     let Some(p_err) = mean_over_angles(records, pom, angles, |r| r.uv_error_texels) else { return vec![] };
     let p_psnr = mean_over_angles(records, pom, angles, |r| r.psnr_db).unwrap_or(f64::NAN);
-    names
-        .iter()
-        .filter(|n| n.as_str() != pom)
-        .filter_map(|n| {
-            let mean_ratio = |f: &dyn Fn(&ReliefRecord) -> f64| -> Option<f64> {
-                let v: Option<Vec<f64>> = angles
-                    .iter()
-                    .map(|&a| Some(f(find(records, n, a)?) / f(find(records, pom, a)?)))
-                    .collect();
-                let v = v?;
-                Some(v.iter().sum::<f64>() / v.len() as f64)
-            };
-            let ratio = mean_ratio(&|r| r.trace_ms)?;
-            let pass_ratio = mean_ratio(&|r| r.time_ms)?;
-            let err = mean_over_angles(records, n, angles, |r| r.uv_error_texels)?;
-            let psnr = mean_over_angles(records, n, angles, |r| r.psnr_db)?;
+    keys.iter()
+        .filter(|&&k| k != pom)
+        .filter_map(|&k| {
+            let ratio = mean_ratio(records, k, pom, angles, |r| r.trace_ms)?;
+            let pass_ratio = mean_ratio(records, k, pom, angles, |r| r.time_ms)?;
+            let err = mean_over_angles(records, k, angles, |r| r.uv_error_texels)?;
+            let psnr = mean_over_angles(records, k, angles, |r| r.psnr_db)?;
             Some(VersusPom32 {
-                technique: n.clone(),
+                technique: k.0,
+                kernel: k.1,
                 time_ratio: ratio,
                 pass_ratio,
                 uv_error: err,
@@ -414,12 +520,25 @@ pub fn versus_pom32(records: &[ReliefRecord], angles: &[f32]) -> Vec<VersusPom32
         .collect()
 }
 
+/// Whether the findings compare `k` with POM-32: the adaptive and refining methods beyond
+/// the thesis's fixed settings, and POM itself on a faster kernel.
+fn compared_with_pom32(k: Key) -> bool {
+    match k.0 {
+        Technique::AdaptivePom(_)
+        | Technique::AdaptiveRelief(_)
+        | Technique::Relief(_)
+        | Technique::Cone(_)
+        | Technique::ConeNewton(_) => true,
+        Technique::Pom(_) => k.1 != Kernel::Scalar,
+        _ => false,
+    }
+}
+
 fn findings(records: &[ReliefRecord], angles: &[f32]) -> Vec<String> {
     let mut out = Vec::new();
-    let poms = ["pom:4", "pom:8", "pom:16", "pom:24", "pom:32"];
-    let fps = |t: &str| mean_over_angles(records, t, angles, |r| r.fps_equivalent);
-    let pom_means: Option<Vec<f64>> = poms.iter().map(|t| fps(t)).collect();
-    if let (Some(pm), Some(ad)) = (pom_means, fps("adaptive:4:32")) {
+    let fps = |k: Key| mean_over_angles(records, k, angles, |r| r.fps_equivalent);
+    let pom_means: Option<Vec<f64>> = THESIS_POMS.iter().map(|&k| fps(k)).collect();
+    if let (Some(pm), Some(ad)) = (pom_means, fps(THESIS_ADAPTIVE)) {
         let (x1, x2, gain) = thesis_weighted_gain([pm[0], pm[1], pm[2], pm[3], pm[4]], ad);
         out.push(format!(
             "Thesis's weighted metric on our timings: POM weighted mean {x1:.1} FPS-eq, adaptive {x2:.1} FPS-eq, gain {:+.1}% (thesis: +24%).",
@@ -432,15 +551,10 @@ fn findings(records: &[ReliefRecord], angles: &[f32]) -> Vec<String> {
         ));
     }
     for v in versus_pom32(records, angles) {
-        if matches!(
-            v.technique.split(':').next(),
-            Some(
-                "adaptive" | "adaptive-relief" | "relief" | "cone" | "cone-secant" | "cone-fast" | "pom-simd"
-            )
-        ) {
+        if compared_with_pom32((v.technique, v.kernel)) {
             out.push(format!(
                 "{} vs POM-32: {:.2}× its trace time ({:.2}× whole pass), UV error {:.3} vs {:.3} texels, PSNR {:.2} vs {:.2} dB: {}.",
-                v.technique,
+                label(v.technique, v.kernel),
                 v.time_ratio,
                 v.pass_ratio,
                 v.uv_error,
@@ -455,23 +569,20 @@ fn findings(records: &[ReliefRecord], angles: &[f32]) -> Vec<String> {
             ));
         }
     }
-    // Fairness: the fast cone march against POM-32 given the same packed map and vector lanes.
-    let ratio = |a: &str, b: &str| -> Option<f64> {
-        let v: Option<Vec<f64>> = angles
-            .iter()
-            .map(|&x| Some(find(records, a, x)?.trace_ms / find(records, b, x)?.trace_ms))
-            .collect();
-        let v = v?;
-        Some(v.iter().sum::<f64>() / v.len() as f64)
-    };
-    for cone in records.iter().map(|r| r.technique.as_str()).filter(|t| t.starts_with("cone-fast")) {
-        if out.iter().any(|l| l.starts_with(&format!("{cone} vs pom-simd:32"))) {
+    // Fairness: the Newton cone march against POM-32 given the same packed map and kernel.
+    let mut seen: Vec<Key> = Vec::new();
+    for k in records.iter().map(key).filter(|k| matches!(k.0, Technique::ConeNewton(_))) {
+        if seen.contains(&k) {
             continue;
         }
-        if let Some(r) = ratio(cone, "pom-simd:32") {
+        seen.push(k);
+        let base = (POM_32, k.1);
+        if let Some(r) = mean_ratio(records, k, base, angles, |r| r.trace_ms) {
             out.push(format!(
-                "{cone} vs pom-simd:32 (POM-32 with the same packed map and vector lanes, the same \
-                 accuracy as POM-32): {r:.2}× its trace time, averaged over the angles."
+                "{} vs {} (POM-32 with the same packed map and kernel, the same \
+                 accuracy as POM-32): {r:.2}× its trace time, averaged over the angles.",
+                label(k.0, k.1),
+                label(base.0, base.1)
             ));
         }
     }
@@ -482,7 +593,7 @@ fn findings(records: &[ReliefRecord], angles: &[f32]) -> Vec<String> {
 fn headline(records: &[ReliefRecord], angles: &[f32]) -> String {
     let v = versus_pom32(records, angles);
     let mut parts = vec![format!("{} measurements over {} angles.", records.len(), angles.len())];
-    if let Some(a) = v.iter().find(|x| x.technique.starts_with("adaptive:")) {
+    if let Some(a) = v.iter().find(|x| matches!(x.technique, Technique::AdaptivePom(_))) {
         parts.push(format!(
             "Adaptive POM: {:.2}× POM-32's trace time at {:.1}× its UV error.",
             a.time_ratio,
@@ -491,12 +602,12 @@ fn headline(records: &[ReliefRecord], angles: &[f32]) -> String {
     }
     let best = v
         .iter()
-        .filter(|x| x.uv_error.is_finite() && !x.technique.starts_with("pom-shadow"))
+        .filter(|x| x.uv_error.is_finite() && !matches!(x.technique, Technique::PomShadow(_)))
         .min_by(|a, b| a.uv_error.total_cmp(&b.uv_error));
     if let Some(b) = best {
         parts.push(format!(
             "Most accurate: {} at {:.2}× POM-32's UV error and {:.2}× its trace time.",
-            b.technique,
+            label(b.technique, b.kernel),
             b.uv_error / b.pom32_uv_error,
             b.time_ratio
         ));
@@ -539,11 +650,12 @@ fn write_report(
          (1000 / shading-pass ms) on this machine's CPU. Absolute values are not comparable; the \
          ratios between columns are.",
     );
-    let cols = ["pom:4", "pom:8", "pom:16", "pom:24", "pom:32", "adaptive:4:32"];
+    let cols =
+        [THESIS_POMS[0], THESIS_POMS[1], THESIS_POMS[2], THESIS_POMS[3], THESIS_POMS[4], THESIS_ADAPTIVE];
     let mut rows = Vec::new();
     for (i, &a) in BENCH_ANGLES_DEG.iter().enumerate() {
         let mut row = vec![format!("{a}°")];
-        for (j, c) in cols.iter().enumerate() {
+        for (j, &c) in cols.iter().enumerate() {
             let ours = find(records, c, a).map(|r| format_number(r.fps_equivalent, 1)).unwrap_or("–".into());
             row.push(format!("{:.0} | {}", THESIS_TABLE_4_1[i][j], ours));
         }
@@ -561,8 +673,8 @@ fn write_report(
     let mut rows = Vec::new();
     for &a in &cfg.angles {
         let mut row = vec![format!("{a}°")];
-        for c in &cols[..5] {
-            let v = match (find(records, c, a), find(records, "adaptive:4:32", a)) {
+        for &c in &cols[..5] {
+            let v = match (find(records, c, a), find(records, THESIS_ADAPTIVE, a)) {
                 (Some(p), Some(ad)) => format!("{:.2}×", p.time_ms / ad.time_ms),
                 _ => "–".into(),
             };
@@ -582,7 +694,7 @@ fn write_report(
         .iter()
         .map(|v| {
             vec![
-                v.technique.clone(),
+                label(v.technique, v.kernel),
                 format!("{:.3}", v.time_ratio),
                 format!("{:.3}", v.pass_ratio),
                 format!("{:.3} / {:.3}", v.uv_error, v.pom32_uv_error),
@@ -646,7 +758,7 @@ fn write_report(
         .iter()
         .map(|r| {
             vec![
-                r.technique.clone(),
+                label(r.technique, r.kernel),
                 format!("{}°", r.angle_deg),
                 format_number(r.time_ms, 2),
                 format_number(r.trace_ms, 2),
@@ -671,7 +783,7 @@ fn write_report(
             let mut items: Vec<(String, String)> =
                 vec![(format!("img/reference_lit_{a}.png"), "reference (lit)".into())];
             for set in images.iter().filter(|s| s.angle == a) {
-                let (base, name) = (&set.base, &set.technique);
+                let (base, name) = (&set.base, &set.label);
                 items.push((format!("img/{base}.png"), name.clone()));
                 items.push((format!("img/{base}_uverr.png"), format!("{name}: UV error")));
                 items.push((format!("img/{base}_flip.png"), format!("{name}: FLIP")));

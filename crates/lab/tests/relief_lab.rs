@@ -2,8 +2,12 @@
 //! report, and its measurements mean what they say.
 
 use renderlab_core::procedural;
-use renderlab_lab::relief_lab::{run_relief_bench, versus_pom32, ReliefBenchConfig, ReliefRecord};
-use renderlab_relief::Technique;
+use renderlab_lab::relief_lab::{run_relief_bench, versus_pom32, Method, ReliefBenchConfig, ReliefRecord};
+use renderlab_relief::{Kernel, KernelChoice, Technique};
+
+fn tech(name: &str) -> Technique {
+    Technique::parse(name).unwrap()
+}
 
 fn small_run(dir: &std::path::Path) -> Vec<ReliefRecord> {
     let material = procedural::material("bricks", 128).unwrap();
@@ -11,14 +15,10 @@ fn small_run(dir: &std::path::Path) -> Vec<ReliefRecord> {
         width: 96,
         height: 60,
         angles: vec![0.0, 60.0],
-        techniques: vec![
-            Technique::Basic,
-            Technique::Pom { layers: 4 },
-            Technique::Pom { layers: 32 },
-            Technique::AdaptivePom { min: 4, max: 32 },
-            Technique::ConeSecant { steps: 24, secant: 3 },
-            Technique::PomShadow { layers: 32, shadow_samples: 8 },
-        ],
+        techniques: ["basic", "pom:4", "pom:32", "adaptive", "cone:24:3:secant", "pom-shadow:32:8"]
+            .into_iter()
+            .map(|t| Method { technique: tech(t), kernel: KernelChoice::Exactly(Kernel::Scalar) })
+            .collect(),
         warmup: 0,
         reps: 1,
         cone_size: 64,
@@ -37,6 +37,7 @@ fn writes_results_images_and_report() {
     assert_eq!(json.as_array().unwrap().len(), 12);
     for key in [
         "technique",
+        "kernel",
         "layers",
         "angle_deg",
         "time_ms",
@@ -63,7 +64,7 @@ fn writes_results_images_and_report() {
 fn measurements_behave() {
     let dir = tempfile::tempdir().unwrap();
     let records = small_run(dir.path());
-    let get = |t: &str, a: f32| records.iter().find(|r| r.technique == t && r.angle_deg == a).unwrap();
+    let get = |t: &str, a: f32| records.iter().find(|r| r.technique.name() == t && r.angle_deg == a).unwrap();
     for a in [0.0, 60.0] {
         // More layers: more fetches, less error.
         assert!(get("pom:32", a).samples_per_pixel > get("pom:4", a).samples_per_pixel);
@@ -82,18 +83,19 @@ fn measurements_behave() {
     // hard-shadow reference is finite and its image differs.
     assert!(get("pom-shadow:32:8", 60.0).psnr_db.is_finite());
     let v = versus_pom32(&records, &[0.0, 60.0]);
-    assert!(v.iter().any(|x| x.technique == "cone-secant:24:3"));
+    assert!(v.iter().any(|x| x.technique == tech("cone:24:3:secant")));
     assert!(v.iter().all(|x| x.time_ratio.is_finite() && x.time_ratio > 0.0));
 }
 
 /// Shading is as deterministic as rasterization: the same frame, bit for bit, on 1, 2 and 3
-/// threads, for a marching technique, the packet-traced cone method and the reference.
+/// threads, for a marching technique, the packet-traced cone method, every kernel of
+/// cone-newton and POM, and the reference.
 #[test]
 fn frames_are_identical_for_any_thread_count() {
     use renderlab_core::camera::Camera;
     use renderlab_core::Scene;
     use renderlab_lab::relief_lab::View;
-    use renderlab_relief::complexity::ComplexityParams;
+    use renderlab_relief::maps::complexity::ComplexityParams;
     use renderlab_relief::render::{render, render_reference};
     use renderlab_relief::ReliefMaterial;
 
@@ -106,19 +108,15 @@ fn frames_are_identical_for_any_thread_count() {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| {
             let mut out = Vec::new();
-            for t in
-                [Technique::AdaptivePom { min: 4, max: 32 }, Technique::ConeSecant { steps: 24, secant: 3 }]
-            {
-                let f = render(view.input(), mats, t, scene.lighting, scene.background, true);
-                out.push((f.image, f.uv, f.fetches));
+            for t in ["adaptive:4:32", "cone:24:3:secant", "cone-newton", "pom:32"] {
+                let t = tech(t);
+                for kernel in t.descriptor().kernels.iter().filter(|k| k.available()) {
+                    let f = render(view.input(), mats, t, *kernel, scene.lighting, scene.background, true)
+                        .unwrap();
+                    out.push((f.image, f.uv, f.fetches));
+                }
             }
-            let r = render_reference(
-                view.input(),
-                mats,
-                Technique::Pom { layers: 8 },
-                scene.lighting,
-                scene.background,
-            );
+            let r = render_reference(view.input(), mats, tech("pom:8"), scene.lighting, scene.background);
             out.push((r.image, r.uv, r.fetches));
             out
         })
@@ -127,4 +125,23 @@ fn frames_are_identical_for_any_thread_count() {
     for n in [2, 3] {
         assert!(one == frames(n), "{n} threads differ from 1");
     }
+}
+
+/// A technique whose map was not built is refused with an error naming the map, never traced
+/// by another method.
+#[test]
+fn a_missing_map_is_an_error_naming_it() {
+    use renderlab_relief::maps::complexity::ComplexityParams;
+    use renderlab_relief::render::check;
+    use renderlab_relief::ReliefMaterial;
+
+    let material = procedural::material("bricks", 32).unwrap();
+    let mat = ReliefMaterial::with_cone_size(&material, &ComplexityParams::default(), None);
+    for t in ["cone", "cone:8:3:secant", "cone-newton"] {
+        let err = check(tech(t), Kernel::Scalar, std::slice::from_ref(&mat)).unwrap_err().to_string();
+        assert!(err.contains("relaxed cone map"), "{t}: {err}");
+    }
+    assert!(check(tech("pom:8"), Kernel::Scalar, std::slice::from_ref(&mat)).is_ok());
+    let err = check(tech("relief"), Kernel::Simd, std::slice::from_ref(&mat)).unwrap_err().to_string();
+    assert!(err.contains("no simd kernel"), "{err}");
 }

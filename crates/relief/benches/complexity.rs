@@ -6,8 +6,8 @@ use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use renderlab_core::Image;
-use renderlab_relief::complexity::{complexity_map, ComplexityParams};
-use renderlab_relief::cone::{ConeKind, ConeMap};
+use renderlab_relief::maps::complexity::{complexity_map, ComplexityParams};
+use renderlab_relief::maps::cone::{ConeKind, ConeMap};
 use renderlab_relief::HeightField;
 
 /// A tileable 1024² height map in [0, 1]: low-frequency bumps, finer ripples and raised

@@ -5,15 +5,17 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::NoCount;
 use renderlab_core::procedural;
-use renderlab_relief::adaptive::AdaptivePom;
-use renderlab_relief::complexity::ComplexityParams;
-use renderlab_relief::cone_fast::{FastCone, JUMP};
-use renderlab_relief::cone_step::{ConeStep, Refinement};
-use renderlab_relief::packed::PackedPom;
-use renderlab_relief::parallax::{Parallax, Pom, Steep};
-use renderlab_relief::pom_simd::SimdPom;
-use renderlab_relief::reference::ExactTrace;
-use renderlab_relief::relief_mapping::{AdaptiveRelief, ReliefMapping};
+use renderlab_relief::maps::complexity::ComplexityParams;
+use renderlab_relief::march::cone_newton::{NewtonCone, JUMP};
+use renderlab_relief::march::cone_step::{ConeStep, Refinement};
+use renderlab_relief::march::exact::ExactTrace;
+use renderlab_relief::march::pom_lanes::PomLanes;
+use renderlab_relief::techniques::adaptive_pom::AdaptivePom;
+use renderlab_relief::techniques::cone_newton::ConeNewtonTracer;
+use renderlab_relief::techniques::pom::{Pom, PomSimd};
+use renderlab_relief::techniques::{
+    adaptive_relief::AdaptiveRelief, parallax::Parallax, relief::ReliefMapping, steep::Steep,
+};
 use renderlab_relief::{ReliefInputs, ReliefMaterial, ReliefTechnique};
 use std::hint::black_box;
 
@@ -74,17 +76,19 @@ fn kernels(c: &mut Criterion) {
     run(c, "adaptive_pom_4_32", &AdaptivePom { min: 4, max: 32 }, &inp);
     run(c, "relief_16_6", &ReliefMapping { linear: 16, binary: 6 }, &inp);
     run(c, "adaptive_relief_4_16_5", &AdaptiveRelief { min: 4, max: 16, binary: 5 }, &inp);
-    run(c, "cone_16_5", &ConeStep { steps: 16, binary: 5, refine: Refinement::Binary }, &inp);
-    let cs = ConeStep { steps: 24, binary: 3, refine: Refinement::Secant };
+    run(c, "cone_16_5", &ConeStep { steps: 16, refine_steps: 5, refine: Refinement::Binary }, &inp);
+    let cs = ConeStep { steps: 24, refine_steps: 3, refine: Refinement::Secant };
     run(c, "cone_secant_24_3", &cs, &inp);
     run_rows(c, "cone_secant_24_3_packets", &cs, &inp);
     run_rows(c, "pom_32_rows", &Pom { layers: 32 }, &inp);
-    // The fast cone stepper (packed map, vector lanes) and POM given the same treatment.
-    let fast = FastCone { steps: 64, secant: 3, tol: 0.25, jump: JUMP };
-    run(c, "cone_fast_64_3_25_scalar", &fast, &inp);
-    run_rows(c, "cone_fast_64_3_25_rows", &fast, &inp);
-    run_rows(c, "pom_packed_32_rows", &PackedPom { layers: 32 }, &inp);
-    run_rows(c, "pom_simd_32_rows", &SimdPom { layers: 32 }, &inp);
+    // Newton-finished cone stepping on its two kernels, and POM's simd kernel (packed map,
+    // vector lanes) with its scalar twin on the same map.
+    let newton = NewtonCone { steps: 64, secant: 3, tol: 0.25, jump: JUMP };
+    run(c, "cone_newton_64_3_25_scalar", &ConeNewtonTracer { march: newton, lanes: false }, &inp);
+    run_rows(c, "cone_newton_64_3_25_simd_rows", &ConeNewtonTracer { march: newton, lanes: true }, &inp);
+    let lanes = PomLanes { layers: 32 };
+    run_rows(c, "pom_32_packed_twin_rows", &PomSimd { march: lanes, lanes: false }, &inp);
+    run_rows(c, "pom_32_simd_rows", &PomSimd { march: lanes, lanes: true }, &inp);
     run(c, "exact_reference", &ExactTrace, &inp);
 }
 

@@ -1,22 +1,32 @@
 //! Diagnostics for the relief techniques on the built-in bricks (1024², or `RL_SIZE`):
 //!
 //! * `relief_diag TECH...`: UV error (texels) against the exact reference and fetches per ray
-//!   at fixed polar angles with spread azimuths (one thread, `trace_row`); checks that the
-//!   vector kernels of `cone-fast` and `pom-simd` equal their scalar ones bit for bit
-//!   (`RL_HIST=1` adds `cone-fast`'s fetch histogram).
+//!   at fixed polar angles with spread azimuths (one thread, `trace_row`); checks that every
+//!   tracer's rows equal its rays traced one by one, bit for bit (for the vector kernels: the
+//!   lanes against their scalar twin).
 //! * `relief_diag --frame TECH...`: trace time of the benchmark view's rays (the relief
 //!   bench's camera at 0/45/60/80°, 1280 × 800), one thread, thread CPU time, best of 7, and
 //!   each technique's time ratio to the first one.
 //!
 //! `cargo run --release -p renderlab-relief --example relief_diag -- [--frame] TECH...` with
-//! technique names as `relief bench --techniques` takes them.
+//! technique names as `relief bench --techniques` takes them, each optionally followed by
+//! `@KERNEL` (`auto`, `scalar` or `simd`; default `auto`).
 
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Tally;
 use renderlab_core::procedural;
-use renderlab_relief::complexity::ComplexityParams;
-use renderlab_relief::reference::exact_hit;
-use renderlab_relief::{ReliefHit, ReliefMaterial, ReliefTechnique, Technique};
+use renderlab_relief::maps::complexity::ComplexityParams;
+use renderlab_relief::march::exact::exact_hit;
+use renderlab_relief::techniques::descriptor::WithTracer;
+use renderlab_relief::{Kernel, KernelChoice, ReliefHit, ReliefMaterial, ReliefTechnique, Technique};
+
+/// Reads `TECH[@KERNEL]`.
+fn parse(spec: &str) -> (Technique, Kernel) {
+    let (name, kernel) = spec.split_once('@').unwrap_or((spec, "auto"));
+    let t = Technique::parse(name).expect("technique");
+    let choice: KernelChoice = kernel.parse().expect("kernel");
+    (t, t.kernel(choice).expect("kernel"))
+}
 
 fn samples(angle_deg: f32, n: u32) -> Vec<(Vec2, Vec3)> {
     let a = angle_deg.to_radians();
@@ -30,14 +40,31 @@ fn samples(angle_deg: f32, n: u32) -> Vec<(Vec2, Vec3)> {
         .collect()
 }
 
+/// Rows traced with `trace_row`, and the rays again one by one: (hits, fetches, rays equal
+/// to the row's bit for bit, fetches one by one, time of the rows).
 struct Run<'a>(&'a ReliefMaterial, &'a [(Vec2, Vec3)]);
-impl renderlab_relief::render::WithTracer for Run<'_> {
-    type Output = (Vec<ReliefHit>, u64);
+impl WithTracer for Run<'_> {
+    type Output = (Vec<ReliefHit>, u64, usize, u64, std::time::Duration);
     fn run<T: ReliefTechnique>(self, t: &T) -> Self::Output {
+        let inp = self.0.inputs();
         let mut out = vec![ReliefHit::default(); self.1.len()];
         let mut tally = Tally::default();
-        t.trace_row(&self.0.inputs(), self.1, &mut out, &mut tally);
-        (out, tally.0)
+        let started = std::time::Instant::now();
+        t.trace_row(&inp, self.1, &mut out, &mut tally);
+        let elapsed = started.elapsed();
+        let mut single = Tally::default();
+        let same = self
+            .1
+            .iter()
+            .zip(&out)
+            .filter(|(&(uv, v), h)| {
+                let one = t.trace(&inp, uv, v, &mut single);
+                one.uv.x.to_bits() == h.uv.x.to_bits()
+                    && one.uv.y.to_bits() == h.uv.y.to_bits()
+                    && one.depth.to_bits() == h.depth.to_bits()
+            })
+            .count();
+        (out, tally.0, same, single.0, elapsed)
     }
 }
 
@@ -104,7 +131,7 @@ fn thread_ms() -> f64 {
 }
 
 struct Frame<'a>(&'a ReliefMaterial, &'a [Vec<(Vec2, Vec3)>], u32);
-impl renderlab_relief::render::WithTracer for Frame<'_> {
+impl WithTracer for Frame<'_> {
     type Output = (f64, f64);
     fn run<T: ReliefTechnique>(self, t: &T) -> (f64, f64) {
         let inp = self.0.inputs();
@@ -129,8 +156,8 @@ fn frame_mode(mat: &ReliefMaterial, techs: &[String]) {
         let rows = frame_rows(angle);
         let px: usize = rows.iter().map(Vec::len).sum();
         for name in techs {
-            let t = Technique::parse(name).expect("technique");
-            let (ms, _) = renderlab_relief::render::with_tracer(t, Frame(mat, &rows, 7));
+            let (t, kernel) = parse(name);
+            let (ms, _) = t.with_tracer(kernel, Frame(mat, &rows, 7));
             println!(
                 "{angle:>4}° {name:24} {ms:7.2} ms (1 thread, min of 7)  {:.1} ns/px",
                 ms * 1e6 / px as f64
@@ -174,71 +201,10 @@ fn main() {
         let exact: Vec<Vec2> =
             s.iter().map(|&(uv, v)| exact_hit(&mat.height, mat.height_scale, uv, v).0).collect();
         for name in &techs {
-            let t = Technique::parse(name).expect("technique");
-            let t1 = std::time::Instant::now();
-            let (hits, fetches) = renderlab_relief::render::with_tracer(t, Run(&mat, &s));
-            let el = t1.elapsed();
-            if let Technique::PomSimd { layers } = t {
-                let ps = renderlab_relief::pom_simd::SimdPom { layers };
-                let inp = mat.inputs();
-                let mut tally = Tally::default();
-                let same = s
-                    .iter()
-                    .zip(&hits)
-                    .filter(|(&(uv, v), h)| {
-                        let one = ps.trace(&inp, uv, v, &mut tally);
-                        one.uv.x.to_bits() == h.uv.x.to_bits()
-                            && one.uv.y.to_bits() == h.uv.y.to_bits()
-                            && one.depth.to_bits() == h.depth.to_bits()
-                    })
-                    .count();
-                if same != s.len() || tally.0 != fetches {
-                    println!(
-                        "  MISMATCH: {} of {} rays equal; fetches {} vs {}",
-                        same,
-                        s.len(),
-                        tally.0,
-                        fetches
-                    );
-                }
-            }
-            if let Technique::ConeFast { steps, secant, tol } = t {
-                let jump = std::env::var("RL_JUMP")
-                    .ok()
-                    .and_then(|j| j.parse().ok())
-                    .unwrap_or(renderlab_relief::cone_fast::JUMP);
-                let fc =
-                    renderlab_relief::cone_fast::FastCone { steps, secant, tol: tol as f32 / 100.0, jump };
-                let inp = mat.inputs();
-                let mut tally = Tally::default();
-                let same = s
-                    .iter()
-                    .zip(&hits)
-                    .filter(|(&(uv, v), h)| {
-                        let one = fc.trace(&inp, uv, v, &mut tally);
-                        one.uv.x.to_bits() == h.uv.x.to_bits()
-                            && one.uv.y.to_bits() == h.uv.y.to_bits()
-                            && one.depth.to_bits() == h.depth.to_bits()
-                    })
-                    .count();
-                if std::env::var("RL_HIST").is_ok() {
-                    let mut hist = [0u32; 16];
-                    for &(uv, v) in &s {
-                        let mut one = Tally::default();
-                        fc.trace(&inp, uv, v, &mut one);
-                        hist[(one.0 as usize).min(15)] += 1;
-                    }
-                    println!("  fetch histogram (1..15+): {:?}", &hist[1..]);
-                }
-                if same != s.len() || tally.0 != fetches {
-                    println!(
-                        "  MISMATCH: {} of {} rays equal; fetches {} vs {}",
-                        same,
-                        s.len(),
-                        tally.0,
-                        fetches
-                    );
-                }
+            let (t, kernel) = parse(name);
+            let (hits, fetches, same, single, el) = t.with_tracer(kernel, Run(&mat, &s));
+            if same != s.len() || single != fetches {
+                println!("  MISMATCH: {same} of {} rays equal; fetches {single} vs {fetches}", s.len());
             }
             let mut errs: Vec<f32> =
                 hits.iter().zip(&exact).map(|(h, e)| ((h.uv - *e) * 1024.0).length()).collect();

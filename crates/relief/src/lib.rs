@@ -1,6 +1,12 @@
 //! Relief-surface techniques: the parallax family, parallax occlusion mapping (fixed and the
-//! thesis's adaptive layer count), relief mapping, cone-step mapping, self-shadowing, the
-//! Sobel complexity map, and the exact height-field intersection used as ground truth.
+//! thesis's adaptive layer count), relief mapping, cone stepping, self-shadowing, the Sobel
+//! complexity map, and the exact height-field intersection used as ground truth.
+//!
+//! Layout: [`maps`] holds the precomputed maps (depth field, complexity, cone map, packed
+//! map); [`march`] the marches, each written once; [`simd`] their vector kernels, selected
+//! at run time by [`cpu`]; [`techniques`] the catalogue of user-facing techniques, one file
+//! each, from which parsing and help are derived; [`render`] the frame renderer and its
+//! reference. [`trace`] is the interface between them.
 //!
 //! Conventions: techniques work on the *depth* map `1 − height` (0 at the top surface), in
 //! tangent space where `view_ts` points from the surface toward the eye. A ray entering the
@@ -8,24 +14,20 @@
 
 #![warn(missing_docs)]
 
-pub mod adaptive;
-pub mod complexity;
-pub mod cone;
-pub mod cone_fast;
-pub mod cone_step;
-pub mod height;
-pub mod material;
-pub mod packed;
-pub mod parallax;
-pub mod pom_simd;
-pub mod reference;
-pub mod relief_mapping;
+pub mod cpu;
+pub mod error;
+pub mod kernel;
+pub mod maps;
+pub mod march;
 pub mod render;
-pub mod shade;
-pub mod shadow;
-pub mod technique;
+pub mod simd;
+pub mod techniques;
+pub mod trace;
 
-pub use height::HeightField;
-pub use material::ReliefMaterial;
-pub use shade::{Frame, FrameInput};
-pub use technique::{ReliefHit, ReliefInputs, ReliefTechnique, Shading, Technique};
+pub use error::ReliefError;
+pub use kernel::{Kernel, KernelChoice};
+pub use maps::height::HeightField;
+pub use render::material::ReliefMaterial;
+pub use render::shade::{Frame, FrameInput};
+pub use techniques::Technique;
+pub use trace::{Map, ReliefHit, ReliefInputs, ReliefTechnique, Shading};

@@ -4,7 +4,7 @@
 
 use proptest::prelude::*;
 use renderlab_core::Image;
-use renderlab_relief::complexity::{
+use renderlab_relief::maps::complexity::{
     complexity_map, dilate, level_step, normalize_by_max, quantize, sobel_magnitude, to_u8_levels,
     ComplexityParams,
 };

@@ -7,7 +7,7 @@ use glam::Vec2;
 use proptest::prelude::*;
 use renderlab_core::counter::Tally;
 use renderlab_core::Image;
-use renderlab_relief::cone::{cone_map_size, ConeKind, ConeMap, MAX_RATIO};
+use renderlab_relief::maps::cone::{cone_map_size, ConeKind, ConeMap, MAX_RATIO};
 use renderlab_relief::HeightField;
 
 fn field(w: u32, h: u32, depth: impl FnMut(u32, u32) -> f32) -> HeightField {

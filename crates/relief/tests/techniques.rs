@@ -4,11 +4,11 @@
 use glam::{Vec2, Vec3};
 use proptest::prelude::*;
 use renderlab_core::counter::{NoCount, Tally};
-use renderlab_relief::adaptive::AdaptivePom;
-use renderlab_relief::cone_step::{ConeStep, Refinement};
-use renderlab_relief::parallax::{Parallax, Pom, Steep};
-use renderlab_relief::relief_mapping::{AdaptiveRelief, ReliefMapping};
-use renderlab_relief::technique::uv_per_depth;
+use renderlab_relief::march::cone_step::{ConeStep, Refinement};
+use renderlab_relief::techniques::adaptive_pom::AdaptivePom;
+use renderlab_relief::techniques::{adaptive_relief::AdaptiveRelief, relief::ReliefMapping};
+use renderlab_relief::techniques::{parallax::Parallax, pom::Pom, steep::Steep};
+use renderlab_relief::trace::uv_per_depth;
 use renderlab_relief::{ReliefInputs, ReliefTechnique};
 
 mod common;
@@ -51,7 +51,8 @@ fn refinement_beats_plain_marching_at_equal_linear_steps() {
 fn cone_stepping_is_accurate() {
     let fx = fixture();
     for theta in [30.0, 60.0, 80.0] {
-        let cone = mean_error(&fx, &ConeStep { steps: 32, binary: 8, refine: Refinement::Binary }, theta);
+        let cone =
+            mean_error(&fx, &ConeStep { steps: 32, refine_steps: 8, refine: Refinement::Binary }, theta);
         let pom = mean_error(&fx, &Pom { layers: 32 }, theta);
         assert!(cone <= pom * 1.5 + 0.05, "{theta}°: cone {cone} vs POM-32 {pom}");
     }
@@ -66,7 +67,12 @@ fn head_on_view_hits_the_entry_depth_exactly() {
     for hit in [
         Pom { layers: 16 }.trace(&inp, uv, Vec3::Z, &mut NoCount),
         ReliefMapping { linear: 8, binary: 8 }.trace(&inp, uv, Vec3::Z, &mut NoCount),
-        ConeStep { steps: 16, binary: 8, refine: Refinement::Binary }.trace(&inp, uv, Vec3::Z, &mut NoCount),
+        ConeStep { steps: 16, refine_steps: 8, refine: Refinement::Binary }.trace(
+            &inp,
+            uv,
+            Vec3::Z,
+            &mut NoCount,
+        ),
     ] {
         assert!((hit.uv - uv).length() < 1e-6);
     }
@@ -96,7 +102,7 @@ fn fetches_are_bounded_by_the_layer_count() {
         AdaptiveRelief { min: 4, max: 16, binary: 5 }.trace(&inp, uv, v, &mut t);
         check(t.0, 17 + 5, "adaptive relief");
         let mut t = Tally::default();
-        ConeStep { steps: 16, binary: 5, refine: Refinement::Binary }.trace(&inp, uv, v, &mut t);
+        ConeStep { steps: 16, refine_steps: 5, refine: Refinement::Binary }.trace(&inp, uv, v, &mut t);
         check(t.0, 16 + 1 + 4 + 5, "cone");
     }
 }
@@ -111,7 +117,12 @@ fn all_hits(inp: &ReliefInputs, uv: Vec2, v: Vec3) -> Vec<(&'static str, renderl
         ("adaptive-relief", AdaptiveRelief { min: 4, max: 16, binary: 5 }.trace(inp, uv, v, &mut NoCount)),
         (
             "cone",
-            ConeStep { steps: 16, binary: 5, refine: Refinement::Binary }.trace(inp, uv, v, &mut NoCount),
+            ConeStep { steps: 16, refine_steps: 5, refine: Refinement::Binary }.trace(
+                inp,
+                uv,
+                v,
+                &mut NoCount,
+            ),
         ),
     ]
 }
@@ -174,9 +185,9 @@ fn packet_tracing_equals_per_ray_tracing() {
         })
         .collect();
     for t in [
-        ConeStep { steps: 24, binary: 3, refine: Refinement::Secant },
-        ConeStep { steps: 16, binary: 5, refine: Refinement::Binary },
-        ConeStep { steps: 2, binary: 3, refine: Refinement::Secant },
+        ConeStep { steps: 24, refine_steps: 3, refine: Refinement::Secant },
+        ConeStep { steps: 16, refine_steps: 5, refine: Refinement::Binary },
+        ConeStep { steps: 2, refine_steps: 3, refine: Refinement::Secant },
     ] {
         let mut packed = vec![renderlab_relief::ReliefHit::default(); rays.len()];
         let mut counted = Tally::default();

@@ -6,10 +6,10 @@
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::NoCount;
 use renderlab_core::Image;
-use renderlab_relief::complexity::{complexity_map, ComplexityParams};
-use renderlab_relief::cone::{ConeKind, ConeMap};
-use renderlab_relief::packed::PackedRelief;
-use renderlab_relief::reference::exact_hit;
+use renderlab_relief::maps::complexity::{complexity_map, ComplexityParams};
+use renderlab_relief::maps::cone::{ConeKind, ConeMap};
+use renderlab_relief::maps::packed::PackedRelief;
+use renderlab_relief::march::exact::exact_hit;
 use renderlab_relief::{HeightField, ReliefInputs, ReliefTechnique};
 
 /// Relief depth of the test field (UV units per unit depth).

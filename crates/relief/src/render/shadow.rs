@@ -1,6 +1,7 @@
 //! Self-shadowing of the height field toward a directional light.
 
-use crate::height::HeightField;
+use crate::maps::height::HeightField;
+use crate::trace::MIN_VIEW_Z;
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
 
@@ -22,7 +23,7 @@ pub fn soft_shadow<C: Counter>(
     if depth <= 0.0 || samples == 0 {
         return 1.0;
     }
-    let lz = light_ts.z.max(crate::technique::MIN_VIEW_Z);
+    let lz = light_ts.z.max(MIN_VIEW_Z);
     let dl = Vec2::new(light_ts.x, light_ts.y) / lz * height_scale;
     let n = samples as f32;
     let step = depth / n;

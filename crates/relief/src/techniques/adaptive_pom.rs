@@ -1,8 +1,10 @@
 //! The thesis's adaptive POM: the layer count follows the view angle and the Sobel
 //! complexity map, then an ordinary POM march runs with that many layers.
 
-use crate::parallax::{interpolate, layered_march};
-use crate::technique::{ReliefHit, ReliefInputs, ReliefTechnique};
+use super::descriptor::{Descriptor, Entry, Param, WithTracer};
+use crate::kernel::Kernel;
+use crate::march::layered::{interpolate, layer_step, layered_march};
+use crate::trace::{ReliefHit, ReliefInputs, ReliefTechnique, Shading};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
 
@@ -10,7 +12,7 @@ use renderlab_core::counter::Counter;
 pub const ANGLE_EXPONENT: f32 = 0.8;
 
 /// Adaptive POM with base layer range `min..max` (thesis: 4..32).
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct AdaptivePom {
     /// Base minimum layer count.
     pub min: u32,
@@ -53,9 +55,42 @@ impl ReliefTechnique for AdaptivePom {
     #[inline]
     fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
         let n = self.layers(v, inp.complexity_at(uv));
-        let m = layered_march(inp, uv, v, n, counter);
+        let m = layered_march(inp.height, uv, layer_step(v, inp.height_scale, n), n, counter);
         let (uv, depth) = interpolate(&m);
         ReliefHit { uv, depth, layers: n }
+    }
+}
+
+impl Entry for AdaptivePom {
+    const DESCRIPTOR: Descriptor = Descriptor {
+        name: "adaptive",
+        summary: "the thesis's adaptive POM: layers from the view angle and the complexity map",
+        params: &[
+            Param::count("MIN", 4, "base minimum layer count (thesis: 4)"),
+            Param::count("MAX", 32, "base maximum layer count (thesis: 32)"),
+        ],
+        needs: &[],
+        kernels: &[Kernel::Scalar],
+        shading: Shading::Lit,
+    };
+
+    fn from_params(v: &[u32]) -> Result<Self, String> {
+        if v[0] > v[1] {
+            return Err("MIN must not exceed MAX".into());
+        }
+        Ok(AdaptivePom { min: v[0], max: v[1] })
+    }
+
+    fn params(&self) -> Vec<u32> {
+        vec![self.min, self.max]
+    }
+
+    fn layers(&self) -> u32 {
+        self.max
+    }
+
+    fn dispatch<A: WithTracer>(&self, _: Kernel, action: A) -> A::Output {
+        action.run(self)
     }
 }
 

@@ -1,17 +1,20 @@
-//! The fast cone stepper and the packed map: vector and scalar kernels agree bit for bit,
+//! Newton-finished cone stepping, POM's simd kernel and the packed map: vector and scalar
+//! kernels agree bit for bit,
 //! quantised cones stay conservative, every trace is bounded and finite, and the results are
 //! at least as accurate as POM-32's.
 
 use glam::{Vec2, Vec3};
-use renderlab_core::counter::{NoCount, Tally};
-use renderlab_relief::cone::{ConeKind, ConeMap};
-use renderlab_relief::cone_fast::FastCone;
-use renderlab_relief::packed::{PackedPom, PackedRelief};
-use renderlab_relief::parallax::Pom;
-use renderlab_relief::pom_simd::SimdPom;
-use renderlab_relief::reference::first_crossing;
-use renderlab_relief::technique::uv_per_depth;
-use renderlab_relief::{HeightField, ReliefHit, ReliefTechnique};
+use renderlab_core::counter::Counter;
+use renderlab_core::counter::Tally;
+use renderlab_relief::maps::cone::{ConeKind, ConeMap};
+use renderlab_relief::maps::packed::PackedRelief;
+use renderlab_relief::march::cone_newton::{NewtonCone, JUMP};
+use renderlab_relief::march::exact::first_crossing;
+use renderlab_relief::march::pom_lanes::PomLanes;
+use renderlab_relief::techniques::cone_newton::ConeNewtonTracer;
+use renderlab_relief::techniques::pom::{Pom, PomSimd};
+use renderlab_relief::trace::uv_per_depth;
+use renderlab_relief::{HeightField, ReliefHit, ReliefInputs, ReliefTechnique};
 
 mod common;
 use common::{heights, view, Fixture, SCALE};
@@ -45,14 +48,26 @@ fn bits(h: &ReliefHit) -> (u32, u32, u32, u32) {
     (h.uv.x.to_bits(), h.uv.y.to_bits(), h.depth.to_bits(), h.layers)
 }
 
-fn techniques() -> Vec<FastCone> {
+fn techniques() -> Vec<NewtonCone> {
     vec![
-        FastCone { steps: 64, secant: 3, tol: 0.25, jump: 1.0 },
-        FastCone { steps: 64, secant: 3, tol: 0.25, jump: 4.0 },
-        FastCone { steps: 8, secant: 2, tol: 0.5, jump: 2.0 },
-        FastCone { steps: 3, secant: 1, tol: 0.05, jump: 1.0 },
-        FastCone { steps: 1, secant: 4, tol: 1.0, jump: 1e9 },
+        NewtonCone { steps: 64, secant: 3, tol: 0.25, jump: 1.0 },
+        NewtonCone { steps: 64, secant: 3, tol: 0.25, jump: 4.0 },
+        NewtonCone { steps: 8, secant: 2, tol: 0.5, jump: 2.0 },
+        NewtonCone { steps: 3, secant: 1, tol: 0.05, jump: 1.0 },
+        NewtonCone { steps: 1, secant: 4, tol: 1.0, jump: 1e9 },
     ]
+}
+
+/// Traces a row with cone-newton's vector kernel (`lanes`) or its scalar one.
+fn newton_row<C: Counter>(
+    t: NewtonCone,
+    lanes: bool,
+    inp: &ReliefInputs,
+    rays: &[(Vec2, Vec3)],
+    out: &mut [ReliefHit],
+    counter: &mut C,
+) {
+    ConeNewtonTracer { march: t, lanes }.trace_row(inp, rays, out, counter)
 }
 
 #[test]
@@ -65,13 +80,13 @@ fn vector_and_scalar_kernels_agree_bit_for_bit() {
         for t in techniques() {
             let mut scalar = vec![ReliefHit::default(); rays.len()];
             let mut scalar_count = Tally::default();
-            t.trace_row_with(&inp, &rays, &mut scalar, &mut scalar_count, false);
+            newton_row(t, false, &inp, &rays, &mut scalar, &mut scalar_count);
             // Rows of every length, as the renderer hands them over.
             for chunk in [1usize, 3, 8, 17, 64, rays.len()] {
                 let mut vector = vec![ReliefHit::default(); rays.len()];
                 let mut vector_count = Tally::default();
                 for (r, o) in rays.chunks(chunk).zip(vector.chunks_mut(chunk)) {
-                    t.trace_row_with(&inp, r, o, &mut vector_count, true);
+                    newton_row(t, true, &inp, r, o, &mut vector_count);
                 }
                 for (i, (a, b)) in scalar.iter().zip(&vector).enumerate() {
                     assert_eq!(bits(a), bits(b), "{t:?}, ray {i} {:?}, rows of {chunk}", rays[i]);
@@ -80,7 +95,8 @@ fn vector_and_scalar_kernels_agree_bit_for_bit() {
             }
             let mut single = Tally::default();
             for (&(uv, v), a) in rays.iter().zip(&scalar) {
-                assert_eq!(bits(&t.trace(&inp, uv, v, &mut single)), bits(a));
+                let hit = ConeNewtonTracer { march: t, lanes: true }.trace(&inp, uv, v, &mut single);
+                assert_eq!(bits(&hit), bits(a));
             }
             assert_eq!(single, scalar_count);
         }
@@ -94,7 +110,7 @@ fn traces_are_bounded_and_finite() {
     for t in techniques() {
         for &(uv, v) in &rays(300) {
             let mut tally = Tally::default();
-            let hit = t.trace(&inp, uv, v, &mut tally);
+            let hit = ConeNewtonTracer { march: t, lanes: false }.trace(&inp, uv, v, &mut tally);
             assert!(tally.0 <= (t.steps + t.secant) as u64 + 1, "{t:?}: {} fetches", tally.0);
             assert!(hit.uv.is_finite(), "{t:?} at {uv}, {v}: {hit:?}");
             assert!((0.0..=1.0).contains(&hit.depth), "{t:?}: depth {}", hit.depth);
@@ -112,38 +128,19 @@ fn mean_error<T: ReliefTechnique>(fx: &Fixture, t: &T, theta: f32) -> f32 {
 }
 
 #[test]
-fn default_fast_cone_errors_stay_within_its_tolerance() {
+fn default_cone_newton_errors_stay_within_its_tolerance() {
     // On this small, steep field POM-32's layers are dense (fractions of a texel), so the
-    // fast stepper's 0.25-texel tolerance dominates its error; on the 1024² bricks of the
+    // Newton stepper's 0.25-texel tolerance dominates its error; on the 1024² bricks of the
     // relief bench it is the other way round (see the relief lab).
     let fx = fixture(64, 64, 64);
-    for jump in [1.0, renderlab_relief::cone_fast::JUMP] {
-        let t = FastCone { steps: 64, secant: 3, tol: 0.25, jump };
+    for jump in [1.0, JUMP] {
+        let t = NewtonCone { steps: 64, secant: 3, tol: 0.25, jump };
+        let tracer = ConeNewtonTracer { march: t, lanes: true };
         for theta in [0.0, 30.0, 45.0, 60.0, 75.0] {
             let pom = mean_error(&fx, &Pom { layers: 32 }, theta);
-            let fast = mean_error(&fx, &t, theta);
-            eprintln!("{theta}° jump {jump}: fast cone {fast} vs POM-32 {pom}");
-            assert!(fast <= pom + 0.1 * t.tol, "{theta}°, jump {jump}: fast cone {fast} vs POM-32 {pom}");
-        }
-    }
-}
-
-#[test]
-fn packed_pom_matches_pom_and_its_kernels_agree() {
-    let fx = fixture(64, 64, 64);
-    let inp = fx.inputs();
-    let rays = rays(150);
-    let pp = PackedPom { layers: 32 };
-    let mut scalar = vec![ReliefHit::default(); rays.len()];
-    let mut vector = vec![ReliefHit::default(); rays.len()];
-    pp.trace_row_with(&inp, &rays, &mut scalar, &mut NoCount, false);
-    pp.trace_row_with(&inp, &rays, &mut vector, &mut NoCount, true);
-    for ((a, b), &(uv, v)) in scalar.iter().zip(&vector).zip(&rays) {
-        assert_eq!(bits(a), bits(b));
-        if uv.is_finite() && v.is_finite() && uv.abs().max_element() < 10.0 && v.z > 0.05 {
-            // Only the 16-bit depths differ from POM's.
-            let pom = Pom { layers: 32 }.trace(&inp, uv, v, &mut NoCount);
-            assert!(((pom.uv - a.uv) * 64.0).length() < 0.05, "{uv} {v}: {pom:?} vs {a:?}");
+            let fast = mean_error(&fx, &tracer, theta);
+            eprintln!("{theta}° jump {jump}: cone-newton {fast} vs POM-32 {pom}");
+            assert!(fast <= pom + 0.1 * t.tol, "{theta}°, jump {jump}: cone-newton {fast} vs POM-32 {pom}");
         }
     }
 }
@@ -154,18 +151,19 @@ fn simd_pom_kernels_agree_and_match_pom() {
         let inp = fx.inputs();
         let rays = rays(211);
         for layers in [1, 8, 32] {
-            let t = SimdPom { layers };
+            let twin = PomSimd { march: PomLanes { layers }, lanes: false };
+            let t = PomSimd { march: PomLanes { layers }, lanes: true };
             let mut scalar = vec![ReliefHit::default(); rays.len()];
             let mut scalar_count = Tally::default();
-            t.trace_row_with(&inp, &rays, &mut scalar, &mut scalar_count, false);
+            twin.trace_row(&inp, &rays, &mut scalar, &mut scalar_count);
             for chunk in [1usize, 5, 16, rays.len()] {
                 let mut vector = vec![ReliefHit::default(); rays.len()];
                 let mut vector_count = Tally::default();
                 for (r, o) in rays.chunks(chunk).zip(vector.chunks_mut(chunk)) {
-                    t.trace_row_with(&inp, r, o, &mut vector_count, true);
+                    t.trace_row(&inp, r, o, &mut vector_count);
                 }
                 for (i, (a, b)) in scalar.iter().zip(&vector).enumerate() {
-                    assert_eq!(bits(a), bits(b), "pom-simd:{layers}, ray {i} {:?}, rows of {chunk}", rays[i]);
+                    assert_eq!(bits(a), bits(b), "pom:{layers} simd, ray {i} {:?}, rows of {chunk}", rays[i]);
                 }
                 assert_eq!(scalar_count, vector_count);
             }

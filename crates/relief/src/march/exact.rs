@@ -6,8 +6,8 @@
 //! ray crosses (a 2-D DDA, in `f64`) and solves that quadratic in each cell, so the first root
 //! it returns is the true first crossing, not an approximation with a step size.
 
-use crate::height::HeightField;
-use crate::technique::{uv_per_depth, ReliefHit, ReliefInputs, ReliefTechnique};
+use crate::maps::height::HeightField;
+use crate::trace::{uv_per_depth, ReliefHit, ReliefInputs, ReliefTechnique, MIN_VIEW_Z};
 use glam::{DVec2, Vec2, Vec3};
 use renderlab_core::counter::Counter;
 
@@ -157,7 +157,7 @@ pub fn exact_shadowed(field: &HeightField, height_scale: f32, uv: Vec2, depth: f
     if depth <= 0.0 {
         return false;
     }
-    let lz = light_ts.z.max(crate::technique::MIN_VIEW_Z) as f64;
+    let lz = light_ts.z.max(MIN_VIEW_Z) as f64;
     let dl = DVec2::new(light_ts.x as f64, light_ts.y as f64) / lz * height_scale as f64;
     // Along the light ray, ray depth = depth − t; blocked where ray depth − D > tolerance.
     // Start a little above the hit so the hit's own patch does not shadow it.

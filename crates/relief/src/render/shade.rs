@@ -2,8 +2,10 @@
 //! displaced point with the thesis's model. The reference goes through the same code with the
 //! exact tracer, so differences between images are the technique's alone.
 
-use crate::material::ReliefMaterial;
-use crate::technique::{ReliefHit, ReliefTechnique, Shading};
+use crate::march::exact::exact_shadowed;
+use crate::render::material::ReliefMaterial;
+use crate::render::shadow::soft_shadow;
+use crate::trace::{ReliefHit, ReliefTechnique, Shading};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use renderlab_core::counter::{Counter, NoCount, Tally};
@@ -123,7 +125,7 @@ fn shade_point<C: Counter>(
             .truncate();
             let n = n.try_normalize().unwrap_or(Vec3::Z);
             let shadow = match (opt.shading, opt.shadow) {
-                (Shading::LitShadowed, ShadowMode::Soft(samples)) => crate::shadow::soft_shadow(
+                (Shading::LitShadowed, ShadowMode::Soft(samples)) => soft_shadow(
                     &mat.height,
                     mat.height_scale,
                     hit.uv,
@@ -133,13 +135,8 @@ fn shade_point<C: Counter>(
                     counter,
                 ),
                 (Shading::LitShadowed, ShadowMode::Exact) => {
-                    let blocked = crate::reference::exact_shadowed(
-                        &mat.height,
-                        mat.height_scale,
-                        hit.uv,
-                        hit.depth,
-                        sp.light_ts,
-                    );
+                    let blocked =
+                        exact_shadowed(&mat.height, mat.height_scale, hit.uv, hit.depth, sp.light_ts);
                     if blocked {
                         0.0
                     } else {

@@ -1,15 +1,16 @@
 //! Relaxed cone-step mapping: space leaping with a precomputed cone map, finished by a
-//! binary search. Each step jumps to the edge of the cone stored at the current texel, which
+//! refinement. Each step jumps to the edge of the cone stored at the current texel, which
 //! the relaxed construction guarantees crosses the surface at most once, so after the loop
-//! the hit lies between the last two points and bisection pins it down.
+//! the hit lies between the last two points and bisection (or Illinois false position)
+//! pins it down.
 
-use crate::cone::ConeMap;
-use crate::technique::{uv_per_depth, ReliefHit, ReliefInputs, ReliefTechnique};
+use crate::maps::cone::ConeMap;
+use crate::trace::{uv_per_depth, ReliefHit, ReliefInputs, ReliefTechnique};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::{Counter, NoCount};
 
 /// How the crossing bracketed by the cone steps is pinned down.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Refinement {
     /// Bisection (relief mapping's binary search), as published for relaxed cones.
     Binary,
@@ -22,13 +23,16 @@ pub enum Refinement {
 /// it stops stepping or refining.
 pub const TOLERANCE_TEXELS: f32 = 0.05;
 
-/// Cone-step mapping with at most `steps` cone steps and `binary` refinement steps.
+/// Cone-step mapping with at most `steps` cone steps and `refine_steps` refinement steps.
+///
+/// Reads the relaxed cone map: tracing inputs without one panics (the checked entry points,
+/// [`crate::render::render`] and the lab, refuse such inputs with an error naming the map).
 #[derive(Clone, Copy, Debug)]
 pub struct ConeStep {
     /// Maximum cone steps.
     pub steps: u32,
     /// Refinement steps.
-    pub binary: u32,
+    pub refine_steps: u32,
     /// Refinement method.
     pub refine: Refinement,
 }
@@ -70,6 +74,9 @@ struct Lane {
     phase: Phase,
     hit: ReliefHit,
 }
+
+/// The message of the panic when a caller skipped the map check.
+const NO_CONE_MAP: &str = "cone stepping needs the relaxed cone map (checked by render)";
 
 /// Sample count of the fallback linear march after the cone steps run out.
 const TAIL: u32 = 4;
@@ -113,7 +120,7 @@ impl Lane {
     fn bracketed(&mut self, cs: &ConeStep) {
         if self.b <= 0.0 {
             self.finish(0.0);
-        } else if cs.binary == 0 {
+        } else if cs.refine_steps == 0 {
             self.finish(self.b);
         } else {
             self.phase = Phase::Refine { k: 0, side: 0 };
@@ -199,7 +206,7 @@ impl Lane {
                     }
                     side = 1;
                 }
-                if k + 1 >= cs.binary {
+                if k + 1 >= cs.refine_steps {
                     let t = match cs.refine {
                         Refinement::Binary => 0.5 * (self.a + self.b),
                         Refinement::Secant => self.interp(),
@@ -217,11 +224,7 @@ impl Lane {
 impl ReliefTechnique for ConeStep {
     #[inline]
     fn trace<C: Counter>(&self, inp: &ReliefInputs, uv0: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
-        let Some(cone) = inp.cone else {
-            // Without a cone map fall back to the march it accelerates.
-            return crate::relief_mapping::ReliefMapping { linear: self.steps, binary: self.binary }
-                .trace(inp, uv0, v, counter);
-        };
+        let cone = inp.cone.expect(NO_CONE_MAP);
         let mut lane = Lane::new(self, inp, uv0, v);
         while !lane.advance(self, inp, cone, counter) {}
         lane.hit
@@ -234,12 +237,7 @@ impl ReliefTechnique for ConeStep {
         out: &mut [ReliefHit],
         counter: &mut C,
     ) {
-        let Some(cone) = inp.cone else {
-            for (o, &(uv, v)) in out.iter_mut().zip(rays) {
-                *o = self.trace(inp, uv, v, counter);
-            }
-            return;
-        };
+        let cone = inp.cone.expect(NO_CONE_MAP);
         for (chunk, outs) in rays.chunks(PACKET).zip(out.chunks_mut(PACKET)) {
             let mut lanes = [Lane::new(self, inp, Vec2::ZERO, Vec3::Z); PACKET];
             for (lane, &(uv, v)) in lanes.iter_mut().zip(chunk) {

@@ -1,11 +1,11 @@
 //! A material prepared for relief rendering: filtered textures, the depth field, the
 //! complexity map and (on request) the cone map.
 
-use crate::complexity::{complexity_map, ComplexityParams};
-use crate::cone::{ConeKind, ConeMap};
-use crate::height::HeightField;
-use crate::packed::PackedRelief;
-use crate::technique::ReliefInputs;
+use crate::maps::complexity::{complexity_map, ComplexityParams};
+use crate::maps::cone::{ConeKind, ConeMap};
+use crate::maps::height::HeightField;
+use crate::maps::packed::PackedRelief;
+use crate::trace::ReliefInputs;
 use renderlab_core::{Image, Material};
 use renderlab_texture::{Texture, Wrap};
 
@@ -58,7 +58,7 @@ impl ReliefMaterial {
         }
     }
 
-    /// The inputs a [`ReliefTechnique`](crate::technique::ReliefTechnique) reads.
+    /// The inputs a [`ReliefTechnique`](crate::trace::ReliefTechnique) reads.
     pub fn inputs(&self) -> ReliefInputs<'_> {
         ReliefInputs {
             height: &self.height,

@@ -12,50 +12,9 @@
 //! is the smallest ratio of every cone-map texel whose cell that range touches, so it is
 //! valid (a subset of each cone that may apply) wherever in the cell the ray stands.
 
-use crate::cone::{ConeMap, MAX_RATIO};
-use crate::height::HeightField;
-use crate::parallax::{interpolate, March};
-use crate::technique::{uv_per_depth, ReliefHit, ReliefInputs, ReliefTechnique};
-use glam::{Vec2, Vec3};
-use renderlab_core::counter::Counter;
-
-/// The four packed texels around texel coordinates `(x, y)` for eight lanes at once (AVX2), as
-/// the scalar [`PackedRelief`] fetch reads them: returns `(fx, fy, t00, t10, t01, t11)`, the
-/// fractions and the texels `(x, y)`, `(x + 1, y)`, `(x, y + 1)`, `(x + 1, y + 1)`. `mask_x` and
-/// `mask_y` wrap the indices (power-of-two sides), so every gather stays inside the padded map;
-/// `lane_order` must be `_mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7)`. A macro rather than a
-/// function so that it expands inside each `#[target_feature]` kernel (AVX2 and AVX-512 builds)
-/// and is compiled, and inlined, with that kernel's features. Must be expanded in an `unsafe`
-/// context with `std::arch::x86_64::*` in scope.
-#[cfg(target_arch = "x86_64")]
-macro_rules! gather_cell {
-    ($base:expr, $stride:expr, $x:expr, $y:expr, $mask_x:expr, $mask_y:expr, $stride_v:expr, $lane_order:expr) => {{
-        let x0 = _mm256_floor_ps($x);
-        let y0 = _mm256_floor_ps($y);
-        let (fx, fy) = (_mm256_sub_ps($x, x0), _mm256_sub_ps($y, y0));
-        let xi = _mm256_and_si256(_mm256_cvttps_epi32(x0), $mask_x);
-        let yi = _mm256_and_si256(_mm256_cvttps_epi32(y0), $mask_y);
-        let idx = _mm256_add_epi32(_mm256_mullo_epi32(yi, $stride_v), xi);
-        // Texels (x, y) and (x + 1, y) are adjacent: one 64-bit gather element fetches both.
-        // Lanes (0, 1, 4, 5) go to the first gather and (2, 3, 6, 7) to the second, so that the
-        // shuffles below put them back in order.
-        let perm = _mm256_permutevar8x32_epi32(idx, $lane_order);
-        let (ia, ib) = (_mm256_castsi256_si128(perm), _mm256_extracti128_si256::<1>(perm));
-        let row0 = $base as *const i64;
-        let row1 = $base.add($stride as usize) as *const i64;
-        let r0a = _mm256_castsi256_ps(_mm256_i32gather_epi64::<4>(row0, ia));
-        let r0b = _mm256_castsi256_ps(_mm256_i32gather_epi64::<4>(row0, ib));
-        let r1a = _mm256_castsi256_ps(_mm256_i32gather_epi64::<4>(row1, ia));
-        let r1b = _mm256_castsi256_ps(_mm256_i32gather_epi64::<4>(row1, ib));
-        let t00 = _mm256_castps_si256(_mm256_shuffle_ps::<0b10_00_10_00>(r0a, r0b));
-        let t10 = _mm256_castps_si256(_mm256_shuffle_ps::<0b11_01_11_01>(r0a, r0b));
-        let t01 = _mm256_castps_si256(_mm256_shuffle_ps::<0b10_00_10_00>(r1a, r1b));
-        let t11 = _mm256_castps_si256(_mm256_shuffle_ps::<0b11_01_11_01>(r1a, r1b));
-        (fx, fy, t00, t10, t01, t11)
-    }};
-}
-#[cfg(target_arch = "x86_64")]
-pub(crate) use gather_cell;
+use crate::maps::cone::{ConeMap, MAX_RATIO};
+use crate::maps::height::HeightField;
+use glam::Vec2;
 
 /// Largest quantised value of a depth or a ratio.
 const Q: f32 = 65535.0;
@@ -299,147 +258,10 @@ impl PackedRelief {
     }
 }
 
-/// Parallax occlusion mapping exactly as [`crate::parallax::Pom`] (same layers, same march,
-/// same interpolation) but fetching from the packed map, with the same run-time AVX2 build as
-/// [`crate::cone_fast::FastCone`]: POM given the same treatment, for fair comparisons.
-#[derive(Clone, Copy, Debug)]
-pub struct PackedPom {
-    /// Number of layers.
-    pub layers: u32,
-}
-
-impl PackedPom {
-    #[inline(always)]
-    fn march<C: Counter>(
-        &self,
-        inp: &ReliefInputs,
-        map: &PackedRelief,
-        uv0: Vec2,
-        v: Vec3,
-        counter: &mut C,
-    ) -> ReliefHit {
-        let n = self.layers.max(1);
-        let layer_depth = 1.0 / n as f32;
-        let step = uv_per_depth(v, inp.height_scale) * layer_depth;
-        let mut uv = uv0;
-        counter.count(1);
-        let mut map_d = map.depth(uv);
-        let mut prev_uv = uv;
-        let mut prev_map = map_d;
-        let mut i = 0u32;
-        while (i as f32) * layer_depth < map_d && i < n {
-            prev_uv = uv;
-            prev_map = map_d;
-            i += 1;
-            uv = uv0 + step * i as f32;
-            counter.count(1);
-            map_d = map.depth(uv);
-        }
-        let layer = i as f32 * layer_depth;
-        let prev_layer = if i == 0 { 0.0 } else { layer - layer_depth };
-        let m = March { prev_uv, prev_map, prev_layer, uv, map: map_d, layer };
-        let (uv, depth) = interpolate(&m);
-        ReliefHit { uv, depth, layers: self.layers }
-    }
-
-    #[inline(always)]
-    fn row<C: Counter>(
-        &self,
-        inp: &ReliefInputs,
-        map: &PackedRelief,
-        rays: &[(Vec2, Vec3)],
-        out: &mut [ReliefHit],
-        counter: &mut C,
-    ) {
-        for (o, &(uv, v)) in out.iter_mut().zip(rays) {
-            *o = self.march(inp, map, uv, v, counter);
-        }
-    }
-
-    /// [`ReliefTechnique::trace_row`] with the kernel chosen explicitly (`simd`: the AVX2
-    /// build where available; the results are the same).
-    pub fn trace_row_with<C: Counter>(
-        &self,
-        inp: &ReliefInputs,
-        rays: &[(Vec2, Vec3)],
-        out: &mut [ReliefHit],
-        counter: &mut C,
-        simd: bool,
-    ) {
-        let Some(map) = inp.packed else {
-            return plain_pom_row(self.layers, inp, rays, out, counter);
-        };
-        #[cfg(target_arch = "x86_64")]
-        if simd && crate::cone_fast::has_avx2() {
-            // SAFETY: the CPU supports the features the function is compiled for.
-            unsafe { pom_row_avx2(self, inp, map, rays, out, counter) };
-            return;
-        }
-        let _ = simd;
-        self.row(inp, map, rays, out, counter);
-    }
-}
-
-/// Plain [`crate::parallax::Pom`] over a row: the fallback of the packed POM variants when the
-/// inputs carry no packed map (same images, the original fetches).
-pub(crate) fn plain_pom_row<C: Counter>(
-    layers: u32,
-    inp: &ReliefInputs,
-    rays: &[(Vec2, Vec3)],
-    out: &mut [ReliefHit],
-    counter: &mut C,
-) {
-    let pom = crate::parallax::Pom { layers };
-    for (o, &(uv, v)) in out.iter_mut().zip(rays) {
-        *o = pom.trace(inp, uv, v, counter);
-    }
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,sse4.1")]
-fn pom_row_avx2<C: Counter>(
-    pom: &PackedPom,
-    inp: &ReliefInputs,
-    map: &PackedRelief,
-    rays: &[(Vec2, Vec3)],
-    out: &mut [ReliefHit],
-    counter: &mut C,
-) {
-    pom.row(inp, map, rays, out, counter)
-}
-
-/// Implements [`ReliefTechnique`] for a type with a `trace_row_with(inp, rays, out, counter,
-/// simd)` method: one ray through the scalar kernel, rows through the vector kernel (the two
-/// give the same results).
-macro_rules! technique_from_rows {
-    ($t:ty) => {
-        impl ReliefTechnique for $t {
-            fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
-                let mut out = [ReliefHit::default()];
-                self.trace_row_with(inp, &[(uv, v)], &mut out, counter, false);
-                out[0]
-            }
-
-            fn trace_row<C: Counter>(
-                &self,
-                inp: &ReliefInputs,
-                rays: &[(Vec2, Vec3)],
-                out: &mut [ReliefHit],
-                counter: &mut C,
-            ) {
-                self.trace_row_with(inp, rays, out, counter, true);
-            }
-        }
-    };
-}
-pub(crate) use technique_from_rows;
-
-technique_from_rows!(PackedPom);
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cone::ConeKind;
+    use crate::maps::cone::ConeKind;
     use renderlab_core::Image;
 
     #[test]

@@ -1,0 +1,12 @@
+//! The marches the techniques are built from: the layered march and its interpolation, binary
+//! refinement, relaxed cone stepping (with binary or secant refinement), Newton-finished cone
+//! stepping on the packed map, POM in vector lanes, and the exact intersection used as the
+//! reference. Each is written once; the techniques in [`crate::techniques`] choose and
+//! parameterise them.
+
+pub mod bisect;
+pub mod cone_newton;
+pub mod cone_step;
+pub mod exact;
+pub mod layered;
+pub mod pom_lanes;

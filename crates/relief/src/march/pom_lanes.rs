@@ -1,0 +1,90 @@
+//! POM on the packed map, the march of POM's `simd` kernel: the layered march, its bound and
+//! its interpolation are the thesis's (see [`crate::march::layered`]); only the depths are
+//! the packed map's 16-bit ones. Non-finite inputs count as zero (as in cone-newton's
+//! kernels). This file holds the scalar twin and the per-ray set-up and result that the
+//! vector kernel ([`crate::simd`]) shares with it.
+
+use crate::maps::packed::PackedRelief;
+use crate::march::layered::{interpolate, layered_march, March};
+use crate::trace::{uv_per_depth, ReliefHit, ReliefInputs};
+use glam::{Vec2, Vec3};
+use renderlab_core::counter::Counter;
+
+/// POM with `layers` layers on the packed map.
+#[derive(Clone, Copy, Debug)]
+pub struct PomLanes {
+    /// Number of layers.
+    pub layers: u32,
+}
+
+/// Entry and per-layer step of one ray (non-finite values replaced by zero).
+#[inline(always)]
+pub(crate) fn setup(inp: &ReliefInputs, layers: u32, uv: Vec2, v: Vec3) -> (Vec2, Vec2) {
+    let layer_depth = 1.0 / layers.max(1) as f32;
+    let dp = uv_per_depth(v, inp.height_scale);
+    let dp = if dp.is_finite() { dp } else { Vec2::ZERO };
+    let uv0 = if uv.is_finite() { uv } else { Vec2::ZERO };
+    (uv0, dp * layer_depth)
+}
+
+/// The UV of layer `i`, as the layered march computes it.
+#[inline(always)]
+fn layer_uv(uv0: Vec2, step: Vec2, i: u32) -> Vec2 {
+    if i == 0 {
+        uv0
+    } else {
+        uv0 + step * i as f32
+    }
+}
+
+/// The result once the march stopped at layer `i` with depth-map values `map` there and
+/// `prev_map` one layer up (as [`crate::march::layered::interpolate`] finishes the march).
+#[inline(always)]
+pub(crate) fn finish(layers: u32, uv0: Vec2, step: Vec2, i: u32, map: f32, prev_map: f32) -> ReliefHit {
+    let layer_depth = 1.0 / layers.max(1) as f32;
+    let layer = i as f32 * layer_depth;
+    let prev_layer = if i == 0 { 0.0 } else { layer - layer_depth };
+    let m = March {
+        prev_uv: layer_uv(uv0, step, i.saturating_sub(1)),
+        prev_map,
+        prev_layer,
+        uv: layer_uv(uv0, step, i),
+        map,
+        layer,
+    };
+    let (uv, depth) = interpolate(&m);
+    ReliefHit { uv, depth, layers }
+}
+
+impl PomLanes {
+    /// Traces one ray with the scalar twin of the vector kernel.
+    #[inline(always)]
+    pub fn trace_scalar<C: Counter>(
+        &self,
+        inp: &ReliefInputs,
+        map: &PackedRelief,
+        uv: Vec2,
+        v: Vec3,
+        counter: &mut C,
+    ) -> ReliefHit {
+        let (uv0, step) = setup(inp, self.layers, uv, v);
+        let m = layered_march(map, uv0, step, self.layers, counter);
+        let (uv, depth) = interpolate(&m);
+        ReliefHit { uv, depth, layers: self.layers }
+    }
+
+    /// [`PomLanes::trace_scalar`] for each ray of a row.
+    #[inline(always)]
+    pub fn scalar_row<C: Counter>(
+        &self,
+        inp: &ReliefInputs,
+        map: &PackedRelief,
+        rays: &[(Vec2, Vec3)],
+        out: &mut [ReliefHit],
+        counter: &mut C,
+    ) {
+        for (o, &(uv, v)) in out.iter_mut().zip(rays) {
+            *o = self.trace_scalar(inp, map, uv, v, counter);
+        }
+    }
+}

@@ -1,0 +1,105 @@
+//! Frame rendering by technique: checks that a technique can run on the given materials and
+//! kernel, dispatches it to its tracer once per frame (so the per-pixel loop is
+//! monomorphised), and renders the matching reference.
+
+pub mod material;
+pub mod shade;
+pub mod shadow;
+
+use crate::error::ReliefError;
+use crate::kernel::Kernel;
+use crate::march::exact::ExactTrace;
+use crate::techniques::descriptor::WithTracer;
+use crate::techniques::Technique;
+use crate::trace::{ReliefTechnique, Shading};
+use glam::Vec3;
+use material::ReliefMaterial;
+use renderlab_core::scene::Lighting;
+use shade::{render_frame, trace_frame, Frame, FrameInput, ShadeOptions, ShadowMode};
+
+/// Shading options for `technique` under `lighting`.
+pub fn options(technique: Technique, lighting: Lighting, background: Vec3) -> ShadeOptions {
+    ShadeOptions { lighting, shading: technique.shading(), shadow: technique.shadow(), background }
+}
+
+/// Checks that `technique` can run on `kernel` here and that every material has the maps it
+/// reads there; the error names the kernel or the missing map.
+pub fn check(technique: Technique, kernel: Kernel, materials: &[ReliefMaterial]) -> Result<(), ReliefError> {
+    use crate::kernel::KernelChoice;
+    technique.kernel(KernelChoice::Exactly(kernel))?;
+    for map in technique.descriptor().needs(kernel) {
+        if let Some(m) = materials.iter().find(|m| !m.inputs().has(map)) {
+            return Err(ReliefError::MissingMap {
+                technique: technique.name(),
+                map: map.name(),
+                material: m.name.clone(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Renders `technique` on `kernel`. With `count`, height fetches are tallied.
+pub fn render(
+    input: FrameInput,
+    materials: &[ReliefMaterial],
+    technique: Technique,
+    kernel: Kernel,
+    lighting: Lighting,
+    background: Vec3,
+    count: bool,
+) -> Result<Frame, ReliefError> {
+    struct Render<'a> {
+        input: FrameInput<'a>,
+        materials: &'a [ReliefMaterial],
+        opt: ShadeOptions,
+        count: bool,
+    }
+    impl WithTracer for Render<'_> {
+        type Output = Frame;
+        fn run<T: ReliefTechnique>(self, t: &T) -> Frame {
+            render_frame(self.input, self.materials, t, &self.opt, self.count)
+        }
+    }
+    check(technique, kernel, materials)?;
+    let opt = options(technique, lighting, background);
+    Ok(technique.with_tracer(kernel, Render { input, materials, opt, count }))
+}
+
+/// The ground truth for `technique`: the exact intersection with the bilinear height field,
+/// shaded the same way (unlit stays unlit; soft shadows become exact hard shadows).
+pub fn render_reference(
+    input: FrameInput,
+    materials: &[ReliefMaterial],
+    technique: Technique,
+    lighting: Lighting,
+    background: Vec3,
+) -> Frame {
+    let mut opt = options(technique, lighting, background);
+    if opt.shading == Shading::LitShadowed {
+        opt.shadow = ShadowMode::Exact;
+    }
+    render_frame(input, materials, &ExactTrace, &opt, false)
+}
+
+/// Runs only `technique`'s trace on `kernel` over the frame (see [`trace_frame`]); returns a
+/// checksum.
+pub fn trace_only(
+    input: FrameInput,
+    materials: &[ReliefMaterial],
+    technique: Technique,
+    kernel: Kernel,
+) -> Result<f64, ReliefError> {
+    struct TraceOnly<'a> {
+        input: FrameInput<'a>,
+        materials: &'a [ReliefMaterial],
+    }
+    impl WithTracer for TraceOnly<'_> {
+        type Output = f64;
+        fn run<T: ReliefTechnique>(self, t: &T) -> f64 {
+            trace_frame(self.input, self.materials, t)
+        }
+    }
+    check(technique, kernel, materials)?;
+    Ok(technique.with_tracer(kernel, TraceOnly { input, materials }))
+}

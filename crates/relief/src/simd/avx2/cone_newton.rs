@@ -1,0 +1,434 @@
+//! The vector kernel of Newton-finished cone stepping
+//! ([`crate::march::cone_newton`]): eight rays in the eight lanes of one vector ([`GROUPS`]
+//! vectors in turn). Each step gathers the texels of all lanes at once, and a lane whose ray
+//! is finished takes the next ray of the row at once, so no lane idles while others still
+//! step. Each ray's constants are set up eight at a time before the march. Every lane
+//! performs the scalar step's IEEE operations in the same order, so the results are
+//! bit-identical to the scalar kernel's.
+
+use super::gather::gather_cell;
+use super::{LANES, RANKS};
+use crate::maps::packed::{PackedRelief, DEPTH_STEP, RATIO_STEP};
+use crate::march::cone_newton::{
+    NewtonCone, Ray, State, CONE, MAX_EPS, MIN_SLOPE, MIN_STEP, REFINE_0, REFINE_A, REFINE_B,
+};
+use crate::trace::{ReliefHit, ReliefInputs, MIN_VIEW_Z};
+use glam::{Vec2, Vec3};
+use renderlab_core::counter::Counter;
+use std::arch::x86_64::*;
+
+/// Vectors of rays the kernel steps in turn, so that the gathers of one overlap the
+/// arithmetic of the others.
+pub const GROUPS: usize = 2;
+
+/// One vector of rays: the constants of each lane's ray and its variable state.
+#[derive(Clone, Copy)]
+struct Group {
+    px: __m256,
+    py: __m256,
+    tu: __m256,
+    tv: __m256,
+    s: __m256,
+    eps: __m256,
+    t: __m256,
+    a: __m256,
+    fa: __m256,
+    b: __m256,
+    fb: __m256,
+    k: __m256i,
+    phase: __m256i,
+    /// Index of each lane's ray in the row.
+    owner: __m256i,
+    /// Lanes holding a ray (bit per lane).
+    active: u32,
+}
+
+/// The rays of a row as structure of arrays (each padded by [`LANES`] entries), for
+/// loading into lanes: the fields of [`Ray`].
+#[derive(Default)]
+struct RaySoa {
+    px: Vec<f32>,
+    py: Vec<f32>,
+    tu: Vec<f32>,
+    tv: Vec<f32>,
+    s: Vec<f32>,
+    eps: Vec<f32>,
+    u0: Vec<f32>,
+    v0: Vec<f32>,
+    du: Vec<f32>,
+    dv: Vec<f32>,
+}
+
+impl RaySoa {
+    /// [`Ray::hit`] of ray `i`.
+    #[inline(always)]
+    fn hit(&self, i: usize, t: f32, layers: u32) -> ReliefHit {
+        Ray {
+            uv0: Vec2::new(self.u0[i], self.v0[i]),
+            dp: Vec2::new(self.du[i], self.dv[i]),
+            ..Ray::default()
+        }
+        .hit(t, layers)
+    }
+
+    fn set(&mut self, i: usize, r: &Ray) {
+        self.px[i] = r.px;
+        self.py[i] = r.py;
+        self.tu[i] = r.tu;
+        self.tv[i] = r.tv;
+        self.s[i] = r.s;
+        self.eps[i] = r.eps;
+        self.u0[i] = r.uv0.x;
+        self.v0[i] = r.uv0.y;
+        self.du[i] = r.dp.x;
+        self.dv[i] = r.dp.y;
+    }
+}
+
+/// [`Ray::new`] for every ray, eight at a time: the same operations in the same order.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn setup_rays(fc: &NewtonCone, inp: &ReliefInputs, rays: &[(Vec2, Vec3)]) -> RaySoa {
+    let n = rays.len();
+    let len = n.div_ceil(LANES) * LANES + LANES;
+    let col = || vec![0.0f32; len];
+    let mut soa = RaySoa {
+        px: col(),
+        py: col(),
+        tu: col(),
+        tv: col(),
+        s: col(),
+        eps: col(),
+        u0: col(),
+        v0: col(),
+        du: col(),
+        dv: col(),
+    };
+    let (w, h) = (inp.height.width() as f32, inp.height.height() as f32);
+    let (wv, hv) = (_mm256_set1_ps(w), _mm256_set1_ps(h));
+    let abs_mask = _mm256_set1_ps(-0.0);
+    let inf = _mm256_set1_ps(f32::INFINITY);
+    let finite = |x: __m256| _mm256_cmp_ps::<_CMP_LT_OQ>(_mm256_andnot_ps(abs_mask, x), inf);
+    for start in (0..n).step_by(LANES) {
+        let mut comp = [[0.0f32; LANES]; 5];
+        for (l, &(uv, v)) in rays[start..n.min(start + LANES)].iter().enumerate() {
+            comp[0][l] = uv.x;
+            comp[1][l] = uv.y;
+            comp[2][l] = v.x;
+            comp[3][l] = v.y;
+            comp[4][l] = v.z;
+        }
+        let ld = |c: &[f32; LANES]| _mm256_loadu_ps(c.as_ptr());
+        let (ux, uy, vx, vy, vz) = (ld(&comp[0]), ld(&comp[1]), ld(&comp[2]), ld(&comp[3]), ld(&comp[4]));
+        // uv_per_depth
+        let vz = _mm256_max_ps(vz, _mm256_set1_ps(MIN_VIEW_Z));
+        let scale = _mm256_set1_ps(inp.height_scale);
+        let dx = _mm256_mul_ps(_mm256_div_ps(_mm256_xor_ps(vx, abs_mask), vz), scale);
+        let dy = _mm256_mul_ps(_mm256_div_ps(_mm256_xor_ps(vy, abs_mask), vz), scale);
+        let dp_ok = _mm256_and_ps(finite(dx), finite(dy));
+        let (dx, dy) = (_mm256_and_ps(dx, dp_ok), _mm256_and_ps(dy, dp_ok));
+        let uv_ok = _mm256_and_ps(finite(ux), finite(uy));
+        let (ux, uy) = (_mm256_and_ps(ux, uv_ok), _mm256_and_ps(uy, uv_ok));
+        let half = _mm256_set1_ps(0.5);
+        let px = _mm256_sub_ps(_mm256_mul_ps(ux, wv), half);
+        let py = _mm256_sub_ps(_mm256_mul_ps(uy, hv), half);
+        let s = _mm256_sqrt_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)));
+        let tpd = _mm256_mul_ps(s, _mm256_set1_ps(w.max(h)));
+        let eps = _mm256_div_ps(_mm256_set1_ps(fc.tol), _mm256_max_ps(tpd, _mm256_set1_ps(1e-3)));
+        let eps = _mm256_min_ps(_mm256_max_ps(eps, _mm256_set1_ps(1e-6)), _mm256_set1_ps(MAX_EPS));
+        let st = |v: &mut Vec<f32>, x: __m256| _mm256_storeu_ps(v.as_mut_ptr().add(start), x);
+        st(&mut soa.px, px);
+        st(&mut soa.py, py);
+        st(&mut soa.tu, _mm256_mul_ps(dx, wv));
+        st(&mut soa.tv, _mm256_mul_ps(dy, hv));
+        st(&mut soa.s, s);
+        st(&mut soa.eps, eps);
+        st(&mut soa.u0, ux);
+        st(&mut soa.v0, uy);
+        st(&mut soa.du, dx);
+        st(&mut soa.dv, dy);
+        // Far-away entries (folded into the first tiles by `Ray::new`): the scalar code.
+        let big = _mm256_set1_ps(1.0e6);
+        let far = _mm256_or_ps(
+            _mm256_cmp_ps::<_CMP_GT_OQ>(_mm256_andnot_ps(abs_mask, px), big),
+            _mm256_cmp_ps::<_CMP_GT_OQ>(_mm256_andnot_ps(abs_mask, py), big),
+        );
+        let mut far = _mm256_movemask_ps(far) as u32;
+        while far != 0 {
+            let l = far.trailing_zeros() as usize;
+            far &= far - 1;
+            if start + l < n {
+                let (uv, v) = rays[start + l];
+                soa.set(start + l, &Ray::new(fc, inp, uv, v));
+            }
+        }
+    }
+    soa
+}
+
+/// The vector `interp`.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn interp_v(a: __m256, fa: __m256, b: __m256, fb: __m256) -> __m256 {
+    let den = _mm256_sub_ps(fb, fa);
+    let q = _mm256_div_ps(_mm256_sub_ps(_mm256_mul_ps(a, fb), _mm256_mul_ps(b, fa)), den);
+    let q = _mm256_min_ps(_mm256_max_ps(q, a), b);
+    let mid = _mm256_mul_ps(_mm256_set1_ps(0.5), _mm256_add_ps(a, b));
+    _mm256_blendv_ps(mid, q, _mm256_cmp_ps::<_CMP_GT_OQ>(den, _mm256_set1_ps(1e-12)))
+}
+
+/// Loads the next rays (from `next` on, at most `n`) into the lanes of `g` set in `free`
+/// (a bit per lane), with a fresh state; lanes left without a ray become inactive.
+/// Returns the new `next`.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn refill(fc: &NewtonCone, g: &mut Group, free: u32, next: usize, n: usize, soa: &RaySoa) -> usize {
+    if free == 0 {
+        return next;
+    }
+    let rank = _mm256_loadu_si256(RANKS[free as usize].as_ptr() as *const __m256i);
+    let idx = _mm256_add_epi32(_mm256_set1_epi32(next as i32), rank);
+    let bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    let is_free = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(free as i32), bits), bits);
+    let in_range = _mm256_cmpgt_epi32(_mm256_set1_epi32(n as i32), idx);
+    let take = _mm256_and_si256(is_free, in_range);
+    let take_ps = _mm256_castsi256_ps(take);
+    // The free lanes take rays next, next + 1, …: eight consecutive values, permuted by
+    // rank (the arrays are padded so the load stays inside them).
+    let gather = |src: __m256, v: &Vec<f32>| {
+        debug_assert!(next + LANES <= v.len());
+        let vals = _mm256_loadu_ps(v.as_ptr().add(next));
+        _mm256_blendv_ps(src, _mm256_permutevar8x32_ps(vals, rank), take_ps)
+    };
+    g.px = gather(g.px, &soa.px);
+    g.py = gather(g.py, &soa.py);
+    g.tu = gather(g.tu, &soa.tu);
+    g.tv = gather(g.tv, &soa.tv);
+    g.s = gather(g.s, &soa.s);
+    g.eps = gather(g.eps, &soa.eps);
+    let st = State::new(fc);
+    let set = |old: __m256, v: f32| _mm256_blendv_ps(old, _mm256_set1_ps(v), take_ps);
+    g.t = set(g.t, st.t);
+    g.a = set(g.a, st.a);
+    g.fa = set(g.fa, st.fa);
+    g.b = set(g.b, st.b);
+    g.fb = set(g.fb, st.fb);
+    g.k = _mm256_blendv_epi8(g.k, _mm256_set1_epi32(st.k), take);
+    g.phase = _mm256_blendv_epi8(g.phase, _mm256_set1_epi32(st.phase), take);
+    g.owner = _mm256_blendv_epi8(g.owner, idx, take);
+    let taken = _mm256_movemask_ps(take_ps) as u32;
+    g.active = (g.active & !free) | taken;
+    (next + free.count_ones() as usize).min(n)
+}
+
+/// Stamps out the kernel for a set of target features (the same intrinsics; with AVX-512
+/// the compiler has 32 vector registers, so the lanes' state need not spill).
+macro_rules! kernel {
+    ($name:ident, $features:literal) => {
+        /// Traces `rays` eight at a time, refilling finished lanes (see the module documentation).
+        #[target_feature(enable = $features)]
+        pub(crate) unsafe fn $name<C: Counter>(
+            fc: &NewtonCone,
+            inp: &ReliefInputs,
+            map: &PackedRelief,
+            rays: &[(Vec2, Vec3)],
+            out: &mut [ReliefHit],
+            counter: &mut C,
+        ) {
+            let n = rays.len().min(out.len());
+            let (mxk, myk) = map.masks().expect("power-of-two map");
+            let base = map.texels().as_ptr() as *const i32;
+            let stride = map.stride() as i32;
+            // Every ray's constants, computed up front eight at a time (`Ray::new` in vectors).
+            let soa = setup_rays(fc, inp, &rays[..n]);
+            let zero = _mm256_setzero_ps();
+            let empty = Group {
+                px: zero,
+                py: zero,
+                tu: zero,
+                tv: zero,
+                s: zero,
+                eps: zero,
+                t: zero,
+                a: zero,
+                fa: zero,
+                b: zero,
+                fb: zero,
+                k: _mm256_setzero_si256(),
+                phase: _mm256_setzero_si256(),
+                owner: _mm256_setzero_si256(),
+                active: 0,
+            };
+            let mut groups = [empty; GROUPS];
+            let mut next = 0usize;
+            for g in groups.iter_mut() {
+                next = refill(fc, g, 0xff, next, n, &soa);
+            }
+
+            let ps = |x: f32| _mm256_set1_ps(x);
+            let one = ps(1.0);
+            let min_slope = ps(MIN_SLOPE);
+            let jump = ps(fc.jump);
+            let sign = ps(-0.0);
+            let cone_i = _mm256_set1_epi32(CONE);
+            let refine_a_i = _mm256_set1_epi32(REFINE_A);
+            let refine_b_i = _mm256_set1_epi32(REFINE_B);
+            let refine_0_i = _mm256_set1_epi32(REFINE_0);
+            let one_i = _mm256_set1_epi32(1);
+            let steps_m1 = _mm256_set1_epi32(fc.steps as i32 - 1);
+            let secant_m1 = _mm256_set1_epi32(fc.secant as i32 - 1);
+            let no_secant = if fc.secant == 0 { _mm256_castsi256_ps(_mm256_set1_epi32(-1)) } else { zero };
+            let mask_x = _mm256_set1_epi32(mxk);
+            let mask_y = _mm256_set1_epi32(myk);
+            let stride_v = _mm256_set1_epi32(stride);
+            let lo16 = _mm256_set1_epi32(0xffff);
+            let lane_order = _mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7);
+            let depth_step = ps(DEPTH_STEP);
+            let ratio_step = ps(RATIO_STEP);
+
+            while groups.iter().any(|g| g.active != 0) {
+                for grp in groups.iter_mut() {
+                    if grp.active == 0 {
+                        continue;
+                    }
+                    counter.count(grp.active.count_ones());
+                    let Group { px, py, tu, tv, s, eps, t, a, fa, b, fb, k, phase, .. } = *grp;
+                    let is_cone = _mm256_castsi256_ps(_mm256_cmpeq_epi32(phase, cone_i));
+
+                    // Lanes that refine need the false-position point (one division); skip it when
+                    // none does.
+                    let any_refine = _mm256_movemask_ps(is_cone) != 0xff;
+                    let c = if any_refine { _mm256_blendv_ps(interp_v(a, fa, b, fb), t, is_cone) } else { t };
+                    // Fetch.
+                    let x = _mm256_add_ps(px, _mm256_mul_ps(tu, c));
+                    let y = _mm256_add_ps(py, _mm256_mul_ps(tv, c));
+                    let (fx, fy, t00, t10, t01, t11) =
+                        gather_cell!(base, stride, x, y, mask_x, mask_y, stride_v, lane_order);
+                    let hi = |t: __m256i| _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t));
+                    let (d00, d10, d01, d11) = (hi(t00), hi(t10), hi(t01), hi(t11));
+                    let dx0 = _mm256_sub_ps(d10, d00);
+                    let dx1 = _mm256_sub_ps(d11, d01);
+                    let top = _mm256_add_ps(d00, _mm256_mul_ps(dx0, fx));
+                    let bottom = _mm256_add_ps(d01, _mm256_mul_ps(dx1, fx));
+                    let dy = _mm256_sub_ps(bottom, top);
+                    let depth = _mm256_mul_ps(_mm256_add_ps(top, _mm256_mul_ps(dy, fy)), depth_step);
+                    let ratio = _mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_and_si256(t00, lo16)), ratio_step);
+                    let ddx = _mm256_mul_ps(
+                        _mm256_add_ps(dx0, _mm256_mul_ps(_mm256_sub_ps(dx1, dx0), fy)),
+                        depth_step,
+                    );
+                    let ddy = _mm256_mul_ps(dy, depth_step);
+
+                    let f = _mm256_sub_ps(c, depth);
+                    let fp =
+                        _mm256_sub_ps(one, _mm256_add_ps(_mm256_mul_ps(ddx, tu), _mm256_mul_ps(ddy, tv)));
+                    let gap = _mm256_xor_ps(f, sign);
+                    let fp_ok = _mm256_cmp_ps::<_CMP_GE_OQ>(fp, min_slope);
+                    let pos = _mm256_cmp_ps::<_CMP_GE_OQ>(f, zero);
+                    let k1 = _mm256_add_epi32(k, one_i);
+                    let rcp = _mm256_div_ps(one, fp);
+
+                    // Cone phase.
+                    let newton = _mm256_andnot_ps(
+                        pos,
+                        _mm256_and_ps(fp_ok, _mm256_cmp_ps::<_CMP_LE_OQ>(gap, _mm256_mul_ps(eps, fp))),
+                    );
+                    let out_of_steps = _mm256_castsi256_ps(_mm256_cmpgt_epi32(k1, steps_m1));
+                    let oos = _mm256_andnot_ps(_mm256_or_ps(pos, newton), out_of_steps);
+                    let stepping = _mm256_andnot_ps(_mm256_or_ps(_mm256_or_ps(pos, newton), oos), is_cone);
+                    let abs_f = _mm256_andnot_ps(sign, f);
+                    let conv =
+                        _mm256_cmp_ps::<_CMP_LE_OQ>(abs_f, _mm256_mul_ps(eps, _mm256_max_ps(fp, min_slope)));
+                    let c_le0 = _mm256_cmp_ps::<_CMP_LE_OQ>(c, zero);
+                    let crossed_done = _mm256_and_ps(pos, _mm256_or_ps(_mm256_or_ps(c_le0, conv), no_secant));
+                    let newton_back = _mm256_sub_ps(c, _mm256_mul_ps(f, rcp));
+                    let out_back =
+                        _mm256_blendv_ps(c, _mm256_min_ps(_mm256_max_ps(newton_back, a), c), fp_ok);
+                    let out_crossed = _mm256_andnot_ps(c_le0, _mm256_blendv_ps(c, out_back, conv));
+                    let qn = _mm256_mul_ps(gap, rcp);
+                    let out_newton = _mm256_min_ps(_mm256_add_ps(c, qn), one);
+                    let oos_scale = _mm256_blendv_ps(one, rcp, _mm256_cmp_ps::<_CMP_GT_OQ>(fp, one));
+                    let out_oos = _mm256_min_ps(_mm256_add_ps(c, _mm256_mul_ps(gap, oos_scale)), one);
+                    let cone_step = _mm256_div_ps(_mm256_mul_ps(ratio, gap), _mm256_add_ps(s, ratio));
+                    let cone_step = _mm256_blendv_ps(gap, cone_step, _mm256_cmp_ps::<_CMP_GT_OQ>(s, zero));
+                    let reach = _mm256_mul_ps(_mm256_mul_ps(eps, fp), jump);
+                    let near = _mm256_and_ps(fp_ok, _mm256_cmp_ps::<_CMP_LE_OQ>(gap, reach));
+                    let cone_step = _mm256_blendv_ps(cone_step, _mm256_max_ps(cone_step, qn), near);
+                    let t_next = _mm256_min_ps(_mm256_add_ps(c, _mm256_max_ps(cone_step, ps(MIN_STEP))), one);
+                    let cone_done = _mm256_or_ps(crossed_done, _mm256_or_ps(newton, oos));
+                    let cone_out =
+                        _mm256_blendv_ps(_mm256_blendv_ps(out_oos, out_newton, newton), out_crossed, pos);
+
+                    let new_t = _mm256_blendv_ps(t, t_next, stepping);
+                    let pos_i = _mm256_castps_si256(pos);
+                    let cone_a = _mm256_blendv_ps(a, c, stepping);
+                    let cone_fa = _mm256_blendv_ps(fa, f, stepping);
+                    let cone_b = _mm256_blendv_ps(b, c, pos);
+                    let cone_fb = _mm256_blendv_ps(fb, f, pos);
+                    let cone_k = _mm256_andnot_si256(pos_i, k1);
+                    let cone_phase = _mm256_blendv_epi8(cone_i, refine_0_i, pos_i);
+                    let (new_a, new_fa, new_b, new_fb, new_k, new_phase, done, result) = if any_refine {
+                        // Refinement phase (only when some lane refines).
+                        let out_conv =
+                            _mm256_blendv_ps(c, _mm256_min_ps(_mm256_max_ps(newton_back, a), b), fp_ok);
+                        let was_a = _mm256_castsi256_ps(_mm256_cmpeq_epi32(phase, refine_a_i));
+                        let was_b = _mm256_castsi256_ps(_mm256_cmpeq_epi32(phase, refine_b_i));
+                        let half = ps(0.5);
+                        let ra = _mm256_blendv_ps(c, a, pos);
+                        let rfa =
+                            _mm256_blendv_ps(f, _mm256_blendv_ps(fa, _mm256_mul_ps(fa, half), was_b), pos);
+                        let rb = _mm256_blendv_ps(b, c, pos);
+                        let rfb =
+                            _mm256_blendv_ps(_mm256_blendv_ps(fb, _mm256_mul_ps(fb, half), was_a), f, pos);
+                        let rphase = _mm256_blendv_epi8(refine_a_i, refine_b_i, pos_i);
+                        let last = _mm256_castsi256_ps(_mm256_cmpgt_epi32(k1, secant_m1));
+                        let refine_done = _mm256_or_ps(conv, last);
+                        let refine_out = _mm256_blendv_ps(interp_v(ra, rfa, rb, rfb), out_conv, conv);
+                        // Merge the phases.
+                        let sel = |cone: __m256, refine: __m256| _mm256_blendv_ps(refine, cone, is_cone);
+                        let is_cone_i = _mm256_castps_si256(is_cone);
+                        (
+                            sel(cone_a, ra),
+                            sel(cone_fa, rfa),
+                            sel(cone_b, rb),
+                            sel(cone_fb, rfb),
+                            _mm256_blendv_epi8(k1, cone_k, is_cone_i),
+                            _mm256_blendv_epi8(rphase, cone_phase, is_cone_i),
+                            sel(cone_done, refine_done),
+                            sel(cone_out, refine_out),
+                        )
+                    } else {
+                        (cone_a, cone_fa, cone_b, cone_fb, cone_k, cone_phase, cone_done, cone_out)
+                    };
+
+                    grp.t = new_t;
+                    grp.a = new_a;
+                    grp.fa = new_fa;
+                    grp.b = new_b;
+                    grp.fb = new_fb;
+                    grp.k = new_k;
+                    grp.phase = new_phase;
+
+                    let finished = _mm256_movemask_ps(done) as u32 & grp.active;
+                    if finished != 0 {
+                        let mut res = [0.0f32; LANES];
+                        let mut own = [0i32; LANES];
+                        _mm256_storeu_ps(res.as_mut_ptr(), result);
+                        _mm256_storeu_si256(own.as_mut_ptr() as *mut __m256i, grp.owner);
+                        let mut f = finished;
+                        while f != 0 {
+                            let l = f.trailing_zeros() as usize;
+                            f &= f - 1;
+                            let i = own[l] as usize;
+                            out[i] = soa.hit(i, res[l], fc.steps);
+                        }
+                        next = refill(fc, grp, finished, next, n, &soa);
+                    }
+                }
+            }
+        }
+    };
+}
+
+kernel!(trace_row, "avx2");
+kernel!(trace_row_avx512, "avx2,avx512f,avx512vl");

@@ -1,0 +1,174 @@
+//! The vector kernel of POM on the packed map ([`crate::march::pom_lanes`]): eight rays per
+//! vector in AVX2 lanes, two vectors in turn, a finished lane taking the row's next ray at
+//! once. Each lane performs the scalar twin's operations in the same order, so the results
+//! are bit-identical to it.
+
+use super::gather::gather_cell;
+use super::{LANES, RANKS};
+use crate::maps::packed::{PackedRelief, DEPTH_STEP};
+use crate::march::pom_lanes::{finish, setup, PomLanes};
+use crate::trace::{ReliefHit, ReliefInputs};
+use glam::{Vec2, Vec3};
+use renderlab_core::counter::Counter;
+use std::arch::x86_64::*;
+
+#[derive(Clone, Copy)]
+struct Group {
+    u0: __m256,
+    v0: __m256,
+    su: __m256,
+    sv: __m256,
+    /// Layer to fetch next.
+    i: __m256i,
+    prev: __m256,
+    owner: __m256i,
+    active: u32,
+}
+
+macro_rules! kernel {
+    ($name:ident, $features:literal) => {
+        #[target_feature(enable = $features)]
+        pub(crate) unsafe fn $name<C: Counter>(
+            pom: &PomLanes,
+            inp: &ReliefInputs,
+            map: &PackedRelief,
+            rays: &[(Vec2, Vec3)],
+            out: &mut [ReliefHit],
+            counter: &mut C,
+        ) {
+            let n = rays.len().min(out.len());
+            let len = n.div_ceil(LANES) * LANES + LANES;
+            let (mut cu, mut cv, mut csu, mut csv) =
+                (vec![0.0f32; len], vec![0.0f32; len], vec![0.0f32; len], vec![0.0f32; len]);
+            for (i, &(uv, v)) in rays[..n].iter().enumerate() {
+                let (uv0, step) = setup(inp, pom.layers, uv, v);
+                cu[i] = uv0.x;
+                cv[i] = uv0.y;
+                csu[i] = step.x;
+                csv[i] = step.y;
+            }
+            let (mxk, myk) = map.masks().expect("power-of-two map");
+            let base = map.texels().as_ptr() as *const i32;
+            let stride = map.stride() as i32;
+            let layers = pom.layers.max(1);
+            let ld = _mm256_set1_ps(1.0 / layers as f32);
+            let n_layers = _mm256_set1_epi32(layers as i32);
+            let wf = _mm256_set1_ps(map.width() as f32);
+            let hf = _mm256_set1_ps(map.height() as f32);
+            let half = _mm256_set1_ps(0.5);
+            let lo = _mm256_set1_ps(-1.0e7);
+            let hi = _mm256_set1_ps(1.0e7);
+            let mask_x = _mm256_set1_epi32(mxk);
+            let mask_y = _mm256_set1_epi32(myk);
+            let stride_v = _mm256_set1_epi32(stride);
+            let lane_order = _mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7);
+            let depth_step = _mm256_set1_ps(DEPTH_STEP);
+            let zero_i = _mm256_setzero_si256();
+            let one_i = _mm256_set1_epi32(1);
+            let bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+
+            let refill = |g: &mut Group, free: u32, next: usize| -> usize {
+                if free == 0 {
+                    return next;
+                }
+                let rank = _mm256_loadu_si256(RANKS[free as usize].as_ptr() as *const __m256i);
+                let idx = _mm256_add_epi32(_mm256_set1_epi32(next as i32), rank);
+                let is_free =
+                    _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(free as i32), bits), bits);
+                let take = _mm256_and_si256(is_free, _mm256_cmpgt_epi32(_mm256_set1_epi32(n as i32), idx));
+                let take_ps = _mm256_castsi256_ps(take);
+                let col = |src: __m256, v: &Vec<f32>| {
+                    let vals = _mm256_loadu_ps(v.as_ptr().add(next));
+                    _mm256_blendv_ps(src, _mm256_permutevar8x32_ps(vals, rank), take_ps)
+                };
+                g.u0 = col(g.u0, &cu);
+                g.v0 = col(g.v0, &cv);
+                g.su = col(g.su, &csu);
+                g.sv = col(g.sv, &csv);
+                g.i = _mm256_blendv_epi8(g.i, zero_i, take);
+                g.owner = _mm256_blendv_epi8(g.owner, idx, take);
+                g.active = (g.active & !free) | _mm256_movemask_ps(take_ps) as u32;
+                (next + free.count_ones() as usize).min(n)
+            };
+
+            let z = _mm256_setzero_ps();
+            let empty = Group { u0: z, v0: z, su: z, sv: z, i: zero_i, prev: z, owner: zero_i, active: 0 };
+            let mut groups = [empty; 2];
+            let mut next = 0usize;
+            for g in groups.iter_mut() {
+                next = refill(g, 0xff, next);
+            }
+            while groups.iter().any(|g| g.active != 0) {
+                for g in groups.iter_mut() {
+                    if g.active == 0 {
+                        continue;
+                    }
+                    counter.count(g.active.count_ones());
+                    // The UV of layer i (the entry itself for layer 0).
+                    let fi = _mm256_cvtepi32_ps(g.i);
+                    let first = _mm256_castsi256_ps(_mm256_cmpeq_epi32(g.i, zero_i));
+                    let u = _mm256_blendv_ps(_mm256_add_ps(g.u0, _mm256_mul_ps(g.su, fi)), g.u0, first);
+                    let v = _mm256_blendv_ps(_mm256_add_ps(g.v0, _mm256_mul_ps(g.sv, fi)), g.v0, first);
+                    // PackedRelief::depth.
+                    let x = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(u, wf), half), lo), hi);
+                    let y = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(v, hf), half), lo), hi);
+                    let (fx, fy, t00, t10, t01, t11) =
+                        gather_cell!(base, stride, x, y, mask_x, mask_y, stride_v, lane_order);
+                    let hi16 = |t: __m256i| _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t));
+                    let (d00, d10, d01, d11) = (hi16(t00), hi16(t10), hi16(t01), hi16(t11));
+                    let top = _mm256_add_ps(d00, _mm256_mul_ps(_mm256_sub_ps(d10, d00), fx));
+                    let bottom = _mm256_add_ps(d01, _mm256_mul_ps(_mm256_sub_ps(d11, d01), fx));
+                    let dy = _mm256_sub_ps(bottom, top);
+                    let m = _mm256_mul_ps(_mm256_add_ps(top, _mm256_mul_ps(dy, fy)), depth_step);
+                    // Layer 0 has no layer above: its own value.
+                    let prev = _mm256_blendv_ps(g.prev, m, first);
+                    let go_on = _mm256_and_ps(
+                        _mm256_cmp_ps::<_CMP_LT_OQ>(_mm256_mul_ps(fi, ld), m),
+                        _mm256_castsi256_ps(_mm256_cmpgt_epi32(n_layers, g.i)),
+                    );
+                    let done = (!(_mm256_movemask_ps(go_on) as u32)) & 0xff & g.active;
+                    if done != 0 {
+                        let (mut mi, mut mm, mut mp, mut own) =
+                            ([0i32; LANES], [0.0f32; LANES], [0.0f32; LANES], [0i32; LANES]);
+                        _mm256_storeu_si256(mi.as_mut_ptr() as *mut __m256i, g.i);
+                        _mm256_storeu_ps(mm.as_mut_ptr(), m);
+                        _mm256_storeu_ps(mp.as_mut_ptr(), prev);
+                        _mm256_storeu_si256(own.as_mut_ptr() as *mut __m256i, g.owner);
+                        let mut f = done;
+                        while f != 0 {
+                            let l = f.trailing_zeros() as usize;
+                            f &= f - 1;
+                            let r = own[l] as usize;
+                            let (uv0, step) = (Vec2::new(cu[r], cv[r]), Vec2::new(csu[r], csv[r]));
+                            out[r] = finish(pom.layers, uv0, step, mi[l] as u32, mm[l], mp[l]);
+                        }
+                    }
+                    // Going on: this layer becomes the previous one.
+                    g.prev = m;
+                    g.i = _mm256_add_epi32(g.i, _mm256_and_si256(_mm256_castps_si256(go_on), one_i));
+                    let _ = prev;
+                    if done != 0 {
+                        next = refill(g, done, next);
+                    }
+                }
+            }
+        }
+    };
+}
+
+kernel!(trace_row, "avx2");
+kernel!(trace_row_avx512, "avx2,avx512f,avx512vl");
+
+/// The scalar twin, compiled with AVX2 and SSE4.1 (a single instruction for each `floor`):
+/// what runs where the lanes cannot; results are the same as without the features.
+#[target_feature(enable = "avx2,sse4.1")]
+pub(crate) fn twin_row<C: Counter>(
+    pom: &PomLanes,
+    inp: &ReliefInputs,
+    map: &PackedRelief,
+    rays: &[(Vec2, Vec3)],
+    out: &mut [ReliefHit],
+    counter: &mut C,
+) {
+    pom.scalar_row(inp, map, rays, out, counter)
+}

@@ -1,0 +1,94 @@
+//! Vector kernels, kept apart from the scalar code: one backend folder per instruction set
+//! (AVX2 today), selected at run time by [`crate::cpu`]. The functions here are the safe
+//! entry points: each runs its kernel when the CPU and the map allow it and says whether it
+//! did, so the caller runs the scalar twin otherwise (the results are bit-identical).
+
+#[cfg(target_arch = "x86_64")]
+mod avx2;
+
+use crate::maps::packed::PackedRelief;
+use crate::march::cone_newton::NewtonCone;
+use crate::march::pom_lanes::PomLanes;
+use crate::trace::{ReliefHit, ReliefInputs};
+use glam::{Vec2, Vec3};
+use renderlab_core::counter::Counter;
+
+/// Whether the vector kernels may run on `map` here: AVX2 present, power-of-two sides (wrap by
+/// masking) and 32-bit gather indices.
+pub fn usable(map: &PackedRelief) -> bool {
+    crate::cpu::has_avx2() && map.masks().is_some() && map.texels().len() < (1 << 30)
+}
+
+/// Traces `rays` with cone-newton's vector kernel; `false` (and nothing traced) where it
+/// cannot run.
+#[inline]
+pub fn cone_newton_row<C: Counter>(
+    fc: &NewtonCone,
+    inp: &ReliefInputs,
+    map: &PackedRelief,
+    rays: &[(Vec2, Vec3)],
+    out: &mut [ReliefHit],
+    counter: &mut C,
+) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if usable(map) {
+        // SAFETY: the CPU supports the features of the kernel called, and the map suits it.
+        unsafe {
+            if crate::cpu::has_avx512() {
+                avx2::cone_newton::trace_row_avx512(fc, inp, map, rays, out, counter)
+            } else {
+                avx2::cone_newton::trace_row(fc, inp, map, rays, out, counter)
+            }
+        };
+        return true;
+    }
+    let _ = (fc, inp, map, rays, out, counter);
+    false
+}
+
+/// Traces `rays` with POM's vector kernel on the packed map; `false` (and nothing traced)
+/// where it cannot run.
+#[inline]
+pub fn pom_row<C: Counter>(
+    pom: &PomLanes,
+    inp: &ReliefInputs,
+    map: &PackedRelief,
+    rays: &[(Vec2, Vec3)],
+    out: &mut [ReliefHit],
+    counter: &mut C,
+) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if usable(map) {
+        // SAFETY: the CPU supports the kernel's features and the map suits it.
+        unsafe {
+            if crate::cpu::has_avx512() {
+                avx2::pom::trace_row_avx512(pom, inp, map, rays, out, counter)
+            } else {
+                avx2::pom::trace_row(pom, inp, map, rays, out, counter)
+            }
+        }
+        return true;
+    }
+    let _ = (pom, inp, map, rays, out, counter);
+    false
+}
+
+/// Traces `rays` with the scalar twin of POM's vector kernel, built with the CPU's AVX2 and
+/// SSE4.1 where present (bit-identical results either way).
+#[inline]
+pub fn pom_twin_row<C: Counter>(
+    pom: &PomLanes,
+    inp: &ReliefInputs,
+    map: &PackedRelief,
+    rays: &[(Vec2, Vec3)],
+    out: &mut [ReliefHit],
+    counter: &mut C,
+) {
+    #[cfg(target_arch = "x86_64")]
+    if crate::cpu::has_avx2() {
+        // SAFETY: the CPU supports the features the function is compiled for.
+        unsafe { avx2::pom::twin_row(pom, inp, map, rays, out, counter) };
+        return;
+    }
+    pom.scalar_row(inp, map, rays, out, counter)
+}

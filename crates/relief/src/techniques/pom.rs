@@ -1,0 +1,96 @@
+//! Parallax occlusion mapping (POM) with a fixed number of layers: the layered march, then
+//! the thesis's interpolation between the last two layers.
+//!
+//! Kernels: `scalar` marches the `f32` depth field one ray at a time; `simd` marches the
+//! packed map's 16-bit depths in vector lanes (the same march and interpolation, so it
+//! differs from `scalar` only by the depth quantisation).
+
+use super::descriptor::{Descriptor, Entry, Param, WithTracer};
+use crate::kernel::Kernel;
+use crate::march::layered::{interpolate, layer_step, layered_march};
+use crate::march::pom_lanes::PomLanes;
+use crate::trace::{ReliefHit, ReliefInputs, ReliefTechnique, Shading};
+use glam::{Vec2, Vec3};
+use renderlab_core::counter::Counter;
+
+/// POM with a fixed number of layers (on the scalar kernel, its own tracer).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Pom {
+    /// Number of layers.
+    pub layers: u32,
+}
+
+impl ReliefTechnique for Pom {
+    #[inline]
+    fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
+        let step = layer_step(v, inp.height_scale, self.layers);
+        let m = layered_march(inp.height, uv, step, self.layers, counter);
+        let (uv, depth) = interpolate(&m);
+        ReliefHit { uv, depth, layers: self.layers }
+    }
+}
+
+/// POM's `simd` kernel: the packed map, rows in vector lanes where the CPU and the map allow
+/// it (`lanes`), its bit-identical scalar twin otherwise and for single rays. Panics on inputs
+/// without the packed map (the checked entry points refuse them with an error).
+#[derive(Clone, Copy, Debug)]
+pub struct PomSimd {
+    /// The march.
+    pub march: PomLanes,
+    /// Whether rows may run in vector lanes (off: the scalar twin, for comparisons).
+    pub lanes: bool,
+}
+
+/// The message of the panic when a caller skipped the map check.
+const NO_PACKED_MAP: &str = "POM's simd kernel needs the packed depth map (checked by render)";
+
+impl ReliefTechnique for PomSimd {
+    fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
+        let map = inp.packed.expect(NO_PACKED_MAP);
+        self.march.trace_scalar(inp, map, uv, v, counter)
+    }
+
+    fn trace_row<C: Counter>(
+        &self,
+        inp: &ReliefInputs,
+        rays: &[(Vec2, Vec3)],
+        out: &mut [ReliefHit],
+        counter: &mut C,
+    ) {
+        let map = inp.packed.expect(NO_PACKED_MAP);
+        if !(self.lanes && crate::simd::pom_row(&self.march, inp, map, rays, out, counter)) {
+            crate::simd::pom_twin_row(&self.march, inp, map, rays, out, counter);
+        }
+    }
+}
+
+impl Entry for Pom {
+    const DESCRIPTOR: Descriptor = Descriptor {
+        name: "pom",
+        summary:
+            "parallax occlusion mapping: layered march, linear interpolation between the last two layers",
+        params: &[Param::count("LAYERS", 32, "number of layers")],
+        needs: &[],
+        kernels: &[Kernel::Scalar, Kernel::Simd],
+        shading: Shading::Lit,
+    };
+
+    fn from_params(v: &[u32]) -> Result<Self, String> {
+        Ok(Pom { layers: v[0] })
+    }
+
+    fn params(&self) -> Vec<u32> {
+        vec![self.layers]
+    }
+
+    fn layers(&self) -> u32 {
+        self.layers
+    }
+
+    fn dispatch<A: WithTracer>(&self, kernel: Kernel, action: A) -> A::Output {
+        match kernel {
+            Kernel::Scalar => action.run(self),
+            Kernel::Simd => action.run(&PomSimd { march: PomLanes { layers: self.layers }, lanes: true }),
+        }
+    }
+}

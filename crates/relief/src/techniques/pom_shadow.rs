@@ -1,0 +1,51 @@
+//! POM with soft self-shadowing toward the light: POM's trace, then the light ray sampled from
+//! the hit up to the top surface (see [`crate::render::shadow`]).
+
+use super::descriptor::{Descriptor, Entry, Param, WithTracer};
+use super::pom::Pom;
+use crate::kernel::Kernel;
+use crate::render::shade::ShadowMode;
+use crate::trace::Shading;
+
+/// POM with soft self-shadowing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct PomShadow {
+    /// Number of layers of the view march.
+    pub layers: u32,
+    /// Samples along the light ray.
+    pub shadow_samples: u32,
+}
+
+impl Entry for PomShadow {
+    const DESCRIPTOR: Descriptor = Descriptor {
+        name: "pom-shadow",
+        summary: "POM with soft self-shadowing toward the light",
+        params: &[
+            Param::count("LAYERS", 32, "layers of the view march"),
+            Param::count("SAMPLES", 16, "samples along the light ray"),
+        ],
+        needs: &[],
+        kernels: &[Kernel::Scalar],
+        shading: Shading::LitShadowed,
+    };
+
+    fn from_params(v: &[u32]) -> Result<Self, String> {
+        Ok(PomShadow { layers: v[0], shadow_samples: v[1] })
+    }
+
+    fn params(&self) -> Vec<u32> {
+        vec![self.layers, self.shadow_samples]
+    }
+
+    fn layers(&self) -> u32 {
+        self.layers
+    }
+
+    fn shadow(&self) -> ShadowMode {
+        ShadowMode::Soft(self.shadow_samples)
+    }
+
+    fn dispatch<A: WithTracer>(&self, _: Kernel, action: A) -> A::Output {
+        action.run(&Pom { layers: self.layers })
+    }
+}

@@ -1,0 +1,125 @@
+//! The [`ReliefTechnique`] interface every tracer implements, the inputs it reads and the hit
+//! it returns. The catalogue of user-facing techniques built on it is [`crate::techniques`].
+
+use crate::maps::cone::ConeMap;
+use crate::maps::height::HeightField;
+use crate::maps::packed::PackedRelief;
+use glam::{Vec2, Vec3};
+use renderlab_core::counter::Counter;
+use renderlab_core::Image;
+
+/// Smallest tangent-space `V.z` any technique divides by: views more grazing than ~89.94° are
+/// treated as that angle, so offsets stay finite and every march stays bounded.
+pub const MIN_VIEW_Z: f32 = 1e-3;
+
+/// Where a relief technique decided the view ray meets the height field.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct ReliefHit {
+    /// Displaced texture coordinate (unwrapped).
+    pub uv: Vec2,
+    /// Depth of the hit below the top surface, in [0, 1].
+    pub depth: f32,
+    /// Number of march layers (or steps) the technique planned for this pixel; 0 for
+    /// techniques without layers.
+    pub layers: u32,
+}
+
+/// Per-material data a technique may read, besides the height field.
+#[derive(Clone, Copy)]
+pub struct ReliefInputs<'a> {
+    /// The depth map.
+    pub height: &'a HeightField,
+    /// Depth scale in UV per unit depth (the thesis's `HeightScale`).
+    pub height_scale: f32,
+    /// The thesis's complexity map, sampled nearest at the undisplaced UV.
+    pub complexity: &'a Image<f32>,
+    /// Cone ratios for cone-step mapping, when built.
+    pub cone: Option<&'a ConeMap>,
+    /// The packed depth field (with the cone ratios when a cone map was built), for the
+    /// kernels that read it.
+    pub packed: Option<&'a PackedRelief>,
+}
+
+/// A precomputed map that a technique may need besides the depth field and the complexity map.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Map {
+    /// The relaxed cone map (and, where the packed map is given, its ratios packed with it).
+    Cone,
+    /// The packed 16-bit depth map read by the vector kernels.
+    Packed,
+}
+
+impl Map {
+    /// The map's name in messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Map::Cone => "relaxed cone map",
+            Map::Packed => "packed depth map",
+        }
+    }
+}
+
+impl ReliefInputs<'_> {
+    /// Whether `map` is present (a cone map also needs its ratios in the packed map, when
+    /// one is given).
+    pub fn has(&self, map: Map) -> bool {
+        match map {
+            Map::Cone => self.cone.is_some() && self.packed.is_none_or(PackedRelief::has_cones),
+            Map::Packed => self.packed.is_some(),
+        }
+    }
+
+    /// The complexity value at `uv` (nearest texel, repeat wrap).
+    #[inline]
+    pub fn complexity_at(&self, uv: Vec2) -> f32 {
+        let c = self.complexity;
+        let x = (uv.x * c.width() as f32).floor();
+        let y = (uv.y * c.height() as f32).floor();
+        if !(x.is_finite() && y.is_finite()) {
+            return 0.0;
+        }
+        c.get_wrapped(x as i64, y as i64)
+    }
+}
+
+/// A method that finds the displaced texture coordinate for one pixel.
+pub trait ReliefTechnique: Sync {
+    /// Traces the view ray entering the top surface at `uv`, with `view_ts` the unit vector
+    /// toward the eye in tangent space. Counts every height fetch through `counter`.
+    fn trace<C: Counter>(&self, inputs: &ReliefInputs, uv: Vec2, view_ts: Vec3, counter: &mut C)
+        -> ReliefHit;
+
+    /// Traces a run of rays `(uv, view_ts)` into `out` (same length). The default traces them
+    /// one by one; techniques whose steps form a dependent chain may interleave several rays
+    /// to overlap their fetches. Results must equal [`ReliefTechnique::trace`]'s.
+    fn trace_row<C: Counter>(
+        &self,
+        inputs: &ReliefInputs,
+        rays: &[(Vec2, Vec3)],
+        out: &mut [ReliefHit],
+        counter: &mut C,
+    ) {
+        for (o, &(uv, v)) in out.iter_mut().zip(rays) {
+            *o = self.trace(inputs, uv, v, counter);
+        }
+    }
+}
+
+/// The UV offset per unit of depth for a view direction: `−V.xy / V.z · scale`, with `V.z`
+/// clamped to [`MIN_VIEW_Z`].
+#[inline]
+pub fn uv_per_depth(view_ts: Vec3, height_scale: f32) -> Vec2 {
+    let vz = view_ts.z.max(MIN_VIEW_Z);
+    -Vec2::new(view_ts.x, view_ts.y) / vz * height_scale
+}
+
+/// How a technique's result is lit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Shading {
+    /// The albedo alone (the thesis's basic texturing).
+    Unlit,
+    /// The thesis's ambient + Lambert + Blinn–Phong with the normal map.
+    Lit,
+    /// Lit, with the height field's self-shadowing toward the light.
+    LitShadowed,
+}
