@@ -467,6 +467,9 @@ pub struct TextureBenchArgs {
     /// Skip the σ study.
     #[arg(long)]
     pub no_sigma_study: bool,
+    /// Scenes of the σ study, comma-separated (default: checkerboard, thesis_quad).
+    #[arg(long, value_delimiter = ',')]
+    pub sigma_scenes: Vec<String>,
     #[arg(long, value_delimiter = ',', value_parser = parse_filter, long_help = filters_help())]
     /// Filters, comma-separated (default: the lab's set).
     pub filters: Vec<FilterSpec>,

@@ -13,7 +13,7 @@ use renderlab_lab::heatmap::heat_image;
 use renderlab_lab::noise_lab::{run_noise_lab_with, CloudsConfig, NoiseLabConfig, MAX_CLOUDS_SIZE};
 use renderlab_lab::noise_motion::MotionConfig;
 use renderlab_lab::relief_lab::{default_techniques, run_relief_bench, Method, ReliefBenchConfig, View};
-use renderlab_lab::texture_lab::{run_texture_bench, TextureBenchConfig};
+use renderlab_lab::texture_lab::{run_texture_bench, SigmaStudy, TextureBenchConfig};
 use renderlab_relief::maps::complexity::{complexity_map, ComplexityParams};
 use renderlab_relief::render::{render, render_reference};
 use renderlab_relief::techniques::basic::Basic;
@@ -652,11 +652,24 @@ fn texture_config(a: &TextureBenchArgs) -> Result<TextureBenchConfig> {
         warmup: a.warmup,
         model: a.model,
         sampling: Sampling { max_strata: a.max_strata, tolerance: a.tolerance, ..defaults.sampling },
-        sigma_study: if a.no_sigma_study { None } else { defaults.sigma_study.clone() },
+        sigma_study: if a.no_sigma_study { None } else { sigma_study(a, defaults.sigma_study.clone())? },
         write_images: !a.no_images,
         texture: user_texture(a.texture.as_deref())?,
         ..TextureBenchConfig::default()
     })
+}
+
+/// The σ study's scenes from `--sigma-scenes`, or the default study.
+fn sigma_study(a: &TextureBenchArgs, default: Option<SigmaStudy>) -> Result<Option<SigmaStudy>> {
+    let Some(mut study) = default else { return Ok(None) };
+    if !a.sigma_scenes.is_empty() {
+        study.scenes = a
+            .sigma_scenes
+            .iter()
+            .map(|s| SceneKind::parse(s).map_err(|e| anyhow::anyhow!("--sigma-scenes: {e}")))
+            .collect::<Result<_>>()?;
+    }
+    Ok(Some(study))
 }
 
 fn texture_bench(a: TextureBenchArgs) -> Result<()> {

@@ -20,10 +20,10 @@
 //!
 //! The weight is the pixel-filter model's Gaussian ([`PixelFilter::Gaussian`]) carried to
 //! texture space: with `Σ = J·Jᵀ + (ρ²/σ²)·I`, `Q/F = pᵀ·Σ⁻¹·p` is the squared screen distance
-//! `r²` in pixels, so the weight is `exp(−r²/(2σ²))` on the ellipse `r ≤ cut·σ`, normalised by
-//! the sum of the weights used. The ellipse is built for the truncation radius (`Σ` scaled by
-//! `(cut·σ)²`), so along a span `Q/F = t ∈ [0, 1]` and the weight is `exp(−t·cut²/2)`, read
-//! from one table of `exp(−x)`.
+//! `r²` in pixels, so the weight is `exp(−r²/(2σ²))`, read from one table of `exp(−x)` and
+//! normalised by the sum of the weights used. The support is the ellipse of
+//! `cut²·J·Jᵀ + max(cut, 3)²·(ρ²/σ²)·I` (times σ²): the pixel-filter part truncated at
+//! `cut·σ`, the reconstruction part at no less than three of its own σ.
 //!
 //! The reconstruction variance `ρ²` (texel², on the level filtered) is chosen so that the
 //! filter's whole blur matches the pixel-filter model over a texture reconstructed bilinearly
@@ -123,8 +123,11 @@ impl Ewa {
 /// The ellipse on one level and the centre in that level's texel coordinates (texel `i` at
 /// `i`).
 struct Footprint {
-    /// Heckbert's coefficients on this level, unscaled (`F = A·C − B²/4`).
+    /// The support: Heckbert's coefficients on this level (`F = A·C − B²/4`).
     e: Ellipse,
+    /// The Gaussian's own conic (`Σ = J·Jᵀ + (ρ²/σ²)·I`): the weight's exponent is
+    /// `Q/(2σ²·F)` of this one.
+    g: Ellipse,
     /// The lookup point in this level's texel coordinates.
     centre: Vec2,
     /// Half-height of the bounding box, `√A`.
@@ -218,23 +221,30 @@ const STORED_ROWS: usize = 32;
 
 impl Ewa {
     /// The footprint on `level`: the (clamped) level-0 second moments scaled to the level's
-    /// texels, plus the reconstruction circle `ρ²/σ²` of the level (`inv_s2 = 1/σ²`), all
-    /// scaled by the squared truncation radius `r2` (pixels²) so that the ellipse is the
-    /// kernel's support.
+    /// texels (`inv_s2 = 1/σ²`), plus the reconstruction circle `ρ²/σ²` of the level. The
+    /// support truncates the pixel-filter part at `cut·σ` and the reconstruction part at
+    /// `max(cut, 3)` of its own σ, so that a 2σ cut of the pixel filter does not also cut the
+    /// texture's reconstruction short (the reference reconstructs bilinearly, untruncated).
     #[inline]
-    fn footprint(tex: &Texture, level: usize, m: [f32; 3], uv: Vec2, inv_s2: f32, r2: f32) -> Footprint {
+    fn footprint(tex: &Texture, level: usize, m: [f32; 3], uv: Vec2, inv_s2: f32, cut: f32) -> Footprint {
         let recon =
             if level == 0 { RECONSTRUCTION_VARIANCE } else { COARSE_RECONSTRUCTION_VARIANCE } * inv_s2;
         let s0 = tex.size();
         let (w, h) = tex.level(level).size();
         let sl = Vec2::new(w as f32, h as f32);
         let k = sl / s0;
-        let m00 = (m[0] * k.x * k.x + recon) * r2;
-        let m01 = m[1] * k.x * k.y * r2;
-        let m11 = (m[2] * k.y * k.y + recon) * r2;
-        let e = Ellipse::from_moments(m00, m01, m11);
-        Footprint { e, centre: uv * sl - 0.5, half_v: e.a.sqrt() }
+        let (j00, j01, j11) = (m[0] * k.x * k.x, m[1] * k.x * k.y, m[2] * k.y * k.y);
+        let (c2, r2) = (cut * cut / inv_s2, reconstruction_cut(cut).powi(2) / inv_s2);
+        let e = Ellipse::from_moments(c2 * j00 + r2 * recon, c2 * j01, c2 * j11 + r2 * recon);
+        let g = Ellipse::from_moments(j00 + recon, j01, j11 + recon);
+        Footprint { e, g, centre: uv * sl - 0.5, half_v: e.a.sqrt() }
     }
+}
+
+/// The truncation of the reconstruction part of the footprint, in its own σ: at least 3.
+#[inline(always)]
+fn reconstruction_cut(cut: f32) -> f32 {
+    cut.max(3.0)
 }
 
 impl Filter for Ewa {
@@ -258,7 +268,6 @@ impl Filter for Ewa {
         let budget = self.max_texels.clamp(16, 4096) as u64;
         let (sigma, cut) = self.params();
         let inv_s2 = 1.0 / (sigma * sigma);
-        let r2 = cut * cut * sigma * sigma;
         // A footprint that is non-finite, or whose major axis exceeds four texture widths,
         // is filtered by the 1×1 top level: the texture's mean.
         let limit = 4.0 * size.max_element();
@@ -285,7 +294,7 @@ impl Filter for Ewa {
         // The level on which the kernel's σ across the minor axis spans ½ to 1 texel.
         let across = 2.0 * sigma * minor;
         let mut level = if across > 1.0 { (floor_log2(across) as usize).min(top) } else { 0 };
-        let mut fp = Self::footprint(tex, level, m, uv, inv_s2, r2);
+        let mut fp = Self::footprint(tex, level, m, uv, inv_s2, cut);
         let mut store = [(0i32, 0i32); STORED_ROWS];
         let mut stored = false;
         // Area estimate first (cheap), then the exact count (one sqrt per row).
@@ -304,7 +313,7 @@ impl Filter for Ewa {
                 break;
             }
             level += 1;
-            fp = Self::footprint(tex, level, m, uv, inv_s2, r2);
+            fp = Self::footprint(tex, level, m, uv, inv_s2, cut);
         }
         if level == top {
             counter.count(1);
@@ -321,7 +330,7 @@ impl Filter for Ewa {
         } else {
             None
         };
-        self.scan(tex, level, &fp, spans, cut, counter)
+        self.scan(tex, level, &fp, spans, cut, inv_s2, counter)
     }
 }
 
@@ -336,18 +345,19 @@ impl Ewa {
         fp: &Footprint,
         spans: Option<&[(i32, i32); STORED_ROWS]>,
         cut: f32,
+        inv_s2: f32,
         counter: &mut C,
     ) -> Vec4 {
         let table = &*TABLE;
-        // Table index at the ellipse's edge: the exponent cut²/2 in table units.
-        let edge = 0.5 * cut * cut * PER_UNIT as f32;
+        // Largest exponent inside the support, in table units: max(cut, reconstruction cut)²/2.
+        let edge = 0.5 * reconstruction_cut(cut).powi(2) * PER_UNIT as f32;
         let img = tex.level(level);
         let (w, h) = img.size();
         let px = img.pixels();
-        let e = &fp.e;
-        // Q scaled so that it indexes the table (the boundary at `edge`).
-        let s = edge / e.f;
-        let (qa, qb, qc) = (e.a * s, e.b * s, e.c * s);
+        // The Gaussian's Q scaled so that it indexes the table: exponent Q/(2σ²·F).
+        let g = &fp.g;
+        let s = 0.5 * inv_s2 * PER_UNIT as f32 / g.f;
+        let (qa, qb, qc) = (g.a * s, g.b * s, g.c * s);
         let (j0, j1) = fp.rows();
         let mut acc = Vec4::ZERO;
         let mut wsum = 0.0f32;
