@@ -131,8 +131,8 @@ fn relief_bench(a: BenchArgs) -> Result<()> {
     if !(16..=4096).contains(&a.cone_size) {
         bail!("--cone-size: {} must lie in 16..=4096", a.cone_size);
     }
-    let material = load_material(&a.material)?;
     create_dir(&a.out)?;
+    let material = load_material(&a.material)?;
     let p = Progress::new("relief");
     let summary = run_relief_bench(&material, &cfg, &a.out, &|d, t, m| p.update(d, t, m))?;
     p.finish();

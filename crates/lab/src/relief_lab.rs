@@ -283,7 +283,9 @@ pub fn run_relief_bench(
     for &(t, kernel) in &methods {
         check(t, kernel, std::slice::from_ref(&mat))?;
     }
-    let tex_size = Vec2::new(material.size().0 as f32, material.size().1 as f32);
+    // UV error is counted in texels of the height map, where the relief is defined (the
+    // albedo may have another resolution).
+    let tex_size = Vec2::new(material.height.width() as f32, material.height.height() as f32);
     let scene = Scene::benchmark(material.clone());
     let total = cfg.angles.len() * methods.len();
     let mut done = 0;
