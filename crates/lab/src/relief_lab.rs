@@ -4,6 +4,7 @@
 //! `index.html` that sets our figures beside the thesis's Table 4.1.
 
 use crate::heatmap::{heat_image, with_legend};
+use crate::lab::Progress;
 use crate::metrics::compare;
 use crate::plot::{scatter_svg, Series};
 use crate::report::{format_number, Report};
@@ -191,9 +192,6 @@ pub struct ReliefSummary {
     /// Path of the HTML page.
     pub index: PathBuf,
 }
-
-/// A progress report: `done` of `total` steps, and what is being done.
-pub type Progress<'a> = &'a (dyn Fn(usize, usize, &str) + Sync);
 
 /// The thesis's Table 4.1 (FPS), rows 0°, 45°, 60°, 80°; columns POM 4, 8, 16, 24, 32, adaptive.
 pub const THESIS_TABLE_4_1: [[f64; 6]; 4] = [
