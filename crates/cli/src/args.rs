@@ -1,6 +1,6 @@
 //! Command-line arguments.
 
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, CommandFactory, FromArgMatches, Parser, Subcommand};
 use renderlab_relief::{KernelChoice, Technique};
 use renderlab_texture::filter::FilterSpec;
 use renderlab_texture::reference::PixelFilter;
@@ -26,6 +26,23 @@ fn techniques_syntax() -> String {
         "Techniques, comma-separated (default: the lab's list): {}",
         renderlab_relief::techniques::syntax()
     )
+}
+
+/// Parses the process's arguments. Every command accepts values that read as negative
+/// numbers (`--height-scale -1`), so that such a value reaches the flag's own range check
+/// instead of being taken for an unknown flag.
+pub fn try_parse() -> Result<Cli, clap::Error> {
+    let mut cmd = command();
+    let mut matches = cmd.try_get_matches_from_mut(std::env::args_os())?;
+    Cli::from_arg_matches_mut(&mut matches).map_err(|e| e.format(&mut cmd))
+}
+
+/// The command tree with negative numbers allowed as values at every level.
+fn command() -> clap::Command {
+    fn negative_numbers(cmd: clap::Command) -> clap::Command {
+        cmd.allow_negative_numbers(true).mut_subcommands(negative_numbers)
+    }
+    negative_numbers(Cli::command())
 }
 
 /// renderlab: forms images of textured and relief surfaces and measures rendering methods

@@ -1,7 +1,7 @@
 //! The subcommands' implementations: validate arguments, call the libraries, report.
 
 use crate::args::*;
-use crate::progress::Progress;
+use crate::progress::{LabBars, Progress};
 use anyhow::{bail, Context, Result};
 use glam::Vec3;
 use renderlab_core::camera::Camera;
@@ -13,6 +13,7 @@ use renderlab_lab::heatmap::heat_image;
 use renderlab_lab::noise_lab::{run_noise_lab_with, CloudsConfig, NoiseLabConfig, MAX_CLOUDS_SIZE};
 use renderlab_lab::noise_motion::MotionConfig;
 use renderlab_lab::relief_lab::{default_techniques, run_relief_bench, Method, ReliefBenchConfig, View};
+use renderlab_lab::suite::{run_report, Preset};
 use renderlab_lab::texture_lab::{run_texture_bench, SigmaStudy, TextureBenchConfig};
 use renderlab_relief::maps::complexity::{complexity_map, ComplexityParams};
 use renderlab_relief::render::{render, render_reference};
@@ -131,8 +132,8 @@ fn relief_bench(a: BenchArgs) -> Result<()> {
     if !(16..=4096).contains(&a.cone_size) {
         bail!("--cone-size: {} must lie in 16..=4096", a.cone_size);
     }
-    let material = load_material(&a.material)?;
     create_dir(&a.out)?;
+    let material = load_material(&a.material)?;
     let p = Progress::new("relief");
     let summary = run_relief_bench(&material, &cfg, &a.out, &|d, t, m| p.update(d, t, m))?;
     p.finish();
@@ -559,60 +560,20 @@ fn smoke(a: SmokeArgs) -> Result<()> {
 }
 
 fn report(a: ReportArgs) -> Result<()> {
-    create_dir(&a.out)?;
-    let started = std::time::Instant::now();
-    let mut cfg = ReliefBenchConfig { reps: 3, ..ReliefBenchConfig::default() };
-    if a.quick {
-        cfg.width = 640;
-        cfg.height = 400;
-        cfg.reps = 1;
-        cfg.warmup = 0;
+    let preset = if a.quick { Preset::Quick } else { Preset::Report };
+    let bars = LabBars::default();
+    let suite = run_report(&a.out, preset, &|lab, d, t, m| bars.update(lab, d, t, m));
+    bars.finish();
+    let suite = suite?;
+    for lab in &suite.labs {
+        for f in &lab.summary.findings {
+            println!("{f}");
+        }
     }
-    let material = procedural::material("bricks", procedural::DEFAULT_SIZE)?;
-    let relief_dir = a.out.join("relief");
-    create_dir(&relief_dir)?;
-    let p = Progress::new("relief");
-    let summary = run_relief_bench(&material, &cfg, &relief_dir, &|d, t, m| p.update(d, t, m))?;
-    p.finish();
-    let noise_dir = a.out.join("noise");
-    create_dir(&noise_dir)?;
-    let noise_started = std::time::Instant::now();
-    let p = Progress::new("noise");
-    let noise_cfg = NoiseLabConfig {
-        motion: if a.quick { MotionConfig::quick() } else { MotionConfig::default() },
-        ..NoiseLabConfig::default()
-    };
-    let noise = run_noise_lab_with(&noise_dir, &noise_cfg, &|d, t, m| p.update(d, t, m))?;
-    p.finish();
-    let noise_s = noise_started.elapsed().as_secs_f64();
-    let noise_findings = noise.findings.join(" ");
-    let texture_dir = a.out.join("texture");
-    let texture_cfg = if a.quick {
-        TextureBenchConfig::quick()
-    } else {
-        TextureBenchConfig { reps: 3, ..TextureBenchConfig::default() }
-    };
-    let p = Progress::new("texture");
-    let texture = run_texture_bench(&texture_cfg, &texture_dir, &|d, t, m| p.update(d, t, m))?;
-    p.finish();
-    renderlab_lab::report::write_index(
-        &a.out,
-        &[
-            ("Relief surfaces (thesis 000)", "relief/index.html", summary.headline.as_str()),
-            ("Perlin noise (thesis 001, chapter 3)", "noise/index.html", noise_findings.as_str()),
-            (
-                "Texture mapping and filtering (thesis 001, chapter 2)",
-                "texture/index.html",
-                texture.headline.as_str(),
-            ),
-        ],
-    )?;
-    for f in summary.findings.iter().chain(&noise.findings) {
-        println!("{f}");
+    for lab in &suite.labs {
+        println!("{} lab: {:.1} s", lab.name, lab.summary.seconds);
     }
-    println!("noise lab: {noise_s:.2} s");
-    println!("texture lab: {:.1} s", texture.seconds);
-    println!("wrote {} in {:.1} s", a.out.join("index.html").display(), started.elapsed().as_secs_f64());
+    println!("wrote {} in {:.1} s", suite.index.display(), suite.seconds);
     Ok(())
 }
 

@@ -11,10 +11,8 @@ mod args;
 mod commands;
 mod progress;
 
-use clap::Parser;
-
 fn main() {
-    let cli = match args::Cli::try_parse() {
+    let cli = match args::try_parse() {
         Ok(cli) => cli,
         Err(e) if !e.use_stderr() => e.exit(), // --help, --version
         Err(e) => {

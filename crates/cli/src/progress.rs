@@ -41,3 +41,33 @@ impl Progress {
         self.bar.finish_and_clear();
     }
 }
+
+/// One progress bar per lab for a run of several labs (the report): a lab's first update
+/// ends the previous lab's bar and starts its own.
+#[derive(Default)]
+pub struct LabBars {
+    current: Mutex<Option<(String, Progress)>>,
+}
+
+impl LabBars {
+    /// Reports `done` of `total` steps of `lab`.
+    pub fn update(&self, lab: &str, done: usize, total: usize, msg: &str) {
+        let mut current = self.current.lock().expect("progress lock");
+        if current.as_ref().is_none_or(|(name, _)| name != lab) {
+            if let Some((_, bar)) = current.take() {
+                bar.finish();
+            }
+            *current = Some((lab.to_string(), Progress::new(lab)));
+        }
+        if let Some((_, bar)) = current.as_ref() {
+            bar.update(done, total, msg);
+        }
+    }
+
+    /// Ends the last bar.
+    pub fn finish(&self) {
+        if let Some((_, bar)) = self.current.lock().expect("progress lock").take() {
+            bar.finish();
+        }
+    }
+}

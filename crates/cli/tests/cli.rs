@@ -127,12 +127,14 @@ fn bad_render_arguments() {
 }
 
 #[test]
-fn mismatched_user_maps_are_refused() {
+fn user_maps_of_different_resolutions_render() {
+    // A 64² albedo over a 128² height map, as asset sets often ship them: each map is sampled
+    // in UV through its own pyramid.
     let dir = tempfile::tempdir().unwrap();
     let a = dir.path().join("a.png");
     let h = dir.path().join("h.png");
-    write_png(&a, 16, 16);
-    write_png(&h, 8, 8);
+    write_png(&a, 64, 64);
+    write_png(&h, 128, 128);
     let out = dir.path().join("r.png");
     let args = [
         "relief",
@@ -144,12 +146,54 @@ fn mismatched_user_maps_are_refused() {
         "--height-map",
         h.to_str().unwrap(),
         "--width",
-        "32",
+        "48",
         "--height",
-        "20",
+        "32",
     ];
-    fails_with(&args, "sizes differ");
+    let o = renderlab(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let img = renderlab_core::io::load_color(&out).unwrap();
+    let px = img.pixels();
+    assert!(px.iter().all(|c| c.is_finite()));
+    let first = px[0];
+    assert!(px.iter().any(|c| (*c - first).abs().max_element() > 0.05), "the image is blank");
+}
+
+#[test]
+fn negative_numbers_reach_the_range_checks() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("r.png");
+    let o = out.to_str().unwrap();
+    let base = ["relief", "render", "-o", o, "--width", "16", "--height", "16"];
+    let with = |extra: &[&'static str]| -> Vec<&str> { base.iter().chain(extra).copied().collect() };
+    fails_with(
+        &with(&["--height-scale", "-1", "--albedo", "a.png", "--height-map", "h.png"]),
+        "--height-scale",
+    );
+    fails_with(&with(&["--angle", "-5"]), "--angle");
+    fails_with(&with(&["--gamma", "-0.5"]), "gamma");
+    fails_with(&["noise", "--out", o, "--frequency", "-3"], "--frequency");
     assert!(!out.exists());
+}
+
+#[test]
+fn outputs_in_a_missing_directory_are_refused_before_the_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let missing = dir.path().join("no_such_dir");
+    let out = missing.join("out.png");
+    let o = out.to_str().unwrap();
+    for args in [
+        vec!["relief", "render", "-o", o],
+        vec!["texture", "render", "-o", o, "--filter", "reference"],
+        vec!["complexity", "h.png", o],
+    ] {
+        fails_with(&args, "no_such_dir");
+        let r = renderlab(&args);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert!(err.contains("out.png") && err.contains("does not exist"), "{args:?}: {err}");
+        assert!(String::from_utf8_lossy(&r.stdout).is_empty(), "{args:?}: nothing may be rendered");
+        assert!(!out.exists() && !missing.exists(), "{args:?}");
+    }
 }
 
 #[test]

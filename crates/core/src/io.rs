@@ -47,12 +47,34 @@ pub fn format_of(path: &Path) -> Result<Format> {
 }
 
 /// The output format of `path`, refusing what renderlab cannot write (JPEG, TGA, unknown
-/// extensions), so that a command can reject its output path before spending time on a render.
+/// extensions) and a path whose directory does not exist, so that a command can reject its
+/// output path before spending time on a render.
 pub fn check_output(path: &Path) -> Result<Format> {
-    match format_of(path)? {
-        f @ (Format::Png | Format::Exr) => Ok(f),
-        _ => Err(unsupported_output(path)),
+    let format = match format_of(path)? {
+        f @ (Format::Png | Format::Exr) => f,
+        _ => return Err(unsupported_output(path)),
+    };
+    check_parent(path)?;
+    Ok(format)
+}
+
+/// Refuses an output file whose directory does not exist (or is not a directory), naming
+/// both, so that a command fails before its work rather than when it saves the result. A
+/// bare file name lies in the current directory, which exists.
+pub fn check_parent(path: &Path) -> Result<()> {
+    let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) else {
+        return Ok(());
+    };
+    if parent.is_dir() {
+        return Ok(());
     }
+    Err(CoreError::Write {
+        path: path.to_path_buf(),
+        source: std::io::Error::new(
+            std::io::ErrorKind::NotFound,
+            format!("directory {} does not exist", parent.display()),
+        ),
+    })
 }
 
 /// Pixels as decoded, before any colour interpretation: RGBA values scaled to [0, 1] (or as
@@ -442,6 +464,19 @@ pub fn save_exr(path: impl AsRef<Path>, img: &Image<Vec3>) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_output_in_a_missing_directory_is_refused_by_name() {
+        let dir = tempfile::tempdir().unwrap();
+        assert_eq!(check_output(&dir.path().join("a.png")).unwrap(), Format::Png);
+        assert_eq!(check_output(Path::new("bare.exr")).unwrap(), Format::Exr);
+        let missing = dir.path().join("nope").join("a.png");
+        let msg = check_output(&missing).unwrap_err().to_string();
+        assert!(msg.contains("a.png") && msg.contains("nope") && msg.contains("does not exist"), "{msg}");
+        // The format is still checked first: a JPEG is refused for what it is.
+        let msg = check_output(&dir.path().join("nope").join("a.jpg")).unwrap_err().to_string();
+        assert!(msg.contains("writes only .png and .exr"), "{msg}");
+    }
 
     #[test]
     fn a_panicking_decoder_becomes_an_error_naming_the_file() {

@@ -1,10 +1,10 @@
 //! Surface materials: albedo, height and normal maps plus the relief depth scale.
 
-use crate::error::{check_range, CoreError, Result};
+use crate::error::{check_range, Result};
 use crate::image::Image;
 use glam::Vec3;
 
-/// A relief material. All maps share one size. `height` is 1 at the top of the relief and 0
+/// A relief material. Each map has its own resolution and is addressed in UV. `height` is 1 at the top of the relief and 0
 /// at its deepest point; techniques that follow the thesis work with the inverted *depth*
 /// `1 − height`.
 #[derive(Clone, Debug)]
@@ -23,8 +23,10 @@ pub struct Material {
 }
 
 impl Material {
-    /// Builds a material from user maps, checking that sizes agree and deriving the normal
-    /// map from the height map when none is given.
+    /// Builds a material from user maps, deriving the normal map from the height map when none
+    /// is given. The maps may have different resolutions (a 512² albedo over a 1024² height map
+    /// is common in asset sets): each is sampled in UV through its own mip pyramid, so only
+    /// the height scale is checked here.
     pub fn from_maps(
         name: impl Into<String>,
         albedo: Image<Vec3>,
@@ -34,30 +36,12 @@ impl Material {
     ) -> Result<Self> {
         let name = name.into();
         check_range("--height-scale", height_scale, 0.0, 1.0)?;
-        let pair = |what: &str, a: (u32, u32), b: (u32, u32)| -> Result<()> {
-            if a != b {
-                return Err(CoreError::SizeMismatch {
-                    what: format!("{name}: {what}"),
-                    a_w: a.0,
-                    a_h: a.1,
-                    b_w: b.0,
-                    b_h: b.1,
-                });
-            }
-            Ok(())
-        };
-        pair("albedo and height maps", albedo.size(), height.size())?;
-        let normal = match normal {
-            Some(n) => {
-                pair("albedo and normal maps", albedo.size(), n.size())?;
-                n
-            }
-            None => normals_from_height(&height, height_scale),
-        };
+        let normal = normal.unwrap_or_else(|| normals_from_height(&height, height_scale));
         Ok(Self { name, albedo, height, normal, height_scale })
     }
 
-    /// `(width, height)` of the maps.
+    /// `(width, height)` of the albedo map (the other maps may differ; see
+    /// [`Material::from_maps`]).
     pub fn size(&self) -> (u32, u32) {
         self.albedo.size()
     }
@@ -101,10 +85,12 @@ mod tests {
     }
 
     #[test]
-    fn mismatched_sizes_are_refused() {
+    fn maps_of_different_sizes_are_accepted() {
         let a = Image::new(4, 4, Vec3::ONE);
-        let h = Image::new(4, 5, 0.0f32);
-        let e = Material::from_maps("m", a, h, None, 0.05).unwrap_err();
-        assert!(e.to_string().contains("sizes differ"), "{e}");
+        let h = Image::new(8, 16, 0.5f32);
+        let m = Material::from_maps("m", a, h, None, 0.05).unwrap();
+        assert_eq!(m.size(), (4, 4));
+        assert_eq!(m.normal.size(), (8, 16), "derived normals follow the height map");
+        assert!(Material::from_maps("m", m.albedo.clone(), m.height.clone(), None, f32::NAN).is_err());
     }
 }

@@ -13,7 +13,7 @@ use renderlab_core::Image;
 use renderlab_lab::heatmap::{heat_image, percentile, with_legend};
 use renderlab_lab::metrics::{compare, per_pixel_abs_error};
 use renderlab_lab::plot::{bar_svg, scatter_svg, BarSeries, Series};
-use renderlab_lab::report::{format_number, write_index, Report};
+use renderlab_lab::report::{format_number, write_index, IndexCard, Report};
 use renderlab_lab::results::{write_csv, write_json};
 use renderlab_lab::timing::{measure, Timing};
 use serde::Serialize;
@@ -204,15 +204,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ))
         .image_grid(&heat_grid, 2);
     report.write(lab_dir.join("index.html"))?;
+    let card = |title: &str, link: &str, summary: &str| IndexCard {
+        title: title.into(),
+        link: link.into(),
+        summary: summary.into(),
+        image: None,
+    };
     let index = write_index(
         &out,
         &[
-            (
+            card(
                 "Demo lab",
                 "demo/index.html",
                 "Synthetic blur and noise against a brick reference: every toolkit part.",
             ),
-            (
+            card(
                 "Relief lab",
                 "relief/index.html",
                 "Parallax, POM, relief and cone-step mapping against exact ray casting.",

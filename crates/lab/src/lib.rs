@@ -11,12 +11,16 @@
 //! - writes rows of numbers with [`results`] (CSV and JSON, atomically);
 //! - draws cost-against-error charts with [`plot`] and assembles a self-contained HTML page
 //!   with [`report`], linked from an index page.
+//!
+//! Every lab has one shape, the [`Lab`] trait (settings with a full and a quick preset, a run
+//! that hands back a [`LabSummary`]); [`suite`] runs them all and writes the report's index.
 
 #![warn(missing_docs)]
 
 pub mod error;
 mod glyphs;
 pub mod heatmap;
+pub mod lab;
 pub mod metrics;
 pub mod noise_lab;
 pub mod noise_motion;
@@ -24,10 +28,12 @@ pub mod plot;
 pub mod relief_lab;
 pub mod report;
 pub mod results;
+pub mod suite;
 pub mod texture_lab;
 pub mod timing;
 
 pub use error::{LabError, Result};
+pub use lab::{Lab, LabSummary, Progress};
 pub use metrics::{Comparison, FlipResult, Metrics};
 pub use report::Report;
 pub use timing::{measure, Timing};

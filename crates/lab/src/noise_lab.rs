@@ -23,8 +23,8 @@
 
 use crate::error::Result;
 use crate::heatmap::gray_image;
+use crate::lab::Progress;
 use crate::plot::PALETTE;
-use crate::relief_lab::Progress;
 use crate::report::{format_number, Report};
 use crate::results::{write_csv, write_json};
 use plotters::prelude::*;

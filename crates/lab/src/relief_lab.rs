@@ -4,6 +4,7 @@
 //! `index.html` that sets our figures beside the thesis's Table 4.1.
 
 use crate::heatmap::{heat_image, with_legend};
+use crate::lab::Progress;
 use crate::metrics::compare;
 use crate::plot::{scatter_svg, Series};
 use crate::report::{format_number, Report};
@@ -192,9 +193,6 @@ pub struct ReliefSummary {
     pub index: PathBuf,
 }
 
-/// A progress report: `done` of `total` steps, and what is being done.
-pub type Progress<'a> = &'a (dyn Fn(usize, usize, &str) + Sync);
-
 /// The thesis's Table 4.1 (FPS), rows 0°, 45°, 60°, 80°; columns POM 4, 8, 16, 24, 32, adaptive.
 pub const THESIS_TABLE_4_1: [[f64; 6]; 4] = [
     [1294.0, 866.0, 418.0, 280.0, 207.0, 978.0],
@@ -283,7 +281,9 @@ pub fn run_relief_bench(
     for &(t, kernel) in &methods {
         check(t, kernel, std::slice::from_ref(&mat))?;
     }
-    let tex_size = Vec2::new(material.size().0 as f32, material.size().1 as f32);
+    // UV error is counted in texels of the height map, where the relief is defined (the
+    // albedo may have another resolution).
+    let tex_size = Vec2::new(material.height.width() as f32, material.height.height() as f32);
     let scene = Scene::benchmark(material.clone());
     let total = cfg.angles.len() * methods.len();
     let mut done = 0;

@@ -142,10 +142,13 @@ figcaption { color: var(--muted); font-size: 13px; margin-top: 6px; }
 .grid { display: grid; gap: 18px; grid-template-columns: repeat(var(--cols, 2), minmax(0, 1fr));
   margin: 14px 0 24px; }
 .grid figure { margin: 0; }
-.cards { display: grid; gap: 16px; grid-template-columns: repeat(auto-fill, minmax(300px, 1fr));
+.cards { display: grid; gap: 16px; grid-template-columns: repeat(auto-fill, minmax(460px, 1fr));
   margin: 24px 0; }
-.card { display: block; border: 1px solid var(--line); border-radius: 8px; padding: 16px 18px;
-  color: var(--ink); background: #fff; }
+.card { display: flex; gap: 16px; align-items: flex-start; border: 1px solid var(--line);
+  border-radius: 8px; padding: 16px 18px; color: var(--ink); background: #fff; }
+.card img.thumb { flex: 0 0 160px; width: 160px; height: 120px; object-fit: cover;
+  border: 1px solid var(--line); border-radius: 4px; background: var(--panel); }
+.card .text { min-width: 0; }
 .card:hover { border-color: var(--accent); text-decoration: none; box-shadow: 0 2px 8px rgba(0,0,0,0.06); }
 .card h3 { margin: 0 0 6px; font-size: 17px; color: var(--accent); }
 .card p { margin: 0; color: var(--muted); font-size: 14px; }
@@ -345,24 +348,38 @@ fn figure(rel_path: &str, caption: &str) -> String {
     )
 }
 
-/// Writes `out_dir/index.html`, the top-level results page: one card per lab with its name
-/// (linking to `rel_link`, the lab's page relative to `out_dir`) and a one-line summary. Returns
+/// One lab's card on the index page.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct IndexCard {
+    /// The lab's title (text).
+    pub title: String,
+    /// The lab's page, relative to the index.
+    pub link: String,
+    /// The lab's headline (text).
+    pub summary: String,
+    /// The lab's headline image, relative to the index, shown as a thumbnail beside the
+    /// summary (none: text only).
+    pub image: Option<String>,
+}
+
+/// Writes `out_dir/index.html`, the top-level results page: one card per lab, linking to the
+/// lab's page, with its headline image as a thumbnail beside its title and summary. Returns
 /// the path written.
-pub fn write_index<N: AsRef<str>, L: AsRef<str>, S: AsRef<str>>(
-    out_dir: impl AsRef<Path>,
-    labs: &[(N, L, S)],
-) -> Result<PathBuf> {
+pub fn write_index(out_dir: impl AsRef<Path>, labs: &[IndexCard]) -> Result<PathBuf> {
     let mut body = String::from(
         "<p>Each lab measures rendering methods for cost and for error against a ground-truth \
          reference. Open a lab for its tables, plots and images.</p>\n<div class=\"cards\">\n",
     );
-    for (name, link, summary) in labs {
+    for card in labs {
+        let title = escape_html(&card.title);
+        let thumb = card.image.as_deref().map_or_else(String::new, |src| {
+            format!("<img class=\"thumb\" src=\"{}\" alt=\"{title}\" loading=\"lazy\">", escape_url(src))
+        });
         let _ = writeln!(
             body,
-            "<a class=\"card\" href=\"{}\"><h3>{}</h3><p>{}</p></a>",
-            escape_url(link.as_ref()),
-            escape_html(name.as_ref()),
-            escape_html(summary.as_ref())
+            "<a class=\"card\" href=\"{}\">{thumb}<div class=\"text\"><h3>{title}</h3><p>{}</p></div></a>",
+            escape_url(&card.link),
+            escape_html(&card.summary)
         );
     }
     body.push_str("</div>\n");
@@ -435,11 +452,20 @@ mod tests {
         r.paragraph("hello");
         r.write(&path).unwrap();
         assert!(std::fs::read_to_string(&path).unwrap().contains("<p>hello</p>"));
-        let index =
-            write_index(dir.path(), &[("Relief <mapping>", "relief/index.html", "POM vs relief")]).unwrap();
+        let card = |image: Option<&str>| IndexCard {
+            title: "Relief <mapping>".into(),
+            link: "relief/index.html".into(),
+            summary: "POM vs relief".into(),
+            image: image.map(String::from),
+        };
+        let index = write_index(dir.path(), &[card(Some("relief/img/ref 60.png")), card(None)]).unwrap();
         let html = std::fs::read_to_string(index).unwrap();
-        assert!(html.contains("href=\"relief/index.html\""));
+        assert_eq!(html.matches("href=\"relief/index.html\"").count(), 2);
         assert!(html.contains("Relief &lt;mapping&gt;"));
+        // The headline image sits inside the card, before its text; a card without one has none.
+        assert_eq!(html.matches("<img class=\"thumb\" src=\"relief/img/ref%2060.png\"").count(), 1);
+        let first = html.find("<img class=\"thumb\"").unwrap();
+        assert!(first < html.find("<h3>").unwrap());
         let names: Vec<_> = std::fs::read_dir(dir.path())
             .unwrap()
             .map(|e| e.unwrap().file_name().into_string().unwrap())

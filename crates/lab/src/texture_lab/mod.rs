@@ -23,8 +23,8 @@ pub use verdicts::{rank, Ranking};
 
 use crate::error::Result;
 use crate::heatmap::{heat_image, with_legend};
+use crate::lab::Progress;
 use crate::metrics::{compare, per_pixel_abs_error, Metrics};
-use crate::relief_lab::Progress;
 use crate::results::{write_csv, write_json};
 use glam::{Vec3, Vec4};
 use renderlab_core::io::{save_color, save_rgb8};

@@ -1,0 +1,60 @@
+//! The relief-surface lab ([`crate::relief_lab`]) as the suite runs it: the bricks material
+//! alone on its wall at the thesis's four view angles.
+
+use crate::error::Result;
+use crate::lab::{create_dir, existing, files_under, Lab, LabSummary, Progress};
+use crate::relief_lab::{run_relief_bench, ReliefBenchConfig};
+use renderlab_core::{procedural, Material};
+use std::path::Path;
+use std::time::Instant;
+
+/// The relief benchmark on one material.
+#[derive(Clone, Debug)]
+pub struct ReliefLab {
+    /// The material measured (the thesis: bricks).
+    pub material: Material,
+    /// Frame, angles, techniques, repetitions.
+    pub config: ReliefBenchConfig,
+}
+
+impl Lab for ReliefLab {
+    type Config = ReliefBenchConfig;
+    const NAME: &'static str = "relief";
+    const TITLE: &'static str = "Relief surfaces (thesis 000)";
+
+    /// Bricks at the built-in size, the lab's defaults with three timed repetitions.
+    fn report_preset() -> Result<Self> {
+        let material = procedural::material("bricks", procedural::DEFAULT_SIZE)?;
+        Ok(ReliefLab { material, config: ReliefBenchConfig { reps: 3, ..ReliefBenchConfig::default() } })
+    }
+
+    /// A 640×400 frame, one repetition and no warm-up.
+    fn quick_preset() -> Result<Self> {
+        let mut lab = Self::report_preset()?;
+        lab.config = ReliefBenchConfig { width: 640, height: 400, reps: 1, warmup: 0, ..lab.config };
+        Ok(lab)
+    }
+
+    fn config(&self) -> &ReliefBenchConfig {
+        &self.config
+    }
+
+    /// Runs [`run_relief_bench`]; the headline image is the lit reference at the largest
+    /// angle up to 60° (the relief is clearly visible there and nothing is yet clipped).
+    fn run(&self, out: &Path, progress: Progress) -> Result<LabSummary> {
+        let started = Instant::now();
+        create_dir(out)?;
+        let s = run_relief_bench(&self.material, &self.config, out, progress)?;
+        let angle = self.config.angles.iter().copied().filter(|&a| a <= 60.0).reduce(f32::max);
+        let headline_image =
+            angle.and_then(|a| existing(out.join("img").join(format!("reference_lit_{a}.png"))));
+        Ok(LabSummary {
+            headline: s.headline,
+            findings: s.findings,
+            index: s.index,
+            headline_image,
+            files: files_under(out)?,
+            seconds: started.elapsed().as_secs_f64(),
+        })
+    }
+}
