@@ -330,7 +330,7 @@ impl Filter for Ewa {
         } else {
             None
         };
-        self.scan(tex, level, &fp, spans, cut, inv_s2, counter)
+        self.scan(tex, level, &fp, spans, counter)
     }
 }
 
@@ -344,11 +344,11 @@ impl Ewa {
         level: usize,
         fp: &Footprint,
         spans: Option<&[(i32, i32); STORED_ROWS]>,
-        cut: f32,
-        inv_s2: f32,
         counter: &mut C,
     ) -> Vec4 {
         let table = &*TABLE;
+        let (sigma, cut) = self.params();
+        let inv_s2 = 1.0 / (sigma * sigma);
         // Largest exponent inside the support, in table units: max(cut, reconstruction cut)²/2.
         let edge = 0.5 * reconstruction_cut(cut).powi(2) * PER_UNIT as f32;
         let img = tex.level(level);
