@@ -686,7 +686,7 @@ fn texture_render(a: TextureRenderArgs) -> Result<()> {
             let pf = if a.filter == "reference" { PixelFilter::GAUSSIAN } else { PixelFilter::Box };
             reference(&scene, pf, a.samples, 1)?.image
         }
-        Some(f) => f.visit(RenderWith(&scene, &surface)),
+        Some(f) => scene.render_spec(&surface, &f),
     };
     let ms = started.elapsed().as_secs_f64() * 1e3;
     io::save_color(&a.out, &img)?;
@@ -699,14 +699,4 @@ fn texture_render(a: TextureRenderArgs) -> Result<()> {
         a.out.display()
     );
     Ok(())
-}
-
-/// Renders a scene through the visited filter.
-struct RenderWith<'a>(&'a TestScene, &'a renderlab_texture::scene::Surface);
-
-impl renderlab_texture::filter::FilterVisitor for RenderWith<'_> {
-    type Output = Image<glam::Vec3>;
-    fn visit<F: renderlab_texture::Filter>(self, filter: &F) -> Image<glam::Vec3> {
-        self.0.render(self.1, filter)
-    }
 }

@@ -26,7 +26,7 @@
 // `!(x > t)` is deliberate: it also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-use crate::filter::Filter;
+use crate::filter::{Filter, FilterSpec, FilterVisitor};
 use crate::mapping::{MappingError, Projective, QuadScene};
 use crate::mip::{Texture, Wrap};
 use crate::procedural::{bricks_texture, checker_texture, zone_plate_texture};
@@ -549,6 +549,30 @@ impl TestScene {
                 bg
             }
         })
+    }
+
+    /// [`TestScene::render`] through the filter a [`FilterSpec`] names.
+    pub fn render_spec(&self, surface: &Surface, spec: &FilterSpec) -> Image<Vec3> {
+        struct Render<'a>(&'a TestScene, &'a Surface);
+        impl FilterVisitor for Render<'_> {
+            type Output = Image<Vec3>;
+            fn visit<F: Filter>(self, filter: &F) -> Image<Vec3> {
+                self.0.render(self.1, filter)
+            }
+        }
+        spec.visit(Render(self, surface))
+    }
+
+    /// [`TestScene::count_fetches`] of the filter a [`FilterSpec`] names.
+    pub fn count_fetches_spec(&self, surface: &Surface, spec: &FilterSpec) -> (u64, u64) {
+        struct Count<'a>(&'a TestScene, &'a Surface);
+        impl FilterVisitor for Count<'_> {
+            type Output = (u64, u64);
+            fn visit<F: Filter>(self, filter: &F) -> (u64, u64) {
+                self.0.count_fetches(self.1, filter)
+            }
+        }
+        spec.visit(Count(self, surface))
     }
 
     /// Texel fetches of `filter` over the frame and the number of surface pixels (rows in

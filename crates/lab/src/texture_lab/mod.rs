@@ -204,16 +204,11 @@ pub struct TextureSummary {
     pub seconds: f64,
 }
 
-/// Renders a scene through the visited filter and counts its fetches per surface pixel.
-struct RenderFilter<'a>(&'a TestScene, &'a Surface);
-
-impl FilterVisitor for RenderFilter<'_> {
-    type Output = (Image<Vec3>, f64);
-    fn visit<F: Filter>(self, filter: &F) -> (Image<Vec3>, f64) {
-        let img = self.0.render(self.1, filter);
-        let (fetches, n) = self.0.count_fetches(self.1, filter);
-        (img, fetches as f64 / n.max(1) as f64)
-    }
+/// The image of a scene through `f` and its fetches per surface pixel.
+fn render_filter(scene: &TestScene, surface: &Surface, f: &FilterSpec) -> (Image<Vec3>, f64) {
+    let img = scene.render_spec(surface, f);
+    let (fetches, n) = scene.count_fetches_spec(surface, f);
+    (img, fetches as f64 / n.max(1) as f64)
 }
 
 /// Wall-clock milliseconds of one render of the frame through the visited filter.
@@ -330,7 +325,7 @@ pub fn run_texture_bench(cfg: &TextureBenchConfig, out: &Path, progress: Progres
         let surface = scene.surface();
         progress(done, total, &format!("{name}: rendering every filter"));
         let results: Vec<(Image<Vec3>, f64)> =
-            filters.iter().map(|f| f.visit(RenderFilter(&scene, &surface))).collect();
+            filters.iter().map(|f| render_filter(&scene, &surface, f)).collect();
         done += 1;
         let named: Vec<(String, &Image<Vec3>)> =
             filters.iter().zip(&results).map(|(f, r)| (f.name(), &r.0)).collect();

@@ -105,8 +105,7 @@ pub fn run(
         let name = kind.name();
         progress(&format!("σ study, {name}: filters"));
         let surface = scene.surface();
-        let images: Vec<Image<Vec3>> =
-            specs.iter().map(|f| f.visit(super::RenderFilter(&scene, &surface)).0).collect();
+        let images: Vec<Image<Vec3>> = specs.iter().map(|f| scene.render_spec(&surface, f)).collect();
         let named: Vec<(String, &Image<Vec3>)> =
             specs.iter().zip(&images).map(|(f, i)| (f.name(), i)).collect();
         let t = truth(&scene, &kernels, &study.sampling, cfg.seed, &named, NOISE_MARGIN_DB, &|m| {
