@@ -12,6 +12,7 @@ pub mod camera;
 pub mod color;
 pub mod counter;
 pub mod error;
+pub mod fastmath;
 pub mod image;
 pub mod io;
 pub mod material;

@@ -6,6 +6,7 @@ use crate::maps::height::HeightField;
 use crate::maps::packed::PackedRelief;
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
+use renderlab_core::fastmath::floor;
 use renderlab_core::Image;
 
 /// Smallest tangent-space `V.z` any technique divides by: views more grazing than ~89.94° are
@@ -73,8 +74,8 @@ impl ReliefInputs<'_> {
     #[inline]
     pub fn complexity_at(&self, uv: Vec2) -> f32 {
         let c = self.complexity;
-        let x = (uv.x * c.width() as f32).floor();
-        let y = (uv.y * c.height() as f32).floor();
+        let x = floor(uv.x * c.width() as f32);
+        let y = floor(uv.y * c.height() as f32);
         if !(x.is_finite() && y.is_finite()) {
             return 0.0;
         }

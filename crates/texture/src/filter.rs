@@ -18,6 +18,7 @@ pub use ewa::Ewa;
 use crate::mip::{Texture, Wrap};
 use glam::{Vec2, Vec4};
 use renderlab_core::counter::Counter;
+use renderlab_core::fastmath::{floor, floor_i64};
 use renderlab_core::image::wrap_index;
 
 /// A texture reconstruction/antialiasing filter.
@@ -58,15 +59,6 @@ fn finite(v: f32) -> f32 {
     } else {
         0.0
     }
-}
-
-/// `⌊x⌋` without a libm call (the baseline x86-64 target has no rounding instruction):
-/// truncate, then step down where truncation rounded up. Exact for the coordinates
-/// [`finite`] lets through (below 2⁶³ in magnitude; beyond 2²⁴ every f32 is an integer).
-#[inline(always)]
-fn floor_i64(x: f32) -> i64 {
-    let i = x as i64;
-    i - ((i as f32) > x) as i64
 }
 
 /// Bilinear lookup on one level (4 fetches), texel centres at `(i + 0.5) / size`.
@@ -128,7 +120,7 @@ impl Filter for Nearest {
     fn sample<C: Counter>(&self, tex: &Texture, uv: Vec2, _: Vec2, _: Vec2, counter: &mut C) -> Vec4 {
         let s = tex.size();
         counter.count(1);
-        tex.texel(0, (finite(uv.x) * s.x).floor() as i64, (finite(uv.y) * s.y).floor() as i64)
+        tex.texel(0, floor_i64(finite(uv.x) * s.x), floor_i64(finite(uv.y) * s.y))
     }
 }
 
@@ -166,7 +158,7 @@ impl Filter for Trilinear {
 /// same-sized textures with one footprint compute the LOD once.
 #[inline]
 pub fn trilinear_at<C: Counter>(tex: &Texture, uv: Vec2, l: f32, counter: &mut C) -> Vec4 {
-    let l0 = l.floor() as usize;
+    let l0 = floor(l) as usize;
     let t = l - l0 as f32;
     let a = bilinear_level(tex, l0, uv, counter);
     if t <= 0.0 || l0 + 1 >= tex.level_count() {

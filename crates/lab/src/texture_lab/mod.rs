@@ -27,6 +27,7 @@ use crate::lab::Progress;
 use crate::metrics::{compare, per_pixel_abs_error, Metrics};
 use crate::results::{write_csv, write_json};
 use glam::{Vec3, Vec4};
+use rayon::prelude::*;
 use renderlab_core::io::{save_color, save_rgb8};
 use renderlab_core::{CoreError, Image};
 use renderlab_texture::filter::{Anisotropic, Ewa, Filter, FilterSpec, FilterVisitor};
@@ -353,39 +354,50 @@ pub fn run_texture_bench(cfg: &TextureBenchConfig, out: &Path, progress: Progres
         let times = time_filters(&scene, &surface, &filters, cfg);
         done += 1;
         let hits = surface.hits().max(1) as f64;
-        let mut filter_images = Vec::new();
-        for ((f, (img, fetches)), ms) in filters.iter().zip(&results).zip(&times) {
-            let fname = f.name();
-            for r in &refs {
-                let m: Metrics = compare(img, &r.image, Some(&mask)).metrics;
-                records.push(TextureRecord {
-                    scene: name.clone(),
-                    kind: "filter",
-                    method: fname.clone(),
-                    reference: r.filter.family(),
-                    ns_per_pixel: ms * 1e6 / hits,
-                    fetches_per_pixel: *fetches,
-                    psnr_db: m.psnr_db,
-                    ssim: m.ssim,
-                    flip: m.flip,
-                    uv_err_vs_direct_max_texels: f64::NAN,
-                    uv_err_vs_direct_mean_texels: f64::NAN,
-                    uv_err_vs_exact_max_texels: f64::NAN,
-                    pixels,
-                });
-            }
-            if cfg.write_images {
-                let file = file_name(&fname);
-                save_color(img_dir.join(format!("{name}_{file}.png")), img)?;
-                let err = per_pixel_abs_error(img, &refs[0].image);
-                let heat = with_legend(&heat_image(&err, HEAT_MAX, Some(&mask)), HEAT_MAX, "abs error");
-                save_rgb8(img_dir.join(format!("{name}_{file}_err.png")), &heat)?;
-                if let Some(c) = scene.horizon_crop {
-                    save_color(img_dir.join(format!("{name}_{file}_crop.png")), &zoom(img, c, 4))?;
+        // The untimed work (metrics and images) for every filter at once, over the threads.
+        let per_filter: Vec<Vec<TextureRecord>> = filters
+            .par_iter()
+            .zip(&results)
+            .zip(&times)
+            .map(|((f, (img, fetches)), ms)| {
+                let fname = f.name();
+                let recs = refs
+                    .iter()
+                    .map(|r| {
+                        let m: Metrics = compare(img, &r.image, Some(&mask)).metrics;
+                        TextureRecord {
+                            scene: name.clone(),
+                            kind: "filter",
+                            method: fname.clone(),
+                            reference: r.filter.family(),
+                            ns_per_pixel: ms * 1e6 / hits,
+                            fetches_per_pixel: *fetches,
+                            psnr_db: m.psnr_db,
+                            ssim: m.ssim,
+                            flip: m.flip,
+                            uv_err_vs_direct_max_texels: f64::NAN,
+                            uv_err_vs_direct_mean_texels: f64::NAN,
+                            uv_err_vs_exact_max_texels: f64::NAN,
+                            pixels,
+                        }
+                    })
+                    .collect();
+                if cfg.write_images {
+                    let file = file_name(&fname);
+                    save_color(img_dir.join(format!("{name}_{file}.png")), img)?;
+                    let err = per_pixel_abs_error(img, &refs[0].image);
+                    let heat = with_legend(&heat_image(&err, HEAT_MAX, Some(&mask)), HEAT_MAX, "abs error");
+                    save_rgb8(img_dir.join(format!("{name}_{file}_err.png")), &heat)?;
+                    if let Some(c) = scene.horizon_crop {
+                        save_color(img_dir.join(format!("{name}_{file}_crop.png")), &zoom(img, c, 4))?;
+                    }
                 }
-                filter_images.push(fname.clone());
-            }
-        }
+                Ok(recs)
+            })
+            .collect::<Result<_>>()?;
+        records.extend(per_filter.into_iter().flatten());
+        let filter_images: Vec<String> =
+            if cfg.write_images { filters.iter().map(|f| f.name()).collect() } else { Vec::new() };
         if matches!(kind, SceneKind::ThesisQuad | SceneKind::Checkerboard) && !cfg.modes.is_empty() {
             progress(done, total, &format!("{name}: mapping modes"));
             let (recs, ratio) = modes::measure_modes(&scene, &surface, &refs, &mask, cfg)?;

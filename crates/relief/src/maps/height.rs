@@ -4,6 +4,7 @@
 
 use glam::Vec2;
 use renderlab_core::counter::Counter;
+use renderlab_core::fastmath::floor;
 use renderlab_core::image::wrap_index;
 use renderlab_core::Image;
 
@@ -72,8 +73,8 @@ impl HeightField {
         // NaN or absurd coordinates: clamp into a safe range so the lookup is defined.
         let x = if x.is_finite() { x.clamp(-1.0e7, 1.0e7) } else { 0.0 };
         let y = if y.is_finite() { y.clamp(-1.0e7, 1.0e7) } else { 0.0 };
-        let x0 = x.floor();
-        let y0 = y.floor();
+        let x0 = floor(x);
+        let y0 = floor(y);
         let fx = x - x0;
         let fy = y - y0;
         let w = self.width as usize;

@@ -15,6 +15,7 @@
 use crate::maps::cone::{ConeMap, MAX_RATIO};
 use crate::maps::height::HeightField;
 use glam::Vec2;
+use renderlab_core::fastmath::floor;
 
 /// Largest quantised value of a depth or a ratio.
 const Q: f32 = 65535.0;
@@ -204,8 +205,8 @@ impl PackedRelief {
     /// must be finite and within ±2²⁴.
     #[inline(always)]
     pub fn sample_texel(&self, x: f32, y: f32) -> Sample {
-        let x0 = x.floor();
-        let y0 = y.floor();
+        let x0 = floor(x);
+        let y0 = floor(y);
         let (fx, fy) = (x - x0, y - y0);
         let (xi, yi) = (x0 as i32, y0 as i32);
         let (xw, yw) = match self.masks {
@@ -246,8 +247,8 @@ impl PackedRelief {
         // `max`/`min` map NaN to the bound and keep the float-to-int conversion in range.
         let x = (uv.x * self.wf - 0.5).max(-1.0e7).min(1.0e7);
         let y = (uv.y * self.hf - 0.5).max(-1.0e7).min(1.0e7);
-        let x0 = x.floor();
-        let y0 = y.floor();
+        let x0 = floor(x);
+        let y0 = floor(y);
         let (fx, fy) = (x - x0, y - y0);
         let (xi, yi) = (x0 as i32, y0 as i32);
         let (xw, yw) = match self.masks {

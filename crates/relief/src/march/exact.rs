@@ -40,7 +40,7 @@ pub fn first_crossing(
         let p = p0 + k * t;
         // The cell the ray occupies just after t (ties broken by direction).
         let cell = |x: f64, kx: f64| -> f64 {
-            let f = x.floor();
+            let f = renderlab_core::fastmath::floor_f64(x);
             if x == f && kx < 0.0 {
                 f - 1.0
             } else {

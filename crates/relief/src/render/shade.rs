@@ -9,6 +9,7 @@ use crate::trace::{ReliefHit, ReliefTechnique, Shading};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use renderlab_core::counter::{Counter, NoCount, Tally};
+use renderlab_core::fastmath::floor2;
 use renderlab_core::scene::Lighting;
 use renderlab_core::{Image, SurfacePoint};
 use renderlab_texture::filter::{lod, trilinear_at};
@@ -175,7 +176,7 @@ fn trace_points<T: ReliefTechnique, C: Counter>(
     bases.clear();
     ids.clear();
     for sp in row.iter().flatten() {
-        let base = sp.uv.floor();
+        let base = floor2(sp.uv);
         let base = if base.is_finite() { base } else { Vec2::ZERO };
         rays.push((sp.uv - base, sp.view_ts));
         bases.push(base);

@@ -11,6 +11,7 @@ use super::{finite, Filter};
 use crate::mip::{Texture, Wrap};
 use glam::{Vec2, Vec4};
 use renderlab_core::counter::Counter;
+use renderlab_core::fastmath::floor;
 use renderlab_core::image::wrap_index;
 
 /// Catmull-Rom bicubic interpolation on level 0 (16 fetches): sharper than bilinear under
@@ -48,7 +49,7 @@ impl Filter for Bicubic {
         let (w, h) = img.size();
         let x = finite(uv.x) * w as f32 - 0.5;
         let y = finite(uv.y) * h as f32 - 0.5;
-        let (x0, y0) = (x.floor(), y.floor());
+        let (x0, y0) = (floor(x), floor(y));
         let wx = catmull_rom_weights(x - x0);
         let wy = catmull_rom_weights(y - y0);
         let xs = taps(x0 as i64, w, tex.wrap());

@@ -162,7 +162,7 @@ impl ConeMap {
     pub fn texel_of(&self, uv: Vec2) -> (u32, u32) {
         let cell = |t: f32, n: u32| -> u32 {
             let t = if t.is_finite() { (t * n as f32).clamp(-1.0e9, 1.0e9) } else { 0.0 };
-            renderlab_core::image::wrap_index(t.floor() as i64, n) as u32
+            renderlab_core::image::wrap_index(renderlab_core::fastmath::floor(t) as i64, n) as u32
         };
         (cell(uv.x, self.width), cell(uv.y, self.height))
     }

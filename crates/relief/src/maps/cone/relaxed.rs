@@ -1,6 +1,8 @@
 //! Exit geometry of the relaxed construction: the pooled grid as a bilinear, tiled surface,
 //! and the exact first exit of a ray from it (a quadratic per cell).
 
+use renderlab_core::fastmath::floor_f64;
+
 /// The pooled grid as a bilinear, wrapped surface with texel centres at integer coordinates.
 pub(super) struct GridSurface {
     /// The pooled depths.
@@ -57,7 +59,7 @@ impl GridSurface {
     /// Bilinear depth at grid position `(x, y)`.
     #[inline]
     fn bilinear(&self, x: f64, y: f64) -> f64 {
-        let (x0, y0) = (x.floor(), y.floor());
+        let (x0, y0) = (floor_f64(x), floor_f64(y));
         let (fx, fy) = (x - x0, y - y0);
         let (i, j) = (x0 as i64, y0 as i64);
         let top = self.at(i, j) + (self.at(i + 1, j) - self.at(i, j)) * fx;
@@ -69,7 +71,7 @@ impl GridSurface {
     /// (cells are centred on the integer positions).
     #[inline]
     fn inside_ratio(&self, x: f64, y: f64) -> f64 {
-        self.inside.get((x + 0.5).floor() as i64, (y + 0.5).floor() as i64) as f64
+        self.inside.get(floor_f64(x + 0.5) as i64, floor_f64(y + 0.5) as i64) as f64
     }
 
     /// The relaxed bound that texel `(kx, ky)` cells away imposes on the cone at `(px, py)`
@@ -142,13 +144,13 @@ impl GridSurface {
             // One exact cell: from s to the next cell boundary.
             let cell = |p: f64, k: f64| -> (i64, f64) {
                 if k > 0.0 {
-                    let i = p.floor();
+                    let i = floor_f64(p);
                     (i as i64, (i + 1.0 - p) / k)
                 } else if k < 0.0 {
-                    let i = p.ceil() - 1.0;
+                    let i = -floor_f64(-p) - 1.0;
                     (i as i64, (i - p) / k)
                 } else {
-                    (p.floor() as i64, f64::INFINITY)
+                    (floor_f64(p) as i64, f64::INFINITY)
                 }
             };
             let (ix, tx) = cell(x, ray.kx);

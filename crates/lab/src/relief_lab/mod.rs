@@ -1,0 +1,15 @@
+//! The relief-surface lab: renders every relief technique at the thesis's benchmark views,
+//! times it, counts its height fetches, and measures its error against the exact
+//! intersection shaded the same way. Writes `results.json`, `results.csv`, images and an
+//! `index.html` that sets our figures beside the thesis's Table 4.1.
+
+mod config;
+mod page;
+mod record;
+mod run;
+mod verdicts;
+
+pub use config::{default_techniques, resolve, Method, ReliefBenchConfig, POM_32};
+pub use record::{label, ReliefRecord, ReliefSummary};
+pub use run::{run_relief_bench, View};
+pub use verdicts::{thesis_weighted_gain, versus_pom32, VersusPom32, THESIS_TABLE_4_1};

@@ -1,0 +1,115 @@
+//! One measurement, and how records are named and looked up.
+
+use renderlab_relief::{Kernel, Technique};
+use serde::Serialize;
+use std::path::PathBuf;
+
+/// One technique at one angle: cost and error.
+#[derive(Clone, Debug, Serialize)]
+pub struct ReliefRecord {
+    /// The technique (written as its canonical name, e.g. `pom:32`).
+    pub technique: Technique,
+    /// Technique family (e.g. `pom`).
+    pub family: &'static str,
+    /// The kernel it ran on (`scalar`, `simd`).
+    pub kernel: Kernel,
+    /// Nominal layer or step count (0 when not applicable).
+    pub layers: u32,
+    /// View angle from the wall normal, degrees.
+    pub angle_deg: f32,
+    /// Median time of the whole shading pass (relief trace + texture filtering + lighting), ms.
+    pub time_ms: f64,
+    /// Median time of the relief trace alone over the frame (the technique's own cost), ms.
+    pub trace_ms: f64,
+    /// Fastest repetition, ms.
+    pub time_min_ms: f64,
+    /// Slowest repetition, ms.
+    pub time_max_ms: f64,
+    /// `1000 / time_ms`: the frame rate this pass alone would allow.
+    pub fps_equivalent: f64,
+    /// Mean height fetches per covered pixel.
+    pub samples_per_pixel: f64,
+    /// Mean planned layer count per covered pixel (0 when not applicable).
+    pub mean_layers: f64,
+    /// PSNR against the reference, dB (covered pixels).
+    pub psnr_db: f64,
+    /// Mean SSIM against the reference (covered pixels).
+    pub ssim: f64,
+    /// Mean FLIP error against the reference (covered pixels).
+    pub flip: f64,
+    /// Mean distance between the technique's and the exact displaced UV, in level-0 texels.
+    pub uv_error_texels: f64,
+    /// 95th percentile of that distance, texels.
+    pub uv_error_p95_texels: f64,
+    /// Pixels showing the surface.
+    pub covered_pixels: usize,
+}
+
+/// What a finished run hands back to its caller.
+#[derive(Clone, Debug)]
+pub struct ReliefSummary {
+    /// One record per technique × angle.
+    pub records: Vec<ReliefRecord>,
+    /// Human-readable conclusions (also in the HTML).
+    pub findings: Vec<String>,
+    /// One sentence for an index page.
+    pub headline: String,
+    /// Path of the HTML page.
+    pub index: PathBuf,
+}
+
+/// How a technique on a kernel is labelled in tables and findings: its name, with the kernel
+/// when that is not the scalar one.
+pub fn label(technique: Technique, kernel: Kernel) -> String {
+    match kernel {
+        Kernel::Scalar => technique.name(),
+        k => format!("{} ({k})", technique.name()),
+    }
+}
+
+/// File-name stem of a technique on a kernel: its name with `-` for `:`, and the kernel when
+/// that is not the scalar one.
+pub(super) fn slug(t: Technique, kernel: Kernel) -> String {
+    let name = t.name().replace(':', "-");
+    match kernel {
+        Kernel::Scalar => name,
+        k => format!("{name}-{k}"),
+    }
+}
+
+/// A technique on a kernel: how records are looked up.
+pub(super) type Key = (Technique, Kernel);
+
+pub(super) fn key(r: &ReliefRecord) -> Key {
+    (r.technique, r.kernel)
+}
+
+pub(super) fn find(records: &[ReliefRecord], k: Key, angle: f32) -> Option<&ReliefRecord> {
+    records.iter().find(|r| key(r) == k && r.angle_deg == angle)
+}
+
+/// Mean over the angles of `f(record)` for one technique; `None` if any angle is missing.
+pub(super) fn mean_over_angles(
+    records: &[ReliefRecord],
+    k: Key,
+    angles: &[f32],
+    f: impl Fn(&ReliefRecord) -> f64,
+) -> Option<f64> {
+    let v: Option<Vec<f64>> = angles.iter().map(|&a| find(records, k, a).map(&f)).collect();
+    let v = v?;
+    Some(v.iter().sum::<f64>() / v.len() as f64)
+}
+
+/// Mean over the angles of `f(a) / f(b)`; `None` if any angle is missing.
+pub(super) fn mean_ratio(
+    records: &[ReliefRecord],
+    a: Key,
+    b: Key,
+    angles: &[f32],
+    f: impl Fn(&ReliefRecord) -> f64,
+) -> Option<f64> {
+    let v: Option<Vec<f64>> =
+        angles.iter().map(|&x| Some(f(find(records, a, x)?) / f(find(records, b, x)?))).collect();
+    let v = v?;
+    Some(v.iter().sum::<f64>() / v.len() as f64)
+}

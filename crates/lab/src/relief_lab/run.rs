@@ -1,0 +1,228 @@
+//! The run: rasterize each view, time every technique, then measure its error.
+
+use super::config::{resolve, ReliefBenchConfig};
+use super::page::{write_report, ImageSet};
+use super::record::{label, slug, ReliefRecord, ReliefSummary};
+use super::verdicts::{findings, headline};
+use crate::heatmap::{heat_image, with_legend};
+use crate::lab::Progress;
+use crate::metrics::compare;
+use crate::results::{write_csv, write_json};
+use crate::timing::{measure, Timing};
+use glam::Vec2;
+use rayon::prelude::*;
+use renderlab_core::camera::Camera;
+use renderlab_core::io::{save_color, save_rgb8};
+use renderlab_core::{CoreError, Image, Material, Scene};
+use renderlab_raster::{rasterize, GBuffer};
+use renderlab_relief::render::{check, render, render_reference, trace_only};
+use renderlab_relief::{Frame, FrameInput, Kernel, Map, ReliefMaterial, Shading, Technique};
+use std::path::Path;
+
+/// Mean and 95th percentile of the UV distance in texels over the mask.
+fn uv_error(frame: &Frame, reference: &Frame, size: Vec2) -> (f64, f64, Image<f32>) {
+    let err = Image::from_fn_par(frame.uv.width(), frame.uv.height(), |x, y| {
+        if frame.mask.get(x, y) {
+            ((frame.uv.get(x, y) - reference.uv.get(x, y)) * size).length()
+        } else {
+            0.0
+        }
+    });
+    let mut v: Vec<f32> =
+        err.pixels().iter().zip(frame.mask.pixels()).filter(|(_, &m)| m).map(|(&e, _)| e).collect();
+    if v.is_empty() {
+        return (0.0, 0.0, err);
+    }
+    let mean = v.iter().map(|&e| e as f64).sum::<f64>() / v.len() as f64;
+    let k = ((v.len() - 1) as f64 * 0.95).round() as usize;
+    let (_, p95, _) = v.select_nth_unstable_by(k, |a, b| a.total_cmp(b));
+    (mean, *p95 as f64, err)
+}
+
+/// A rasterized view: the G-buffer the relief renderer shades.
+pub struct View {
+    /// View angle, degrees.
+    pub angle: f32,
+    /// Per-pixel surface points.
+    pub gbuffer: GBuffer,
+}
+
+impl View {
+    /// Rasterizes `scene` from `camera`.
+    pub fn new(scene: &Scene, camera: &Camera, angle: f32) -> Self {
+        Self { angle, gbuffer: rasterize(scene, camera) }
+    }
+
+    /// The renderer's view of it.
+    pub fn input(&self) -> FrameInput<'_> {
+        FrameInput {
+            width: self.gbuffer.width(),
+            height: self.gbuffer.height(),
+            points: self.gbuffer.pixels(),
+        }
+    }
+}
+
+/// Runs the relief benchmark on `material` (the thesis: bricks, alone on its wall) and writes
+/// everything under `out`.
+///
+/// Per angle, every technique is timed first, one after another with the machine to itself;
+/// then the untimed work (the counted render, the metrics, the images) runs for all of them
+/// at once, spread over the threads. The order changes no figure and no byte of an image.
+pub fn run_relief_bench(
+    material: &Material,
+    cfg: &ReliefBenchConfig,
+    out: &Path,
+    progress: Progress,
+) -> crate::Result<ReliefSummary> {
+    cfg.complexity.validate()?;
+    let img_dir = out.join("img");
+    std::fs::create_dir_all(&img_dir).map_err(|source| CoreError::Write { path: img_dir.clone(), source })?;
+    let methods = resolve(&cfg.techniques)?;
+    let needs_cone = methods.iter().any(|(t, _)| t.needs_map(Map::Cone));
+    progress(0, 1, "preparing material (pyramids, complexity map, cone map)");
+    let mat = ReliefMaterial::with_cone_size(material, &cfg.complexity, needs_cone.then_some(cfg.cone_size));
+    for &(t, kernel) in &methods {
+        check(t, kernel, std::slice::from_ref(&mat))?;
+    }
+    let scene = Scene::benchmark(material.clone());
+    let total = cfg.angles.len() * methods.len();
+    let mut done = 0;
+    let mut records = Vec::new();
+    let mut images: Vec<ImageSet> = Vec::new();
+    for &angle in &cfg.angles {
+        let camera = Camera::benchmark(angle, cfg.width, cfg.height);
+        let view = View::new(&scene, &camera, angle);
+        let mats = std::slice::from_ref(&mat);
+        let mut timings = Vec::with_capacity(methods.len());
+        for &(t, kernel) in &methods {
+            progress(done, total, &format!("{angle}°: {}", label(t, kernel)));
+            let (pass, _): (Timing, _) = measure(cfg.warmup, cfg.reps, || {
+                render(view.input(), mats, t, kernel, scene.lighting, scene.background, false)
+            });
+            let (trace, _) = measure(cfg.warmup, cfg.reps, || trace_only(view.input(), mats, t, kernel));
+            timings.push((pass, trace));
+            done += 1;
+        }
+        progress(done, total, &format!("{angle}°: references, errors and images"));
+        let mut refs: Vec<(Shading, Frame)> = Vec::new();
+        for &(t, _) in &methods {
+            let shading = t.shading();
+            if refs.iter().all(|(s, _)| *s != shading) {
+                let r = render_reference(view.input(), mats, t, scene.lighting, scene.background);
+                if cfg.write_images {
+                    let name = format!("reference_{}_{}.png", shading_name(shading), angle);
+                    save_color(img_dir.join(&name), &r.image)?;
+                }
+                refs.push((shading, r));
+            }
+        }
+        let ctx =
+            Analysis { view: &view, scene: &scene, mats, refs: &refs, material, img_dir: &img_dir, cfg };
+        let analysed: Vec<(ReliefRecord, Option<ImageSet>)> = methods
+            .par_iter()
+            .zip(&timings)
+            .map(|(&(t, kernel), &(pass, trace))| ctx.analyse(t, kernel, pass, trace))
+            .collect::<crate::Result<_>>()?;
+        for (rec, set) in analysed {
+            records.push(rec);
+            images.extend(set);
+        }
+    }
+    progress(done, total, "writing results and report");
+    write_json(out.join("results.json"), &records)?;
+    write_csv(out.join("results.csv"), &records)?;
+    let findings = findings(&records, &cfg.angles);
+    let headline = headline(&records, &cfg.angles);
+    let index = out.join("index.html");
+    write_report(&index, material, cfg, &records, &findings, &images)?;
+    progress(total, total, "done");
+    Ok(ReliefSummary { records, findings, headline, index })
+}
+
+/// What the untimed half of a run needs to turn one technique's timings into a record.
+struct Analysis<'a> {
+    view: &'a View,
+    scene: &'a Scene,
+    mats: &'a [ReliefMaterial],
+    refs: &'a [(Shading, Frame)],
+    material: &'a Material,
+    img_dir: &'a Path,
+    cfg: &'a ReliefBenchConfig,
+}
+
+impl Analysis<'_> {
+    /// Renders `t` once more with its counters and debug targets, measures its error against
+    /// the reference of its shading and writes its images.
+    fn analyse(
+        &self,
+        t: Technique,
+        kernel: Kernel,
+        pass: Timing,
+        trace: Timing,
+    ) -> crate::Result<(ReliefRecord, Option<ImageSet>)> {
+        let (view, scene, angle) = (self.view, self.scene, self.view.angle);
+        let frame: Frame =
+            render(view.input(), self.mats, t, kernel, scene.lighting, scene.background, true)?;
+        let shading = t.shading();
+        let reference = &self.refs.iter().find(|(s, _)| *s == shading).expect("a reference per shading").1;
+        let cmp = compare(&frame.image, &reference.image, Some(&frame.mask));
+        // UV error is counted in texels of the height map, where the relief is defined (the
+        // albedo may have another resolution).
+        let height = &self.material.height;
+        let tex_size = Vec2::new(height.width() as f32, height.height() as f32);
+        let (uv_mean, uv_p95, uv_map) = uv_error(&frame, reference, tex_size);
+        let covered = frame.mask.pixels().iter().filter(|&&m| m).count();
+        let mean_layers = if covered == 0 {
+            0.0
+        } else {
+            frame.layers.pixels().iter().map(|&l| l as f64).sum::<f64>() / covered as f64
+        };
+        let rec = ReliefRecord {
+            technique: t,
+            family: t.family(),
+            kernel,
+            layers: t.layers(),
+            angle_deg: angle,
+            time_ms: pass.median_ms,
+            trace_ms: trace.median_ms,
+            time_min_ms: pass.min_ms,
+            time_max_ms: pass.max_ms,
+            fps_equivalent: 1000.0 / pass.median_ms,
+            samples_per_pixel: frame.fetches_per_pixel(),
+            mean_layers,
+            psnr_db: cmp.metrics.psnr_db,
+            ssim: cmp.metrics.ssim,
+            flip: cmp.metrics.flip,
+            uv_error_texels: uv_mean,
+            uv_error_p95_texels: uv_p95,
+            covered_pixels: covered,
+        };
+        if !self.cfg.write_images {
+            return Ok((rec, None));
+        }
+        let dir = self.img_dir;
+        let base = format!("{}_{}", slug(t, kernel), angle);
+        save_color(dir.join(format!("{base}.png")), &frame.image)?;
+        let heat = with_legend(&heat_image(&uv_map, 4.0, Some(&frame.mask)), 4.0, "UV error (texels)");
+        save_rgb8(dir.join(format!("{base}_uverr.png")), &heat)?;
+        let flip = with_legend(&heat_image(&cmp.flip_map, 1.0, Some(&frame.mask)), 1.0, "FLIP");
+        save_rgb8(dir.join(format!("{base}_flip.png")), &flip)?;
+        if t.layers() > 0 {
+            let max = t.layers() as f32;
+            let l = frame.layers.map(|v| v as f32);
+            let heat = with_legend(&heat_image(&l, max, Some(&frame.mask)), max, "layers");
+            save_rgb8(dir.join(format!("{base}_layers.png")), &heat)?;
+        }
+        let set = ImageSet { angle, label: label(t, kernel), base, has_layers: t.layers() > 0 };
+        Ok((rec, Some(set)))
+    }
+}
+
+fn shading_name(s: Shading) -> &'static str {
+    match s {
+        Shading::Unlit => "unlit",
+        Shading::Lit => "lit",
+        Shading::LitShadowed => "shadowed",
+    }
+}
