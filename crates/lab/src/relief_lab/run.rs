@@ -15,7 +15,7 @@ use renderlab_core::camera::Camera;
 use renderlab_core::io::{save_color, save_rgb8};
 use renderlab_core::{CoreError, Image, Material, Scene};
 use renderlab_raster::{rasterize, GBuffer};
-use renderlab_relief::render::{check, render, render_reference, trace_only};
+use renderlab_relief::render::{check, render, render_into, render_reference, trace_only};
 use renderlab_relief::{Frame, FrameInput, Kernel, Map, ReliefMaterial, Shading, Technique};
 use std::path::Path;
 
@@ -95,11 +95,23 @@ pub fn run_relief_bench(
         let view = View::new(&scene, &camera, angle);
         let mats = std::slice::from_ref(&mat);
         let mut timings = Vec::with_capacity(methods.len());
+        // One framebuffer serves every timed pass, as a renderer reuses its own.
+        let mut frame = Frame::blank(cfg.width, cfg.height, scene.background);
         for &(t, kernel) in &methods {
             progress(done, total, &format!("{angle}°: {}", label(t, kernel)));
-            let (pass, _): (Timing, _) = measure(cfg.warmup, cfg.reps, || {
-                render(view.input(), mats, t, kernel, scene.lighting, scene.background, false)
+            let (pass, rendered): (Timing, _) = measure(cfg.warmup, cfg.reps, || {
+                render_into(
+                    view.input(),
+                    mats,
+                    t,
+                    kernel,
+                    scene.lighting,
+                    scene.background,
+                    false,
+                    &mut frame,
+                )
             });
+            rendered?;
             let (trace, _) = measure(cfg.warmup, cfg.reps, || trace_only(view.input(), mats, t, kernel));
             timings.push((pass, trace));
             done += 1;

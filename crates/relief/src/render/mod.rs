@@ -15,7 +15,7 @@ use crate::trace::{ReliefTechnique, Shading};
 use glam::Vec3;
 use material::ReliefMaterial;
 use renderlab_core::scene::Lighting;
-use shade::{render_frame, trace_frame, Frame, FrameInput, ShadeOptions, ShadowMode};
+use shade::{render_frame, render_frame_into, trace_frame, Frame, FrameInput, ShadeOptions, ShadowMode};
 
 /// Shading options for `technique` under `lighting`.
 pub fn options(technique: Technique, lighting: Lighting, background: Vec3) -> ShadeOptions {
@@ -49,21 +49,42 @@ pub fn render(
     background: Vec3,
     count: bool,
 ) -> Result<Frame, ReliefError> {
-    struct Render<'a> {
+    let mut frame = Frame::blank(input.width, input.height, background);
+    render_into(input, materials, technique, kernel, lighting, background, count, &mut frame)?;
+    Ok(frame)
+}
+
+/// [`render`] into a frame kept from an earlier call (resized if its size differs): the same
+/// pixels, without allocating the frame's buffers again. Timing loops use it, as a renderer
+/// reuses its framebuffers.
+#[allow(clippy::too_many_arguments)] // `render`'s arguments and the frame to fill.
+pub fn render_into(
+    input: FrameInput,
+    materials: &[ReliefMaterial],
+    technique: Technique,
+    kernel: Kernel,
+    lighting: Lighting,
+    background: Vec3,
+    count: bool,
+    frame: &mut Frame,
+) -> Result<(), ReliefError> {
+    struct Render<'a, 'f> {
         input: FrameInput<'a>,
         materials: &'a [ReliefMaterial],
         opt: ShadeOptions,
         count: bool,
+        frame: &'f mut Frame,
     }
-    impl WithTracer for Render<'_> {
-        type Output = Frame;
-        fn run<T: ReliefTechnique>(self, t: &T) -> Frame {
-            render_frame(self.input, self.materials, t, &self.opt, self.count)
+    impl WithTracer for Render<'_, '_> {
+        type Output = ();
+        fn run<T: ReliefTechnique>(self, t: &T) {
+            render_frame_into(self.input, self.materials, t, &self.opt, self.count, self.frame)
         }
     }
     check(technique, kernel, materials)?;
     let opt = options(technique, lighting, background);
-    Ok(technique.with_tracer(kernel, Render { input, materials, opt, count }))
+    technique.with_tracer(kernel, Render { input, materials, opt, count, frame });
+    Ok(())
 }
 
 /// The ground truth for `technique`: the exact intersection with the bilinear height field,
