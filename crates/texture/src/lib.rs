@@ -13,6 +13,7 @@
 #![warn(missing_docs)]
 
 pub mod ellipse;
+mod error;
 pub mod filter;
 pub mod kernel;
 pub mod mapping;

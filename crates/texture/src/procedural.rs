@@ -9,7 +9,7 @@
 //! light, and tile seamlessly (the circuit's grid and the earth's noise both wrap), so the
 //! scenes can repeat them.
 
-use crate::scene::{size_error, SceneError};
+use crate::error::{size_error, SceneError};
 use glam::{Vec3, Vec4};
 use renderlab_core::Image;
 use renderlab_noise::{Fractal, FractalKind, FractalParams, Perlin};
