@@ -24,6 +24,10 @@
 //! cells per axis (exactly as Perlin's reference does); the periodic variants wrap it at any
 //! smaller whole period.
 //!
+//! The hand-scheduled 2D kernel takes its gradients from any lattice (`Lattice2`: a row part,
+//! then a column part of the hash), so that the hashed lattice of [`crate::hashed`] is
+//! evaluated by the same code as these tables.
+//!
 //! # Output range and scale
 //!
 //! Every function is scaled so that the value at a cell centre with every corner's gradient
@@ -319,6 +323,46 @@ pub(crate) fn eval3_fast<W: Wrap>(perm: &[[u8; TABLE_SIZE]; 4], p: [f32; 3], sal
     e + w * (f - e)
 }
 
+/// Where a 2D kernel's lattice gradients come from. The hash of a lattice point is split into
+/// a row part (from `iy`) and a column part (`ix` within that row), the shape of both the
+/// nested permutation hash `P_x[P_y[y] + x]` and the integer hash of [`crate::hashed`], so that
+/// a kernel hashes each row once.
+pub(crate) trait Lattice2 {
+    /// What a row contributes to the hash of its points.
+    type Row: Copy;
+    /// The row part of (wrapped) lattice row `iy`.
+    fn row(&self, iy: i32) -> Self::Row;
+    /// The gradient at (wrapped) lattice column `ix` of `row`.
+    fn gradient(&self, row: Self::Row, ix: i32) -> [f32; 2];
+}
+
+/// Hand-scheduled 2D value evaluation over any [`Lattice2`]: the four corners' dot products
+/// blended by a chain of lerps `a + (b − a)·fade(t)` (x first, then y, the order of
+/// [`eval3_fast`]), scaled to ±1. Non-finite coordinates give 0.
+#[inline(always)]
+pub(crate) fn eval2_lerp<L: Lattice2, W: Wrap>(lattice: &L, p: [f32; 2], wrap: W) -> f32 {
+    if !(p[0].is_finite() && p[1].is_finite()) {
+        return 0.0;
+    }
+    let (xi, x) = split(p[0]);
+    let (yi, y) = split(p[1]);
+    let (x0, x1) = (wrap.wrap(0, xi), wrap.wrap(0, xi.wrapping_add(1)));
+    let r0 = lattice.row(wrap.wrap(1, yi));
+    let r1 = lattice.row(wrap.wrap(1, yi.wrapping_add(1)));
+    let g = |row: L::Row, ix: i32, dx: f32, dy: f32| {
+        let v = lattice.gradient(row, ix);
+        v[0] * dx + v[1] * dy
+    };
+    let n00 = g(r0, x0, x, y);
+    let n10 = g(r0, x1, x - 1.0, y);
+    let n01 = g(r1, x0, x, y - 1.0);
+    let n11 = g(r1, x1, x - 1.0, y - 1.0);
+    let (u, v) = (fade(x), fade(y));
+    let a = n00 + (n10 - n00) * u;
+    let b = n01 + (n11 - n01) * u;
+    (a + (b - a) * v) * scale::<2>()
+}
+
 impl Perlin {
     /// A generator using the same seed on every axis.
     pub fn new(seed: u32) -> Self {
@@ -480,6 +524,35 @@ mod tests {
             }
             assert!((0.0..1.0).contains(&t));
         }
+    }
+
+    /// The permutation tables as a [`Lattice2`]: `P_x[P_y[y] + x]`, the gradient of [`eval`].
+    struct Tables<'a>(&'a [[u8; TABLE_SIZE]; 4]);
+
+    impl Lattice2 for Tables<'_> {
+        type Row = u8;
+        fn row(&self, iy: i32) -> u8 {
+            self.0[1][usize::from(iy as u8)]
+        }
+        fn gradient(&self, row: u8, ix: i32) -> [f32; 2] {
+            gradient::<2>(self.0[0][usize::from(row.wrapping_add(ix as u8))])
+        }
+    }
+
+    #[test]
+    fn lerp_2d_kernel_equals_the_general_one() {
+        let p = Perlin::with_axis_seeds([5, 6, 7, 8]);
+        let period = PeriodWrap([7, 5, 1, 1]);
+        for i in 0..500 {
+            let x = [i as f32 * 0.173 - 40.0, i as f32 * 0.071 + 0.5];
+            let fast = eval2_lerp(&Tables(&p.perm), x, NoWrap);
+            let general = eval::<2, false, _>(&p.perm, x, 0, NoWrap).0;
+            assert!((fast - general).abs() < 1e-6, "{fast} vs {general}");
+            let fast = eval2_lerp(&Tables(&p.perm), x, period);
+            let general = eval::<2, false, _>(&p.perm, x, 0, period).0;
+            assert!((fast - general).abs() < 1e-6, "periodic: {fast} vs {general}");
+        }
+        assert_eq!(eval2_lerp(&Tables(&p.perm), [f32::NAN, 0.5], NoWrap), 0.0);
     }
 
     #[test]
