@@ -3,6 +3,7 @@
 //! intersection shaded the same way. Writes `results.json`, `results.csv`, images and an
 //! `index.html` that sets our figures beside the thesis's Table 4.1.
 
+use crate::fixtures::{benchmark_camera, benchmark_scene, BENCH_ANGLES_DEG, BENCH_HEIGHT, BENCH_WIDTH};
 use crate::heatmap::{heat_image, with_legend};
 use crate::lab::Progress;
 use crate::metrics::compare;
@@ -11,7 +12,7 @@ use crate::report::{format_number, Report};
 use crate::results::{write_csv, write_json};
 use crate::timing::{measure, Timing};
 use glam::Vec2;
-use renderlab_core::camera::{Camera, BENCH_ANGLES_DEG, BENCH_HEIGHT, BENCH_WIDTH};
+use renderlab_core::camera::Camera;
 use renderlab_core::io::{save_color, save_rgb8};
 use renderlab_core::{CoreError, Image, Material, Scene};
 use renderlab_raster::{rasterize, GBuffer};
@@ -284,13 +285,13 @@ pub fn run_relief_bench(
     // UV error is counted in texels of the height map, where the relief is defined (the
     // albedo may have another resolution).
     let tex_size = Vec2::new(material.height.width() as f32, material.height.height() as f32);
-    let scene = Scene::benchmark(material.clone());
+    let scene = benchmark_scene(material.clone());
     let total = cfg.angles.len() * methods.len();
     let mut done = 0;
     let mut records = Vec::new();
     let mut images: Vec<ImageSet> = Vec::new();
     for &angle in &cfg.angles {
-        let camera = Camera::benchmark(angle, cfg.width, cfg.height);
+        let camera = benchmark_camera(angle, cfg.width, cfg.height);
         let view = View::new(&scene, &camera, angle);
         let mats = std::slice::from_ref(&mat);
         let mut refs: HashMap<Shading, Frame> = HashMap::new();

@@ -57,10 +57,10 @@ pub fn zone_plate_texture(size: u32) -> Result<Image<Vec4>, SceneError> {
     }))
 }
 
-/// The bricks material's albedo (from `renderlab-core`) as an RGBA texture.
+/// The bricks material's albedo ([`crate::materials`]) as an RGBA texture.
 pub fn bricks_texture(size: u32) -> Result<Image<Vec4>, SceneError> {
     check_side("bricks size", size, 1)?;
-    let m = renderlab_core::procedural::material("bricks", size.max(8))
+    let m = crate::materials::material("bricks", size.max(8))
         .map_err(|e| size_error("bricks size", e.to_string()))?;
     Ok(m.albedo.map(|c| c.extend(1.0)))
 }
