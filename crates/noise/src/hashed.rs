@@ -16,7 +16,7 @@
 //! [`Perlin`]: crate::Perlin
 
 use crate::periodic::MAX_PERIOD;
-use crate::perlin::{eval2_lerp, Lattice2, PeriodWrap};
+use crate::perlin::{eval2_lerp, Lattice2, NearWrap};
 
 /// A 32-bit integer hash with good avalanche (the "lowbias32" finaliser by Chris Wellons):
 /// the lattice hash of [`HashedPerlin`], public so that code built around the noise (cell
@@ -78,7 +78,7 @@ impl HashedPerlin {
     #[inline]
     pub fn noise_periodic(&self, p: [f32; 2], period: [u32; 2]) -> f32 {
         let cells = period.map(|c| c.clamp(1, MAX_PERIOD) as i32);
-        eval2_lerp(self, p, PeriodWrap([cells[0], cells[1], 1, 1]))
+        eval2_lerp(self, p, NearWrap([cells[0], cells[1], 1, 1]))
     }
 }
 

@@ -97,6 +97,12 @@ pub struct Perlin {
 pub(crate) trait Wrap: Copy {
     /// Wraps lattice index `i` on axis `axis`.
     fn wrap(self, axis: usize, i: i32) -> i32;
+
+    /// The wrapped index after `i` on axis `axis`, for an `i` that [`Wrap::wrap`] gave.
+    #[inline(always)]
+    fn next(self, axis: usize, i: i32) -> i32 {
+        self.wrap(axis, i.wrapping_add(1))
+    }
 }
 
 /// No wrapping: the lattice repeats only every 256 cells.
@@ -118,6 +124,37 @@ impl Wrap for PeriodWrap {
     #[inline(always)]
     fn wrap(self, axis: usize, i: i32) -> i32 {
         i.rem_euclid(self.0[axis])
+    }
+}
+
+/// Wrap modulo a positive period per axis, as [`PeriodWrap`] (the same values), without a
+/// division when the index lies within one period of `[0, period)`: the common case for
+/// texture coordinates in or near the unit square, where a kernel wraps every sample.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NearWrap(pub(crate) [i32; 4]);
+
+impl Wrap for NearWrap {
+    #[inline(always)]
+    fn wrap(self, axis: usize, i: i32) -> i32 {
+        let p = self.0[axis];
+        if (0..p).contains(&i) {
+            i
+        } else if i >= p && i - p < p {
+            i - p
+        } else if i < 0 && i >= -p {
+            i + p
+        } else {
+            i.rem_euclid(p)
+        }
+    }
+
+    #[inline(always)]
+    fn next(self, axis: usize, i: i32) -> i32 {
+        if i + 1 == self.0[axis] {
+            0
+        } else {
+            i + 1
+        }
     }
 }
 
@@ -346,9 +383,9 @@ pub(crate) fn eval2_lerp<L: Lattice2, W: Wrap>(lattice: &L, p: [f32; 2], wrap: W
     }
     let (xi, x) = split(p[0]);
     let (yi, y) = split(p[1]);
-    let (x0, x1) = (wrap.wrap(0, xi), wrap.wrap(0, xi.wrapping_add(1)));
-    let r0 = lattice.row(wrap.wrap(1, yi));
-    let r1 = lattice.row(wrap.wrap(1, yi.wrapping_add(1)));
+    let (x0, y0) = (wrap.wrap(0, xi), wrap.wrap(1, yi));
+    let x1 = wrap.next(0, x0);
+    let (r0, r1) = (lattice.row(y0), lattice.row(wrap.next(1, y0)));
     let g = |row: L::Row, ix: i32, dx: f32, dy: f32| {
         let v = lattice.gradient(row, ix);
         v[0] * dx + v[1] * dy
@@ -553,6 +590,20 @@ mod tests {
             assert!((fast - general).abs() < 1e-6, "periodic: {fast} vs {general}");
         }
         assert_eq!(eval2_lerp(&Tables(&p.perm), [f32::NAN, 0.5], NoWrap), 0.0);
+    }
+
+    #[test]
+    fn near_wrap_equals_period_wrap() {
+        for p in [1, 2, 7, 256, 1 << 24] {
+            let (near, period) = (NearWrap([p; 4]), PeriodWrap([p; 4]));
+            for i in
+                (-3 * p..=3 * p).step_by((p as usize / 64).max(1)).chain([i32::MIN, i32::MAX, -1, 0, p - 1])
+            {
+                assert_eq!(near.wrap(0, i), period.wrap(0, i), "{i} mod {p}");
+                let w = near.wrap(0, i);
+                assert_eq!(near.next(0, w), period.next(0, w), "after {w} mod {p}");
+            }
+        }
     }
 
     #[test]
