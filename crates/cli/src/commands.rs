@@ -4,11 +4,10 @@ use crate::args::*;
 use crate::progress::{LabBars, Progress};
 use anyhow::{bail, Context, Result};
 use glam::Vec3;
-use renderlab_core::camera::Camera;
 use renderlab_core::error::check_range;
 use renderlab_core::image::check_dimensions;
-use renderlab_core::procedural::{self, MATERIAL_NAMES};
-use renderlab_core::{io, Image, Material, Scene};
+use renderlab_core::{io, Image, Material};
+use renderlab_lab::fixtures::{benchmark_camera, benchmark_scene, room_camera, thesis_room};
 use renderlab_lab::heatmap::heat_image;
 use renderlab_lab::noise_lab::{run_noise_lab_with, CloudsConfig, NoiseLabConfig, MAX_CLOUDS_SIZE};
 use renderlab_lab::noise_motion::MotionConfig;
@@ -20,6 +19,7 @@ use renderlab_relief::render::{render, render_reference};
 use renderlab_relief::techniques::basic::Basic;
 use renderlab_relief::{Kernel, KernelChoice, Map, ReliefMaterial, Technique};
 use renderlab_texture::filter::FilterSpec;
+use renderlab_texture::materials::{material as builtin_material, MATERIAL_NAMES};
 use renderlab_texture::reference::Sampling;
 use renderlab_texture::scene::{SceneKind, TestScene};
 use std::path::Path;
@@ -73,7 +73,7 @@ fn load_material(m: &MaterialArgs) -> Result<Material> {
             if m.texture_size > 8192 {
                 bail!("--texture-size: {} is larger than 8192", m.texture_size);
             }
-            Ok(procedural::material(&m.material, m.texture_size)?)
+            Ok(builtin_material(&m.material, m.texture_size)?)
         }
     }
 }
@@ -158,11 +158,11 @@ fn relief_render(a: RenderArgs) -> Result<()> {
     let (scene, camera) = match a.scene {
         SceneChoice::Bench => {
             let m = load_material(&a.material)?;
-            (Scene::benchmark(m), Camera::benchmark(a.angle, a.width, a.height))
+            (benchmark_scene(m), benchmark_camera(a.angle, a.width, a.height))
         }
         SceneChoice::Room => {
             let size = a.material.texture_size.min(8192);
-            (Scene::thesis_room_default(size)?, Scene::room_camera(a.width, a.height))
+            (thesis_room(size)?, room_camera(a.width, a.height))
         }
     };
     let mats: Vec<ReliefMaterial> =
@@ -230,7 +230,7 @@ fn complexity(a: ComplexityArgs) -> Result<()> {
 fn materials(a: MaterialsArgs) -> Result<()> {
     create_dir(&a.out)?;
     for name in MATERIAL_NAMES {
-        let m = procedural::material(name, a.size)?;
+        let m = builtin_material(name, a.size)?;
         io::save_color(a.out.join(format!("{name}_albedo.png")), &m.albedo)?;
         io::save_gray(a.out.join(format!("{name}_height.png")), &m.height, true)?;
         let n = m.normal.map(|n| n * 0.5 + Vec3::splat(0.5));

@@ -1,6 +1,6 @@
 //! What one relief run measures: the frame, the angles, the techniques on their kernels.
 
-use renderlab_core::camera::{BENCH_ANGLES_DEG, BENCH_HEIGHT, BENCH_WIDTH};
+use crate::fixtures::{BENCH_ANGLES_DEG, BENCH_HEIGHT, BENCH_WIDTH};
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::techniques::{bench_settings, pom::Pom};
 use renderlab_relief::{Kernel, KernelChoice, Technique};

@@ -160,7 +160,7 @@ mod tests {
 
     #[test]
     fn a_reused_frame_gives_the_fresh_frame_bit_for_bit() {
-        let m = renderlab_core::procedural::material("bricks", 64).expect("built-in material");
+        let m = renderlab_texture::materials::material("bricks", 64).expect("built-in material");
         let mats = [ReliefMaterial::new(&m, &ComplexityParams::default(), false)];
         let (w, h) = (37, 23);
         let lighting = Lighting::default();
