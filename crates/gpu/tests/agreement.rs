@@ -1,0 +1,198 @@
+//! The GPU renderer against the CPU renderer: for every technique with a shader, at the
+//! thesis's four view angles, the GPU image against the CPU image of the same frame (PSNR and
+//! FLIP over the pixels both cover), and the GPU's per-pixel UV against the CPU's and against
+//! the exact reference's, in texels of the depth map.
+//!
+//! Without an adapter these tests fail with a clear message when `CI` is set and report
+//! themselves skipped otherwise. The frames are small (320 × 200) because in CI the GPU is
+//! lavapipe, a CPU.
+//!
+//! # The bounds, and why
+//!
+//! Both renderers run the same arithmetic on the same maps; they differ in:
+//! - the sampler: Vulkan's bilinear filtering computes its weights with `subTexelPrecisionBits`
+//!   fractional bits (4 at least, 8 on lavapipe and most GPUs), so a bilinear fetch may differ
+//!   from the CPU's f32 weights by up to 2⁻⁹ of the difference between neighbouring texels,
+//!   and the blend between mip levels has `mipmapPrecisionBits` (4 to 8);
+//! - f32 against f64: the CPU rasterizer solves UV and its Jacobian in f64, the GPU in f32
+//!   (relative error ~10⁻⁷, 10⁻⁴ texel on a 256² map tiled 4 times);
+//! - transcendental functions (`log2` for the LOD, `pow` for adaptive POM's angle factor):
+//!   GPU precision is a few ulp, not correctly rounded;
+//! - coverage: both rasterizers sample pixel centres with 8 sub-pixel bits and the top-left
+//!   rule, but the GPU snaps f32 vertices; pixels on the wall's edge may differ.
+//!
+//! Smooth techniques (basic, normal, parallax, POM) therefore agree to within sampler
+//! rounding: an 8-bit sRGB step is 1/255 ≈ 0.004, and errors of a fraction of it give a PSNR
+//! above 50 dB. A layered march turns a tiny depth difference into a different layer where
+//! the ray grazes a layer boundary, so steep parallax (whose UV jumps by a whole layer step)
+//! and, rarely, POM and adaptive POM have a few pixels with large errors; the PSNR bound
+//! (40 dB) allows about 0.1 % of pixels to be wholly different. The UV bounds likewise: the
+//! median texel difference must be tiny (sampler rounding), the mean error against the exact
+//! reference must match the CPU technique's own (a shader bug moves it by whole texels), and
+//! at most 1 % of pixels may differ by more than a quarter texel.
+
+use glam::Vec2;
+use renderlab_core::{procedural, Camera, Image, Scene};
+use renderlab_gpu::{GpuContext, GpuFrame, ReliefRenderer};
+use renderlab_lab::metrics::{flip, flip_masked_mean, psnr};
+use renderlab_raster::rasterize;
+use renderlab_relief::maps::complexity::ComplexityParams;
+use renderlab_relief::render::{render, render_reference};
+use renderlab_relief::{FrameInput, Kernel, ReliefMaterial, Technique};
+
+/// Frame size: small, since CI's GPU is a CPU.
+const WIDTH: u32 = 320;
+const HEIGHT: u32 = 200;
+/// Texture size of the bricks material.
+const TEXTURE: u32 = 256;
+/// The thesis's view angles.
+const ANGLES: [f32; 4] = [0.0, 45.0, 60.0, 80.0];
+
+/// Opens the device, or says why the test cannot run: a failure under CI, a skip otherwise.
+fn context() -> Option<GpuContext> {
+    match GpuContext::new() {
+        Ok(c) => Some(c),
+        Err(e) if std::env::var_os("CI").is_some() => {
+            panic!("CI is set but the GPU tests cannot run: {e}")
+        }
+        Err(e) => {
+            eprintln!("SKIPPED (no GPU, and CI is not set): {e}");
+            None
+        }
+    }
+}
+
+/// How a GPU frame compares with the CPU frames of the same view.
+#[derive(Debug)]
+struct Agreement {
+    /// Pixels covered by one renderer only.
+    coverage_diff: usize,
+    /// PSNR (dB, sRGB-encoded) of the GPU image against the CPU image, over pixels both cover.
+    psnr: f64,
+    /// Mean FLIP over those pixels.
+    flip: f64,
+    /// Median |GPU UV − CPU UV| in texels.
+    uv_median: f32,
+    /// Fraction of pixels whose GPU UV is more than a quarter texel from the CPU's.
+    uv_far: f64,
+    /// Mean texel error of the GPU UV against the exact reference.
+    gpu_ref: f32,
+    /// Mean texel error of the CPU UV against the exact reference.
+    cpu_ref: f32,
+}
+
+fn compare(
+    gpu: &GpuFrame,
+    cpu: &renderlab_relief::Frame,
+    reference: &renderlab_relief::Frame,
+    texels: Vec2,
+) -> Agreement {
+    let both = Image::from_fn(WIDTH, HEIGHT, |x, y| gpu.mask.get(x, y) && cpu.mask.get(x, y));
+    let coverage_diff = (0..HEIGHT)
+        .flat_map(|y| (0..WIDTH).map(move |x| (x, y)))
+        .filter(|&(x, y)| gpu.mask.get(x, y) != cpu.mask.get(x, y))
+        .count();
+    let f = flip(&gpu.image, &cpu.image);
+    let mut diffs = Vec::new();
+    let (mut gpu_ref, mut cpu_ref) = (0.0f64, 0.0f64);
+    for y in 0..HEIGHT {
+        for x in 0..WIDTH {
+            if both.get(x, y) {
+                let r = reference.uv.get(x, y);
+                diffs.push(((gpu.uv.get(x, y) - cpu.uv.get(x, y)) * texels).length());
+                gpu_ref += ((gpu.uv.get(x, y) - r) * texels).length() as f64;
+                cpu_ref += ((cpu.uv.get(x, y) - r) * texels).length() as f64;
+            }
+        }
+    }
+    let n = diffs.len().max(1);
+    let uv_far = diffs.iter().filter(|&&d| d > 0.25).count() as f64 / n as f64;
+    diffs.sort_by(f32::total_cmp);
+    Agreement {
+        coverage_diff,
+        psnr: psnr(&gpu.image, &cpu.image, Some(&both)),
+        flip: flip_masked_mean(&f, Some(&both)),
+        uv_median: diffs.get(n / 2).copied().unwrap_or(0.0),
+        uv_far,
+        gpu_ref: (gpu_ref / n as f64) as f32,
+        cpu_ref: (cpu_ref / n as f64) as f32,
+    }
+}
+
+/// Renders `name` on both renderers at every angle and checks the bounds.
+fn check(name: &str) {
+    let Some(ctx) = context() else { return };
+    let technique = Technique::parse(name).expect("a registry technique");
+    let bricks = procedural::material("bricks", TEXTURE).expect("built-in material");
+    let scene = Scene::benchmark(bricks);
+    let mats: Vec<ReliefMaterial> =
+        scene.materials.iter().map(|m| ReliefMaterial::new(m, &ComplexityParams::default(), false)).collect();
+    let texels = Vec2::new(mats[0].height.width() as f32, mats[0].height.height() as f32);
+    let mut gpu = ReliefRenderer::new(&ctx, &scene, &mats).expect("scene uploads");
+    let mut failures = Vec::new();
+    for angle in ANGLES {
+        let camera = Camera::benchmark(angle, WIDTH, HEIGHT);
+        let g = rasterize(&scene, &camera);
+        let input = FrameInput { width: WIDTH, height: HEIGHT, points: g.pixels() };
+        let cpu = render(input, &mats, technique, Kernel::Scalar, scene.lighting, scene.background, false)
+            .expect("CPU render");
+        let reference = render_reference(input, &mats, technique, scene.lighting, scene.background);
+        let frame = gpu.render(&camera, technique).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let a = compare(&frame, &cpu, &reference, texels);
+        println!(
+            "{name:>12} {angle:>3}°: coverage diff {:>3} px, PSNR {:6.2} dB, FLIP {:.5}, UV |gpu−cpu| median {:.5} texel, >¼ texel {:.3} %, error vs exact: gpu {:.4} cpu {:.4} texel",
+            a.coverage_diff, a.psnr, a.flip, a.uv_median, a.uv_far * 100.0, a.gpu_ref, a.cpu_ref
+        );
+        let covered = cpu.mask.pixels().iter().filter(|&&m| m).count();
+        let mut fail = |what: String| failures.push(format!("{name} at {angle}°: {what}"));
+        if a.coverage_diff > (covered / 500).max(8) {
+            fail(format!("{} pixels covered by one renderer only", a.coverage_diff));
+        }
+        if a.psnr < 40.0 {
+            fail(format!("PSNR {:.2} dB < 40", a.psnr));
+        }
+        if a.flip > 0.01 {
+            fail(format!("FLIP {:.4} > 0.01", a.flip));
+        }
+        if a.uv_median > 0.01 {
+            fail(format!("median UV difference {:.4} texel > 0.01", a.uv_median));
+        }
+        if a.uv_far > 0.01 {
+            fail(format!("{:.2} % of pixels' UV differ by more than ¼ texel", a.uv_far * 100.0));
+        }
+        if (a.gpu_ref - a.cpu_ref).abs() > 0.02 + 0.02 * a.cpu_ref {
+            fail(format!("UV error vs exact {:.4} texel on the GPU, {:.4} on the CPU", a.gpu_ref, a.cpu_ref));
+        }
+    }
+    assert!(failures.is_empty(), "GPU and CPU disagree:\n{}", failures.join("\n"));
+}
+
+#[test]
+fn basic_agrees() {
+    check("basic");
+}
+
+#[test]
+fn normal_agrees() {
+    check("normal");
+}
+
+#[test]
+fn parallax_agrees() {
+    check("parallax");
+}
+
+#[test]
+fn steep_agrees() {
+    check("steep:32");
+}
+
+#[test]
+fn pom_agrees() {
+    check("pom:32");
+}
+
+#[test]
+fn adaptive_pom_agrees() {
+    check("adaptive:4:32");
+}
