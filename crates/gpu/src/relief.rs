@@ -221,6 +221,12 @@ impl<'a> ReliefRenderer<'a> {
 
     fn build_pipeline(&self, technique: Technique, output: Output) -> Result<wgpu::RenderPipeline> {
         let source = module_source(technique)?;
+        if technique.shading() == Shading::LitShadowed {
+            return Err(GpuError::Shader {
+                technique: technique.name(),
+                message: "self-shadowing is not in the GPU frame yet".into(),
+            });
+        }
         let device = &self.ctx.device;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -283,12 +289,6 @@ impl<'a> ReliefRenderer<'a> {
             return Err(GpuError::EmptyFrame(w, h));
         }
         self.ctx.check_size("the frame", w, h)?;
-        if technique.shading() == Shading::LitShadowed {
-            return Err(GpuError::Shader {
-                technique: technique.name(),
-                message: "self-shadowing is not in the GPU frame yet".into(),
-            });
-        }
         let uniform = FrameUniform {
             view_proj: camera.view_projection().to_cols_array_2d(),
             eye: camera.position.extend(1.0).to_array(),

@@ -11,29 +11,42 @@
 //!
 //! Both renderers run the same arithmetic on the same maps; they differ in:
 //! - the sampler: Vulkan's bilinear filtering computes its weights with `subTexelPrecisionBits`
-//!   fractional bits (4 at least, 8 on lavapipe and most GPUs), so a bilinear fetch may differ
-//!   from the CPU's f32 weights by up to 2⁻⁹ of the difference between neighbouring texels,
-//!   and the blend between mip levels has `mipmapPrecisionBits` (4 to 8);
+//!   fractional bits (4 at least, 8 on most GPUs), so a bilinear fetch may differ from the
+//!   CPU's f32 weights by up to 2⁻⁹ of the difference between neighbouring texels, and the
+//!   blend between mip levels has `mipmapPrecisionBits` (4 to 8). Lavapipe filters 32-bit
+//!   float textures in full f32, so there the difference is rounding alone;
 //! - f32 against f64: the CPU rasterizer solves UV and its Jacobian in f64, the GPU in f32
-//!   (relative error ~10⁻⁷, 10⁻⁴ texel on a 256² map tiled 4 times);
+//!   (relative error ~10⁻⁷: 10⁻⁴ texel on a 256² map tiled four times);
 //! - transcendental functions (`log2` for the LOD, `pow` for adaptive POM's angle factor):
-//!   GPU precision is a few ulp, not correctly rounded;
-//! - coverage: both rasterizers sample pixel centres with 8 sub-pixel bits and the top-left
-//!   rule, but the GPU snaps f32 vertices; pixels on the wall's edge may differ.
+//!   a few ulp on a GPU, not correctly rounded;
+//! - coverage: both rasterizers sample pixel centres with the top-left rule, but the GPU
+//!   snaps f32 vertices to its own sub-pixel grid, so pixels on an edge may differ.
 //!
-//! Smooth techniques (basic, normal, parallax, POM) therefore agree to within sampler
-//! rounding: an 8-bit sRGB step is 1/255 ≈ 0.004, and errors of a fraction of it give a PSNR
-//! above 50 dB. A layered march turns a tiny depth difference into a different layer where
-//! the ray grazes a layer boundary, so steep parallax (whose UV jumps by a whole layer step)
-//! and, rarely, POM and adaptive POM have a few pixels with large errors; the PSNR bound
-//! (40 dB) allows about 0.1 % of pixels to be wholly different. The UV bounds likewise: the
-//! median texel difference must be tiny (sampler rounding), the mean error against the exact
-//! reference must match the CPU technique's own (a shader bug moves it by whole texels), and
-//! at most 1 % of pixels may differ by more than a quarter texel.
+//! Smooth results (basic, normal, parallax, POM, adaptive POM) move by a fraction of the
+//! sampler's error: with 8-bit weights an albedo fetch is off by at most 2⁻⁹ of a texel
+//! difference (≤ 0.002, RMS far less), which is ≥ 54 dB even if every pixel had it, so 45 dB
+//! (and at most 1 % of pixels more than ¼ texel from the CPU's UV) leaves room for the few pixels where POM's march takes a different layer at an occluding
+//! edge. A march that ends on a layer without interpolating (steep parallax) turns a depth
+//! difference of 2⁻⁹ of a texel step into a whole layer step wherever a layer boundary lies
+//! that close to the depth map: about ε·n of the pixels for n layers and a depth error ε
+//! (0.1 %–2 % with 8-bit weights), each as wrong as the step's colour change, so its bounds
+//! are 30 dB and 5 % of pixels beyond ¼ texel. FLIP's mean follows the same split (0.005 and 0.02).
+//!
+//! UV: the median difference between the GPU's and the CPU's UV must be tiny (0.01 texel:
+//! f32 and sampler rounding), and the mean error against the exact reference must be the CPU
+//! technique's own within 0.05 texel + 5 %: a shader bug (a wrong sign, a missing clamp, a
+//! wrong step) moves that mean by whole texels.
+//!
+//! Measured on lavapipe (Mesa 22.3, full-precision filtering) the agreement is far inside
+//! these: PSNR 105–120 dB for the smooth techniques and 78–116 dB for steep parallax, no
+//! coverage difference, median UV difference below 10⁻⁴ texel (see BENCHMARKS.md).
 
+mod common;
+
+use common::context;
 use glam::Vec2;
 use renderlab_core::{procedural, Camera, Image, Scene};
-use renderlab_gpu::{GpuContext, GpuFrame, ReliefRenderer};
+use renderlab_gpu::{GpuFrame, ReliefRenderer};
 use renderlab_lab::metrics::{flip, flip_masked_mean, psnr};
 use renderlab_raster::rasterize;
 use renderlab_relief::maps::complexity::ComplexityParams;
@@ -47,20 +60,6 @@ const HEIGHT: u32 = 200;
 const TEXTURE: u32 = 256;
 /// The thesis's view angles.
 const ANGLES: [f32; 4] = [0.0, 45.0, 60.0, 80.0];
-
-/// Opens the device, or says why the test cannot run: a failure under CI, a skip otherwise.
-fn context() -> Option<GpuContext> {
-    match GpuContext::new() {
-        Ok(c) => Some(c),
-        Err(e) if std::env::var_os("CI").is_some() => {
-            panic!("CI is set but the GPU tests cannot run: {e}")
-        }
-        Err(e) => {
-            eprintln!("SKIPPED (no GPU, and CI is not set): {e}");
-            None
-        }
-    }
-}
 
 /// How a GPU frame compares with the CPU frames of the same view.
 #[derive(Debug)]
@@ -119,6 +118,23 @@ fn compare(
     }
 }
 
+/// The bounds for a technique (see the module docs).
+struct Bounds {
+    psnr_db: f64,
+    flip: f64,
+    far_fraction: f64,
+}
+
+/// A march that stops on a layer (steep parallax) flips whole layer steps; every other
+/// technique's result moves smoothly with the sampler's rounding.
+fn bounds(t: Technique) -> Bounds {
+    if t.family() == "steep" {
+        Bounds { psnr_db: 30.0, flip: 0.02, far_fraction: 0.05 }
+    } else {
+        Bounds { psnr_db: 45.0, flip: 0.005, far_fraction: 0.01 }
+    }
+}
+
 /// Renders `name` on both renderers at every angle and checks the bounds.
 fn check(name: &str) {
     let Some(ctx) = context() else { return };
@@ -129,6 +145,7 @@ fn check(name: &str) {
         scene.materials.iter().map(|m| ReliefMaterial::new(m, &ComplexityParams::default(), false)).collect();
     let texels = Vec2::new(mats[0].height.width() as f32, mats[0].height.height() as f32);
     let mut gpu = ReliefRenderer::new(&ctx, &scene, &mats).expect("scene uploads");
+    let b = bounds(technique);
     let mut failures = Vec::new();
     for angle in ANGLES {
         let camera = Camera::benchmark(angle, WIDTH, HEIGHT);
@@ -148,19 +165,19 @@ fn check(name: &str) {
         if a.coverage_diff > (covered / 500).max(8) {
             fail(format!("{} pixels covered by one renderer only", a.coverage_diff));
         }
-        if a.psnr < 40.0 {
-            fail(format!("PSNR {:.2} dB < 40", a.psnr));
+        if a.psnr < b.psnr_db {
+            fail(format!("PSNR {:.2} dB < {}", a.psnr, b.psnr_db));
         }
-        if a.flip > 0.01 {
-            fail(format!("FLIP {:.4} > 0.01", a.flip));
+        if a.flip > b.flip {
+            fail(format!("FLIP {:.4} > {}", a.flip, b.flip));
         }
         if a.uv_median > 0.01 {
             fail(format!("median UV difference {:.4} texel > 0.01", a.uv_median));
         }
-        if a.uv_far > 0.01 {
+        if a.uv_far > b.far_fraction {
             fail(format!("{:.2} % of pixels' UV differ by more than ¼ texel", a.uv_far * 100.0));
         }
-        if (a.gpu_ref - a.cpu_ref).abs() > 0.02 + 0.02 * a.cpu_ref {
+        if (a.gpu_ref - a.cpu_ref).abs() > 0.05 + 0.05 * a.cpu_ref {
             fail(format!("UV error vs exact {:.4} texel on the GPU, {:.4} on the CPU", a.gpu_ref, a.cpu_ref));
         }
     }
