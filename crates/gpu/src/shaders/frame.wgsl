@@ -53,22 +53,18 @@ struct VertexIn {
 
 struct Varyings {
     @builtin(position) clip: vec4<f32>,
-    // uv/w and 1/w are affine in screen space: interpolated linearly, they give the
-    // perspective-correct UV and its exact derivatives (see `surface`).
-    @location(0) @interpolate(linear) uv_w: vec2<f32>,
-    @location(1) @interpolate(linear) inv_w: f32,
-    @location(2) world: vec3<f32>,
-    @location(3) normal: vec3<f32>,
-    @location(4) tangent: vec4<f32>,
+    // Perspective-correct, like every attribute here (see `surface` for its derivatives).
+    @location(0) uv: vec2<f32>,
+    @location(1) world: vec3<f32>,
+    @location(2) normal: vec3<f32>,
+    @location(3) tangent: vec4<f32>,
 }
 
 @vertex
 fn vs_main(v: VertexIn) -> Varyings {
     var out: Varyings;
     out.clip = frame.view_proj * vec4<f32>(v.position, 1.0);
-    let inv_w = 1.0 / out.clip.w;
-    out.uv_w = v.uv * inv_w;
-    out.inv_w = inv_w;
+    out.uv = v.uv;
     out.world = v.position;
     out.normal = v.normal;
     out.tangent = v.tangent;
@@ -84,15 +80,19 @@ struct Surface {
     light_ts: vec3<f32>,
 }
 
-// The pixel's surface. With h = uv/w and q = 1/w affine in screen space, uv = h/q and
-// ∂uv/∂x = (∂h/∂x − uv·∂q/∂x)/q exactly, as the CPU rasterizer computes it; the fine
-// derivatives of an affine quantity are its slopes. Must run in uniform control flow.
+// The pixel's surface. The fragment position's w is q = 1/w, and h = uv·q is affine in screen
+// space, so ∂uv/∂x = (∂h/∂x − uv·∂q/∂x)/q exactly, as the CPU rasterizer computes it: the
+// fine derivatives of an affine quantity are its slopes, where finite differences of uv
+// itself would be off by its curvature. (Interpolating uv/w and 1/w without perspective
+// would be wrong where the near plane clips a triangle: the clipper interpolates such
+// attributes linearly in clip space.) Must run in uniform control flow.
 fn surface(in: Varyings) -> Surface {
     var s: Surface;
-    let q = in.inv_w;
-    s.uv = in.uv_w / q;
-    s.duv_dx = (dpdxFine(in.uv_w) - s.uv * dpdxFine(in.inv_w)) / q;
-    s.duv_dy = (dpdyFine(in.uv_w) - s.uv * dpdyFine(in.inv_w)) / q;
+    let q = in.clip.w;
+    s.uv = in.uv;
+    let h = s.uv * q;
+    s.duv_dx = (dpdxFine(h) - s.uv * dpdxFine(q)) / q;
+    s.duv_dy = (dpdyFine(h) - s.uv * dpdyFine(q)) / q;
     // The tangent frame as `tangent_frame` builds it: N, T by Gram–Schmidt, B = N × T · sign.
     let n = normalize(in.normal);
     var t = in.tangent.xyz - n * dot(n, in.tangent.xyz);
