@@ -20,7 +20,10 @@ fn bricks() -> (Scene, Vec<ReliefMaterial>) {
 fn a_technique_without_a_shader_is_refused_by_name() {
     // Needs no device: the registry says which techniques have shaders.
     let have = shader::with_shaders();
-    assert_eq!(have, ["basic", "normal", "parallax", "steep", "pom", "adaptive"]);
+    assert_eq!(
+        have,
+        ["basic", "normal", "parallax", "steep", "pom", "adaptive", "relief", "adaptive-relief"]
+    );
     let t = Technique::parse("pom-shadow").expect("a registry technique");
     let e = shader::module_source(t).expect_err("no shader yet");
     assert!(matches!(e, GpuError::NoShader(..)), "{e}");

@@ -103,3 +103,34 @@ fn interpolate(m: March, layers: u32) -> Hit {
     let w = select(0.0, clamp(after / denom, 0.0, 1.0), abs(denom) > 1e-12);
     return Hit(m.prev_uv * w + m.uv * (1.0 - w), m.prev_layer * w + m.layer * (1.0 - w), layers);
 }
+
+// Bisection of the bracket [a, b] of depths along the ray `uv0 + dp·t`, `a` above the
+// surface and `b` at or below, for `steps` iterations; the midpoint of the final bracket as
+// (u, v, depth) (`bisect`).
+fn bisect(uv0: vec2<f32>, dp: vec2<f32>, a0: f32, b0: f32, steps: u32) -> vec3<f32> {
+    var a = a0;
+    var b = b0;
+    for (var i = 0u; i < steps; i += 1u) {
+        let mid = 0.5 * (a + b);
+        let map = depth_at(uv0 + dp * mid);
+        if mid >= map {
+            b = mid;
+        } else {
+            a = mid;
+        }
+    }
+    let t = 0.5 * (a + b);
+    return vec3<f32>(uv0 + dp * t, t);
+}
+
+// Relief mapping's two phases with `linear` layers and `binary` bisection steps: the layered
+// march, then bisection between its last two layers (a ray that meets the relief at its top
+// surface stops there).
+fn relief_trace(uv: vec2<f32>, view_ts: vec3<f32>, linear: u32, binary: u32) -> Hit {
+    let m = layered_march(uv, layer_step(view_ts, linear), linear);
+    if m.layer == 0.0 {
+        return Hit(uv, 0.0, linear);
+    }
+    let hit = bisect(uv, uv_per_depth(view_ts), m.prev_layer, m.layer, binary);
+    return Hit(hit.xy, hit.z, linear);
+}
