@@ -583,9 +583,9 @@ fn relief_render_backends() {
     let base = ["relief", "render", "-o", o, "--width", "24", "--height", "16", "--texture-size", "64"];
     let with =
         |extra: &[&'static str]| base.iter().copied().chain(extra.iter().copied()).collect::<Vec<&str>>();
-    fails_with(&with(&["-t", "relief", "--backend", "gpu"]), "has no GPU shader yet");
+    fails_with(&with(&["-t", "pom-shadow", "--backend", "gpu"]), "has no GPU shader yet");
     assert!(!out.exists(), "no output after a refusal");
-    let run = renderlab(&with(&["-t", "relief", "--backend", "auto"]));
+    let run = renderlab(&with(&["-t", "pom-shadow", "--backend", "auto"]));
     let stdout = String::from_utf8_lossy(&run.stdout);
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     assert!(stdout.contains("rendering on the CPU instead") && stdout.contains("no GPU shader"), "{stdout}");
