@@ -11,7 +11,7 @@
 //!
 //! Agreement with the CPU: the GPU frame is the CPU frame computed again: the same mesh and
 //! camera (rasterized by the GPU's fixed-function rasterizer), the UV and its exact screen
-//! Jacobian reconstructed from `uv/w` and `1/w` as the CPU rasterizer does, the same maps (the
+//! Jacobian computed from `uv·q` and `q = 1/w` as the CPU rasterizer does, the same maps (the
 //! CPU's own mip pyramids, in 32-bit floats), the same march and lighting written with the
 //! same operations. What remains different is the sampler's arithmetic (the hardware's
 //! bilinear weights and mip blending have limited fractional precision), the GPU's
