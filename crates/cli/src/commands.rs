@@ -167,6 +167,10 @@ fn relief_render(a: RenderArgs) -> Result<()> {
     };
     let mats: Vec<ReliefMaterial> =
         scene.materials.iter().map(|m| ReliefMaterial::new(m, &cp, technique.needs_map(Map::Cone))).collect();
+    // `--backend gpu|auto` draws and writes the image, or leaves it to the CPU path below.
+    if crate::gpu::relief_render(&a, &scene, &camera, &mats)? {
+        return Ok(());
+    }
     let view = View::new(&scene, &camera, a.angle);
     let lit =
         |t: Technique, k: Kernel| render(view.input(), &mats, t, k, scene.lighting, scene.background, false);

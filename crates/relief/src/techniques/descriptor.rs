@@ -207,6 +207,12 @@ pub trait Entry: Copy + Sized {
         ShadowMode::None
     }
 
+    /// The technique's GPU twin: a WGSL file beside this one that defines
+    /// `fn trace(uv: vec2<f32>, view_ts: vec3<f32>) -> Hit` on the GPU renderer's common
+    /// shader code (the crate `renderlab-gpu` documents that contract). `None` while the
+    /// technique has no shader yet; the GPU renderer then refuses it with an error.
+    const WGSL: Option<&'static str> = None;
+
     /// Calls `action` with the tracer of this technique on `kernel` (one of the descriptor's).
     fn dispatch<A: WithTracer>(&self, kernel: Kernel, action: A) -> A::Output;
 }

@@ -92,6 +92,14 @@ macro_rules! registry {
                 }
             }
 
+            /// The technique's WGSL `trace` function for the GPU renderer (see
+            /// [`Entry::WGSL`]); `None` while it has no shader yet.
+            pub fn wgsl(&self) -> Option<&'static str> {
+                match self {
+                    $(Technique::$variant(_) => <$ty as Entry>::WGSL,)*
+                }
+            }
+
             /// Calls `action` with the monomorphised tracer of this technique on `kernel`
             /// (which must be one of its kernels; see [`Technique::kernel`]).
             pub fn with_tracer<A: WithTracer>(&self, kernel: Kernel, action: A) -> A::Output {

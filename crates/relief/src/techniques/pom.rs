@@ -97,6 +97,8 @@ impl Entry for Pom {
         self.layers
     }
 
+    const WGSL: Option<&'static str> = Some(include_str!("pom.wgsl"));
+
     fn dispatch<A: WithTracer>(&self, kernel: Kernel, action: A) -> A::Output {
         match kernel {
             Kernel::Scalar => action.run(self),
