@@ -17,7 +17,8 @@ pub struct ReliefBenchConfig {
     /// Techniques to measure, each with its kernel choice (duplicates after resolving the
     /// choices are measured once).
     pub techniques: Vec<Method>,
-    /// Untimed renders before timing.
+    /// Untimed passes before timing a technique's pass (its trace-only timing follows the
+    /// timed passes, which leave it warm, and needs none).
     pub warmup: u32,
     /// Timed renders; the median is reported.
     pub reps: u32,
