@@ -2,6 +2,7 @@
 //! first, skipping blocks whose lowest depth cannot lower the current bound.
 
 use rayon::prelude::*;
+use renderlab_core::image::wrap_index;
 
 /// How the distance between two map cells is measured.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -111,7 +112,6 @@ impl<'a> Search<'a> {
         if apex - self.global_min <= 0.0 || best <= floor {
             return best;
         }
-        let (wc, hc) = (self.wc as i64, self.hc as i64);
         let (px, py) = (px as i64, py as i64);
         let half = BLOCK / 2;
         // Block b covers offsets [b·BLOCK − half, b·BLOCK − half + BLOCK − 1].
@@ -135,8 +135,8 @@ impl<'a> Search<'a> {
             if kx_lo > kx_hi || ky_lo > ky_hi {
                 return true;
             }
-            let bxi = (px + bx * BLOCK - half).rem_euclid(wc) as usize;
-            let byi = (py + by * BLOCK - half).rem_euclid(hc) as usize;
+            let bxi = wrap_index(px + bx * BLOCK - half, self.wc as u32);
+            let byi = wrap_index(py + by * BLOCK - half, self.hc as u32);
             let bmin = self.block_min[byi * self.wc + bxi];
             let bdiff = apex - bmin;
             if bdiff <= 0.0 {
@@ -148,7 +148,7 @@ impl<'a> Search<'a> {
                 return true;
             }
             for ky in ky_lo..=ky_hi {
-                let yi = (py + ky).rem_euclid(hc) as usize;
+                let yi = wrap_index(py + ky, self.hc as u32);
                 let dy2 = self.dist_y[ky.unsigned_abs() as usize];
                 let row = &self.depth[yi * self.wc..(yi + 1) * self.wc];
                 for kx in kx_lo..=kx_hi {
@@ -159,7 +159,7 @@ impl<'a> Search<'a> {
                     if excluded {
                         continue;
                     }
-                    let d = row[(px + kx).rem_euclid(wc) as usize];
+                    let d = row[wrap_index(px + kx, self.wc as u32)];
                     let diff = apex - d;
                     if diff <= 0.0 {
                         continue;
