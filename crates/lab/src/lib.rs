@@ -9,8 +9,8 @@
 //!   restricted to a mask such as "pixels where the surface is visible");
 //! - turns error maps into pictures with [`heatmap`];
 //! - writes rows of numbers with [`results`] (CSV and JSON, atomically);
-//! - draws cost-against-error charts with [`plot`] and assembles a self-contained HTML page
-//!   with [`report`], linked from an index page.
+//! - draws cost-against-error charts with [`plot`] and renders each lab's self-contained HTML
+//!   page from its template with [`report`], linked from an index page.
 //!
 //! Every lab has one shape, the [`Lab`] trait (settings with a full and a quick preset, a run
 //! that hands back a [`LabSummary`]); [`suite`] runs them all and writes the report's index.
@@ -18,12 +18,12 @@
 #![warn(missing_docs)]
 
 pub mod error;
+pub mod frames;
 mod glyphs;
 pub mod heatmap;
 pub mod lab;
 pub mod metrics;
 pub mod noise_lab;
-pub mod noise_motion;
 pub mod plot;
 pub mod relief_lab;
 pub mod report;
@@ -35,5 +35,4 @@ pub mod timing;
 pub use error::{LabError, Result};
 pub use lab::{Lab, LabSummary, Progress};
 pub use metrics::{Comparison, FlipResult, Metrics};
-pub use report::Report;
 pub use timing::{measure, Timing};
