@@ -159,7 +159,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .collect();
 
     let page = Page {
-        scatter: scatter_svg("FLIP against steps", "steps per pixel", "mean FLIP (masked)", &series, true, false),
+        scatter: scatter_svg(
+            "FLIP against steps",
+            "steps per pixel",
+            "mean FLIP (masked)",
+            &series,
+            true,
+            false,
+        ),
         bars: bar_svg(
             "PSNR by step count",
             "PSNR (dB)",

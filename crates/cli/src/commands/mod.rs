@@ -60,4 +60,3 @@ fn report(a: ReportArgs) -> Result<()> {
     println!("wrote {} in {:.1} s", suite.index.display(), suite.seconds);
     Ok(())
 }
-

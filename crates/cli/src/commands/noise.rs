@@ -7,7 +7,9 @@ use anyhow::{bail, Context, Result};
 use glam::Vec3;
 use renderlab_core::Image;
 use renderlab_lab::frames::FrameSink;
-use renderlab_lab::noise_lab::{run_noise_lab_with, CloudsConfig, MotionConfig, NoiseLabConfig, MAX_CLOUDS_SIZE};
+use renderlab_lab::noise_lab::{
+    run_noise_lab_with, CloudsConfig, MotionConfig, NoiseLabConfig, MAX_CLOUDS_SIZE,
+};
 use std::path::Path;
 
 /// Checks the `noise` flags; every error is one line naming the flag.
@@ -307,4 +309,3 @@ pub(super) fn smoke(a: SmokeArgs) -> Result<()> {
     );
     Ok(())
 }
-

@@ -139,7 +139,8 @@ pub(super) fn render(a: RenderArgs) -> Result<()> {
     let out = match a.debug {
         DebugView::None => {
             let started = std::time::Instant::now();
-            let f = render_frame(view.input(), &mats, technique, kernel, scene.lighting, scene.background, true)?;
+            let f =
+                render_frame(view.input(), &mats, technique, kernel, scene.lighting, scene.background, true)?;
             let ms = started.elapsed().as_secs_f64() * 1e3;
             println!(
                 "{technique} ({kernel} kernel): {} pixels, {:.2} height fetches per pixel, {ms:.0} ms (counted run)",
@@ -183,4 +184,3 @@ pub(super) fn materials(a: MaterialsArgs) -> Result<()> {
     }
     Ok(())
 }
-

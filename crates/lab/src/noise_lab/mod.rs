@@ -33,7 +33,8 @@ mod stats;
 pub use clouds::{clouds, clouds_streamed, Clouds, CloudsConfig, MAX_CLOUDS_SIZE};
 pub use motion::{correlation, water_and_smoke, MotionConfig, MotionSummary, SmokeFrameStats, THESIS_FACTOR};
 pub use paths::{
-    max_distance_from_diagonal, noise_path, thesis_paths, AxisNoise, PathExperiment, MAX_PATH_POINTS, PATH_POINTS,
+    max_distance_from_diagonal, noise_path, thesis_paths, AxisNoise, PathExperiment, MAX_PATH_POINTS,
+    PATH_POINTS,
 };
 pub use run::{run_noise_lab, run_noise_lab_with, NoiseLabConfig, NoiseSummary};
 pub use stats::{StatRow, Stats};

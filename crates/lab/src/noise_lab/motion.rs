@@ -10,8 +10,8 @@
 //! the grid with the first frame's (1 = the same shape up to brightness; falling values = the
 //! smoke moves).
 
-use crate::error::Result;
 use super::page::{Figure, Smoke, SmokeAnimation, Water, WaterStill};
+use crate::error::Result;
 use crate::report::format_number;
 use crate::results::{write_csv, write_json};
 use renderlab_core::apng::ApngWriter;

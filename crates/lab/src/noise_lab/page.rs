@@ -7,7 +7,8 @@ use crate::report::{format_number, write_page, Template};
 use serde::Serialize;
 use std::path::Path;
 
-const TEMPLATE: Template = Template { name: "noise.html", source: include_str!("../../templates/noise.html") };
+const TEMPLATE: Template =
+    Template { name: "noise.html", source: include_str!("../../templates/noise.html") };
 
 /// An image or SVG file beside the page, with its caption.
 #[derive(Clone, Debug, Serialize)]

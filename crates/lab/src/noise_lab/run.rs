@@ -76,7 +76,8 @@ pub fn run_noise_lab_with(out_dir: &Path, cfg: &NoiseLabConfig, progress: Progre
                 true,
             );
             files.push(write_text(out_dir, &file, &svg)?);
-            figures.push(Figure { file, caption: format!("{}: projection onto the x–{name} plane", e.title) });
+            figures
+                .push(Figure { file, caption: format!("{}: projection onto the x–{name} plane", e.title) });
         }
         path_figures.push(PathFigures { title: e.title, distance: format_number(dist, 4), figures });
         for (a, name) in ["x", "y", "z"].iter().enumerate() {

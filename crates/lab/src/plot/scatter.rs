@@ -3,7 +3,9 @@
 use super::axis::{data_axis, y_label_area};
 use super::legend::{draw_legend, legend_layout};
 use super::series::Series;
-use super::style::{finish, font, series_color, DrawResult, AXIS, GRID, GRID_LIGHT, MUTED, PLOT_HEIGHT, PLOT_WIDTH};
+use super::style::{
+    finish, font, series_color, DrawResult, AXIS, GRID, GRID_LIGHT, MUTED, PLOT_HEIGHT, PLOT_WIDTH,
+};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};

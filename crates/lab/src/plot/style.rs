@@ -29,7 +29,6 @@ pub(super) const GRID: RGBColor = RGBColor(0xdd, 0xe1, 0xe6);
 pub(super) const GRID_LIGHT: RGBColor = RGBColor(0xf0, 0xf2, 0xf4);
 pub(super) const AXIS: RGBColor = RGBColor(0x8a, 0x91, 0x9a);
 
-
 /// The colour of series `i`.
 pub(super) fn series_color(i: usize) -> RGBColor {
     let (r, g, b) = PALETTE[i % PALETTE.len()];

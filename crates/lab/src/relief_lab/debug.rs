@@ -47,7 +47,8 @@ pub fn debug_view(
     technique: Technique,
     kernel: Kernel,
 ) -> Result<Image<Vec3>> {
-    let lit = |t: Technique, k: Kernel| render(view.input(), mats, t, k, scene.lighting, scene.background, false);
+    let lit =
+        |t: Technique, k: Kernel| render(view.input(), mats, t, k, scene.lighting, scene.background, false);
     let (width, height) = (view.gbuffer.width(), view.gbuffer.height());
     Ok(match which {
         DebugView::Reference => {

@@ -11,8 +11,8 @@ mod run;
 mod uv_error;
 mod verdicts;
 
-pub use debug::{debug_view, DebugView, UV_ERROR_MAX_TEXELS};
 pub use config::{default_techniques, resolve, Method, ReliefBenchConfig, POM_32};
+pub use debug::{debug_view, DebugView, UV_ERROR_MAX_TEXELS};
 pub use record::{label, ReliefRecord, ReliefSummary};
 pub use run::{run_relief_bench, View};
 pub use uv_error::{mean_and_p95, uv_error_map};

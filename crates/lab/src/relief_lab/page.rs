@@ -6,10 +6,10 @@ use super::record::{find, label, ReliefRecord};
 use super::verdicts::{versus_pom32, THESIS_ADAPTIVE, THESIS_POMS, THESIS_TABLE_4_1};
 use crate::plot::{scatter_svg, Series};
 use crate::report::{format_number, write_page, Template};
-use serde::Serialize;
 use renderlab_core::camera::BENCH_ANGLES_DEG;
 use renderlab_core::Material;
 use renderlab_relief::{Kernel, Technique};
+use serde::Serialize;
 use std::path::Path;
 
 /// One scatter series per technique family and kernel: (cost, UV error) points labelled with
@@ -46,7 +46,8 @@ pub(super) struct ImageSet {
     pub(super) has_layers: bool,
 }
 
-const TEMPLATE: Template = Template { name: "relief.html", source: include_str!("../../templates/relief.html") };
+const TEMPLATE: Template =
+    Template { name: "relief.html", source: include_str!("../../templates/relief.html") };
 
 /// The material the lab ran on, as the page names it.
 #[derive(Serialize)]
@@ -182,7 +183,10 @@ pub(super) fn write_report(
     } else {
         cfg.angles
             .iter()
-            .map(|&a| AngleImages { angle: a.to_string(), sets: images.iter().filter(|s| s.angle == a).collect() })
+            .map(|&a| AngleImages {
+                angle: a.to_string(),
+                sets: images.iter().filter(|s| s.angle == a).collect(),
+            })
             .collect()
     };
     let page = Page {

@@ -19,7 +19,8 @@ pub fn uv_error_map(frame: &Frame, reference: &Frame, size: Vec2) -> Image<f32> 
 
 /// Mean and 95th percentile of `errors` over the pixels of `mask` (0 and 0 when it is empty).
 pub fn mean_and_p95(errors: &Image<f32>, mask: &Image<bool>) -> (f64, f64) {
-    let mut v: Vec<f32> = errors.pixels().iter().zip(mask.pixels()).filter(|(_, &m)| m).map(|(&e, _)| e).collect();
+    let mut v: Vec<f32> =
+        errors.pixels().iter().zip(mask.pixels()).filter(|(_, &m)| m).map(|(&e, _)| e).collect();
     if v.is_empty() {
         return (0.0, 0.0);
     }

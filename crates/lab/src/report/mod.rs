@@ -191,7 +191,12 @@ fn template_error(name: &str, e: minijinja::Error) -> LabError {
 
 /// The complete HTML page of `template` rendered with `context`, titled `title` under the
 /// small heading `kicker`.
-pub fn render_page(template: Template, title: &str, kicker: &str, context: &impl Serialize) -> Result<String> {
+pub fn render_page(
+    template: Template,
+    title: &str,
+    kicker: &str,
+    context: &impl Serialize,
+) -> Result<String> {
     let anchors = Arc::new(Mutex::new(Vec::new()));
     let env = environment(template, anchors.clone())?;
     let body = env
@@ -362,7 +367,8 @@ mod tests {
             .collect();
         assert_eq!(names.len(), 2, "no temporary files left: {names:?}");
         // A directory that does not exist is an error naming the file, not a panic.
-        let e = write_page(&dir.path().join("nope").join("x.html"), TEST, "t", &context("x", &[])).unwrap_err();
+        let e =
+            write_page(&dir.path().join("nope").join("x.html"), TEST, "t", &context("x", &[])).unwrap_err();
         assert!(e.to_string().contains("x.html"));
     }
 }

@@ -1,9 +1,9 @@
 //! The texture lab's page: findings, the pixel-filter model and the reference's noise, the
 //! rankings per model, the σ study, per-scene tables, the mapping modes and the images.
 
-use super::sigma::rows as sigma_rows;
 use super::config::{file_name, TextureBenchConfig, HEAT_MAX, NOISE_MARGIN_DB};
 use super::record::{Ranking, TextureRecord};
+use super::sigma::rows as sigma_rows;
 use super::sigma::SigmaRecord;
 use super::truth::NoiseRecord;
 use crate::error::Result;
@@ -45,7 +45,8 @@ fn find<'a>(
         .find(|r| r.kind == "filter" && r.scene == scene && r.method == method && r.reference == reference)
 }
 
-const TEMPLATE: Template = Template { name: "texture.html", source: include_str!("../../templates/texture.html") };
+const TEMPLATE: Template =
+    Template { name: "texture.html", source: include_str!("../../templates/texture.html") };
 
 /// The reference's sampling as the page states it.
 #[derive(Serialize)]
@@ -226,7 +227,8 @@ fn scene_rows(records: &[TextureRecord], s: &str) -> Vec<Vec<String>> {
         .filter(|x| x.kind == "filter" && x.scene == s && x.reference == "gaussian")
         .map(|g| {
             let b = find(records, s, &g.method, "box");
-            let bf = |f: fn(&TextureRecord) -> f64, k| b.map(|b| format_number(f(b), k)).unwrap_or("–".into());
+            let bf =
+                |f: fn(&TextureRecord) -> f64, k| b.map(|b| format_number(f(b), k)).unwrap_or("–".into());
             vec![
                 g.method.clone(),
                 format_number(g.ns_per_pixel, 1),

@@ -5,8 +5,8 @@
 //! against every reference, so the table shows both whether the matched kernel wins and which
 //! filter is best for each kernel.
 
-use super::truth::{truth, NoiseRecord};
 use super::config::{scene_of, SigmaStudy, TextureBenchConfig, NOISE_MARGIN_DB};
+use super::truth::{truth, NoiseRecord};
 use crate::error::Result;
 use crate::metrics::psnr;
 use crate::report::format_number;

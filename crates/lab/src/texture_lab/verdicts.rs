@@ -9,7 +9,6 @@ use super::truth::NoiseRecord;
 use crate::report::format_number;
 use renderlab_texture::reference::PixelFilter;
 
-
 /// Ranks every filter under each model.
 pub fn rank(records: &[TextureRecord], models: &[PixelFilter]) -> Vec<Ranking> {
     let mut out = Vec::new();

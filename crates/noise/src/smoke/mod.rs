@@ -72,8 +72,8 @@ pub mod render;
 pub use field::{build_density, plume_shape, SmokeField};
 pub use grid::{gaussian_filter, median_filter, DensityGrid};
 pub use params::{
-    Animation, SmokeFilter, SmokeParams, BIAS, CONTRAST, CURL_EVOLUTION, CURL_GRID, ENVELOPE_CUT, ENVELOPE_SWAY,
-    MAX_GRID, MAX_SIGMA, MAX_SMOKE_OCTAVES, MAX_SMOKE_SIDE, MAX_SMOKE_TIME, MIN_GRID, MIN_TRANSMITTANCE,
-    PLUME_WIDENING,
+    Animation, SmokeFilter, SmokeParams, BIAS, CONTRAST, CURL_EVOLUTION, CURL_GRID, ENVELOPE_CUT,
+    ENVELOPE_SWAY, MAX_GRID, MAX_SIGMA, MAX_SMOKE_OCTAVES, MAX_SMOKE_SIDE, MAX_SMOKE_TIME, MIN_GRID,
+    MIN_TRANSMITTANCE, PLUME_WIDENING,
 };
 pub use render::{box_interval, henyey_greenstein, render_smoke_frame, render_smoke_sequence, SmokeVolume};
