@@ -13,8 +13,9 @@ use renderlab_core::Image;
 use renderlab_lab::heatmap::{heat_image, percentile, with_legend};
 use renderlab_lab::metrics::{compare, per_pixel_abs_error};
 use renderlab_lab::plot::{bar_svg, scatter_svg, BarSeries, Series};
-use renderlab_lab::report::{format_number, write_index, write_page, IndexCard, Template};
+use renderlab_lab::report::{format_number, write_page, Template};
 use renderlab_lab::results::{write_csv, write_json};
+use renderlab_lab::suite::{write_index, IndexCard};
 use renderlab_lab::timing::measure;
 use serde::Serialize;
 

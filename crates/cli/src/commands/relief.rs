@@ -136,8 +136,16 @@ pub(super) fn render(a: RenderArgs) -> Result<()> {
     let mats: Vec<ReliefMaterial> =
         scene.materials.iter().map(|m| ReliefMaterial::new(m, &cp, technique.needs_map(Map::Cone))).collect();
     let view = View::new(&scene, &camera, a.angle);
-    let out = match a.debug {
-        DebugView::None => {
+    let debug = match a.debug {
+        DebugView::None => None,
+        DebugView::Layers => Some(Debug::Layers),
+        DebugView::Complexity => Some(Debug::Complexity),
+        DebugView::Reference => Some(Debug::Reference),
+        DebugView::Error => Some(Debug::Error),
+    };
+    let out = match debug {
+        Some(which) => debug_view(which, &view, &scene, &mats, technique, kernel)?,
+        None => {
             let started = std::time::Instant::now();
             let f =
                 render_frame(view.input(), &mats, technique, kernel, scene.lighting, scene.background, true)?;
@@ -149,10 +157,6 @@ pub(super) fn render(a: RenderArgs) -> Result<()> {
             );
             f.image
         }
-        DebugView::Layers => debug_view(Debug::Layers, &view, &scene, &mats, technique, kernel)?,
-        DebugView::Complexity => debug_view(Debug::Complexity, &view, &scene, &mats, technique, kernel)?,
-        DebugView::Reference => debug_view(Debug::Reference, &view, &scene, &mats, technique, kernel)?,
-        DebugView::Error => debug_view(Debug::Error, &view, &scene, &mats, technique, kernel)?,
     };
     io::save_color(&a.out, &out)?;
     println!("wrote {}", a.out.display());

@@ -1,4 +1,4 @@
-//! Self-contained HTML reports: a page per lab and the index page linking the labs, rendered
+//! Self-contained HTML pages (each lab's, and the suite's index in [`crate::suite`]), rendered
 //! from the template files under `crates/lab/templates/` with minijinja.
 //!
 //! A page is two renders. First the lab's own template (its prose, sections, tables, figures
@@ -23,7 +23,7 @@ use minijinja::value::{Serde, Value};
 use minijinja::{AutoEscape, Environment, UndefinedBehavior};
 use renderlab_core::io::write_atomic;
 use serde::Serialize;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::{Arc, Mutex};
 
 /// A page template: its file name (which also selects HTML escaping) and its text.
@@ -41,9 +41,6 @@ const SHARED: [Template; 3] = [
     Template { name: "report.css", source: include_str!("../../templates/report.css") },
     Template { name: "macros.html", source: include_str!("../../templates/macros.html") },
 ];
-
-/// The suite's index page.
-const INDEX: Template = Template { name: "index.html", source: include_str!("../../templates/index.html") };
 
 /// Escapes `&`, `<`, `>`, `"` and `'` so that `s` shows as text in HTML or SVG, in element
 /// content and in attribute values alike.
@@ -220,34 +217,6 @@ pub fn write_page(path: &Path, template: Template, title: &str, context: &impl S
     Ok(())
 }
 
-/// One lab's card on the index page.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
-pub struct IndexCard {
-    /// The lab's title (text).
-    pub title: String,
-    /// The lab's page, relative to the index.
-    pub link: String,
-    /// The lab's headline (text).
-    pub summary: String,
-    /// The lab's headline image, relative to the index, shown as a thumbnail beside the
-    /// summary (none: text only).
-    pub image: Option<String>,
-}
-
-/// Writes `out_dir/index.html`, the top-level results page: one card per lab, linking to the
-/// lab's page, with its headline image as a thumbnail beside its title and summary. Returns
-/// the path written.
-pub fn write_index(out_dir: impl AsRef<Path>, labs: &[IndexCard]) -> Result<PathBuf> {
-    #[derive(Serialize)]
-    struct Context<'a> {
-        cards: &'a [IndexCard],
-    }
-    let html = render_page(INDEX, "renderlab results", "renderlab", &Context { cards: labs })?;
-    let path = out_dir.as_ref().join("index.html");
-    write_atomic(&path, |out| out.write_all(html.as_bytes()))?;
-    Ok(path)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -342,30 +311,12 @@ mod tests {
     }
 
     #[test]
-    fn write_is_atomic_and_index_links_labs() {
+    fn write_is_atomic() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("relief.html");
         write_page(&path, TEST, "Relief", &context("hello", &[])).unwrap();
         assert!(std::fs::read_to_string(&path).unwrap().contains("<p>hello</p>"));
-        let card = |image: Option<&str>| IndexCard {
-            title: "Relief <mapping>".into(),
-            link: "relief/index.html".into(),
-            summary: "POM vs relief".into(),
-            image: image.map(String::from),
-        };
-        let index = write_index(dir.path(), &[card(Some("relief/img/ref 60.png")), card(None)]).unwrap();
-        let html = std::fs::read_to_string(index).unwrap();
-        assert_eq!(html.matches("href=\"relief/index.html\"").count(), 2);
-        assert!(html.contains("Relief &lt;mapping&gt;"));
-        // The headline image sits inside the card, before its text; a card without one has none.
-        assert_eq!(html.matches("<img class=\"thumb\" src=\"relief/img/ref%2060.png\"").count(), 1);
-        let first = html.find("<img class=\"thumb\"").unwrap();
-        assert!(first < html.find("<h3>").unwrap());
-        let names: Vec<_> = std::fs::read_dir(dir.path())
-            .unwrap()
-            .map(|e| e.unwrap().file_name().into_string().unwrap())
-            .collect();
-        assert_eq!(names.len(), 2, "no temporary files left: {names:?}");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1, "no temporary files left");
         // A directory that does not exist is an error naming the file, not a panic.
         let e =
             write_page(&dir.path().join("nope").join("x.html"), TEST, "t", &context("x", &[])).unwrap_err();
