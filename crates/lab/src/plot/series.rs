@@ -1,6 +1,6 @@
 //! The data a chart draws: named point series and bar series.
 
-/// One named set of points in a [`scatter_svg`].
+/// One named set of points in a [`scatter_svg`](super::scatter_svg).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Series {
     /// Name shown in the legend (e.g. the technique).
@@ -33,7 +33,7 @@ impl Series {
     }
 }
 
-/// One named set of bars in a [`bar_svg`]: one value per category.
+/// One named set of bars in a [`bar_svg`](super::bar_svg): one value per category.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct BarSeries {
     /// Name shown in the legend (e.g. the technique).

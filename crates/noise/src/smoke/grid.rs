@@ -16,7 +16,7 @@ pub struct DensityGrid {
 }
 
 impl DensityGrid {
-    /// A grid of resolution `n` ([`MIN_GRID`]..=[`MAX_GRID`]) filled with `value`.
+    /// A grid of resolution `n` ([`MIN_GRID`](super::MIN_GRID)..=[`MAX_GRID`](super::MAX_GRID)) filled with `value`.
     pub fn new(n: u32, value: f32) -> Result<Self> {
         check_grid(n)?;
         let n = n as usize;
