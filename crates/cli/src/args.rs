@@ -208,6 +208,19 @@ pub enum DebugView {
     Error,
 }
 
+/// Which renderer `relief render` uses.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Backend {
+    /// The CPU renderer.
+    Cpu,
+    /// The GPU renderer (wgpu on Vulkan: a GPU, or Mesa's lavapipe on the CPU); an error when
+    /// no adapter can be found.
+    Gpu,
+    /// The GPU renderer where an adapter is found and the technique has a shader; otherwise
+    /// the CPU renderer, saying so.
+    Auto,
+}
+
 /// Which scene `relief render` draws.
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SceneChoice {
@@ -248,6 +261,11 @@ pub struct RenderArgs {
     /// Debug view instead of the shaded image.
     #[arg(long, value_enum, default_value_t = DebugView::None)]
     pub debug: DebugView,
+    /// Renderer: cpu, gpu, or auto (the GPU when one is found, else the CPU). The GPU draws
+    /// the image and the layers and error views; the reference and complexity views are
+    /// always computed on the CPU.
+    #[arg(long, value_enum, default_value_t = Backend::Cpu)]
+    pub backend: Backend,
     /// Complexity-map parameters for adaptive POM.
     #[command(flatten)]
     pub complexity: ComplexityFlags,

@@ -571,3 +571,24 @@ fn errors_name_their_cause_once_and_unwritable_outputs_are_refused_before_work()
         assert!(!jpg.exists());
     }
 }
+
+/// `--backend gpu` refuses a technique without a shader in one line (before it opens a
+/// device, so this holds with or without one); `--backend auto` says so and renders on the
+/// CPU.
+#[test]
+fn relief_render_backends() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("r.png");
+    let o = out.to_str().unwrap();
+    let base = ["relief", "render", "-o", o, "--width", "24", "--height", "16", "--texture-size", "64"];
+    let with =
+        |extra: &[&'static str]| base.iter().copied().chain(extra.iter().copied()).collect::<Vec<&str>>();
+    fails_with(&with(&["-t", "pom-shadow", "--backend", "gpu"]), "has no GPU shader yet");
+    assert!(!out.exists(), "no output after a refusal");
+    let run = renderlab(&with(&["-t", "pom-shadow", "--backend", "auto"]));
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    assert!(stdout.contains("rendering on the CPU instead") && stdout.contains("no GPU shader"), "{stdout}");
+    assert!(out.exists());
+    fails_with(&with(&["--backend", "metal"]), "--backend");
+}

@@ -23,15 +23,6 @@ pub struct Camera {
     pub far: f32,
 }
 
-/// The thesis's benchmark window size.
-pub const BENCH_WIDTH: u32 = 1280;
-/// The thesis's benchmark window size.
-pub const BENCH_HEIGHT: u32 = 800;
-/// The view angles of the thesis's benchmark, in degrees from the wall normal.
-pub const BENCH_ANGLES_DEG: [f32; 4] = [0.0, 45.0, 60.0, 80.0];
-/// Distance of the benchmark camera from the centre of the bricks wall.
-pub const BENCH_DISTANCE: f32 = 6.0;
-
 impl Camera {
     /// A camera at `position` looking at `target`, with the default 45° vertical field of
     /// view of the thesis's engine.
@@ -48,14 +39,14 @@ impl Camera {
         }
     }
 
-    /// The thesis's benchmark camera: 6 units from the centre of the bricks wall (which faces
-    /// +Z at z = 1, centre height 1), turned `angle_deg` from the wall's normal about the
-    /// vertical axis, looking at the wall's centre.
-    pub fn benchmark(angle_deg: f32, width: u32, height: u32) -> Self {
-        let centre = crate::scene::BRICKS_WALL_CENTRE;
+    /// A camera `distance` from `target` on the horizontal circle around it, turned
+    /// `angle_deg` about the vertical axis from the +Z side toward −X, looking at `target`
+    /// (so at 0° it looks along −Z at a surface facing +Z). The view of a surface at a chosen
+    /// angle from its normal, which the lab's benchmark views are built from.
+    pub fn orbit(target: Vec3, distance: f32, angle_deg: f32, width: u32, height: u32) -> Self {
         let a = angle_deg.to_radians();
-        let position = centre + Vec3::new(-a.sin(), 0.0, a.cos()) * BENCH_DISTANCE;
-        Self::look_at(position, centre, width, height)
+        let position = target + Vec3::new(-a.sin(), 0.0, a.cos()) * distance;
+        Self::look_at(position, target, width, height)
     }
 
     /// Width / height.
@@ -95,19 +86,18 @@ mod tests {
     use super::*;
 
     #[test]
-    fn benchmark_positions_match_the_thesis() {
-        // The thesis's player positions (x, z) for 0/45/60/80 degrees.
-        let thesis = [(0.0, 7.0), (-4.24, 5.24), (-5.2, 4.0), (-5.91, 2.04)];
-        for (angle, (x, z)) in BENCH_ANGLES_DEG.iter().zip(thesis) {
-            let c = Camera::benchmark(*angle, 1280, 800);
-            assert!((c.position.x - x).abs() < 0.01, "{angle}: x {}", c.position.x);
-            assert!((c.position.z - z).abs() < 0.01, "{angle}: z {}", c.position.z);
-        }
+    fn orbit_turns_toward_minus_x_at_the_distance() {
+        let target = Vec3::new(0.0, 1.0, 1.0);
+        let c = Camera::orbit(target, 6.0, 90.0, 64, 40);
+        assert!((c.position - Vec3::new(-6.0, 1.0, 1.0)).length() < 1e-5, "{}", c.position);
+        assert!((c.forward - Vec3::X).length() < 1e-6);
+        let c = Camera::orbit(target, 6.0, 0.0, 64, 40);
+        assert_eq!(c.position, Vec3::new(0.0, 1.0, 7.0));
     }
 
     #[test]
     fn centre_ray_is_forward() {
-        let c = Camera::benchmark(45.0, 1280, 800);
+        let c = Camera::orbit(Vec3::new(0.0, 1.0, 1.0), 6.0, 45.0, 1280, 800);
         let d = c.ray_direction(640.0, 400.0);
         assert!((d - c.forward).length() < 1e-5);
     }

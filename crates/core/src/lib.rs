@@ -17,7 +17,6 @@ pub mod image;
 pub mod io;
 pub mod material;
 pub mod mesh;
-pub mod procedural;
 pub mod scene;
 pub mod surface;
 

@@ -1,12 +1,10 @@
-//! Scenes: objects, materials and lighting. The built-in scenes reproduce the thesis's
-//! TextureLab room and its benchmark set-up.
+//! Scenes: objects, materials and lighting. The built-in geometry reproduces the thesis's
+//! TextureLab room (its walls and floor); the lab's fixtures build its benchmark set-up from
+//! it (the bricks wall alone, the cameras, the room with its materials).
 
-use crate::camera::Camera;
 use crate::color::srgb_to_linear;
-use crate::error::Result;
 use crate::material::Material;
 use crate::mesh::Mesh;
-use crate::procedural;
 use glam::{Vec2, Vec3};
 
 /// Centre of the bricks wall (the thesis's `wall2`), which faces +Z.
@@ -91,11 +89,12 @@ pub fn bricks_wall() -> Mesh {
 }
 
 impl Scene {
-    /// The thesis's benchmark scene: only the bricks wall, lit by the default light.
-    pub fn benchmark(bricks: Material) -> Self {
+    /// A scene of `objects` and `materials` under the default light, with the thesis's
+    /// lighting constants and background.
+    pub fn new(objects: Vec<SceneObject>, materials: Vec<Material>) -> Self {
         Self {
-            objects: vec![SceneObject { name: "wall2".into(), mesh: bricks_wall(), material: 0 }],
-            materials: vec![bricks],
+            objects,
+            materials,
             light: default_light(),
             lighting: Lighting::default(),
             background: background(),
@@ -134,23 +133,6 @@ impl Scene {
             },
             SceneObject { name: "floor".into(), mesh: floor, material: 3 },
         ];
-        Self {
-            objects,
-            materials: materials.into(),
-            light: default_light(),
-            lighting: Lighting::default(),
-            background: background(),
-        }
-    }
-
-    /// The thesis's room with the built-in procedural materials at `size`² texels.
-    pub fn thesis_room_default(size: u32) -> Result<Self> {
-        let m = |n| procedural::material(n, size);
-        Ok(Self::thesis_room([m("bricks")?, m("sand_rocks")?, m("bark_willow")?, m("brick_pavement")?]))
-    }
-
-    /// A camera overlooking the whole room from the middle of the thesis's walking area.
-    pub fn room_camera(width: u32, height: u32) -> Camera {
-        Camera::look_at(Vec3::new(1.5, 1.6, 9.5), Vec3::new(0.0, 0.4, 1.0), width, height)
+        Self::new(objects, materials.into())
     }
 }

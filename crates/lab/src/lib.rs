@@ -12,12 +12,16 @@
 //! - draws cost-against-error charts with [`plot`] and renders each lab's self-contained HTML
 //!   page from its template with [`report`], linked from an index page.
 //!
+//! The labs' fixtures (the thesis's benchmark cameras and scenes, the furnished room) are in
+//! [`fixtures`].
+//!
 //! Every lab has one shape, the [`Lab`] trait (settings with a full and a quick preset, a run
 //! that hands back a [`LabSummary`]); [`suite`] runs them all and writes the report's index.
 
 #![warn(missing_docs)]
 
 pub mod error;
+pub mod fixtures;
 pub mod frames;
 mod glyphs;
 pub mod heatmap;

@@ -1,16 +1,16 @@
 //! The relief lab end to end on a small frame: it writes consistent results, images and a
 //! report, and its measurements mean what they say.
 
-use renderlab_core::procedural;
 use renderlab_lab::relief_lab::{run_relief_bench, versus_pom32, Method, ReliefBenchConfig, ReliefRecord};
 use renderlab_relief::{Kernel, KernelChoice, Technique};
+use renderlab_texture::materials;
 
 fn tech(name: &str) -> Technique {
     Technique::parse(name).unwrap()
 }
 
 fn small_run(dir: &std::path::Path) -> Vec<ReliefRecord> {
-    let material = procedural::material("bricks", 128).unwrap();
+    let material = materials::material("bricks", 128).unwrap();
     let cfg = ReliefBenchConfig {
         width: 96,
         height: 60,
@@ -92,17 +92,16 @@ fn measurements_behave() {
 /// cone-newton and POM, and the reference.
 #[test]
 fn frames_are_identical_for_any_thread_count() {
-    use renderlab_core::camera::Camera;
-    use renderlab_core::Scene;
+    use renderlab_lab::fixtures::{benchmark_camera, benchmark_scene};
     use renderlab_lab::relief_lab::View;
     use renderlab_relief::maps::complexity::ComplexityParams;
     use renderlab_relief::render::{render, render_reference};
     use renderlab_relief::ReliefMaterial;
 
-    let material = procedural::material("bricks", 64).unwrap();
+    let material = materials::material("bricks", 64).unwrap();
     let mat = ReliefMaterial::with_cone_size(&material, &ComplexityParams::default(), Some(32));
-    let scene = Scene::benchmark(material);
-    let view = View::new(&scene, &Camera::benchmark(60.0, 80, 50), 60.0);
+    let scene = benchmark_scene(material);
+    let view = View::new(&scene, &benchmark_camera(60.0, 80, 50), 60.0);
     let mats = std::slice::from_ref(&mat);
     let frames = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
@@ -135,7 +134,7 @@ fn a_missing_map_is_an_error_naming_it() {
     use renderlab_relief::render::check;
     use renderlab_relief::ReliefMaterial;
 
-    let material = procedural::material("bricks", 32).unwrap();
+    let material = materials::material("bricks", 32).unwrap();
     let mat = ReliefMaterial::with_cone_size(&material, &ComplexityParams::default(), None);
     for t in ["cone", "cone:8:3:secant", "cone-newton"] {
         let err = check(tech(t), Kernel::Scalar, std::slice::from_ref(&mat)).unwrap_err().to_string();

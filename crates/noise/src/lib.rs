@@ -4,6 +4,8 @@
 //! * [`Perlin`]: Ken Perlin's improved gradient noise in 1D–4D with the quintic fade
 //!   `6t⁵ − 15t⁴ + 10t³`, a seeded permutation table per axis, and analytic derivatives.
 //! * [`Period`]: tileable noise (the lattice wraps after a whole number of cells).
+//! * [`HashedPerlin`]: the same 2D gradient noise on a hashed lattice (no tables, any
+//!   period), for textures generated texel by texel such as the built-in relief materials.
 //! * [`Fractal`] with validated [`FractalParams`]: the thesis's octave sum
 //!   `P_i = P_{i−1} + noise(2^i·x)/2^i` with min–max normalisation ([`normalize_min_max`]),
 //!   fBm with lacunarity and gain, turbulence and ridged sums.
@@ -42,6 +44,7 @@
 pub mod batch;
 pub mod error;
 pub mod fractal;
+pub mod hashed;
 pub mod periodic;
 pub mod perlin;
 pub mod smoke;
@@ -49,6 +52,7 @@ pub mod water;
 
 pub use error::{NoiseError, Result};
 pub use fractal::{normalize_min_max, Fractal, FractalKind, FractalParams, MAX_FREQUENCY, MAX_OCTAVES};
+pub use hashed::HashedPerlin;
 pub use periodic::{Period, MAX_PERIOD};
 pub use perlin::{fade, fade_derivative, Perlin};
 pub use smoke::{

@@ -24,6 +24,10 @@
 //! cells per axis (exactly as Perlin's reference does); the periodic variants wrap it at any
 //! smaller whole period.
 //!
+//! The hand-scheduled 2D kernel takes its gradients from any lattice (`Lattice2`: a row part,
+//! then a column part of the hash), so that the hashed lattice of [`crate::hashed`] is
+//! evaluated by the same code as these tables.
+//!
 //! # Output range and scale
 //!
 //! Every function is scaled so that the value at a cell centre with every corner's gradient
@@ -93,6 +97,12 @@ pub struct Perlin {
 pub(crate) trait Wrap: Copy {
     /// Wraps lattice index `i` on axis `axis`.
     fn wrap(self, axis: usize, i: i32) -> i32;
+
+    /// The wrapped index after `i` on axis `axis`, for an `i` that [`Wrap::wrap`] gave.
+    #[inline(always)]
+    fn next(self, axis: usize, i: i32) -> i32 {
+        self.wrap(axis, i.wrapping_add(1))
+    }
 }
 
 /// No wrapping: the lattice repeats only every 256 cells.
@@ -114,6 +124,37 @@ impl Wrap for PeriodWrap {
     #[inline(always)]
     fn wrap(self, axis: usize, i: i32) -> i32 {
         i.rem_euclid(self.0[axis])
+    }
+}
+
+/// Wrap modulo a positive period per axis, as [`PeriodWrap`] (the same values), without a
+/// division when the index lies within one period of `[0, period)`: the common case for
+/// texture coordinates in or near the unit square, where a kernel wraps every sample.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NearWrap(pub(crate) [i32; 4]);
+
+impl Wrap for NearWrap {
+    #[inline(always)]
+    fn wrap(self, axis: usize, i: i32) -> i32 {
+        let p = self.0[axis];
+        if (0..p).contains(&i) {
+            i
+        } else if i >= p && i - p < p {
+            i - p
+        } else if i < 0 && i >= -p {
+            i + p
+        } else {
+            i.rem_euclid(p)
+        }
+    }
+
+    #[inline(always)]
+    fn next(self, axis: usize, i: i32) -> i32 {
+        if i + 1 == self.0[axis] {
+            0
+        } else {
+            i + 1
+        }
     }
 }
 
@@ -319,6 +360,46 @@ pub(crate) fn eval3_fast<W: Wrap>(perm: &[[u8; TABLE_SIZE]; 4], p: [f32; 3], sal
     e + w * (f - e)
 }
 
+/// Where a 2D kernel's lattice gradients come from. The hash of a lattice point is split into
+/// a row part (from `iy`) and a column part (`ix` within that row), the shape of both the
+/// nested permutation hash `P_x[P_y[y] + x]` and the integer hash of [`crate::hashed`], so that
+/// a kernel hashes each row once.
+pub(crate) trait Lattice2 {
+    /// What a row contributes to the hash of its points.
+    type Row: Copy;
+    /// The row part of (wrapped) lattice row `iy`.
+    fn row(&self, iy: i32) -> Self::Row;
+    /// The gradient at (wrapped) lattice column `ix` of `row`.
+    fn gradient(&self, row: Self::Row, ix: i32) -> [f32; 2];
+}
+
+/// Hand-scheduled 2D value evaluation over any [`Lattice2`]: the four corners' dot products
+/// blended by a chain of lerps `a + (b − a)·fade(t)` (x first, then y, the order of
+/// [`eval3_fast`]), scaled to ±1. Non-finite coordinates give 0.
+#[inline(always)]
+pub(crate) fn eval2_lerp<L: Lattice2, W: Wrap>(lattice: &L, p: [f32; 2], wrap: W) -> f32 {
+    if !(p[0].is_finite() && p[1].is_finite()) {
+        return 0.0;
+    }
+    let (xi, x) = split(p[0]);
+    let (yi, y) = split(p[1]);
+    let (x0, y0) = (wrap.wrap(0, xi), wrap.wrap(1, yi));
+    let x1 = wrap.next(0, x0);
+    let (r0, r1) = (lattice.row(y0), lattice.row(wrap.next(1, y0)));
+    let g = |row: L::Row, ix: i32, dx: f32, dy: f32| {
+        let v = lattice.gradient(row, ix);
+        v[0] * dx + v[1] * dy
+    };
+    let n00 = g(r0, x0, x, y);
+    let n10 = g(r0, x1, x - 1.0, y);
+    let n01 = g(r1, x0, x, y - 1.0);
+    let n11 = g(r1, x1, x - 1.0, y - 1.0);
+    let (u, v) = (fade(x), fade(y));
+    let a = n00 + (n10 - n00) * u;
+    let b = n01 + (n11 - n01) * u;
+    (a + (b - a) * v) * scale::<2>()
+}
+
 impl Perlin {
     /// A generator using the same seed on every axis.
     pub fn new(seed: u32) -> Self {
@@ -479,6 +560,49 @@ mod tests {
                 assert_eq!((i, t), (x as i32, 0.0), "{x}");
             }
             assert!((0.0..1.0).contains(&t));
+        }
+    }
+
+    /// The permutation tables as a [`Lattice2`]: `P_x[P_y[y] + x]`, the gradient of [`eval`].
+    struct Tables<'a>(&'a [[u8; TABLE_SIZE]; 4]);
+
+    impl Lattice2 for Tables<'_> {
+        type Row = u8;
+        fn row(&self, iy: i32) -> u8 {
+            self.0[1][usize::from(iy as u8)]
+        }
+        fn gradient(&self, row: u8, ix: i32) -> [f32; 2] {
+            gradient::<2>(self.0[0][usize::from(row.wrapping_add(ix as u8))])
+        }
+    }
+
+    #[test]
+    fn lerp_2d_kernel_equals_the_general_one() {
+        let p = Perlin::with_axis_seeds([5, 6, 7, 8]);
+        let period = PeriodWrap([7, 5, 1, 1]);
+        for i in 0..500 {
+            let x = [i as f32 * 0.173 - 40.0, i as f32 * 0.071 + 0.5];
+            let fast = eval2_lerp(&Tables(&p.perm), x, NoWrap);
+            let general = eval::<2, false, _>(&p.perm, x, 0, NoWrap).0;
+            assert!((fast - general).abs() < 1e-6, "{fast} vs {general}");
+            let fast = eval2_lerp(&Tables(&p.perm), x, period);
+            let general = eval::<2, false, _>(&p.perm, x, 0, period).0;
+            assert!((fast - general).abs() < 1e-6, "periodic: {fast} vs {general}");
+        }
+        assert_eq!(eval2_lerp(&Tables(&p.perm), [f32::NAN, 0.5], NoWrap), 0.0);
+    }
+
+    #[test]
+    fn near_wrap_equals_period_wrap() {
+        for p in [1, 2, 7, 256, 1 << 24] {
+            let (near, period) = (NearWrap([p; 4]), PeriodWrap([p; 4]));
+            for i in
+                (-3 * p..=3 * p).step_by((p as usize / 64).max(1)).chain([i32::MIN, i32::MAX, -1, 0, p - 1])
+            {
+                assert_eq!(near.wrap(0, i), period.wrap(0, i), "{i} mod {p}");
+                let w = near.wrap(0, i);
+                assert_eq!(near.next(0, w), period.next(0, w), "after {w} mod {p}");
+            }
         }
     }
 

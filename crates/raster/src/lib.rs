@@ -40,6 +40,7 @@
 
 mod bin;
 mod clip;
+mod frame;
 mod gbuffer;
 mod resolve;
 mod setup;

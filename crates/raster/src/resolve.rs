@@ -1,8 +1,9 @@
 //! Turning a visible triangle at a pixel into a [`SurfacePoint`]: perspective-correct
 //! attributes, their exact screen derivatives and the tangent frame.
 
+use crate::frame::tangent_frame;
 use crate::setup::{TriangleSetup, INV_W, NORMAL, POSITION, TANGENT, UV};
-use glam::{DVec2, DVec3, Mat3, Vec2, Vec3};
+use glam::{DVec2, DVec3, Vec2, Vec3};
 use renderlab_core::SurfacePoint;
 
 /// What is constant over a frame.
@@ -70,16 +71,4 @@ pub(crate) fn resolve(s: &TriangleSetup, x: u32, y: u32, frame: &FrameConstants)
         && p.view_ts.is_finite()
         && p.depth.is_finite())
     .then_some(p)
-}
-
-/// The orthonormal frame (T, B, N) as matrix columns from an (unnormalised) normal `n`,
-/// tangent `t` and handedness `w`: `N = normalize(n)` (`fallback` if `n` is degenerate),
-/// `T` = Gram–Schmidt of `t` against `N` (any perpendicular if degenerate),
-/// `B = N × T · sign(w)`, the direction in which v grows.
-pub(crate) fn tangent_frame(n: Vec3, t: Vec3, w: f32, fallback: Vec3) -> Mat3 {
-    let n = n.normalize_or(fallback);
-    let t = (t - n * n.dot(t)).normalize_or_zero();
-    let t = if t == Vec3::ZERO { n.any_orthonormal_vector() } else { t };
-    let handedness = if w < 0.0 { -1.0 } else { 1.0 };
-    Mat3::from_cols(t, n.cross(t) * handedness, n)
 }

@@ -10,7 +10,7 @@
 //! triangle, including vertices behind the eye (Olano and Greer's homogeneous
 //! rasterization), so clipping never has to interpolate attributes.
 
-use crate::resolve::tangent_frame;
+use crate::frame::tangent_frame;
 use glam::{DVec3, DVec4, Mat3, Vec3};
 use renderlab_core::Vertex;
 

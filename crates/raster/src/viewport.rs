@@ -90,7 +90,7 @@ mod tests {
 
     #[test]
     fn matches_the_camera_transform_and_ray() {
-        let cam = Camera::benchmark(60.0, 320, 200);
+        let cam = Camera::orbit(Vec3::new(0.0, 1.0, 1.0), 6.0, 60.0, 320, 200);
         let vp = Viewport::new(&cam);
         let vp32 = cam.view_projection();
         for p in [Vec3::new(0.3, 1.2, 1.0), Vec3::new(-2.0, 0.1, 1.0)] {

@@ -2,25 +2,24 @@
 
 mod common;
 
-use common::{bricks, ray_direction, Quad};
+use common::{ray_direction, wall_camera, wall_scene, Quad, ANGLES_DEG};
 use glam::{DVec2, Vec3};
-use renderlab_core::camera::BENCH_ANGLES_DEG;
 use renderlab_core::scene::WALL_WIDTH;
-use renderlab_core::{Camera, Scene};
+use renderlab_core::Camera;
 use renderlab_raster::{rasterize, GBuffer};
 
 const W: u32 = 320;
 const H: u32 = 200;
 
 fn render(angle: f32) -> (Camera, GBuffer) {
-    let scene = Scene::benchmark(bricks());
-    let cam = Camera::benchmark(angle, W, H);
+    let scene = wall_scene();
+    let cam = wall_camera(angle, W, H);
     (cam, rasterize(&scene, &cam))
 }
 
 #[test]
 fn reference_ray_matches_the_camera() {
-    let cam = Camera::benchmark(60.0, W, H);
+    let cam = wall_camera(60.0, W, H);
     for (px, py) in [(0.5, 0.5), (100.25, 33.0), (319.5, 199.5)] {
         let d = ray_direction(&cam, px, py);
         let d32 = cam.ray_direction(px as f32, py as f32).as_dvec3();
@@ -32,7 +31,7 @@ fn reference_ray_matches_the_camera() {
 fn coverage_uv_position_and_depth_match_ray_plane_intersection() {
     let wall = Quad::bricks_wall();
     let uv_range = wall.repeat;
-    for angle in BENCH_ANGLES_DEG {
+    for angle in ANGLES_DEG {
         let (cam, g) = render(angle);
         let (mut checked, mut worst_uv, mut worst_depth) = (0, 0.0f64, 0.0f64);
         for y in 0..H {
@@ -68,7 +67,7 @@ fn coverage_uv_position_and_depth_match_ray_plane_intersection() {
 fn uv_derivatives_are_exact() {
     let wall = Quad::bricks_wall();
     let h = 1e-3;
-    for angle in BENCH_ANGLES_DEG {
+    for angle in ANGLES_DEG {
         let (cam, g) = render(angle);
         let uv_at = |px: f64, py: f64| wall.pixel(&cam, px, py).unwrap().uv;
         let mut worst = 0.0f64;
@@ -97,8 +96,8 @@ fn uv_derivatives_are_exact() {
 
 #[test]
 fn tangent_frame_and_directions() {
-    let light = Scene::benchmark(bricks()).light.to_light.normalize();
-    for angle in BENCH_ANGLES_DEG {
+    let light = wall_scene().light.to_light.normalize();
+    for angle in ANGLES_DEG {
         let (cam, g) = render(angle);
         assert!(g.covered() > 0);
         for y in 0..H {

@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{scene_of, Quad};
+use common::{scene_of, wall_camera, Quad};
 use glam::{Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 use renderlab_core::{Camera, Mesh, Vertex};
@@ -226,7 +226,7 @@ fn back_faces_are_culled() {
     let scene = scene_of(vec![wall.mesh()]);
     assert_eq!(rasterize(&scene, &cam).covered(), 0);
     // The same wall seen from the front is there.
-    let cam = Camera::benchmark(30.0, 64, 40);
+    let cam = wall_camera(30.0, 64, 40);
     assert!(rasterize(&scene, &cam).covered() > 100);
 }
 
@@ -258,7 +258,7 @@ fn nearest_surface_wins_and_ties_keep_the_first() {
 #[test]
 fn rows_match_get() {
     let scene = scene_of(vec![Quad::bricks_wall().mesh()]);
-    let cam = Camera::benchmark(45.0, 50, 37);
+    let cam = wall_camera(45.0, 50, 37);
     let g = rasterize(&scene, &cam);
     assert_eq!((g.width(), g.height()), (50, 37));
     for (y, row) in g.rows().enumerate() {
@@ -270,7 +270,7 @@ fn rows_match_get() {
     let covered: usize = g.par_rows().map(|r| r.iter().filter(|p| p.is_some()).count()).sum();
     assert_eq!(covered, g.covered());
     // Reusing the buffer for another view gives the same as a fresh one.
-    let mut reused = rasterize(&scene, &Camera::benchmark(80.0, 50, 37));
+    let mut reused = rasterize(&scene, &wall_camera(80.0, 50, 37));
     rasterize_into(&scene, &cam, &mut reused);
     assert_eq!(reused, g);
 }

@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::bricks;
+use common::{room, room_camera, wall_camera, wall_scene};
 use renderlab_core::{Camera, Scene, SurfacePoint};
 use renderlab_raster::{overdraw, rasterize_into, GBuffer, RasterStats};
 
@@ -53,8 +53,8 @@ fn run_with_threads(n: usize, scene: &Scene, cam: &Camera) -> (Vec<u32>, RasterS
 
 #[test]
 fn thesis_room_is_bit_identical_for_1_2_and_3_threads() {
-    let scene = Scene::thesis_room_default(16).unwrap();
-    let cam = Scene::room_camera(416, 263);
+    let scene = room();
+    let cam = room_camera(416, 263);
     let reference = run_with_threads(1, &scene, &cam);
     assert!(reference.1.covered > 416 * 263 / 2, "{:?}", reference.1);
     for n in [2, 3] {
@@ -67,9 +67,9 @@ fn thesis_room_is_bit_identical_for_1_2_and_3_threads() {
 
 #[test]
 fn benchmark_wall_is_bit_identical_for_1_2_and_3_threads() {
-    let scene = Scene::benchmark(bricks());
+    let scene = wall_scene();
     for angle in [45.0, 80.0] {
-        let cam = Camera::benchmark(angle, 333, 211);
+        let cam = wall_camera(angle, 333, 211);
         let reference = run_with_threads(1, &scene, &cam);
         for n in [2, 3] {
             assert!(run_with_threads(n, &scene, &cam) == reference, "{angle}°, {n} threads");
@@ -79,8 +79,8 @@ fn benchmark_wall_is_bit_identical_for_1_2_and_3_threads() {
 
 #[test]
 fn thesis_room_frame_is_consistent() {
-    let scene = Scene::thesis_room_default(16).unwrap();
-    let cam = Scene::room_camera(320, 200);
+    let scene = room();
+    let cam = room_camera(320, 200);
     let mut g = GBuffer::default();
     let stats = rasterize_into(&scene, &cam, &mut g);
     assert_eq!(stats.triangles, 8);

@@ -2,10 +2,10 @@
 
 mod common;
 
-use common::scene_of;
+use common::{room, room_camera, scene_of, wall_camera};
 use glam::{Vec2, Vec3, Vec4};
 use proptest::prelude::*;
-use renderlab_core::{Camera, Mesh, Scene, Vertex};
+use renderlab_core::{Camera, Mesh, Vertex};
 use renderlab_raster::{overdraw, rasterize, try_rasterize, GBuffer};
 
 /// A coordinate: mostly ordinary, sometimes huge, tiny, infinite or NaN.
@@ -105,9 +105,9 @@ proptest! {
 
 #[test]
 fn degenerate_cameras_do_not_panic() {
-    let scene = Scene::thesis_room_default(16).unwrap();
+    let scene = room();
     let mut cams = vec![Camera::look_at(Vec3::ZERO, -Vec3::Z, 0, 10)];
-    let base = Scene::room_camera(32, 20);
+    let base = room_camera(32, 20);
     for f in [
         |c: &mut Camera| c.near = 0.0,
         |c: &mut Camera| c.near = -1.0,
@@ -134,7 +134,7 @@ fn degenerate_cameras_do_not_panic() {
 
 #[test]
 fn empty_scene_and_empty_meshes() {
-    let cam = Camera::benchmark(45.0, 32, 20);
+    let cam = wall_camera(45.0, 32, 20);
     let g = rasterize(&scene_of(vec![]), &cam);
     assert_eq!(g.covered(), 0);
     let g = rasterize(&scene_of(vec![Mesh::default()]), &cam);

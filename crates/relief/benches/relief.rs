@@ -4,7 +4,6 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::NoCount;
-use renderlab_core::procedural;
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::march::cone_newton::{NewtonCone, JUMP};
 use renderlab_relief::march::cone_step::{ConeStep, Refinement};
@@ -17,6 +16,7 @@ use renderlab_relief::techniques::{
     adaptive_relief::AdaptiveRelief, parallax::Parallax, relief::ReliefMapping, steep::Steep,
 };
 use renderlab_relief::{ReliefInputs, ReliefMaterial, ReliefTechnique};
+use renderlab_texture::materials;
 use std::hint::black_box;
 
 fn samples(angle_deg: f32) -> Vec<(Vec2, Vec3)> {
@@ -65,7 +65,7 @@ fn run_rows<T: ReliefTechnique>(c: &mut Criterion, group: &str, t: &T, inputs: &
 }
 
 fn kernels(c: &mut Criterion) {
-    let m = procedural::material("bricks", 1024).expect("built-in material");
+    let m = materials::material("bricks", 1024).expect("built-in material");
     let mat = ReliefMaterial::new(&m, &ComplexityParams::default(), true);
     let inp = mat.inputs();
     run(c, "parallax", &Parallax, &inp);

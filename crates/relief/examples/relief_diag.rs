@@ -14,11 +14,11 @@
 
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Tally;
-use renderlab_core::procedural;
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::march::exact::exact_hit;
 use renderlab_relief::techniques::descriptor::WithTracer;
 use renderlab_relief::{Kernel, KernelChoice, ReliefHit, ReliefMaterial, ReliefTechnique, Technique};
+use renderlab_texture::materials;
 
 /// Reads `TECH[@KERNEL]`.
 fn parse(spec: &str) -> (Technique, Kernel) {
@@ -186,7 +186,7 @@ fn frame_mode(mat: &ReliefMaterial, techs: &[String]) {
 
 fn main() {
     let size: u32 = std::env::var("RL_SIZE").ok().and_then(|s| s.parse().ok()).unwrap_or(1024);
-    let m = procedural::material("bricks", size).expect("bricks");
+    let m = materials::material("bricks", size).expect("bricks");
     let t0 = std::time::Instant::now();
     let mat = ReliefMaterial::new(&m, &ComplexityParams::default(), true);
     eprintln!("material prepared in {:?}", t0.elapsed());

@@ -9,13 +9,19 @@
 //! Jacobian (four methods) and ellipse coefficients. [`scene`] holds the texture lab's test
 //! scenes (exact mappings with analytic Jacobians) and [`reference`](mod@reference) their supersampled ground
 //! truth.
+//!
+//! [`materials`] builds the built-in relief materials (albedo, height and normal maps:
+//! `bricks`, `sand_rocks`, `bark_willow`, `brick_pavement`) and [`procedural`] the texture
+//! lab's own textures; both take their gradient noise from `renderlab-noise`.
 
 #![warn(missing_docs)]
 
 pub mod ellipse;
+mod error;
 pub mod filter;
 pub mod kernel;
 pub mod mapping;
+pub mod materials;
 pub mod mip;
 pub mod procedural;
 pub mod reference;

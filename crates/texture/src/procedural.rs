@@ -9,7 +9,7 @@
 //! light, and tile seamlessly (the circuit's grid and the earth's noise both wrap), so the
 //! scenes can repeat them.
 
-use crate::scene::{size_error, SceneError};
+use crate::error::{size_error, SceneError};
 use glam::{Vec3, Vec4};
 use renderlab_core::Image;
 use renderlab_noise::{Fractal, FractalKind, FractalParams, Perlin};
@@ -57,10 +57,10 @@ pub fn zone_plate_texture(size: u32) -> Result<Image<Vec4>, SceneError> {
     }))
 }
 
-/// The bricks material's albedo (from `renderlab-core`) as an RGBA texture.
+/// The bricks material's albedo ([`crate::materials`]) as an RGBA texture.
 pub fn bricks_texture(size: u32) -> Result<Image<Vec4>, SceneError> {
     check_side("bricks size", size, 1)?;
-    let m = renderlab_core::procedural::material("bricks", size.max(8))
+    let m = crate::materials::material("bricks", size.max(8))
         .map_err(|e| size_error("bricks size", e.to_string()))?;
     Ok(m.albedo.map(|c| c.extend(1.0)))
 }

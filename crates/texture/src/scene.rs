@@ -26,6 +26,9 @@
 // `!(x > t)` is deliberate: it also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub use crate::error::SceneError;
+
+use crate::error::size_error;
 use crate::filter::{Filter, FilterSpec, FilterVisitor};
 use crate::mapping::{MappingError, Projective, QuadScene};
 use crate::mip::{Texture, Wrap};
@@ -38,32 +41,6 @@ use renderlab_core::Image;
 
 /// A ground-plane pixel is clipped once its footprint spans this many texture tiles.
 pub const FAR_CLIP_TILES: f64 = 1.0;
-
-/// Why a scene cannot be built.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum SceneError {
-    /// The surface's geometry is unusable (degenerate quad, eye in the plane, …).
-    #[error(transparent)]
-    Mapping(#[from] MappingError),
-    /// A size is zero, absurd or not finite.
-    #[error("{what}: {reason}")]
-    Size {
-        /// The parameter.
-        what: &'static str,
-        /// What is wrong with it.
-        reason: String,
-    },
-    /// An unknown scene name.
-    #[error(
-        "unknown scene '{0}' (expected checkerboard, thesis_quad, thesis_quad_circuit, thesis_quad_earth, \
-         quad_tilt_DEG or zone_plate)"
-    )]
-    UnknownScene(String),
-}
-
-pub(crate) fn size_error(what: &'static str, reason: impl Into<String>) -> SceneError {
-    SceneError::Size { what, reason: reason.into() }
-}
 
 /// Which part of the plane a scene shows.
 #[derive(Clone, Copy, Debug, PartialEq)]

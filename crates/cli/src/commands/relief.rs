@@ -5,16 +5,16 @@ use crate::args::*;
 use crate::progress::Progress;
 use anyhow::{bail, Result};
 use glam::Vec3;
-use renderlab_core::camera::Camera;
 use renderlab_core::error::check_range;
-use renderlab_core::procedural::{self, MATERIAL_NAMES};
-use renderlab_core::{io, Material, Scene};
+use renderlab_core::{io, Material};
+use renderlab_lab::fixtures::{benchmark_camera, benchmark_scene, room_camera, thesis_room};
 use renderlab_lab::relief_lab::{
     debug_view, default_techniques, run_relief_bench, DebugView as Debug, Method, ReliefBenchConfig, View,
 };
 use renderlab_relief::maps::complexity::{complexity_map, ComplexityParams};
 use renderlab_relief::render::render as render_frame;
 use renderlab_relief::{KernelChoice, Map, ReliefMaterial, Technique};
+use renderlab_texture::materials::{material as builtin_material, MATERIAL_NAMES};
 
 /// The complexity-map parameters of the flags, checked.
 fn params(f: &ComplexityFlags) -> Result<ComplexityParams> {
@@ -42,7 +42,7 @@ fn load_material(m: &MaterialArgs) -> Result<Material> {
             if m.texture_size > 8192 {
                 bail!("--texture-size: {} is larger than 8192", m.texture_size);
             }
-            Ok(procedural::material(&m.material, m.texture_size)?)
+            Ok(builtin_material(&m.material, m.texture_size)?)
         }
     }
 }
@@ -126,15 +126,19 @@ pub(super) fn render(a: RenderArgs) -> Result<()> {
     let (scene, camera) = match a.scene {
         SceneChoice::Bench => {
             let m = load_material(&a.material)?;
-            (Scene::benchmark(m), Camera::benchmark(a.angle, a.width, a.height))
+            (benchmark_scene(m), benchmark_camera(a.angle, a.width, a.height))
         }
         SceneChoice::Room => {
             let size = a.material.texture_size.min(8192);
-            (Scene::thesis_room_default(size)?, Scene::room_camera(a.width, a.height))
+            (thesis_room(size)?, room_camera(a.width, a.height))
         }
     };
     let mats: Vec<ReliefMaterial> =
         scene.materials.iter().map(|m| ReliefMaterial::new(m, &cp, technique.needs_map(Map::Cone))).collect();
+    // `--backend gpu|auto` draws and writes the image, or leaves it to the CPU path below.
+    if crate::gpu::relief_render(&a, &scene, &camera, &mats)? {
+        return Ok(());
+    }
     let view = View::new(&scene, &camera, a.angle);
     let debug = match a.debug {
         DebugView::None => None,
@@ -178,7 +182,7 @@ pub(super) fn complexity(a: ComplexityArgs) -> Result<()> {
 pub(super) fn materials(a: MaterialsArgs) -> Result<()> {
     create_dir(&a.out)?;
     for name in MATERIAL_NAMES {
-        let m = procedural::material(name, a.size)?;
+        let m = builtin_material(name, a.size)?;
         io::save_color(a.out.join(format!("{name}_albedo.png")), &m.albedo)?;
         io::save_gray(a.out.join(format!("{name}_height.png")), &m.height, true)?;
         let n = m.normal.map(|n| n * 0.5 + Vec3::splat(0.5));

@@ -1,15 +1,8 @@
 //! What one relief run measures: the frame, the angles, the techniques on their kernels.
 
-use renderlab_core::camera::{BENCH_ANGLES_DEG, BENCH_HEIGHT, BENCH_WIDTH};
+use crate::fixtures::{BENCH_ANGLES_DEG, BENCH_HEIGHT, BENCH_WIDTH};
 use renderlab_relief::maps::complexity::ComplexityParams;
-use renderlab_relief::march::cone_step::Refinement;
-use renderlab_relief::techniques::adaptive_pom::AdaptivePom;
-use renderlab_relief::techniques::cone::ConeStepping;
-use renderlab_relief::techniques::cone_newton::ConeNewton;
-use renderlab_relief::techniques::pom::Pom;
-use renderlab_relief::techniques::pom_shadow::PomShadow;
-use renderlab_relief::techniques::{adaptive_relief::AdaptiveRelief, relief::ReliefMapping, steep::Steep};
-use renderlab_relief::techniques::{basic::Basic, normal::NormalMapping, parallax::Parallax};
+use renderlab_relief::techniques::{bench_settings, pom::Pom};
 use renderlab_relief::{Kernel, KernelChoice, Technique};
 
 /// Settings of one relief benchmark run.
@@ -60,28 +53,12 @@ impl Method {
 /// POM-32 on the scalar kernel: the thesis's setting every method is measured against.
 pub const POM_32: Technique = Technique::Pom(Pom { layers: 32 });
 
-/// The thesis's POM settings (its scalar march on the `f32` depths) and adaptive POM, then
-/// the methods beyond the thesis on their fastest kernels, POM-32 among them (on the packed
-/// map in vector lanes where the CPU has them, the like-for-like baseline of cone-newton).
+/// The catalogue's bench settings (see [`renderlab_relief::techniques::descriptor::Entry::BENCH`]): the
+/// thesis's POM settings on its scalar march, adaptive POM, and the methods beyond the thesis
+/// on their fastest kernels, POM-32 among them (on the packed map in vector lanes where the
+/// CPU has them, the like-for-like baseline of cone-newton).
 pub fn default_techniques() -> Vec<Method> {
-    let mut t = vec![
-        Method::auto(Basic),
-        Method::auto(NormalMapping),
-        Method::auto(Parallax),
-        Method::auto(Steep { layers: 32 }),
-    ];
-    for layers in [4, 8, 16, 24, 32] {
-        t.push(Method::on(Pom { layers }, Kernel::Scalar));
-    }
-    t.push(Method::auto(AdaptivePom { min: 4, max: 32 }));
-    t.push(Method::auto(ReliefMapping { linear: 16, binary: 6 }));
-    t.push(Method::auto(AdaptiveRelief { min: 4, max: 16, binary: 5 }));
-    t.push(Method::auto(ConeStepping { steps: 16, refine_steps: 5, refinement: Refinement::Binary }));
-    t.push(Method::auto(ConeStepping { steps: 24, refine_steps: 3, refinement: Refinement::Secant }));
-    t.push(Method::auto(ConeNewton { steps: 64, secant: 3, tol_hundredths: 25 }));
-    t.push(Method::auto(Pom { layers: 32 }));
-    t.push(Method::auto(PomShadow { layers: 32, shadow_samples: 16 }));
-    t
+    bench_settings().into_iter().map(|(technique, kernel)| Method { technique, kernel }).collect()
 }
 
 /// Resolves each method's kernel choice on this CPU, keeping the first of any duplicates.

@@ -4,9 +4,9 @@
 use super::config::ReliefBenchConfig;
 use super::record::{find, label, ReliefRecord};
 use super::verdicts::{versus_pom32, THESIS_ADAPTIVE, THESIS_POMS, THESIS_TABLE_4_1};
+use crate::fixtures::BENCH_ANGLES_DEG;
 use crate::plot::{scatter_svg, Series};
 use crate::report::{format_number, write_page, Template};
-use renderlab_core::camera::BENCH_ANGLES_DEG;
 use renderlab_core::Material;
 use renderlab_relief::{Kernel, Technique};
 use serde::Serialize;

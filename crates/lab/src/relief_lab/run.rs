@@ -5,6 +5,7 @@ use super::page::{write_report, ImageSet};
 use super::record::{label, slug, ReliefRecord, ReliefSummary};
 use super::uv_error::{mean_and_p95, uv_error_map};
 use super::verdicts::{findings, headline};
+use crate::fixtures::{benchmark_camera, benchmark_scene};
 use crate::heatmap::{heat_image, with_legend};
 use crate::lab::Progress;
 use crate::metrics::compare;
@@ -12,11 +13,10 @@ use crate::results::{write_csv, write_json};
 use crate::timing::{measure, Timing};
 use glam::Vec2;
 use rayon::prelude::*;
-use renderlab_core::camera::Camera;
 use renderlab_core::io::{save_color, save_rgb8};
-use renderlab_core::{CoreError, Material, Scene};
+use renderlab_core::{Camera, CoreError, Material, Scene};
 use renderlab_raster::{rasterize, GBuffer};
-use renderlab_relief::render::{check, render, render_reference, trace_only};
+use renderlab_relief::render::{check, render, render_into, render_reference, trace_only};
 use renderlab_relief::{Frame, FrameInput, Kernel, Map, ReliefMaterial, Shading, Technique};
 use std::path::Path;
 
@@ -66,21 +66,33 @@ pub fn run_relief_bench(
     for &(t, kernel) in &methods {
         check(t, kernel, std::slice::from_ref(&mat))?;
     }
-    let scene = Scene::benchmark(material.clone());
+    let scene = benchmark_scene(material.clone());
     let total = cfg.angles.len() * methods.len();
     let mut done = 0;
     let mut records = Vec::new();
     let mut images: Vec<ImageSet> = Vec::new();
     for &angle in &cfg.angles {
-        let camera = Camera::benchmark(angle, cfg.width, cfg.height);
+        let camera = benchmark_camera(angle, cfg.width, cfg.height);
         let view = View::new(&scene, &camera, angle);
         let mats = std::slice::from_ref(&mat);
         let mut timings = Vec::with_capacity(methods.len());
+        // One framebuffer serves every timed pass, as a renderer reuses its own.
+        let mut frame = Frame::blank(cfg.width, cfg.height, scene.background);
         for &(t, kernel) in &methods {
             progress(done, total, &format!("{angle}°: {}", label(t, kernel)));
-            let (pass, _): (Timing, _) = measure(cfg.warmup, cfg.reps, || {
-                render(view.input(), mats, t, kernel, scene.lighting, scene.background, false)
+            let (pass, rendered): (Timing, _) = measure(cfg.warmup, cfg.reps, || {
+                render_into(
+                    view.input(),
+                    mats,
+                    t,
+                    kernel,
+                    scene.lighting,
+                    scene.background,
+                    false,
+                    &mut frame,
+                )
             });
+            rendered?;
             let (trace, _) = measure(cfg.warmup, cfg.reps, || trace_only(view.input(), mats, t, kernel));
             timings.push((pass, trace));
             done += 1;

@@ -4,7 +4,8 @@
 use crate::error::Result;
 use crate::lab::{create_dir, existing, files_under, Lab, LabSummary, Progress};
 use crate::relief_lab::{run_relief_bench, ReliefBenchConfig};
-use renderlab_core::{procedural, Material};
+use renderlab_core::Material;
+use renderlab_texture::materials;
 use std::path::Path;
 use std::time::Instant;
 
@@ -24,7 +25,7 @@ impl Lab for ReliefLab {
 
     /// Bricks at the built-in size, the lab's defaults with three timed repetitions.
     fn report_preset() -> Result<Self> {
-        let material = procedural::material("bricks", procedural::DEFAULT_SIZE)?;
+        let material = materials::material("bricks", materials::DEFAULT_SIZE)?;
         Ok(ReliefLab { material, config: ReliefBenchConfig { reps: 3, ..ReliefBenchConfig::default() } })
     }
 

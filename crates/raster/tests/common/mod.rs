@@ -4,8 +4,33 @@
 #![allow(dead_code)]
 
 use glam::{DVec2, DVec3, Vec2, Vec3};
-use renderlab_core::scene::{BRICKS_WALL_CENTRE, WALL_HEIGHT, WALL_TILE, WALL_WIDTH};
-use renderlab_core::{Camera, Mesh, Scene, SceneObject};
+use renderlab_core::scene::{bricks_wall, BRICKS_WALL_CENTRE, WALL_HEIGHT, WALL_TILE, WALL_WIDTH};
+use renderlab_core::{Camera, Image, Material, Mesh, Scene, SceneObject};
+
+/// The view angles of the thesis's benchmark, in degrees from the wall's normal: the
+/// rasterizer is checked at the views the relief lab renders (whose fixtures hold them).
+pub const ANGLES_DEG: [f32; 4] = [0.0, 45.0, 60.0, 80.0];
+
+/// A camera 6 units from the centre of the bricks wall, turned `angle_deg` from its normal:
+/// the thesis's benchmark view.
+pub fn wall_camera(angle_deg: f32, width: u32, height: u32) -> Camera {
+    Camera::orbit(BRICKS_WALL_CENTRE, 6.0, angle_deg, width, height)
+}
+
+/// The bricks wall alone.
+pub fn wall_scene() -> Scene {
+    Scene::new(vec![SceneObject { name: "wall2".into(), mesh: bricks_wall(), material: 0 }], vec![flat()])
+}
+
+/// The thesis's room, every surface with the same flat material.
+pub fn room() -> Scene {
+    Scene::thesis_room([flat(), flat(), flat(), flat()])
+}
+
+/// A camera overlooking the whole room (the view `renderlab render --scene room` uses).
+pub fn room_camera(width: u32, height: u32) -> Camera {
+    Camera::look_at(Vec3::new(1.5, 1.6, 9.5), Vec3::new(0.0, 0.4, 1.0), width, height)
+}
 
 /// `Camera::ray_direction` evaluated in f64, so that finite differences over 1e-3 pixel are
 /// meaningful.
@@ -110,18 +135,18 @@ impl Quad {
     }
 }
 
-/// A scene with the given meshes (material i for object i) and the bricks material.
+/// A scene with the given meshes (material i for object i) and one flat material.
 pub fn scene_of(meshes: Vec<Mesh>) -> Scene {
-    let mut scene = Scene::benchmark(bricks());
-    scene.objects = meshes
+    let objects = meshes
         .into_iter()
         .enumerate()
         .map(|(i, mesh)| SceneObject { name: format!("object{i}"), mesh, material: i as u32 })
         .collect();
-    scene
+    Scene::new(objects, vec![flat()])
 }
 
-/// The built-in bricks material at 64² texels (rasterization ignores materials).
-pub fn bricks() -> renderlab_core::Material {
-    renderlab_core::procedural::material("bricks", 64).expect("built-in material")
+/// A one-texel grey material: rasterization reads only the geometry and the light.
+pub fn flat() -> Material {
+    Material::from_maps("flat", Image::new(1, 1, Vec3::splat(0.5)), Image::new(1, 1, 0.5), None, 0.05)
+        .expect("valid height scale")
 }

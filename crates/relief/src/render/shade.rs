@@ -196,6 +196,20 @@ fn trace_points<T: ReliefTechnique, C: Counter>(
     }
 }
 
+impl Frame {
+    /// A `width × height` frame of background and zeros, for [`render_frame_into`] to fill.
+    pub fn blank(width: u32, height: u32, background: Vec3) -> Frame {
+        Frame {
+            image: Image::new(width, height, background),
+            uv: Image::new(width, height, Vec2::ZERO),
+            depth: Image::new(width, height, 0.0),
+            layers: Image::new(width, height, 0),
+            mask: Image::new(width, height, false),
+            fetches: 0,
+        }
+    }
+}
+
 /// Renders a frame with technique `t`. With `count` set, height fetches are tallied (a
 /// separate run from timing runs, so timing pays nothing for counting). Rows are shaded in
 /// parallel; the result does not depend on the thread count.
@@ -206,20 +220,45 @@ pub fn render_frame<T: ReliefTechnique>(
     opt: &ShadeOptions,
     count: bool,
 ) -> Frame {
+    let mut frame = Frame::blank(input.width, input.height, opt.background);
+    render_frame_into(input, materials, t, opt, count, &mut frame);
+    frame
+}
+
+/// [`render_frame`] into an existing frame, which is resized when its size differs and
+/// otherwise reused: every pixel is written (background and zeros where no surface shows),
+/// so the result is the same as a fresh frame's, without allocating per frame.
+pub fn render_frame_into<T: ReliefTechnique>(
+    input: FrameInput,
+    materials: &[ReliefMaterial],
+    t: &T,
+    opt: &ShadeOptions,
+    count: bool,
+    frame: &mut Frame,
+) {
     let (w, h) = (input.width as usize, input.height as usize);
     assert_eq!(input.points.len(), w * h, "frame input size");
-    let mut image = vec![opt.background; w * h];
-    let mut uv = vec![Vec2::ZERO; w * h];
-    let mut depth = vec![0.0f32; w * h];
-    let mut layers = vec![0u16; w * h];
-    let fetches: u64 = image
+    if frame.image.size() != (input.width, input.height) {
+        *frame = Frame::blank(input.width, input.height, opt.background);
+    }
+    let Frame { image, uv, depth, layers, mask, .. } = frame;
+    frame.fetches = image
+        .pixels_mut()
         .par_chunks_mut(w)
-        .zip(uv.par_chunks_mut(w))
-        .zip(depth.par_chunks_mut(w))
-        .zip(layers.par_chunks_mut(w))
+        .zip(uv.pixels_mut().par_chunks_mut(w))
+        .zip(depth.pixels_mut().par_chunks_mut(w))
+        .zip(layers.pixels_mut().par_chunks_mut(w))
+        .zip(mask.pixels_mut().par_chunks_mut(w))
         .enumerate()
-        .map_init(RowScratch::default, |scratch, (y, (((img, uvr), dr), lr))| {
+        .map_init(RowScratch::default, |scratch, (y, ((((img, uvr), dr), lr), mr))| {
             let row = &input.points[y * w..(y + 1) * w];
+            img.fill(opt.background);
+            uvr.fill(Vec2::ZERO);
+            dr.fill(0.0);
+            lr.fill(0);
+            for (m, p) in mr.iter_mut().zip(row) {
+                *m = p.is_some();
+            }
             let mut tally = Tally::default();
             if count {
                 trace_points(t, materials, row, scratch, &mut tally);
@@ -241,16 +280,6 @@ pub fn render_frame<T: ReliefTechnique>(
             tally.0
         })
         .sum();
-    let mask: Vec<bool> = input.points.iter().map(Option::is_some).collect();
-    let wh = (input.width, input.height);
-    Frame {
-        image: Image::from_vec(wh.0, wh.1, image).expect("sizes match"),
-        uv: Image::from_vec(wh.0, wh.1, uv).expect("sizes match"),
-        depth: Image::from_vec(wh.0, wh.1, depth).expect("sizes match"),
-        layers: Image::from_vec(wh.0, wh.1, layers).expect("sizes match"),
-        mask: Image::from_vec(wh.0, wh.1, mask).expect("sizes match"),
-        fetches,
-    }
 }
 
 /// Runs only the technique's trace for every covered pixel (no texture filtering, no

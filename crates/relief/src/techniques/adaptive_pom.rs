@@ -89,6 +89,8 @@ impl Entry for AdaptivePom {
         self.max
     }
 
+    const WGSL: Option<&'static str> = Some(include_str!("adaptive_pom.wgsl"));
+
     fn dispatch<A: WithTracer>(&self, _: Kernel, action: A) -> A::Output {
         action.run(self)
     }

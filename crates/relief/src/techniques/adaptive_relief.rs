@@ -81,6 +81,8 @@ impl Entry for AdaptiveRelief {
         self.max
     }
 
+    const WGSL: Option<&'static str> = Some(include_str!("adaptive_relief.wgsl"));
+
     fn dispatch<A: WithTracer>(&self, _: Kernel, action: A) -> A::Output {
         action.run(self)
     }

@@ -39,6 +39,8 @@ impl Entry for Basic {
         Vec::new()
     }
 
+    const WGSL: Option<&'static str> = Some(include_str!("basic.wgsl"));
+
     fn dispatch<A: WithTracer>(&self, _: Kernel, action: A) -> A::Output {
         action.run(&Undisplaced)
     }

@@ -2,8 +2,8 @@
 //! then the bracketed crossing refined by bisection (as published) or by Illinois false
 //! position (secant steps, with a tolerance stop) — the refinement is a parameter.
 
-use super::descriptor::{Descriptor, Entry, Param, WithTracer};
-use crate::kernel::Kernel;
+use super::descriptor::{BenchSetting, Descriptor, Entry, Param, WithTracer};
+use crate::kernel::{Kernel, KernelChoice};
 use crate::march::cone_step::{ConeStep, Refinement};
 use crate::trace::{Map, Shading};
 
@@ -38,6 +38,11 @@ impl Entry for ConeStepping {
         kernels: &[Kernel::Scalar],
         shading: Shading::Lit,
     };
+
+    /// Both refinements: the defaults (bisection), and the secant with fewer refinement steps
+    /// but more cone steps.
+    const BENCH: &'static [BenchSetting] =
+        &[BenchSetting::DEFAULTS, BenchSetting { params: &[24, 3, 1], kernel: KernelChoice::Auto }];
 
     fn from_params(v: &[u32]) -> Result<Self, String> {
         Ok(ConeStepping { steps: v[0], refine_steps: v[1], refinement: REFINEMENTS[v[2] as usize] })

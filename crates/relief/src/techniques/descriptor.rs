@@ -4,7 +4,7 @@
 //! registry in [`crate::techniques`] derives parsing, names, help texts and property tests
 //! from these, so nothing about a technique is restated elsewhere.
 
-use crate::kernel::Kernel;
+use crate::kernel::{Kernel, KernelChoice};
 use crate::render::shade::ShadowMode;
 use crate::trace::{Map, ReliefTechnique, Shading};
 
@@ -153,6 +153,25 @@ impl Descriptor {
     }
 }
 
+/// One setting of a technique that the relief lab measures by default.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BenchSetting {
+    /// Parameter values from the first; those left out take their defaults (as in the syntax).
+    pub params: &'static [u32],
+    /// The kernel it runs on.
+    pub kernel: KernelChoice,
+}
+
+impl BenchSetting {
+    /// Every parameter at its default, on the fastest kernel.
+    pub const DEFAULTS: BenchSetting = BenchSetting { params: &[], kernel: KernelChoice::Auto };
+
+    /// `params` (the rest at their defaults) on exactly `kernel`.
+    pub const fn on(params: &'static [u32], kernel: Kernel) -> BenchSetting {
+        BenchSetting { params, kernel: KernelChoice::Exactly(kernel) }
+    }
+}
+
 /// Something to do with a concrete tracer: how a caller gets a monomorphised per-pixel loop
 /// from a technique chosen at run time.
 pub trait WithTracer {
@@ -166,6 +185,10 @@ pub trait WithTracer {
 pub trait Entry: Copy + Sized {
     /// The technique's descriptor.
     const DESCRIPTOR: Descriptor;
+
+    /// The settings the relief lab measures by default (the technique's defaults on its
+    /// fastest kernel, unless the technique names others).
+    const BENCH: &'static [BenchSetting] = &[BenchSetting::DEFAULTS];
 
     /// Builds the technique from one value per descriptor parameter, each already accepted by
     /// its [`Param`]; refuses combinations that cannot work (the reason in words).
@@ -183,6 +206,12 @@ pub trait Entry: Copy + Sized {
     fn shadow(&self) -> ShadowMode {
         ShadowMode::None
     }
+
+    /// The technique's GPU twin: a WGSL file beside this one that defines
+    /// `fn trace(uv: vec2<f32>, view_ts: vec3<f32>) -> Hit` on the GPU renderer's common
+    /// shader code (the crate `renderlab-gpu` documents that contract). `None` while the
+    /// technique has no shader yet; the GPU renderer then refuses it with an error.
+    const WGSL: Option<&'static str> = None;
 
     /// Calls `action` with the tracer of this technique on `kernel` (one of the descriptor's).
     fn dispatch<A: WithTracer>(&self, kernel: Kernel, action: A) -> A::Output;

@@ -12,7 +12,7 @@ use crate::error::ReliefError;
 use crate::kernel::{Kernel, KernelChoice};
 use crate::render::shade::ShadowMode;
 use crate::trace::{Map, Shading};
-use descriptor::{Descriptor, Entry, WithTracer};
+use descriptor::{BenchSetting, Descriptor, Entry, WithTracer};
 use renderlab_core::CoreError;
 use std::fmt;
 use std::str::FromStr;
@@ -43,6 +43,19 @@ macro_rules! registry {
                 }
             }
         )*
+
+        /// The settings the relief lab measures by default, in catalogue order, each with its
+        /// kernel choice (see [`Entry::BENCH`]).
+        pub fn bench_settings() -> Vec<(Technique, KernelChoice)> {
+            let mut out = Vec::new();
+            $(
+                for s in <$ty as Entry>::BENCH {
+                    out.push((Technique::from_values(&<$ty as Entry>::DESCRIPTOR, s)
+                        .expect("every bench setting of the registry is valid (tested)"), s.kernel));
+                }
+            )*
+            out
+        }
 
         /// Every technique's descriptor, in catalogue order.
         pub const DESCRIPTORS: &[Descriptor] = &[$(<$ty as Entry>::DESCRIPTOR,)*];
@@ -76,6 +89,14 @@ macro_rules! registry {
             pub fn shadow(&self) -> ShadowMode {
                 match self {
                     $(Technique::$variant(t) => <$ty as Entry>::shadow(t),)*
+                }
+            }
+
+            /// The technique's WGSL `trace` function for the GPU renderer (see
+            /// [`Entry::WGSL`]); `None` while it has no shader yet.
+            pub fn wgsl(&self) -> Option<&'static str> {
+                match self {
+                    $(Technique::$variant(_) => <$ty as Entry>::WGSL,)*
                 }
             }
 
@@ -156,6 +177,24 @@ impl Technique {
             Some(r) => r.map_err(|why| bad(&why)),
             None => unreachable!("every descriptor is in the registry"),
         }
+    }
+
+    /// The technique of descriptor `d` at a bench setting's values (the rest at their
+    /// defaults), each checked against its parameter's range.
+    fn from_values(d: &Descriptor, setting: &BenchSetting) -> Result<Self, String> {
+        if setting.params.len() > d.params.len() {
+            return Err(format!("{} takes at most {} parameters", d.name, d.params.len()));
+        }
+        let mut values = Vec::with_capacity(d.params.len());
+        for (i, p) in d.params.iter().enumerate() {
+            let v = setting.params.get(i).copied().unwrap_or_else(|| p.default_value());
+            let (lo, hi) = p.range();
+            if !(lo..=hi).contains(&v) {
+                return Err(format!("{}: {} = {v} is outside {lo}..={hi}", d.name, p.name));
+            }
+            values.push(v);
+        }
+        Technique::build(d.name, &values).unwrap_or_else(|| Err(format!("{} is not in the registry", d.name)))
     }
 
     /// The canonical name, every parameter written, which [`Technique::parse`] reads back.
@@ -240,6 +279,18 @@ mod tests {
             let ranges: Vec<_> = params.iter().map(|p| p.range()).map(|(lo, hi)| lo..=hi).collect();
             (Just(i), ranges, 0..=params.len()).prop_map(|(i, v, n)| (i, v[..n].to_vec()))
         })
+    }
+
+    #[test]
+    fn every_bench_setting_builds_and_runs_on_its_kernel() {
+        let settings = bench_settings();
+        assert!(settings.len() >= DESCRIPTORS.len(), "each technique is measured at least once");
+        for d in DESCRIPTORS {
+            assert!(settings.iter().any(|(t, _)| t.family() == d.name), "{} is never measured", d.name);
+        }
+        for (t, k) in settings {
+            t.kernel(k).unwrap_or_else(|e| panic!("{t} on {k:?}: {e}"));
+        }
     }
 
     fn spell(i: usize, values: &[u32]) -> String {

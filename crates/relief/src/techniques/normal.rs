@@ -27,6 +27,8 @@ impl Entry for NormalMapping {
         Vec::new()
     }
 
+    const WGSL: Option<&'static str> = Some(include_str!("normal.wgsl"));
+
     fn dispatch<A: WithTracer>(&self, _: Kernel, action: A) -> A::Output {
         action.run(&Undisplaced)
     }

@@ -37,6 +37,8 @@ impl Entry for Parallax {
         Vec::new()
     }
 
+    const WGSL: Option<&'static str> = Some(include_str!("parallax.wgsl"));
+
     fn dispatch<A: WithTracer>(&self, _: Kernel, action: A) -> A::Output {
         action.run(self)
     }

@@ -5,7 +5,7 @@
 //! packed map's 16-bit depths in vector lanes (the same march and interpolation, so it
 //! differs from `scalar` only by the depth quantisation).
 
-use super::descriptor::{Descriptor, Entry, Param, WithTracer};
+use super::descriptor::{BenchSetting, Descriptor, Entry, Param, WithTracer};
 use crate::kernel::Kernel;
 use crate::march::layered::{interpolate, layer_step, layered_march};
 use crate::march::pom_lanes::PomLanes;
@@ -75,6 +75,16 @@ impl Entry for Pom {
         shading: Shading::Lit,
     };
 
+    /// The thesis's settings on its scalar march, then the default on the fastest kernel.
+    const BENCH: &'static [BenchSetting] = &[
+        BenchSetting::on(&[4], Kernel::Scalar),
+        BenchSetting::on(&[8], Kernel::Scalar),
+        BenchSetting::on(&[16], Kernel::Scalar),
+        BenchSetting::on(&[24], Kernel::Scalar),
+        BenchSetting::on(&[32], Kernel::Scalar),
+        BenchSetting::DEFAULTS,
+    ];
+
     fn from_params(v: &[u32]) -> Result<Self, String> {
         Ok(Pom { layers: v[0] })
     }
@@ -86,6 +96,8 @@ impl Entry for Pom {
     fn layers(&self) -> u32 {
         self.layers
     }
+
+    const WGSL: Option<&'static str> = Some(include_str!("pom.wgsl"));
 
     fn dispatch<A: WithTracer>(&self, kernel: Kernel, action: A) -> A::Output {
         match kernel {

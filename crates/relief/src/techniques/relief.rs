@@ -57,6 +57,8 @@ impl Entry for ReliefMapping {
         self.linear
     }
 
+    const WGSL: Option<&'static str> = Some(include_str!("relief.wgsl"));
+
     fn dispatch<A: WithTracer>(&self, _: Kernel, action: A) -> A::Output {
         action.run(self)
     }

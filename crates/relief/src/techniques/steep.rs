@@ -46,6 +46,8 @@ impl Entry for Steep {
         self.layers
     }
 
+    const WGSL: Option<&'static str> = Some(include_str!("steep.wgsl"));
+
     fn dispatch<A: WithTracer>(&self, _: Kernel, action: A) -> A::Output {
         action.run(self)
     }

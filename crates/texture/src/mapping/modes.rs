@@ -20,8 +20,9 @@
 //! Where a row crosses the horizon (`G·x + H·y + I = 0`) the results are the IEEE values of
 //! the division (infinite or NaN); no kernel loops on data or panics.
 
+use super::error::MappingError;
 use super::ops::OpCounter;
-use super::{Coeffs, MappingError};
+use super::projective::Coeffs;
 use glam::Vec2;
 
 /// Largest stride [`Mode::KStride`] accepts.

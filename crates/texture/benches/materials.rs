@@ -2,7 +2,7 @@
 //! 256² texels, one benchmark per material in the group `materials`.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use renderlab_core::procedural::{material, MATERIAL_NAMES};
+use renderlab_texture::materials::{material, MATERIAL_NAMES};
 use std::hint::black_box;
 
 /// Texture size of the benchmark (small enough to keep the run short on two cores).

@@ -6,23 +6,15 @@
 //! periodic with period 1 along both axes: the lattice is wrapped modulo a whole number of
 //! cells (`px × py`), so a texture built from these functions tiles seamlessly at any size.
 //!
-//! This is deliberately separate from the `renderlab-noise` crate (the thesis's noise, being
-//! measured); the materials only need something small, periodic and fast.
+//! The gradient noise itself is `renderlab-noise`'s, on its hashed lattice
+//! ([`HashedPerlin`]): no tables, any period, which is what a texel function needs. The
+//! octave sums here ([`Fbm`]) stay the materials' own: each octave has its own seed and whole
+//! cell counts, and octaves finer than the texture can hold are skipped.
 
 use glam::Vec2;
+use renderlab_noise::HashedPerlin;
 
-/// A 32-bit integer hash with good avalanche (the "lowbias32" finaliser by Chris Wellons).
-/// Used instead of a random-number generator so that every value is a pure function of
-/// its inputs.
-#[inline]
-pub fn hash(mut x: u32) -> u32 {
-    x ^= x >> 16;
-    x = x.wrapping_mul(0x7feb_352d);
-    x ^= x >> 15;
-    x = x.wrapping_mul(0x846c_a68b);
-    x ^= x >> 16;
-    x
-}
+pub use renderlab_noise::hashed::hash;
 
 /// Hash of a lattice point `(ix, iy)` under `seed`: the identity of a noise cell.
 #[inline]
@@ -56,32 +48,6 @@ pub fn lerp(a: f32, b: f32, t: f32) -> f32 {
     a + (b - a) * t
 }
 
-/// Perlin's quintic fade curve (C² continuous lattice interpolation).
-#[inline]
-fn fade(t: f32) -> f32 {
-    t * t * t * (t * (t * 6.0 - 15.0) + 10.0)
-}
-
-/// Sixteen evenly spaced unit gradients (cos, sin of k·22.5°).
-const GRADIENTS: [(f32, f32); 16] = [
-    (1.0, 0.0),
-    (0.923_879_5, 0.382_683_43),
-    (0.707_106_77, 0.707_106_77),
-    (0.382_683_43, 0.923_879_5),
-    (0.0, 1.0),
-    (-0.382_683_43, 0.923_879_5),
-    (-0.707_106_77, 0.707_106_77),
-    (-0.923_879_5, 0.382_683_43),
-    (-1.0, 0.0),
-    (-0.923_879_5, -0.382_683_43),
-    (-0.707_106_77, -0.707_106_77),
-    (-0.382_683_43, -0.923_879_5),
-    (0.0, -1.0),
-    (0.382_683_43, -0.923_879_5),
-    (0.707_106_77, -0.707_106_77),
-    (0.923_879_5, -0.382_683_43),
-];
-
 /// `x.floor()` for the moderate coordinates used here (|x| < 2³¹), without a call into libm
 /// (the x86-64 baseline has no rounding instruction, and `floor` dominated the profile).
 /// NaN gives 0.
@@ -93,16 +59,6 @@ pub fn floor(x: f32) -> f32 {
     } else {
         t
     }
-}
-
-/// Splits a lattice coordinate into its wrapped cell index (modulo `period`), the next
-/// cell's index, and the fractional part.
-#[inline]
-fn lattice(x: f32, period: u32) -> (u32, u32, f32) {
-    let xf = floor(x);
-    let i = wrap(xf as i64, period);
-    let j = if i + 1 == period { 0 } else { i + 1 };
-    (i, j, x - xf)
 }
 
 /// `i` modulo `period` in `[0, period)`, without a division in the common case where `i` is
@@ -122,25 +78,12 @@ fn wrap(i: i64, period: u32) -> u32 {
 }
 
 /// Periodic 2D gradient noise at texture coordinates `(u, v)` with `px × py` lattice cells
-/// per unit square (so period 1 in u and v). Roughly in `[-1, 1]`, 0 at lattice points.
+/// per unit square (so period 1 in u and v): [`HashedPerlin`] of `seed` at lattice coordinates
+/// `(u·px, v·py)`, wrapped every `px × py` cells (a count of 0 counts as 1). Within ±1, 0 at
+/// lattice points.
 #[inline]
 pub fn perlin(u: f32, v: f32, px: u32, py: u32, seed: u32) -> f32 {
-    let (ix0, ix1, fx) = lattice(u * px as f32, px.max(1));
-    let (iy0, iy1, fy) = lattice(v * py as f32, py.max(1));
-    let s = hash(seed);
-    let hy0 = hash(iy0.wrapping_add(s));
-    let hy1 = hash(iy1.wrapping_add(s));
-    let g = |ix: u32, hy: u32, dx: f32, dy: f32| {
-        let (gx, gy) = GRADIENTS[(hash(ix ^ hy) & 15) as usize];
-        gx * dx + gy * dy
-    };
-    let n00 = g(ix0, hy0, fx, fy);
-    let n10 = g(ix1, hy0, fx - 1.0, fy);
-    let n01 = g(ix0, hy1, fx, fy - 1.0);
-    let n11 = g(ix1, hy1, fx - 1.0, fy - 1.0);
-    let (sx, sy) = (fade(fx), fade(fy));
-    // 2D gradient noise with unit gradients peaks at ±√½; rescale to about ±1.
-    lerp(lerp(n00, n10, sx), lerp(n01, n11, sx), sy) * std::f32::consts::SQRT_2
+    HashedPerlin::new(seed).noise_periodic([u * px as f32, v * py as f32], [px, py])
 }
 
 /// Fractal sums of periodic gradient noise: octave `k` has `2^k` times the base cell count,

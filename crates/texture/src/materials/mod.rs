@@ -16,10 +16,9 @@ mod bricks;
 mod noise;
 mod sand_rocks;
 
-use crate::error::{CoreError, Result};
-use crate::image::{check_dimensions, Image};
-use crate::material::Material;
 use glam::Vec3;
+use renderlab_core::image::{check_dimensions, Image};
+use renderlab_core::{CoreError, Material, Result};
 
 /// Names of the built-in materials, in the order the thesis's scene uses them.
 pub const MATERIAL_NAMES: [&str; 4] = ["bricks", "sand_rocks", "bark_willow", "brick_pavement"];
@@ -108,7 +107,7 @@ fn normalize(img: Image<f32>) -> Image<f32> {
 
 /// A colour given as 8-bit sRGB codes (as picked from a photograph), in linear light.
 pub(crate) fn srgb(r: u8, g: u8, b: u8) -> Vec3 {
-    let t = crate::color::srgb8_to_linear_table();
+    let t = renderlab_core::color::srgb8_to_linear_table();
     Vec3::new(t[r as usize], t[g as usize], t[b as usize])
 }
 
@@ -128,6 +127,50 @@ mod tests {
         let (w, ht) = h.size();
         let s: f32 = (0..w).map(|x| (h.get(x, y) - h.get(x, (y + 1) % ht)).abs()).sum();
         s / w as f32
+    }
+
+    /// FNV-1a over the bits of a material's albedo, height and normal maps and its scale.
+    fn checksum(m: &Material) -> u64 {
+        let mut h = 0xcbf2_9ce4_8422_2325u64;
+        let mut add = |v: f32| {
+            for b in v.to_bits().to_le_bytes() {
+                h ^= u64::from(b);
+                h = h.wrapping_mul(0x0100_0000_01b3);
+            }
+        };
+        m.albedo.pixels().iter().for_each(|c| c.to_array().into_iter().for_each(&mut add));
+        m.height.pixels().iter().for_each(|&v| add(v));
+        m.normal.pixels().iter().for_each(|n| n.to_array().into_iter().for_each(&mut add));
+        add(m.height_scale);
+        h
+    }
+
+    #[test]
+    fn maps_are_bit_identical_to_the_recorded_ones() {
+        // Recorded from the materials as they were built in `renderlab-core`, before their
+        // noise moved onto `renderlab-noise`: any change to a map's bits is a change to every
+        // relief image of the report.
+        let recorded = [
+            ("bricks", 16, 0xdb03_5fc4_4db9_2b62u64),
+            ("sand_rocks", 16, 0xef2c_2bfe_6903_849c),
+            ("bark_willow", 16, 0x0e10_ec8f_6125_cd87),
+            ("brick_pavement", 16, 0xe6a1_1b30_28e5_9263),
+            ("bricks", 48, 0xe44b_2a93_6ebb_55c9),
+            ("sand_rocks", 48, 0x6bc1_8c55_5cca_fb86),
+            ("bark_willow", 48, 0xa052_3402_daae_17e7),
+            ("brick_pavement", 48, 0x8df8_2ccd_1289_cdae),
+            ("bricks", 100, 0xdb4e_2786_352d_0f7d),
+            ("sand_rocks", 100, 0xd280_713c_b1dc_c306),
+            ("bark_willow", 100, 0x74ca_409c_4fbe_37c2),
+            ("brick_pavement", 100, 0x017a_5ee9_5a81_e8eb),
+            ("bricks", 256, 0x7314_c9d8_8406_30f5),
+            ("sand_rocks", 256, 0x606a_305a_2784_f515),
+            ("bark_willow", 256, 0xa6cf_697c_1802_eeff),
+            ("brick_pavement", 256, 0x69bc_6ec5_bc5f_8052),
+        ];
+        for (name, size, sum) in recorded {
+            assert_eq!(checksum(&material(name, size).unwrap()), sum, "{name} at {size}²");
+        }
     }
 
     #[test]
@@ -192,7 +235,7 @@ mod tests {
                 let seam = (0..size).map(|y| max_jump((size - 1, y), (0, y))).fold(0.0f32, f32::max);
                 assert!(seam <= interior + 1e-6, "{name} {size}: {seam} vs {interior}");
                 // The same for the albedo (luminance).
-                let lum = |x: u32, y: u32| crate::color::luminance(m.albedo.get(x, y));
+                let lum = |x: u32, y: u32| renderlab_core::color::luminance(m.albedo.get(x, y));
                 let seam_c: f32 = (0..size).map(|y| (lum(size - 1, y) - lum(0, y)).abs()).sum();
                 let mid_c: f32 = (0..size).map(|y| (lum(size / 2 - 1, y) - lum(size / 2, y)).abs()).sum();
                 assert!(seam_c <= 3.0 * mid_c + 1e-3, "{name} {size}: {seam_c} vs {mid_c}");
@@ -277,7 +320,7 @@ mod tests {
     }
 
     /// Writes every material to `$RENDERLAB_MATERIAL_DIR` (e.g. `/tmp/materials`) as PNGs for
-    /// a visual check: `RENDERLAB_MATERIAL_DIR=/tmp/materials cargo test -p renderlab-core
+    /// a visual check: `RENDERLAB_MATERIAL_DIR=/tmp/materials cargo test -p renderlab-texture
     /// --release save_material_pngs -- --ignored`. Also reports the build time.
     #[test]
     #[ignore = "writes PNGs for inspection"]
@@ -301,18 +344,18 @@ mod tests {
             let m = material(name, size).unwrap();
             let cpu_s = cpu().zip(c).map(|(b, a)| b - a).unwrap_or(f64::NAN);
             println!("{name}: {:.3} s at {size}² ({cpu_s:.2} CPU s)", t.elapsed().as_secs_f64());
-            crate::io::save_color(format!("{dir}/{name}_albedo.png"), &m.albedo).unwrap();
-            crate::io::save_gray(format!("{dir}/{name}_height.png"), &m.height, false).unwrap();
+            renderlab_core::io::save_color(format!("{dir}/{name}_albedo.png"), &m.albedo).unwrap();
+            renderlab_core::io::save_gray(format!("{dir}/{name}_height.png"), &m.height, false).unwrap();
             // A quick lit preview: albedo × Lambert with a light from the upper left.
             let l = Vec3::new(-0.5, -0.6, 0.62).normalize();
             let lit = Image::from_fn(size, size, |x, y| {
                 let n = m.normal.get(x, y);
                 m.albedo.get(x, y) * (0.15 + 0.85 * n.dot(l).max(0.0)) * 1.4
             });
-            crate::io::save_color(format!("{dir}/{name}_lit.png"), &lit).unwrap();
+            renderlab_core::io::save_color(format!("{dir}/{name}_lit.png"), &lit).unwrap();
             // Two by two tiles of the lit preview, to check the seams by eye.
             let tiled = Image::from_fn(size, size, |x, y| lit.get((2 * x) % size, (2 * y) % size));
-            crate::io::save_color(format!("{dir}/{name}_tiled.png"), &tiled).unwrap();
+            renderlab_core::io::save_color(format!("{dir}/{name}_tiled.png"), &tiled).unwrap();
         }
     }
 }

@@ -1,0 +1,94 @@
+//! `relief render --backend gpu|auto`: the frame drawn by the GPU renderer, timed on the
+//! device, and reported with the adapter that drew it. With `auto`, anything the GPU cannot
+//! do (no adapter, no shader for the technique, a device error) is stated and left to the CPU
+//! renderer.
+
+use crate::args::{Backend, DebugView, RenderArgs};
+use anyhow::Result;
+use glam::{Vec2, Vec3};
+use renderlab_core::color::srgb8_to_linear_table;
+use renderlab_core::{io, Camera, Image, Scene};
+use renderlab_gpu::{shader, GpuContext, ReliefRenderer};
+use renderlab_lab::heatmap::heat_image;
+use renderlab_raster::rasterize;
+use renderlab_relief::render::render_reference;
+use renderlab_relief::{FrameInput, ReliefMaterial};
+
+/// Frames run before the timed ones, and timed frames (their median is reported).
+const WARMUP: u32 = 2;
+const REPS: u32 = 5;
+
+/// Renders and writes `a.out` on the GPU when `a.backend` asks for it; `Ok(false)` leaves the
+/// frame to the CPU renderer (`--backend cpu`; the reference and complexity views, which are
+/// CPU-only; or, with `auto`, a GPU that failed, which it says).
+pub fn relief_render(
+    a: &RenderArgs,
+    scene: &Scene,
+    camera: &Camera,
+    mats: &[ReliefMaterial],
+) -> Result<bool> {
+    if a.backend == Backend::Cpu {
+        return Ok(false);
+    }
+    if matches!(a.debug, DebugView::Reference | DebugView::Complexity) {
+        println!("--debug {:?} is computed on the CPU", a.debug);
+        return Ok(false);
+    }
+    match draw(a, scene, camera, mats) {
+        Ok(image) => {
+            io::save_color(&a.out, &image)?;
+            println!("wrote {}", a.out.display());
+            Ok(true)
+        }
+        Err(e) if a.backend == Backend::Auto => {
+            println!("GPU backend unavailable ({e:#}); rendering on the CPU instead");
+            Ok(false)
+        }
+        Err(e) => Err(e),
+    }
+}
+
+/// The GPU's frame (or debug view), after printing what drew it and how long it took.
+fn draw(a: &RenderArgs, scene: &Scene, camera: &Camera, mats: &[ReliefMaterial]) -> Result<Image<Vec3>> {
+    let t = a.technique;
+    // A technique without a shader is refused before a device is opened.
+    shader::module_source(t)?;
+    let ctx = GpuContext::new()?;
+    let mut renderer = ReliefRenderer::new(&ctx, scene, mats)?;
+    let frame = renderer.render(camera, t)?;
+    let timing = renderer.time(camera, t, WARMUP, REPS)?;
+    let gpu = match timing.gpu_ms {
+        Some(ms) => format!("{ms:.3} ms GPU (timestamp queries)"),
+        None => "no GPU time (the adapter has no timestamp queries)".to_string(),
+    };
+    println!(
+        "{t} (gpu backend, adapter {}): {} pixels, {gpu}, {:.3} ms wall clock, medians of {REPS} after {WARMUP} warm-up frames",
+        ctx.report,
+        frame.mask.pixels().iter().filter(|&&m| m).count(),
+        timing.wall_ms
+    );
+    Ok(match a.debug {
+        DebugView::Layers => {
+            let max = t.layers().max(1) as f32;
+            decode(heat_image(&frame.layers.map(|l| l as f32), max, Some(&frame.mask)))
+        }
+        DebugView::Error => {
+            // The GPU's UV against the CPU's exact reference, in texels of the first material.
+            let g = rasterize(scene, camera);
+            let input = FrameInput { width: camera.width, height: camera.height, points: g.pixels() };
+            let r = render_reference(input, mats, t, scene.lighting, scene.background);
+            let size = Vec2::new(mats[0].height.width() as f32, mats[0].height.height() as f32);
+            let e = Image::from_fn(camera.width, camera.height, |x, y| {
+                ((frame.uv.get(x, y) - r.uv.get(x, y)) * size).length()
+            });
+            decode(heat_image(&e, 4.0, Some(&frame.mask)))
+        }
+        _ => frame.image,
+    })
+}
+
+/// A display-encoded heat map decoded to linear light, as `save_color` takes it.
+fn decode(img: Image<[u8; 3]>) -> Image<Vec3> {
+    let table = srgb8_to_linear_table();
+    img.map(|c| Vec3::new(table[c[0] as usize], table[c[1] as usize], table[c[2] as usize]))
+}

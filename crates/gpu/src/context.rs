@@ -1,0 +1,158 @@
+//! The device: finding an adapter (hardware preferred, a software one such as Mesa's
+//! lavapipe allowed), opening it with the features the renderer uses, and reporting what it
+//! is, so that every GPU result can say which device produced it.
+//!
+//! Errors the device raises while running (validation, out of memory, a lost device) are
+//! caught by an error handler and returned by [`GpuContext::check`] instead of wgpu's default
+//! panic.
+
+use crate::error::{GpuError, Result};
+use std::sync::{Arc, Mutex};
+
+/// What the adapter is: recorded with every GPU measurement.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct AdapterReport {
+    /// The adapter's name (`llvmpipe (LLVM 19.1.7, 256 bits)`, `NVIDIA H100 80GB HBM3`).
+    pub name: String,
+    /// The driver's name (`llvmpipe`, `NVIDIA`).
+    pub driver: String,
+    /// The driver's version text.
+    pub driver_info: String,
+    /// The graphics API in use (`vulkan`).
+    pub backend: String,
+    /// Whether the adapter runs on the CPU (wgpu's `DeviceType::Cpu`): its timings measure a
+    /// CPU emulating a GPU, not a GPU.
+    pub software: bool,
+    /// Whether the device can time passes with timestamp queries.
+    pub timestamps: bool,
+}
+
+impl std::fmt::Display for AdapterReport {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} ({} {}, {}", self.name, self.driver, self.driver_info, self.backend)?;
+        if self.software {
+            f.write_str(", software: a CPU emulating a GPU")?;
+        }
+        if !self.timestamps {
+            f.write_str(", no timestamp queries")?;
+        }
+        f.write_str(")")
+    }
+}
+
+/// An open device and its queue.
+pub struct GpuContext {
+    /// The wgpu device.
+    pub device: wgpu::Device,
+    /// Its queue.
+    pub queue: wgpu::Queue,
+    /// What the adapter is.
+    pub report: AdapterReport,
+    /// The first error the device raised that no caller has collected yet.
+    errors: Arc<Mutex<Option<String>>>,
+}
+
+/// Preference order of device types: hardware first, software last.
+fn rank(t: wgpu::DeviceType) -> u8 {
+    match t {
+        wgpu::DeviceType::DiscreteGpu => 0,
+        wgpu::DeviceType::IntegratedGpu => 1,
+        wgpu::DeviceType::VirtualGpu => 2,
+        wgpu::DeviceType::Other => 3,
+        wgpu::DeviceType::Cpu => 4,
+    }
+}
+
+impl GpuContext {
+    /// Opens the best Vulkan adapter: a discrete GPU, then an integrated or virtual one, then
+    /// a software adapter. Requests timestamp queries where the adapter has them, and
+    /// `FLOAT32_FILTERABLE`, which the renderer needs (its maps are 32-bit float textures,
+    /// filtered by the sampler as the CPU filters them).
+    pub fn new() -> Result<Self> {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+        desc.backends = wgpu::Backends::VULKAN;
+        let instance = wgpu::Instance::new(desc);
+        let adapters = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::VULKAN));
+        let Some(adapter) = adapters.into_iter().min_by_key(|a| rank(a.get_info().device_type)) else {
+            return Err(GpuError::NoAdapter("Vulkan lists no adapter".into()));
+        };
+        let info = adapter.get_info();
+        let have = adapter.features();
+        if !have.contains(wgpu::Features::FLOAT32_FILTERABLE) {
+            return Err(GpuError::MissingFeature {
+                adapter: info.name,
+                feature: "FLOAT32_FILTERABLE",
+                why: "the relief maps need (32-bit float textures filtered as on the CPU)",
+            });
+        }
+        let timestamps = have.contains(wgpu::Features::TIMESTAMP_QUERY);
+        let mut features = wgpu::Features::FLOAT32_FILTERABLE;
+        if timestamps {
+            features |= wgpu::Features::TIMESTAMP_QUERY;
+        }
+        let device_desc = wgpu::DeviceDescriptor {
+            label: Some("renderlab"),
+            required_features: features,
+            required_limits: adapter.limits(),
+            ..Default::default()
+        };
+        let (device, queue) = pollster::block_on(adapter.request_device(&device_desc))
+            .map_err(|e| GpuError::Device { adapter: info.name.clone(), reason: e.to_string() })?;
+        let errors = Arc::new(Mutex::new(None::<String>));
+        let sink = Arc::clone(&errors);
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+            let mut slot = sink.lock().unwrap_or_else(|p| p.into_inner());
+            slot.get_or_insert_with(|| one_line(&e.to_string()));
+        }));
+        let lost = Arc::clone(&errors);
+        device.set_device_lost_callback(move |reason, message| {
+            let mut slot = lost.lock().unwrap_or_else(|p| p.into_inner());
+            slot.get_or_insert_with(|| format!("device lost ({reason:?}): {}", one_line(&message)));
+        });
+        let report = AdapterReport {
+            name: info.name,
+            driver: info.driver,
+            driver_info: info.driver_info,
+            backend: info.backend.to_string(),
+            software: info.device_type == wgpu::DeviceType::Cpu,
+            timestamps,
+        };
+        Ok(Self { device, queue, report, errors })
+    }
+
+    /// The first error the device raised since the last check, as an error; `Ok` if none.
+    pub fn check(&self) -> Result<()> {
+        let mut slot = self.errors.lock().unwrap_or_else(|p| p.into_inner());
+        match slot.take() {
+            Some(e) => Err(GpuError::Runtime(e)),
+            None => Ok(()),
+        }
+    }
+
+    /// Waits until the device has finished all submitted work.
+    pub fn wait(&self) -> Result<()> {
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| GpuError::Runtime(e.to_string()))?;
+        self.check()
+    }
+
+    /// The largest texture side the device accepts.
+    pub fn max_texture_side(&self) -> u32 {
+        self.device.limits().max_texture_dimension_2d
+    }
+
+    /// Refuses a `width × height` texture named `what` that the device cannot hold.
+    pub fn check_size(&self, what: &str, width: u32, height: u32) -> Result<()> {
+        let max = self.max_texture_side();
+        if width > max || height > max {
+            return Err(GpuError::TooLarge { what: what.to_string(), width, height, max });
+        }
+        Ok(())
+    }
+}
+
+/// wgpu's multi-line error reports folded into one line.
+pub(crate) fn one_line(s: &str) -> String {
+    s.split_whitespace().collect::<Vec<_>>().join(" ")
+}

@@ -1,0 +1,38 @@
+//! The GPU renderer: renderlab's relief techniques as WGSL fragment shaders on wgpu (Vulkan),
+//! drawn headless into textures, read back as images and checked against the CPU renderer,
+//! and timed with timestamp queries.
+//!
+//! Layout: [`context`] finds and opens the device and says what it is; [`shader`] assembles
+//! each technique's WGSL module from the frame (`shaders/frame.wgsl`), the marches
+//! (`shaders/march.wgsl`) and the technique's own file, which sits beside its CPU twin in
+//! `renderlab-relief` and is reached through the technique registry
+//! ([`Technique::wgsl`](renderlab_relief::Technique::wgsl)); [`relief`] renders and times
+//! frames; `texture`, `mesh`, `readback` and [`timing`] are its parts.
+//!
+//! Agreement with the CPU: the GPU frame is the CPU frame computed again: the same mesh and
+//! camera (rasterized by the GPU's fixed-function rasterizer), the UV and its exact screen
+//! Jacobian computed from `uv·q` and `q = 1/w` as the CPU rasterizer does, the same maps (the
+//! CPU's own mip pyramids, in 32-bit floats), the same march and lighting written with the
+//! same operations. What remains different is the sampler's arithmetic (the hardware's
+//! bilinear weights and mip blending have limited fractional precision), the GPU's
+//! transcendental functions, and f32 against the CPU rasterizer's f64; the tests in
+//! `tests/` bound the effect.
+//!
+//! A technique without a shader is refused with [`GpuError::NoShader`], never drawn by a
+//! stand-in.
+
+#![warn(missing_docs)]
+
+pub mod context;
+pub mod error;
+mod mesh;
+mod readback;
+pub mod relief;
+pub mod shader;
+mod texture;
+pub mod timing;
+
+pub use context::{AdapterReport, GpuContext};
+pub use error::{GpuError, Result};
+pub use relief::{GpuFrame, ReliefRenderer};
+pub use timing::GpuTiming;

@@ -1,0 +1,172 @@
+//! A relief material on the device: the same maps the CPU renderer reads, uploaded without
+//! conversion so that both sample the same numbers. Albedo and normals go up with the CPU's
+//! own mip pyramids (`Rgba32Float`, every level as the CPU built it, so that trilinear
+//! filtering blends the same texels), the depth field as `R32Float` (one level, bilinear, as
+//! `HeightField::depth`), the complexity map as `R32Float` (read with `textureLoad`, nearest,
+//! as `complexity_at`).
+
+use crate::context::GpuContext;
+use crate::error::Result;
+use bytemuck::{Pod, Zeroable};
+use glam::Vec4;
+use renderlab_core::Image;
+use renderlab_relief::ReliefMaterial;
+use renderlab_texture::Texture;
+
+/// One material's constants, laid out as `Material` in `frame.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub(crate) struct MaterialUniform {
+    height_scale: f32,
+    albedo_levels: f32,
+    normal_levels: f32,
+    pad: f32,
+}
+
+/// A material's textures and constants, bound as group 1 of the relief pipelines.
+pub(crate) struct GpuMaterial {
+    /// The bind group (uniform, albedo, normal, depth, complexity).
+    pub bind_group: wgpu::BindGroup,
+}
+
+/// The layout of group 1 (see `frame.wgsl`).
+pub(crate) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let texture = |binding| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: binding != 4 },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    };
+    let entries = [
+        wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        },
+        texture(1),
+        texture(2),
+        texture(3),
+        texture(4),
+    ];
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("material"),
+        entries: &entries,
+    })
+}
+
+impl GpuMaterial {
+    /// Uploads `m`'s maps; refuses maps larger than the device's textures.
+    pub fn new(ctx: &GpuContext, layout: &wgpu::BindGroupLayout, m: &ReliefMaterial) -> Result<Self> {
+        let albedo = upload_pyramid(ctx, &format!("{}: albedo", m.name), &m.albedo)?;
+        let normal = upload_pyramid(ctx, &format!("{}: normal map", m.name), &m.normal)?;
+        let depth = Image::from_vec(m.height.width(), m.height.height(), m.height.depths().to_vec())
+            .expect("a height field's depths fill its size");
+        let depth = upload_scalar(ctx, &format!("{}: depth map", m.name), &depth)?;
+        let complexity = upload_scalar(ctx, &format!("{}: complexity map", m.name), &m.complexity)?;
+        let uniform = MaterialUniform {
+            height_scale: m.height_scale,
+            albedo_levels: m.albedo.level_count() as f32,
+            normal_levels: m.normal.level_count() as f32,
+            pad: 0.0,
+        };
+        let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("material uniform"),
+            size: std::mem::size_of::<MaterialUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        ctx.queue.write_buffer(&buffer, 0, bytemuck::bytes_of(&uniform));
+        let views = [&albedo, &normal, &depth, &complexity].map(|t| t.create_view(&Default::default()));
+        let mut entries = vec![wgpu::BindGroupEntry { binding: 0, resource: buffer.as_entire_binding() }];
+        for (i, v) in views.iter().enumerate() {
+            entries.push(wgpu::BindGroupEntry {
+                binding: i as u32 + 1,
+                resource: wgpu::BindingResource::TextureView(v),
+            });
+        }
+        let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(&m.name),
+            layout,
+            entries: &entries,
+        });
+        Ok(Self { bind_group })
+    }
+}
+
+/// A 2-D texture of `levels` mip levels, sampled and written by copies.
+fn create(
+    ctx: &GpuContext,
+    what: &str,
+    w: u32,
+    h: u32,
+    levels: u32,
+    format: wgpu::TextureFormat,
+) -> Result<wgpu::Texture> {
+    ctx.check_size(what, w, h)?;
+    Ok(ctx.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(what),
+        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+        mip_level_count: levels,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    }))
+}
+
+/// Writes `bytes` (tightly packed rows of `bytes_per_texel · w`) into `level` of `texture`.
+fn write_level(
+    ctx: &GpuContext,
+    texture: &wgpu::Texture,
+    level: u32,
+    w: u32,
+    h: u32,
+    bytes_per_texel: u32,
+    bytes: &[u8],
+) {
+    ctx.queue.write_texture(
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: level,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        bytes,
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(w * bytes_per_texel),
+            rows_per_image: Some(h),
+        },
+        wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+    );
+}
+
+/// Uploads a texture with every level of its CPU pyramid, as `Rgba32Float`.
+fn upload_pyramid(ctx: &GpuContext, what: &str, t: &Texture) -> Result<wgpu::Texture> {
+    let base = t.level(0);
+    let levels = t.level_count() as u32;
+    let texture = create(ctx, what, base.width(), base.height(), levels, wgpu::TextureFormat::Rgba32Float)?;
+    for i in 0..levels {
+        let img: &Image<Vec4> = t.level(i as usize);
+        let texels: Vec<[f32; 4]> = img.pixels().iter().map(|v| v.to_array()).collect();
+        write_level(ctx, &texture, i, img.width(), img.height(), 16, bytemuck::cast_slice(&texels));
+    }
+    Ok(texture)
+}
+
+/// Uploads a single-channel map as `R32Float`, one level.
+fn upload_scalar(ctx: &GpuContext, what: &str, img: &Image<f32>) -> Result<wgpu::Texture> {
+    let texture = create(ctx, what, img.width(), img.height(), 1, wgpu::TextureFormat::R32Float)?;
+    write_level(ctx, &texture, 0, img.width(), img.height(), 4, bytemuck::cast_slice(img.pixels()));
+    Ok(texture)
+}

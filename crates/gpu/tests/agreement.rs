@@ -1,0 +1,254 @@
+//! The GPU renderer against the CPU renderer: for every technique with a shader, at the
+//! thesis's four view angles, the GPU image against the CPU image of the same frame (PSNR and
+//! FLIP over the pixels both cover), and the GPU's per-pixel UV against the CPU's and against
+//! the exact reference's, in texels of the depth map.
+//!
+//! Without an adapter these tests fail with a clear message when `CI` is set and report
+//! themselves skipped otherwise. The frames are small (320 × 200) because in CI the GPU is
+//! lavapipe, a CPU.
+//!
+//! # The bounds, and why
+//!
+//! Both renderers run the same arithmetic on the same maps; they differ in:
+//! - the sampler: Vulkan's bilinear filtering computes its weights with `subTexelPrecisionBits`
+//!   fractional bits (4 at least, 8 on most GPUs), so a bilinear fetch may differ from the
+//!   CPU's f32 weights by up to 2⁻⁹ of the difference between neighbouring texels, and the
+//!   blend between mip levels has `mipmapPrecisionBits` (4 to 8). Lavapipe filters 32-bit
+//!   float textures in full f32, so there the difference is rounding alone;
+//! - f32 against f64: the CPU rasterizer solves UV and its Jacobian in f64, the GPU in f32
+//!   (relative error ~10⁻⁷: 10⁻⁴ texel on a 256² map tiled four times);
+//! - transcendental functions (`log2` for the LOD, `pow` for adaptive POM's angle factor):
+//!   a few ulp on a GPU, not correctly rounded;
+//! - coverage: both rasterizers sample pixel centres with the top-left rule, but the GPU
+//!   snaps f32 vertices to its own sub-pixel grid, so pixels on an edge may differ.
+//!
+//! Smooth results (basic, normal, parallax, POM, adaptive POM, and relief mapping, whose
+//! bisection only goes astray where its midpoint lies within the depth error of the surface,
+//! i.e. next to the true hit) move by a fraction of the
+//! sampler's error: with 8-bit weights an albedo fetch is off by at most 2⁻⁹ of a texel
+//! difference (≤ 0.002, RMS far less), which is ≥ 54 dB even if every pixel had it, so 45 dB
+//! (and at most 1 % of pixels more than ¼ texel from the CPU's UV) leaves room for the few pixels where POM's march takes a different layer at an occluding
+//! edge. A march that ends on a layer without interpolating (steep parallax) turns a depth
+//! difference of 2⁻⁹ of a texel step into a whole layer step wherever a layer boundary lies
+//! that close to the depth map: about ε·n of the pixels for n layers and a depth error ε
+//! (0.1 %–2 % with 8-bit weights), each as wrong as the step's colour change, so its bounds
+//! are 30 dB and 5 % of pixels beyond ¼ texel. FLIP's mean follows the same split (0.005 and 0.02).
+//!
+//! UV: the median difference between the GPU's and the CPU's UV must be tiny (0.01 texel:
+//! f32 and sampler rounding), and the mean error against the exact reference must be the CPU
+//! technique's own within 0.05 texel + 5 %: a shader bug (a wrong sign, a missing clamp, a
+//! wrong step) moves that mean by whole texels.
+//!
+//! Measured on lavapipe (Mesa 22.3, full-precision filtering) the agreement is far inside
+//! these: PSNR 104–122 dB for basic, normal, parallax, POM and adaptive POM, 84–98 dB for
+//! relief mapping, 75–87 dB for steep parallax, no coverage difference, median UV difference
+//! below 10⁻⁴ texel (see BENCHMARKS.md).
+
+mod common;
+
+use common::context;
+use glam::Vec2;
+use renderlab_core::{Camera, Image, Scene};
+use renderlab_gpu::{GpuFrame, ReliefRenderer};
+use renderlab_lab::fixtures::{benchmark_camera, benchmark_scene, room_camera, thesis_room};
+use renderlab_lab::metrics::{flip, flip_masked_mean, psnr};
+use renderlab_raster::rasterize;
+use renderlab_relief::maps::complexity::ComplexityParams;
+use renderlab_relief::render::{render, render_reference};
+use renderlab_relief::{FrameInput, Kernel, ReliefMaterial, Technique};
+use renderlab_texture::materials;
+
+/// Frame size: small, since CI's GPU is a CPU.
+const WIDTH: u32 = 320;
+const HEIGHT: u32 = 200;
+/// Texture size of the bricks material.
+const TEXTURE: u32 = 256;
+/// The thesis's view angles.
+const ANGLES: [f32; 4] = [0.0, 45.0, 60.0, 80.0];
+
+/// How a GPU frame compares with the CPU frames of the same view.
+#[derive(Debug)]
+struct Agreement {
+    /// Pixels covered by one renderer only.
+    coverage_diff: usize,
+    /// PSNR (dB, sRGB-encoded) of the GPU image against the CPU image, over pixels both cover.
+    psnr: f64,
+    /// Mean FLIP over those pixels.
+    flip: f64,
+    /// Median |GPU UV − CPU UV| in texels.
+    uv_median: f32,
+    /// Fraction of pixels whose GPU UV is more than a quarter texel from the CPU's.
+    uv_far: f64,
+    /// Mean texel error of the GPU UV against the exact reference.
+    gpu_ref: f32,
+    /// Mean texel error of the CPU UV against the exact reference.
+    cpu_ref: f32,
+}
+
+fn compare(
+    gpu: &GpuFrame,
+    cpu: &renderlab_relief::Frame,
+    reference: &renderlab_relief::Frame,
+    texels: Vec2,
+) -> Agreement {
+    let both = Image::from_fn(WIDTH, HEIGHT, |x, y| gpu.mask.get(x, y) && cpu.mask.get(x, y));
+    let coverage_diff = (0..HEIGHT)
+        .flat_map(|y| (0..WIDTH).map(move |x| (x, y)))
+        .filter(|&(x, y)| gpu.mask.get(x, y) != cpu.mask.get(x, y))
+        .count();
+    let f = flip(&gpu.image, &cpu.image);
+    let mut diffs = Vec::new();
+    let (mut gpu_ref, mut cpu_ref) = (0.0f64, 0.0f64);
+    for y in 0..HEIGHT {
+        for x in 0..WIDTH {
+            if both.get(x, y) {
+                let r = reference.uv.get(x, y);
+                diffs.push(((gpu.uv.get(x, y) - cpu.uv.get(x, y)) * texels).length());
+                gpu_ref += ((gpu.uv.get(x, y) - r) * texels).length() as f64;
+                cpu_ref += ((cpu.uv.get(x, y) - r) * texels).length() as f64;
+            }
+        }
+    }
+    let n = diffs.len().max(1);
+    let uv_far = diffs.iter().filter(|&&d| d > 0.25).count() as f64 / n as f64;
+    diffs.sort_by(f32::total_cmp);
+    Agreement {
+        coverage_diff,
+        psnr: psnr(&gpu.image, &cpu.image, Some(&both)),
+        flip: flip_masked_mean(&f, Some(&both)),
+        uv_median: diffs.get(n / 2).copied().unwrap_or(0.0),
+        uv_far,
+        gpu_ref: (gpu_ref / n as f64) as f32,
+        cpu_ref: (cpu_ref / n as f64) as f32,
+    }
+}
+
+/// The bounds for a technique (see the module docs).
+struct Bounds {
+    psnr_db: f64,
+    flip: f64,
+    far_fraction: f64,
+}
+
+/// A march that stops on a layer (steep parallax) flips whole layer steps; every other
+/// technique's result moves smoothly with the sampler's rounding.
+fn bounds(t: Technique) -> Bounds {
+    if t.family() == "steep" {
+        Bounds { psnr_db: 30.0, flip: 0.02, far_fraction: 0.05 }
+    } else {
+        Bounds { psnr_db: 45.0, flip: 0.005, far_fraction: 0.01 }
+    }
+}
+
+/// Renders `name` on both renderers at every angle of the benchmark and checks the bounds.
+fn check(name: &str) {
+    let bricks = materials::material("bricks", TEXTURE).expect("built-in material");
+    let scene = benchmark_scene(bricks);
+    let cameras: Vec<(String, Camera)> =
+        ANGLES.iter().map(|&a| (format!("{a:>3}°"), benchmark_camera(a, WIDTH, HEIGHT))).collect();
+    check_views(name, &scene, &cameras);
+}
+
+/// Renders `name` of `scene` on both renderers from every camera and checks the bounds.
+fn check_views(name: &str, scene: &Scene, cameras: &[(String, Camera)]) {
+    let Some(ctx) = context() else { return };
+    let technique = Technique::parse(name).expect("a registry technique");
+    let mats: Vec<ReliefMaterial> =
+        scene.materials.iter().map(|m| ReliefMaterial::new(m, &ComplexityParams::default(), false)).collect();
+    let texels = Vec2::new(mats[0].height.width() as f32, mats[0].height.height() as f32);
+    let mut gpu = ReliefRenderer::new(&ctx, scene, &mats).expect("scene uploads");
+    let b = bounds(technique);
+    let mut failures = Vec::new();
+    for (view, camera) in cameras {
+        let g = rasterize(scene, camera);
+        let input = FrameInput { width: WIDTH, height: HEIGHT, points: g.pixels() };
+        let cpu = render(input, &mats, technique, Kernel::Scalar, scene.lighting, scene.background, false)
+            .expect("CPU render");
+        let reference = render_reference(input, &mats, technique, scene.lighting, scene.background);
+        let frame = gpu.render(camera, technique).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let a = compare(&frame, &cpu, &reference, texels);
+        if let Some(dir) = std::env::var_os("RENDERLAB_GPU_TEST_IMAGES") {
+            // Both images side by side for a look, when asked for.
+            let stem = format!("{}_{}", name.replace(':', "-"), view.trim().trim_end_matches('°'));
+            let dir = std::path::Path::new(&dir);
+            renderlab_core::io::save_color(dir.join(format!("{stem}_gpu.png")), &frame.image)
+                .expect("writable");
+            renderlab_core::io::save_color(dir.join(format!("{stem}_cpu.png")), &cpu.image)
+                .expect("writable");
+        }
+        println!(
+            "{name:>13} {view}: coverage diff {:>3} px, PSNR {:6.2} dB, FLIP {:.5}, UV |gpu−cpu| median {:.5} texel, >¼ texel {:.3} %, error vs exact: gpu {:.4} cpu {:.4} texel",
+            a.coverage_diff, a.psnr, a.flip, a.uv_median, a.uv_far * 100.0, a.gpu_ref, a.cpu_ref
+        );
+        let covered = cpu.mask.pixels().iter().filter(|&&m| m).count();
+        let mut fail = |what: String| failures.push(format!("{name} at {view}: {what}"));
+        if a.coverage_diff > (covered / 500).max(8) {
+            fail(format!("{} pixels covered by one renderer only", a.coverage_diff));
+        }
+        if a.psnr < b.psnr_db {
+            fail(format!("PSNR {:.2} dB < {}", a.psnr, b.psnr_db));
+        }
+        if a.flip > b.flip {
+            fail(format!("FLIP {:.4} > {}", a.flip, b.flip));
+        }
+        if a.uv_median > 0.01 {
+            fail(format!("median UV difference {:.4} texel > 0.01", a.uv_median));
+        }
+        if a.uv_far > b.far_fraction {
+            fail(format!("{:.2} % of pixels' UV differ by more than ¼ texel", a.uv_far * 100.0));
+        }
+        if (a.gpu_ref - a.cpu_ref).abs() > 0.05 + 0.05 * a.cpu_ref {
+            fail(format!("UV error vs exact {:.4} texel on the GPU, {:.4} on the CPU", a.gpu_ref, a.cpu_ref));
+        }
+    }
+    assert!(failures.is_empty(), "GPU and CPU disagree:\n{}", failures.join("\n"));
+}
+
+#[test]
+fn basic_agrees() {
+    check("basic");
+}
+
+#[test]
+fn normal_agrees() {
+    check("normal");
+}
+
+#[test]
+fn parallax_agrees() {
+    check("parallax");
+}
+
+#[test]
+fn steep_agrees() {
+    check("steep:32");
+}
+
+#[test]
+fn pom_agrees() {
+    check("pom:32");
+}
+
+#[test]
+fn adaptive_pom_agrees() {
+    check("adaptive:4:32");
+}
+
+#[test]
+fn relief_agrees() {
+    check("relief:16:6");
+}
+
+#[test]
+fn adaptive_relief_agrees() {
+    check("adaptive-relief");
+}
+
+/// Several objects and materials, depth-tested against each other (the thesis's room; the
+/// UV errors are in texels of its first material, all four being the same size).
+#[test]
+fn room_agrees() {
+    let scene = thesis_room(TEXTURE).expect("built-in room");
+    let cameras = [("room".to_string(), room_camera(WIDTH, HEIGHT))];
+    check_views("adaptive:4:32", &scene, &cameras);
+}

@@ -1,0 +1,36 @@
+//! GPU timing: timestamp queries around the pass where the adapter has them, wall-clock time
+//! always, medians after a warm-up.
+
+mod common;
+
+use common::context;
+use renderlab_gpu::ReliefRenderer;
+use renderlab_lab::fixtures::{benchmark_camera, benchmark_scene};
+use renderlab_relief::maps::complexity::ComplexityParams;
+use renderlab_relief::{ReliefMaterial, Technique};
+use renderlab_texture::materials;
+
+#[test]
+fn frames_are_timed_on_the_device_and_by_the_clock() {
+    let Some(ctx) = context() else { return };
+    println!("adapter: {}", ctx.report);
+    let scene = benchmark_scene(materials::material("bricks", 128).expect("built-in material"));
+    let mats: Vec<_> =
+        scene.materials.iter().map(|m| ReliefMaterial::new(m, &ComplexityParams::default(), false)).collect();
+    let mut r = ReliefRenderer::new(&ctx, &scene, &mats).expect("scene uploads");
+    let camera = benchmark_camera(45.0, 320, 200);
+    for name in ["basic", "pom:32"] {
+        let t = r.time(&camera, Technique::parse(name).expect("a registry technique"), 1, 3).expect("timed");
+        println!("{name}: gpu {:?} ms, wall {:.3} ms (median of {})", t.gpu_ms, t.wall_ms, t.reps);
+        assert_eq!(t.reps, 3);
+        assert!(t.wall_ms.is_finite() && t.wall_ms > 0.0, "{t:?}");
+        assert_eq!(
+            t.gpu_ms.is_some(),
+            ctx.report.timestamps,
+            "timestamps exactly where the adapter has them"
+        );
+        if let Some(ms) = t.gpu_ms {
+            assert!(ms.is_finite() && ms >= 0.0, "{t:?}");
+        }
+    }
+}

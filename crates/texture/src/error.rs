@@ -1,0 +1,31 @@
+//! The error of the texture lab's scenes and of the procedural textures they are built from,
+//! in a module of its own because both [`crate::scene`] and [`crate::procedural`] return it.
+
+use crate::mapping::MappingError;
+
+/// Why a scene cannot be built.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SceneError {
+    /// The surface's geometry is unusable (degenerate quad, eye in the plane, …).
+    #[error(transparent)]
+    Mapping(#[from] MappingError),
+    /// A size is zero, absurd or not finite.
+    #[error("{what}: {reason}")]
+    Size {
+        /// The parameter.
+        what: &'static str,
+        /// What is wrong with it.
+        reason: String,
+    },
+    /// An unknown scene name.
+    #[error(
+        "unknown scene '{0}' (expected checkerboard, thesis_quad, thesis_quad_circuit, thesis_quad_earth, \
+         quad_tilt_DEG or zone_plate)"
+    )]
+    UnknownScene(String),
+}
+
+/// A [`SceneError::Size`] for parameter `what`.
+pub(crate) fn size_error(what: &'static str, reason: impl Into<String>) -> SceneError {
+    SceneError::Size { what, reason: reason.into() }
+}
