@@ -37,6 +37,27 @@ fn linear(img: Image<[u8; 3]>) -> Image<Vec3> {
     img.map(|c| Vec3::new(table[c[0] as usize], table[c[1] as usize], table[c[2] as usize]))
 }
 
+/// The layer view of a frame's per-pixel `layers` (where `mask` shows a surface): a heat map
+/// of 0 … `technique`'s layers. Takes the parts so that a GPU frame is shown the same way.
+pub fn layers_view(layers: &Image<u16>, mask: &Image<bool>, technique: Technique) -> Image<Vec3> {
+    let max = technique.layers().max(1) as f32;
+    linear(heat_image(&layers.map(|l| l as f32), max, Some(mask)))
+}
+
+/// The error view of a frame's texture coordinates `uv` (where `mask` shows a surface)
+/// against the reference's: a heat map of 0 … [`UV_ERROR_MAX_TEXELS`] texels of the first
+/// material's height map.
+pub fn uv_error_view(
+    uv: &Image<Vec2>,
+    mask: &Image<bool>,
+    reference_uv: &Image<Vec2>,
+    mats: &[ReliefMaterial],
+) -> Image<Vec3> {
+    let size =
+        mats.first().map_or(Vec2::ONE, |m| Vec2::new(m.height.width() as f32, m.height.height() as f32));
+    linear(heat_image(&uv_error_map(uv, mask, reference_uv, size), UV_ERROR_MAX_TEXELS, Some(mask)))
+}
+
 /// Renders `which` for `technique` on `kernel` over `view` of `scene`, whose materials are
 /// `mats` (prepared with the maps `technique` needs).
 pub fn debug_view(
@@ -56,8 +77,7 @@ pub fn debug_view(
         }
         DebugView::Layers => {
             let f = lit(technique, kernel)?;
-            let max = technique.layers().max(1) as f32;
-            linear(heat_image(&f.layers.map(|l| l as f32), max, Some(&f.mask)))
+            layers_view(&f.layers, &f.mask, technique)
         }
         DebugView::Complexity => {
             let f = lit(Technique::Basic(Basic), Kernel::Scalar)?;
@@ -70,8 +90,7 @@ pub fn debug_view(
         DebugView::Error => {
             let f = lit(technique, kernel)?;
             let r = render_reference(view.input(), mats, technique, scene.lighting, scene.background);
-            let size = Vec2::new(mats[0].height.width() as f32, mats[0].height.height() as f32);
-            linear(heat_image(&uv_error_map(&f, &r, size), UV_ERROR_MAX_TEXELS, Some(&f.mask)))
+            uv_error_view(&f.uv, &f.mask, &r.uv, mats)
         }
     })
 }

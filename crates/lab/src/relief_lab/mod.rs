@@ -12,7 +12,7 @@ mod uv_error;
 mod verdicts;
 
 pub use config::{default_techniques, resolve, Method, ReliefBenchConfig, POM_32};
-pub use debug::{debug_view, DebugView, UV_ERROR_MAX_TEXELS};
+pub use debug::{debug_view, layers_view, uv_error_view, DebugView, UV_ERROR_MAX_TEXELS};
 pub use record::{label, ReliefRecord, ReliefSummary};
 pub use run::{run_relief_bench, View};
 pub use uv_error::{mean_and_p95, uv_error_map};

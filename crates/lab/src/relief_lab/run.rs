@@ -164,7 +164,7 @@ impl Analysis<'_> {
         // albedo may have another resolution).
         let height = &self.material.height;
         let tex_size = Vec2::new(height.width() as f32, height.height() as f32);
-        let uv_map = uv_error_map(&frame, reference, tex_size);
+        let uv_map = uv_error_map(&frame.uv, &frame.mask, &reference.uv, tex_size);
         let (uv_mean, uv_p95) = mean_and_p95(&uv_map, &frame.mask);
         let covered = frame.mask.pixels().iter().filter(|&&m| m).count();
         let mean_layers = if covered == 0 {

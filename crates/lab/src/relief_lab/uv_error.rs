@@ -3,14 +3,22 @@
 
 use glam::Vec2;
 use renderlab_core::Image;
-use renderlab_relief::Frame;
 
-/// Per pixel, the distance between `frame`'s and `reference`'s texture coordinates in texels
-/// of a `size` texture (0 where `frame` shows no surface).
-pub fn uv_error_map(frame: &Frame, reference: &Frame, size: Vec2) -> Image<f32> {
-    Image::from_fn_par(frame.uv.width(), frame.uv.height(), |x, y| {
-        if frame.mask.get(x, y) {
-            ((frame.uv.get(x, y) - reference.uv.get(x, y)) * size).length()
+/// Per pixel, the distance between texture coordinates `uv` (of a frame that shows a surface
+/// where `mask` is set) and the reference's `reference_uv`, in texels of a `size` texture (0
+/// where the frame shows no surface). Takes the parts rather than a CPU [`Frame`] so that a
+/// GPU frame is measured the same way.
+///
+/// [`Frame`]: renderlab_relief::Frame
+pub fn uv_error_map(
+    uv: &Image<Vec2>,
+    mask: &Image<bool>,
+    reference_uv: &Image<Vec2>,
+    size: Vec2,
+) -> Image<f32> {
+    Image::from_fn_par(uv.width(), uv.height(), |x, y| {
+        if mask.get(x, y) {
+            ((uv.get(x, y) - reference_uv.get(x, y)) * size).length()
         } else {
             0.0
         }
