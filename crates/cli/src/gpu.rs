@@ -5,11 +5,10 @@
 
 use crate::args::{Backend, DebugView, RenderArgs};
 use anyhow::Result;
-use glam::{Vec2, Vec3};
-use renderlab_core::color::srgb8_to_linear_table;
+use glam::Vec3;
 use renderlab_core::{io, Camera, Image, Scene};
 use renderlab_gpu::{shader, GpuContext, ReliefRenderer};
-use renderlab_lab::heatmap::heat_image;
+use renderlab_lab::relief_lab::{layers_view, uv_error_view};
 use renderlab_raster::rasterize;
 use renderlab_relief::render::render_reference;
 use renderlab_relief::{FrameInput, ReliefMaterial};
@@ -68,27 +67,14 @@ fn draw(a: &RenderArgs, scene: &Scene, camera: &Camera, mats: &[ReliefMaterial])
         timing.wall_ms
     );
     Ok(match a.debug {
-        DebugView::Layers => {
-            let max = t.layers().max(1) as f32;
-            decode(heat_image(&frame.layers.map(|l| l as f32), max, Some(&frame.mask)))
-        }
+        DebugView::Layers => layers_view(&frame.layers, &frame.mask, t),
         DebugView::Error => {
-            // The GPU's UV against the CPU's exact reference, in texels of the first material.
+            // The GPU's UV against the CPU's exact reference.
             let g = rasterize(scene, camera);
             let input = FrameInput { width: camera.width, height: camera.height, points: g.pixels() };
             let r = render_reference(input, mats, t, scene.lighting, scene.background);
-            let size = Vec2::new(mats[0].height.width() as f32, mats[0].height.height() as f32);
-            let e = Image::from_fn(camera.width, camera.height, |x, y| {
-                ((frame.uv.get(x, y) - r.uv.get(x, y)) * size).length()
-            });
-            decode(heat_image(&e, 4.0, Some(&frame.mask)))
+            uv_error_view(&frame.uv, &frame.mask, &r.uv, mats)
         }
         _ => frame.image,
     })
-}
-
-/// A display-encoded heat map decoded to linear light, as `save_color` takes it.
-fn decode(img: Image<[u8; 3]>) -> Image<Vec3> {
-    let table = srgb8_to_linear_table();
-    img.map(|c| Vec3::new(table[c[0] as usize], table[c[1] as usize], table[c[2] as usize]))
 }

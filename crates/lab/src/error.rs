@@ -37,4 +37,13 @@ pub enum LabError {
         /// What the serialiser reported.
         reason: String,
     },
+    /// A report template failed to render (a bug in a template or in the context the lab
+    /// gave it).
+    #[error("template {template}: {reason}")]
+    Template {
+        /// The template's file name.
+        template: String,
+        /// What minijinja reported.
+        reason: String,
+    },
 }

@@ -9,8 +9,8 @@
 //!   restricted to a mask such as "pixels where the surface is visible");
 //! - turns error maps into pictures with [`heatmap`];
 //! - writes rows of numbers with [`results`] (CSV and JSON, atomically);
-//! - draws cost-against-error charts with [`plot`] and assembles a self-contained HTML page
-//!   with [`report`], linked from an index page.
+//! - draws cost-against-error charts with [`plot`] and renders each lab's self-contained HTML
+//!   page from its template with [`report`], linked from an index page.
 //!
 //! The labs' fixtures (the thesis's benchmark cameras and scenes, the furnished room) are in
 //! [`fixtures`].
@@ -22,12 +22,12 @@
 
 pub mod error;
 pub mod fixtures;
+pub mod frames;
 mod glyphs;
 pub mod heatmap;
 pub mod lab;
 pub mod metrics;
 pub mod noise_lab;
-pub mod noise_motion;
 pub mod plot;
 pub mod relief_lab;
 pub mod report;
@@ -39,5 +39,4 @@ pub mod timing;
 pub use error::{LabError, Result};
 pub use lab::{Lab, LabSummary, Progress};
 pub use metrics::{Comparison, FlipResult, Metrics};
-pub use report::Report;
 pub use timing::{measure, Timing};

@@ -2,9 +2,8 @@
 
 use renderlab_lab::noise_lab::{
     clouds, max_distance_from_diagonal, noise_path, run_noise_lab_with, thesis_paths, AxisNoise,
-    CloudsConfig, NoiseLabConfig, Stats,
+    CloudsConfig, MotionConfig, NoiseLabConfig, Stats,
 };
-use renderlab_lab::noise_motion::MotionConfig;
 
 fn quiet(_: usize, _: usize, _: &str) {}
 
@@ -51,7 +50,7 @@ fn lab_writes_its_files_and_index() {
     // Every statistic is finite and ordered.
     assert!(s.stats.len() >= 9 + 4 + 6);
     for r in &s.stats {
-        let st = r.stats;
+        let st = r.stats();
         assert!(st.min <= st.mean && st.mean <= st.max && st.std >= 0.0, "{r:?}");
     }
     // No temporary files left behind.

@@ -4,12 +4,16 @@
 //! `index.html` that sets our figures beside the thesis's Table 4.1.
 
 mod config;
+mod debug;
 mod page;
 mod record;
 mod run;
+mod uv_error;
 mod verdicts;
 
 pub use config::{default_techniques, resolve, Method, ReliefBenchConfig, POM_32};
+pub use debug::{debug_view, layers_view, uv_error_view, DebugView, UV_ERROR_MAX_TEXELS};
 pub use record::{label, ReliefRecord, ReliefSummary};
 pub use run::{run_relief_bench, View};
+pub use uv_error::{mean_and_p95, uv_error_map};
 pub use verdicts::{thesis_weighted_gain, versus_pom32, VersusPom32, THESIS_TABLE_4_1};

@@ -1,13 +1,15 @@
-//! The relief lab's HTML page.
+//! The relief lab's HTML page: the figures and tables of `templates/relief.html`, made from
+//! the records (numbers formatted here, prose in the template).
 
 use super::config::ReliefBenchConfig;
 use super::record::{find, label, ReliefRecord};
 use super::verdicts::{versus_pom32, THESIS_ADAPTIVE, THESIS_POMS, THESIS_TABLE_4_1};
 use crate::fixtures::BENCH_ANGLES_DEG;
 use crate::plot::{scatter_svg, Series};
-use crate::report::{format_number, Report};
+use crate::report::{format_number, write_page, Template};
 use renderlab_core::Material;
 use renderlab_relief::{Kernel, Technique};
+use serde::Serialize;
 use std::path::Path;
 
 /// One scatter series per technique family and kernel: (cost, UV error) points labelled with
@@ -35,48 +37,55 @@ fn cost_error_series(records: &[ReliefRecord], cost: fn(&ReliefRecord) -> f64) -
 }
 
 /// The images written for one technique at one angle (file names share `base`).
+#[derive(Serialize)]
 pub(super) struct ImageSet {
+    #[serde(skip)]
     pub(super) angle: f32,
     pub(super) label: String,
     pub(super) base: String,
     pub(super) has_layers: bool,
 }
 
-pub(super) fn write_report(
-    path: &Path,
-    material: &Material,
-    cfg: &ReliefBenchConfig,
-    records: &[ReliefRecord],
-    findings: &[String],
-    images: &[ImageSet],
-) -> crate::Result<()> {
-    let mut r = Report::new("Relief-surface lab");
-    r.paragraph(&format!(
-        "Material '{}' ({}×{} texels, height scale {}), alone on the bricks wall, {}×{} pixels, \
-         camera 6 units from the wall centre. Times are medians of {} runs (after {} warm-up) of the \
-         shading pass alone (relief trace + lighting + texture filtering) on {} threads; the reference \
-         is the exact intersection with the bilinear height field, shaded identically.",
-        material.name,
-        material.size().0,
-        material.size().1,
-        material.height_scale,
-        cfg.width,
-        cfg.height,
-        cfg.reps,
-        cfg.warmup,
-        rayon::current_num_threads()
-    ));
-    r.section("Findings");
-    for f in findings {
-        r.paragraph(f);
-    }
+const TEMPLATE: Template =
+    Template { name: "relief.html", source: include_str!("../../templates/relief.html") };
 
-    r.section("Thesis Table 4.1 beside ours");
-    r.paragraph(
-        "Thesis: frames per second of the whole application on its laptop GPU. Ours: FPS-equivalent \
-         (1000 / shading-pass ms) on this machine's CPU. Absolute values are not comparable; the \
-         ratios between columns are.",
-    );
+/// The material the lab ran on, as the page names it.
+#[derive(Serialize)]
+struct MaterialInfo<'a> {
+    name: &'a str,
+    width: u32,
+    height: u32,
+    height_scale: String,
+}
+
+/// One angle's images.
+#[derive(Serialize)]
+struct AngleImages<'a> {
+    angle: String,
+    sets: Vec<&'a ImageSet>,
+}
+
+/// Everything `relief.html` shows.
+#[derive(Serialize)]
+struct Page<'a> {
+    material: MaterialInfo<'a>,
+    width: u32,
+    height: u32,
+    reps: u32,
+    warmup: u32,
+    threads: usize,
+    findings: &'a [String],
+    thesis_table: Vec<Vec<String>>,
+    speedups: Vec<Vec<String>>,
+    versus_pom32: Vec<Vec<String>>,
+    trace_plot: String,
+    pass_plot: String,
+    measurements: Vec<Vec<String>>,
+    angles: Vec<AngleImages<'a>>,
+}
+
+/// Thesis Table 4.1 beside ours: per angle, `thesis | ours` for each POM setting and adaptive.
+fn thesis_table(records: &[ReliefRecord]) -> Vec<Vec<String>> {
     let cols =
         [THESIS_POMS[0], THESIS_POMS[1], THESIS_POMS[2], THESIS_POMS[3], THESIS_POMS[4], THESIS_ADAPTIVE];
     let mut rows = Vec::new();
@@ -88,19 +97,15 @@ pub(super) fn write_report(
         }
         rows.push(row);
     }
-    let mut headers = vec!["angle".to_string()];
-    headers.extend(
-        ["POM 4", "POM 8", "POM 16", "POM 24", "POM 32", "adaptive 4–32"]
-            .iter()
-            .map(|s| format!("{s} (thesis | ours)")),
-    );
-    r.table(&headers, rows);
+    rows
+}
 
-    r.section("Adaptive POM against each fixed setting (speed-up = time of POM-N / time of adaptive)");
+/// Per angle, adaptive POM's speed-up over each fixed POM setting.
+fn speedups(records: &[ReliefRecord], angles: &[f32]) -> Vec<Vec<String>> {
     let mut rows = Vec::new();
-    for &a in &cfg.angles {
+    for &a in angles {
         let mut row = vec![format!("{a}°")];
-        for &c in &cols[..5] {
+        for &c in &THESIS_POMS[..5] {
             let v = match (find(records, c, a), find(records, THESIS_ADAPTIVE, a)) {
                 (Some(p), Some(ad)) => format!("{:.2}×", p.time_ms / ad.time_ms),
                 _ => "–".into(),
@@ -109,15 +114,12 @@ pub(super) fn write_report(
         }
         rows.push(row);
     }
-    let headers: Vec<String> = ["angle", "vs POM 4", "vs POM 8", "vs POM 16", "vs POM 24", "vs POM 32"]
-        .iter()
-        .map(|s| s.to_string())
-        .collect();
-    r.table(&headers, rows);
+    rows
+}
 
-    r.section("Against POM-32, averaged over the angles");
-    let v = versus_pom32(records, &cfg.angles);
-    let rows: Vec<Vec<String>> = v
+/// Every technique against POM-32, averaged over the angles.
+fn versus_pom32_rows(records: &[ReliefRecord], angles: &[f32]) -> Vec<Vec<String>> {
+    versus_pom32(records, angles)
         .iter()
         .map(|v| {
             vec![
@@ -129,59 +131,12 @@ pub(super) fn write_report(
                 if v.passes { "yes".into() } else { "no".into() },
             ]
         })
-        .collect();
-    let headers: Vec<String> = [
-        "technique",
-        "trace time / POM-32's",
-        "whole pass / POM-32's",
-        "UV error (texels): it / POM-32",
-        "PSNR dB: it / POM-32",
-        "≤0.4× trace time and error no worse",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
-    r.table(&headers, rows);
+        .collect()
+}
 
-    r.section("Cost against error");
-    r.paragraph(
-        "Each point is one technique at one angle. First against the technique's own cost (the \
-         trace), then against the whole shading pass, where the shared texture filtering and \
-         lighting compress the differences.",
-    );
-    for (x_label, cost) in [
-        ("trace time (ms)", (|r: &ReliefRecord| r.trace_ms) as fn(&ReliefRecord) -> f64),
-        ("shading pass time (ms)", |r: &ReliefRecord| r.time_ms),
-    ] {
-        r.svg(&scatter_svg(
-            &format!("{x_label} vs UV error, every technique and angle"),
-            x_label,
-            "mean UV error (texels)",
-            &cost_error_series(records, cost),
-            true,
-            true,
-        ));
-    }
-
-    r.section("All measurements");
-    let headers: Vec<String> = [
-        "technique",
-        "angle",
-        "pass ms",
-        "trace ms",
-        "FPS-eq",
-        "fetches/px",
-        "layers/px",
-        "PSNR dB",
-        "SSIM",
-        "FLIP",
-        "UV err texels",
-        "UV err p95",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
-    let rows: Vec<Vec<String>> = records
+/// Every record, one row each.
+fn measurements(records: &[ReliefRecord]) -> Vec<Vec<String>> {
+    records
         .iter()
         .map(|r| {
             vec![
@@ -199,29 +154,61 @@ pub(super) fn write_report(
                 format_number(r.uv_error_p95_texels, 3),
             ]
         })
-        .collect();
-    r.table(&headers, rows);
+        .collect()
+}
 
-    if !images.is_empty() {
-        r.section("Images");
-        r.paragraph("Per angle: the reference, then each technique's result, its UV-error heat map (0–4 texels), its FLIP map and, for layered methods, the per-pixel layer count.");
-        for &a in &cfg.angles {
-            r.section(&format!("{a}°"));
-            let mut items: Vec<(String, String)> =
-                vec![(format!("img/reference_lit_{a}.png"), "reference (lit)".into())];
-            for set in images.iter().filter(|s| s.angle == a) {
-                let (base, name) = (&set.base, &set.label);
-                items.push((format!("img/{base}.png"), name.clone()));
-                items.push((format!("img/{base}_uverr.png"), format!("{name}: UV error")));
-                items.push((format!("img/{base}_flip.png"), format!("{name}: FLIP")));
-                if set.has_layers {
-                    items.push((format!("img/{base}_layers.png"), format!("{name}: layers")));
-                }
-            }
-            let items: Vec<(&str, &str)> = items.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
-            r.image_grid(&items, 4);
-        }
-    }
-    r.write(path)?;
-    Ok(())
+/// The scatter of `cost` against UV error, every technique and angle.
+fn cost_error_plot(records: &[ReliefRecord], x_label: &str, cost: fn(&ReliefRecord) -> f64) -> String {
+    scatter_svg(
+        &format!("{x_label} vs UV error, every technique and angle"),
+        x_label,
+        "mean UV error (texels)",
+        &cost_error_series(records, cost),
+        true,
+        true,
+    )
+}
+
+/// Writes the lab's page to `path`.
+pub(super) fn write_report(
+    path: &Path,
+    material: &Material,
+    cfg: &ReliefBenchConfig,
+    records: &[ReliefRecord],
+    findings: &[String],
+    images: &[ImageSet],
+) -> crate::Result<()> {
+    let angles = if images.is_empty() {
+        Vec::new()
+    } else {
+        cfg.angles
+            .iter()
+            .map(|&a| AngleImages {
+                angle: a.to_string(),
+                sets: images.iter().filter(|s| s.angle == a).collect(),
+            })
+            .collect()
+    };
+    let page = Page {
+        material: MaterialInfo {
+            name: &material.name,
+            width: material.size().0,
+            height: material.size().1,
+            height_scale: material.height_scale.to_string(),
+        },
+        width: cfg.width,
+        height: cfg.height,
+        reps: cfg.reps,
+        warmup: cfg.warmup,
+        threads: rayon::current_num_threads(),
+        findings,
+        thesis_table: thesis_table(records),
+        speedups: speedups(records, &cfg.angles),
+        versus_pom32: versus_pom32_rows(records, &cfg.angles),
+        trace_plot: cost_error_plot(records, "trace time (ms)", |r| r.trace_ms),
+        pass_plot: cost_error_plot(records, "shading pass time (ms)", |r| r.time_ms),
+        measurements: measurements(records),
+        angles,
+    };
+    write_page(path, TEMPLATE, "Relief-surface lab", &page)
 }

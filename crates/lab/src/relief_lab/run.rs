@@ -3,6 +3,7 @@
 use super::config::{resolve, ReliefBenchConfig};
 use super::page::{write_report, ImageSet};
 use super::record::{label, slug, ReliefRecord, ReliefSummary};
+use super::uv_error::{mean_and_p95, uv_error_map};
 use super::verdicts::{findings, headline};
 use crate::fixtures::{benchmark_camera, benchmark_scene};
 use crate::heatmap::{heat_image, with_legend};
@@ -13,31 +14,11 @@ use crate::timing::{measure, Timing};
 use glam::Vec2;
 use rayon::prelude::*;
 use renderlab_core::io::{save_color, save_rgb8};
-use renderlab_core::{Camera, CoreError, Image, Material, Scene};
+use renderlab_core::{Camera, CoreError, Material, Scene};
 use renderlab_raster::{rasterize, GBuffer};
 use renderlab_relief::render::{check, render, render_into, render_reference, trace_only};
 use renderlab_relief::{Frame, FrameInput, Kernel, Map, ReliefMaterial, Shading, Technique};
 use std::path::Path;
-
-/// Mean and 95th percentile of the UV distance in texels over the mask.
-fn uv_error(frame: &Frame, reference: &Frame, size: Vec2) -> (f64, f64, Image<f32>) {
-    let err = Image::from_fn_par(frame.uv.width(), frame.uv.height(), |x, y| {
-        if frame.mask.get(x, y) {
-            ((frame.uv.get(x, y) - reference.uv.get(x, y)) * size).length()
-        } else {
-            0.0
-        }
-    });
-    let mut v: Vec<f32> =
-        err.pixels().iter().zip(frame.mask.pixels()).filter(|(_, &m)| m).map(|(&e, _)| e).collect();
-    if v.is_empty() {
-        return (0.0, 0.0, err);
-    }
-    let mean = v.iter().map(|&e| e as f64).sum::<f64>() / v.len() as f64;
-    let k = ((v.len() - 1) as f64 * 0.95).round() as usize;
-    let (_, p95, _) = v.select_nth_unstable_by(k, |a, b| a.total_cmp(b));
-    (mean, *p95 as f64, err)
-}
 
 /// A rasterized view: the G-buffer the relief renderer shades.
 pub struct View {
@@ -184,7 +165,8 @@ impl Analysis<'_> {
         // albedo may have another resolution).
         let height = &self.material.height;
         let tex_size = Vec2::new(height.width() as f32, height.height() as f32);
-        let (uv_mean, uv_p95, uv_map) = uv_error(&frame, reference, tex_size);
+        let uv_map = uv_error_map(&frame.uv, &frame.mask, &reference.uv, tex_size);
+        let (uv_mean, uv_p95) = mean_and_p95(&uv_map, &frame.mask);
         let covered = frame.mask.pixels().iter().filter(|&&m| m).count();
         let mean_layers = if covered == 0 {
             0.0

@@ -4,16 +4,17 @@
 //!
 //! A lab joins the report by implementing [`Lab`] and adding one line to [`run_report`].
 
+mod index;
 pub mod noise;
 pub mod relief;
 pub mod texture;
 
 use crate::error::Result;
 use crate::lab::{create_dir, Lab, LabSummary};
-use crate::report::{write_index, IndexCard};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+pub use index::{write_index, IndexCard};
 pub use noise::NoiseLab;
 pub use relief::ReliefLab;
 pub use texture::TextureLab;

@@ -2,8 +2,7 @@
 
 use crate::error::Result;
 use crate::lab::{create_dir, existing, Lab, LabSummary, Progress};
-use crate::noise_lab::{run_noise_lab_with, NoiseLabConfig};
-use crate::noise_motion::MotionConfig;
+use crate::noise_lab::{run_noise_lab_with, MotionConfig, NoiseLabConfig};
 use std::path::Path;
 use std::time::Instant;
 

@@ -2,7 +2,8 @@
 //! surface pixel, timed side by side on one thread, with its coordinate error against the
 //! direct mode and the exact mapping, and the image error it causes under trilinear filtering.
 
-use super::{TextureBenchConfig, TextureRecord};
+use super::config::TextureBenchConfig;
+use super::record::TextureRecord;
 use crate::error::Result;
 use crate::metrics::compare;
 use glam::{DVec2, Vec2};

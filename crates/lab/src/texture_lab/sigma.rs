@@ -5,61 +5,16 @@
 //! against every reference, so the table shows both whether the matched kernel wins and which
 //! filter is best for each kernel.
 
+use super::config::{scene_of, SigmaStudy, TextureBenchConfig, NOISE_MARGIN_DB};
 use super::truth::{truth, NoiseRecord};
-use super::{scene_of, TextureBenchConfig, NOISE_MARGIN_DB};
 use crate::error::Result;
 use crate::metrics::psnr;
 use crate::report::format_number;
 use glam::Vec3;
 use renderlab_core::Image;
 use renderlab_texture::filter::{Anisotropic, Ewa, FilterSpec};
-use renderlab_texture::reference::{PixelFilter, Sampling};
-use renderlab_texture::scene::SceneKind;
+use renderlab_texture::reference::PixelFilter;
 use serde::Serialize;
-
-/// What the σ study covers.
-#[derive(Clone, Debug, PartialEq)]
-pub struct SigmaStudy {
-    /// Scenes.
-    pub scenes: Vec<SceneKind>,
-    /// σ values, pixels.
-    pub sigmas: Vec<f32>,
-    /// Truncations, multiples of σ.
-    pub cuts: Vec<f32>,
-    /// The references' first sampling (refined like the main references').
-    pub sampling: Sampling,
-    /// Frame width (the study needs many kernels per sample, so it runs smaller than the lab).
-    pub width: u32,
-    /// Frame height.
-    pub height: u32,
-}
-
-impl Default for SigmaStudy {
-    /// The checkerboard and the thesis's quad at 160×120; σ = 0.35, 0.4, …, 0.6; cut 2σ and 3σ.
-    /// (The zone plate at this size is so well filtered by EWA that its references need over
-    /// 3000 samples per pixel to keep their noise 10 dB below it: a minute of the report's
-    /// three; `--sigma-scenes` adds it.)
-    fn default() -> Self {
-        SigmaStudy {
-            scenes: vec![SceneKind::Checkerboard, SceneKind::ThesisQuad],
-            sigmas: vec![0.35, 0.4, 0.45, 0.5, 0.55, 0.6],
-            cuts: vec![2.0, 3.0],
-            sampling: Sampling { min_strata: 8, max_strata: 64, tolerance: 0.02 },
-            width: 160,
-            height: 120,
-        }
-    }
-}
-
-impl SigmaStudy {
-    /// Every kernel of the grid, σ-major.
-    pub fn kernels(&self) -> Vec<PixelFilter> {
-        self.cuts
-            .iter()
-            .flat_map(|&cut| self.sigmas.iter().map(move |&sigma| PixelFilter::Gaussian { sigma, cut }))
-            .collect()
-    }
-}
 
 /// One filter scored against one reference kernel of the study.
 #[derive(Clone, Debug, Serialize)]

@@ -2,33 +2,12 @@
 //! pooled over scenes, FLIP averaged, cost per lookup on one thread relative to trilinear),
 //! the best filter per scene and model, and the sentences of the findings and the headline.
 
-use super::{NoiseRecord, SigmaRecord, TextureRecord, NOISE_MARGIN_DB};
+use super::config::NOISE_MARGIN_DB;
+use super::record::{Ranking, TextureRecord};
+use super::sigma::SigmaRecord;
+use super::truth::NoiseRecord;
 use crate::report::format_number;
 use renderlab_texture::reference::PixelFilter;
-use serde::Serialize;
-
-/// One filter's standing under one model, over all scenes.
-#[derive(Clone, Debug, Serialize)]
-pub struct Ranking {
-    /// The model's family (`gaussian` or `box`).
-    pub reference: &'static str,
-    /// 1 for the best PSNR under this model.
-    pub rank: usize,
-    /// The filter.
-    pub filter: String,
-    /// PSNR from the mean squared error pooled over scenes, dB.
-    pub pooled_psnr_db: f64,
-    /// Mean FLIP over scenes.
-    pub mean_flip: f64,
-    /// Scenes on which it scores the best PSNR under this model.
-    pub scenes_best: usize,
-    /// Mean ns per lookup (surface pixel) on one thread.
-    pub ns_per_pixel: f64,
-    /// Total time over total trilinear time.
-    pub cost_vs_trilinear: f64,
-    /// Mean fetches per lookup.
-    pub fetches_per_pixel: f64,
-}
 
 /// Ranks every filter under each model.
 pub fn rank(records: &[TextureRecord], models: &[PixelFilter]) -> Vec<Ranking> {

@@ -10,8 +10,9 @@
 //! the grid with the first frame's (1 = the same shape up to brightness; falling values = the
 //! smoke moves).
 
+use super::page::{Figure, Smoke, SmokeAnimation, Water, WaterStill};
 use crate::error::Result;
-use crate::report::{format_number, Report};
+use crate::report::format_number;
 use crate::results::{write_csv, write_json};
 use renderlab_core::apng::ApngWriter;
 use renderlab_noise::smoke::{Animation, DensityGrid, SmokeFilter, SmokeVolume};
@@ -97,6 +98,10 @@ pub struct MotionSummary {
     pub smoke: Vec<SmokeFrameStats>,
     /// One-sentence findings.
     pub findings: Vec<String>,
+    /// The water animation as the page shows it.
+    pub water: Water,
+    /// The smoke animations as the page shows them.
+    pub smoke_page: Smoke,
 }
 
 /// Pearson correlation of two equally long value lists (0 when either is constant).
@@ -125,12 +130,11 @@ fn mean_of(g: &DensityGrid) -> f64 {
     g.sum() / g.values().len().max(1) as f64
 }
 
-/// Renders the water animation and the two smoke animations into `out_dir`, adds their
-/// sections to `report` and returns what was written. `progress` receives the frame count.
+/// Renders the water animation and the two smoke animations into `out_dir` and returns what
+/// was written, with what the page shows of it. `progress` receives the frame count.
 pub fn water_and_smoke(
     out_dir: &Path,
     cfg: &MotionConfig,
-    report: &mut Report,
     progress: &dyn Fn(usize, usize, &str),
 ) -> Result<MotionSummary> {
     let mut files = Vec::new();
@@ -138,32 +142,11 @@ pub fn water_and_smoke(
 
     // --- Water -------------------------------------------------------------------------
     let water = WaterParams { width: cfg.water_size.0, height: cfg.water_size.1, ..Default::default() };
-    report.section("Water (§3.2)");
-    report.paragraph(&format!(
-        "The thesis's water algorithm uses noise as an animated displacement map. Here the sea is \
-         a {}-octave fBm height field (largest wavelength {} units, height scale {}) whose domain \
-         travels with the wind ({}, {}) units/s and evolves along a third noise axis, so waves both \
-         move and change shape. Each pixel casts the camera ray onto the mean water plane, takes \
-         the normal from the analytic gradient, and mixes a reflected procedural sky with a \
-         deep-water colour by Schlick's Fresnel term for n = 1.33 (2 % at normal incidence, 100 % \
-         at grazing); the slope fades where a pixel covers more than the finest wavelength, and \
-         haze blends toward the horizon. The animation has {} frames {} s apart, {}×{} pixels \
-         (`renderlab water` writes any length and size).",
-        water.octaves,
-        water.wavelength,
-        water.amplitude,
-        water.wind[0],
-        water.wind[1],
-        cfg.water_frames,
-        format_number(f64::from(water.time_step), 4),
-        water.width,
-        water.height,
-    ));
     let water_anim = out_dir.join("water.png");
     let mut anim =
         ApngWriter::create(&water_anim, water.width, water.height, cfg.water_frames, cfg.water_fps)?;
     let started = std::time::Instant::now();
-    let mut stills: Vec<(String, String)> = Vec::new();
+    let mut stills = Vec::new();
     let still_at = [0, cfg.water_frames / 2, cfg.water_frames.saturating_sub(1)];
     renderlab_noise::water::render_water_sequence(&water, 0.0, cfg.water_frames, |i, img| -> Result<()> {
         anim.push(&img)?;
@@ -172,10 +155,11 @@ pub fn water_and_smoke(
             let path = out_dir.join(&name);
             renderlab_core::io::save_color(&path, &img)?;
             files.push(path);
-            stills.push((
-                name,
-                format!("frame {i}, t = {} s", format_number(f64::from(i as f32 * water.time_step), 3)),
-            ));
+            stills.push(WaterStill {
+                file: name,
+                frame: i,
+                t: format_number(f64::from(i as f32 * water.time_step), 3),
+            });
         }
         progress(i as usize + 1, total, "water frames");
         Ok(())
@@ -183,15 +167,21 @@ pub fn water_and_smoke(
     anim.finish()?;
     let water_ms = started.elapsed().as_secs_f64() * 1e3 / f64::from(cfg.water_frames);
     files.push(water_anim);
-    report.image(
-        "water.png",
-        &format!(
-            "Animated (APNG, {} fps, loops): {} ms per frame on this machine",
-            cfg.water_fps,
-            format_number(water_ms, 1)
-        ),
-    );
-    report.image_grid(&stills, 3);
+    let water_page = Water {
+        octaves: water.octaves,
+        wavelength: water.wavelength.to_string(),
+        amplitude: water.amplitude.to_string(),
+        wind_x: water.wind[0].to_string(),
+        wind_y: water.wind[1].to_string(),
+        frames: cfg.water_frames,
+        time_step: format_number(f64::from(water.time_step), 4),
+        width: water.width,
+        height: water.height,
+        animation: "water.png",
+        fps: cfg.water_fps,
+        ms_per_frame: format_number(water_ms, 1),
+        stills,
+    };
 
     // --- Smoke -------------------------------------------------------------------------
     let base = SmokeParams {
@@ -202,23 +192,6 @@ pub fn water_and_smoke(
         ..Default::default()
     };
     base.validate()?;
-    report.section("Smoke (§3.3)");
-    report.paragraph(&format!(
-        "A {g}³ density grid of {o}-octave fBm noise, shaped into a plume that widens as it rises \
-         and fades out at the top, smoothed by a Gaussian filter (σ = 0.8 voxels) and ray-marched \
-         with Beer–Lambert absorption and single scattering of one directional light (a \
-         light-transmittance grid of shadow rays, Henyey–Greenstein phase g = {hg}). Two \
-         animations of {n} frames {dt} s apart: left, the sample point moves through the noise \
-         domain (the smoke rises at {v} units/s and curl noise swirls it); right, the thesis's \
-         literal density = noise + k·t with k = {k}, which leaves the noise where it is.",
-        g = base.grid,
-        o = base.octaves,
-        hg = base.anisotropy,
-        n = cfg.smoke_frames,
-        dt = format_number(f64::from(cfg.smoke_time_step), 3),
-        v = base.rise_speed,
-        k = THESIS_FACTOR,
-    ));
     let mut smoke_stats = Vec::new();
     // The first frame of the animation with the base parameters, reused as its filter still.
     let mut base_first_frame = None;
@@ -267,16 +240,12 @@ pub fn water_and_smoke(
         }
         anim.finish()?;
         files.push(path);
-        let label = match key {
-            "advect" => "moving through the noise domain (rise + curl swirl)",
-            _ => "the thesis's noise + k·t",
-        };
-        anim_items.push((
-            name,
-            format!("{label}: {} ms per frame", format_number(ms / f64::from(cfg.smoke_frames), 0)),
-        ));
+        anim_items.push(SmokeAnimation {
+            key,
+            file: name,
+            ms_per_frame: format_number(ms / f64::from(cfg.smoke_frames), 0),
+        });
     }
-    report.image_grid(&anim_items, 2);
 
     let last = |key: &str| smoke_stats.iter().rev().find(|s| s.animation == key).cloned();
     let first_of = |key: &str| smoke_stats.iter().find(|s| s.animation == key).cloned();
@@ -291,13 +260,6 @@ pub fn water_and_smoke(
             format_number(s.correlation_with_first, 4),
         ]);
     }
-    report.paragraph(
-        "Per frame, the grid's mean density and its correlation with the first frame's grid \
-         (every frame is in smoke_frames.csv). The thesis's formula keeps the correlation near 1 \
-         (the same shape, brighter) while its mean density climbs; moving through the domain \
-         keeps the mean density nearly constant while the correlation falls: the smoke moves.",
-    );
-    report.table(&["animation", "frame", "t (s)", "mean density", "correlation with frame 0"], rows);
     let json = out_dir.join("smoke_frames.json");
     write_json(&json, &smoke_stats)?;
     write_csv(out_dir.join("smoke_frames.csv"), &smoke_stats)?;
@@ -305,10 +267,6 @@ pub fn water_and_smoke(
     files.push(out_dir.join("smoke_frames.csv"));
 
     // Filters side by side on the first frame: the thesis's Gaussian or median.
-    report.paragraph(
-        "The thesis's step 2 filters the noise volume with a Gaussian or a median filter. The \
-         same first frame with no filter, a Gaussian (σ = 0.8 voxels) and a 3×3×3 median:",
-    );
     let mut filter_items = Vec::new();
     for (key, filter, label) in [
         ("none", SmokeFilter::None, "no filter"),
@@ -324,9 +282,20 @@ pub fn water_and_smoke(
         let path = out_dir.join(&name);
         renderlab_core::io::save_color(&path, &img)?;
         files.push(path);
-        filter_items.push((name, label.to_string()));
+        filter_items.push(Figure { file: name, caption: label.to_string() });
     }
-    report.image_grid(&filter_items, 3);
+    let smoke_page = Smoke {
+        grid: base.grid,
+        octaves: base.octaves,
+        anisotropy: base.anisotropy.to_string(),
+        frames: cfg.smoke_frames,
+        time_step: format_number(f64::from(cfg.smoke_time_step), 3),
+        rise_speed: base.rise_speed.to_string(),
+        thesis_factor: THESIS_FACTOR.to_string(),
+        animations: anim_items,
+        frames_table: rows,
+        filters: filter_items,
+    };
 
     let mut findings = Vec::new();
     if let (Some(a0), Some(a1), Some(t0), Some(t1)) =
@@ -345,7 +314,7 @@ pub fn water_and_smoke(
             format_number(t1.mean_density, 4),
         ));
     }
-    Ok(MotionSummary { files, smoke: smoke_stats, findings })
+    Ok(MotionSummary { files, smoke: smoke_stats, findings, water: water_page, smoke_page })
 }
 
 /// The thesis's `animation_factor` used in the lab's literal animation (density per second).
@@ -370,8 +339,7 @@ mod tests {
     fn smoke_measurements_separate_the_two_animations() {
         let dir = tempfile::tempdir().unwrap();
         let cfg = MotionConfig { water_size: (32, 18), smoke_size: (24, 24), ..MotionConfig::quick() };
-        let mut report = Report::new("test");
-        let s = water_and_smoke(dir.path(), &cfg, &mut report, &|_, _, _| {}).unwrap();
+        let s = water_and_smoke(dir.path(), &cfg, &|_, _, _| {}).unwrap();
         for f in [
             "water.png",
             "smoke_advect.png",
