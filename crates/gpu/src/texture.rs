@@ -4,13 +4,24 @@
 //! filtering blends the same texels), the depth field as `R32Float` (one level, bilinear, as
 //! `HeightField::depth`), the complexity map as `R32Float` (read with `textureLoad`, nearest,
 //! as `complexity_at`).
+//!
+//! The two maps of cone stepping keep the CPU's numbers and arithmetic too: the relaxed cone
+//! map as `R32Float`, read with `textureLoad` at the nearest texel (as `ConeMap::ratio`: the
+//! ratio's guarantee holds per texel cell, so it must not be interpolated); the packed map
+//! as `R32Uint`, its 16-bit depth and 16-bit ratio halves together in one texel on the padded
+//! `(w + 1) × (h + 1)` grid, read with four `textureLoad`s and interpolated by the shader with
+//! the operations of `PackedRelief::sample_texel` (the sampler cannot: it would filter the
+//! packed word, and the technique needs the patch's gradient and the cell's ratio as well).
+//! A material without a cone map binds a 1×1 stand-in that no shader reads: the renderer
+//! refuses techniques that need a map its materials lack.
 
 use crate::context::GpuContext;
 use crate::error::Result;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec4;
 use renderlab_core::Image;
-use renderlab_relief::ReliefMaterial;
+use renderlab_relief::maps::packed::PackedRelief;
+use renderlab_relief::{Map, ReliefMaterial};
 use renderlab_texture::Texture;
 
 /// One material's constants, laid out as `Material` in `frame.wgsl`.
@@ -25,9 +36,18 @@ pub(crate) struct MaterialUniform {
 
 /// A material's textures and constants, bound as group 1 of the relief pipelines.
 pub(crate) struct GpuMaterial {
-    /// The bind group (uniform, albedo, normal, depth, complexity).
+    /// The material's name (for errors).
+    pub name: String,
+    /// The bind group (uniform, albedo, normal, depth, complexity, cone, packed).
     pub bind_group: wgpu::BindGroup,
+    /// Whether the cone map (and its ratios in the packed map) was uploaded.
+    pub has_cone: bool,
 }
+
+/// The group-1 binding of each map, as `frame.wgsl` declares them.
+const COMPLEXITY: u32 = 4;
+const CONE: u32 = 5;
+const PACKED: u32 = 6;
 
 /// The layout of group 1 (see `frame.wgsl`).
 pub(crate) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
@@ -35,7 +55,11 @@ pub(crate) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         binding,
         visibility: wgpu::ShaderStages::FRAGMENT,
         ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable: binding != 4 },
+            sample_type: match binding {
+                PACKED => wgpu::TextureSampleType::Uint,
+                COMPLEXITY | CONE => wgpu::TextureSampleType::Float { filterable: false },
+                _ => wgpu::TextureSampleType::Float { filterable: true },
+            },
             view_dimension: wgpu::TextureViewDimension::D2,
             multisampled: false,
         },
@@ -55,7 +79,9 @@ pub(crate) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         texture(1),
         texture(2),
         texture(3),
-        texture(4),
+        texture(COMPLEXITY),
+        texture(CONE),
+        texture(PACKED),
     ];
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("material"),
@@ -72,6 +98,14 @@ impl GpuMaterial {
             .expect("a height field's depths fill its size");
         let depth = upload_scalar(ctx, &format!("{}: depth map", m.name), &depth)?;
         let complexity = upload_scalar(ctx, &format!("{}: complexity map", m.name), &m.complexity)?;
+        let has_cone = m.inputs().has(Map::Cone);
+        let cone = match (&m.cone, has_cone) {
+            (Some(c), true) => Image::from_vec(c.width(), c.height(), c.ratios().to_vec())
+                .expect("a cone map's ratios fill its size"),
+            _ => Image::new(1, 1, 0.0),
+        };
+        let cone = upload_scalar(ctx, &format!("{}: cone map", m.name), &cone)?;
+        let packed = upload_packed(ctx, &format!("{}: packed map", m.name), &m.packed)?;
         let uniform = MaterialUniform {
             height_scale: m.height_scale,
             albedo_levels: m.albedo.level_count() as f32,
@@ -85,7 +119,8 @@ impl GpuMaterial {
             mapped_at_creation: false,
         });
         ctx.queue.write_buffer(&buffer, 0, bytemuck::bytes_of(&uniform));
-        let views = [&albedo, &normal, &depth, &complexity].map(|t| t.create_view(&Default::default()));
+        let views = [&albedo, &normal, &depth, &complexity, &cone, &packed]
+            .map(|t| t.create_view(&Default::default()));
         let mut entries = vec![wgpu::BindGroupEntry { binding: 0, resource: buffer.as_entire_binding() }];
         for (i, v) in views.iter().enumerate() {
             entries.push(wgpu::BindGroupEntry {
@@ -98,7 +133,7 @@ impl GpuMaterial {
             layout,
             entries: &entries,
         });
-        Ok(Self { bind_group })
+        Ok(Self { name: m.name.clone(), bind_group, has_cone })
     }
 }
 
@@ -161,6 +196,14 @@ fn upload_pyramid(ctx: &GpuContext, what: &str, t: &Texture) -> Result<wgpu::Tex
         let texels: Vec<[f32; 4]> = img.pixels().iter().map(|v| v.to_array()).collect();
         write_level(ctx, &texture, i, img.width(), img.height(), 16, bytemuck::cast_slice(&texels));
     }
+    Ok(texture)
+}
+
+/// Uploads the packed map's padded grid of `u32` texels as `R32Uint`, one level.
+fn upload_packed(ctx: &GpuContext, what: &str, p: &PackedRelief) -> Result<wgpu::Texture> {
+    let (w, h) = (p.width() + 1, p.height() + 1);
+    let texture = create(ctx, what, w, h, 1, wgpu::TextureFormat::R32Uint)?;
+    write_level(ctx, &texture, 0, w, h, 4, bytemuck::cast_slice(p.texels()));
     Ok(texture)
 }
 
