@@ -8,7 +8,8 @@
 //! (`shaders/march.wgsl`), the soft shadows (`shaders/shadow.wgsl`) and the technique's own
 //! file, which sits beside its CPU twin in `renderlab-relief` and is reached through the
 //! technique registry ([`Technique::wgsl`](renderlab_relief::Technique::wgsl)); [`relief`]
-//! renders and times frames; `texture`, `mesh`, `readback` and [`timing`] are its parts.
+//! renders and times frames; `material`, `mesh`, `upload`, `readback` and [`timing`] are its
+//! parts.
 //!
 //! Agreement with the CPU: the GPU frame is the CPU frame computed again: the same mesh and
 //! camera (rasterized by the GPU's fixed-function rasterizer), the UV and its exact screen
@@ -28,12 +29,13 @@
 
 pub mod context;
 pub mod error;
+mod material;
 mod mesh;
 mod readback;
 pub mod relief;
 pub mod shader;
-mod texture;
 pub mod timing;
+mod upload;
 
 pub use context::{AdapterReport, GpuContext};
 pub use error::{GpuError, Result};

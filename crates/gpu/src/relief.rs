@@ -8,10 +8,10 @@
 
 use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
+use crate::material::{material_layout, GpuMaterial};
 use crate::mesh::{vertex_layout, GpuMesh};
 use crate::readback::read_texture;
 use crate::shader::{module_source, params};
-use crate::texture::{material_layout, GpuMaterial};
 use crate::timing::{median, GpuTiming, PassTimer};
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};

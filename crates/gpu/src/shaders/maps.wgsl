@@ -1,6 +1,6 @@
 // The maps as the techniques read them: the GPU twins of `HeightField::depth`,
 // `ReliefInputs::complexity_at`, `ConeMap::ratio` and `PackedRelief::sample_texel`, each
-// reading the numbers the CPU reads (see the crate's `texture` module for the formats).
+// reading the numbers the CPU reads (see the crate's `material` module for the formats).
 
 // The depth map (`1 − height`), bilinear with repeat wrap, as `HeightField::depth`.
 fn depth_at(uv: vec2<f32>) -> f32 {
