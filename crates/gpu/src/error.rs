@@ -31,6 +31,9 @@ pub enum GpuError {
     /// The technique has no WGSL shader yet.
     #[error("technique '{0}' has no GPU shader yet (the GPU renderer has: {1})")]
     NoShader(String, String),
+    /// The texture filter has no GPU twin.
+    #[error("texture filter '{0}' has no GPU twin: {1}")]
+    NoGpuFilter(String, String),
     /// A material lacks a precomputed map the technique reads.
     #[error("technique '{technique}' needs the {map}, which material '{material}' was prepared without")]
     MissingMap {

@@ -1,6 +1,7 @@
 //! The GPU renderer: renderlab's relief techniques as WGSL fragment shaders on wgpu (Vulkan),
-//! drawn headless into textures, read back as images and checked against the CPU renderer,
-//! and timed with timestamp queries.
+//! and its texture filters (the hardware's samplers, EWA in WGSL), drawn headless into
+//! textures, read back as images and checked against the CPU renderer, and timed with
+//! timestamp queries.
 //!
 //! Layout: [`context`] finds and opens the device and says what it is; [`shader`] assembles
 //! each technique's WGSL module from the constants of the CPU twins, the frame
@@ -9,7 +10,9 @@
 //! file, which sits beside its CPU twin in `renderlab-relief` and is reached through the
 //! technique registry ([`Technique::wgsl`](renderlab_relief::Technique::wgsl)); [`relief`]
 //! renders and times frames; `material`, `mesh`, `upload`, `readback` and [`timing`] are its
-//! parts.
+//! parts. [`filter`] renders the texture lab's scenes through the GPU's filters: the
+//! hardware's nearest, bilinear, trilinear and anisotropic samplers, and EWA, whose WGSL sits
+//! beside its CPU twin in `renderlab-texture` ([`Ewa::WGSL`](renderlab_texture::Ewa::WGSL)).
 //!
 //! Agreement with the CPU: the GPU frame is the CPU frame computed again: the same mesh and
 //! camera (rasterized by the GPU's fixed-function rasterizer), the UV and its exact screen
@@ -29,6 +32,7 @@
 
 pub mod context;
 pub mod error;
+pub mod filter;
 mod material;
 mod mesh;
 mod readback;
@@ -39,5 +43,6 @@ mod upload;
 
 pub use context::{AdapterReport, GpuContext};
 pub use error::{GpuError, Result};
+pub use filter::{FilterRenderer, GpuFilter};
 pub use relief::{GpuFrame, ReliefRenderer};
 pub use timing::GpuTiming;
