@@ -572,9 +572,9 @@ fn errors_name_their_cause_once_and_unwritable_outputs_are_refused_before_work()
     }
 }
 
-/// `--backend gpu` refuses a technique without a shader in one line (before it opens a
-/// device, so this holds with or without one); `--backend auto` says so and renders on the
-/// CPU.
+/// Every technique has a shader, so `--backend gpu` renders one where an adapter exists (and
+/// fails in one line where none does; under `CI` an adapter is required); `--backend auto`
+/// renders either way; an unknown backend is a one-line error.
 #[test]
 fn relief_render_backends() {
     let dir = tempfile::tempdir().unwrap();
@@ -583,12 +583,17 @@ fn relief_render_backends() {
     let base = ["relief", "render", "-o", o, "--width", "24", "--height", "16", "--texture-size", "64"];
     let with =
         |extra: &[&'static str]| base.iter().copied().chain(extra.iter().copied()).collect::<Vec<&str>>();
-    fails_with(&with(&["-t", "pom-shadow", "--backend", "gpu"]), "has no GPU shader yet");
-    assert!(!out.exists(), "no output after a refusal");
+    let gpu = renderlab(&with(&["-t", "pom-shadow", "--backend", "gpu"]));
+    if gpu.status.success() {
+        assert!(out.exists(), "the GPU render wrote its image");
+        std::fs::remove_file(&out).unwrap();
+    } else {
+        let err = String::from_utf8_lossy(&gpu.stderr);
+        assert!(std::env::var_os("CI").is_none(), "CI needs a GPU adapter (lavapipe): {err}");
+        assert!(!out.exists(), "no output after a failure");
+    }
     let run = renderlab(&with(&["-t", "pom-shadow", "--backend", "auto"]));
-    let stdout = String::from_utf8_lossy(&run.stdout);
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
-    assert!(stdout.contains("rendering on the CPU instead") && stdout.contains("no GPU shader"), "{stdout}");
     assert!(out.exists());
     fails_with(&with(&["--backend", "metal"]), "--backend");
 }

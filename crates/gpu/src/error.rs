@@ -31,6 +31,19 @@ pub enum GpuError {
     /// The technique has no WGSL shader yet.
     #[error("technique '{0}' has no GPU shader yet (the GPU renderer has: {1})")]
     NoShader(String, String),
+    /// The texture filter has no GPU twin.
+    #[error("texture filter '{0}' has no GPU twin: {1}")]
+    NoGpuFilter(String, String),
+    /// A material lacks a precomputed map the technique reads.
+    #[error("technique '{technique}' needs the {map}, which material '{material}' was prepared without")]
+    MissingMap {
+        /// Technique name.
+        technique: String,
+        /// The map's name.
+        map: &'static str,
+        /// The material's name.
+        material: String,
+    },
     /// A shader or pipeline failed to compile or validate.
     #[error("the shader of '{technique}' failed to build: {message}")]
     Shader {

@@ -8,16 +8,17 @@
 
 use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
+use crate::material::{material_layout, GpuMaterial};
 use crate::mesh::{vertex_layout, GpuMesh};
 use crate::readback::read_texture;
 use crate::shader::{module_source, params};
-use crate::texture::{material_layout, GpuMaterial};
 use crate::timing::{median, GpuTiming, PassTimer};
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
 use renderlab_core::scene::Lighting;
 use renderlab_core::{Camera, Image, Scene};
-use renderlab_relief::{ReliefMaterial, Shading, Technique};
+use renderlab_relief::render::shade::ShadowMode;
+use renderlab_relief::{Kernel, Map, ReliefMaterial, Shading, Technique};
 use std::collections::HashMap;
 use std::time::Instant;
 
@@ -43,6 +44,8 @@ struct FrameUniform {
     specular_exponent: f32,
     specular_strength: f32,
     lit: u32,
+    shadow_samples: u32,
+    pad: [u32; 3],
 }
 
 /// A frame rendered on the GPU with its debug targets, read back.
@@ -221,12 +224,6 @@ impl<'a> ReliefRenderer<'a> {
 
     fn build_pipeline(&self, technique: Technique, output: Output) -> Result<wgpu::RenderPipeline> {
         let source = module_source(technique)?;
-        if technique.shading() == Shading::LitShadowed {
-            return Err(GpuError::Shader {
-                technique: technique.name(),
-                message: "self-shadowing is not in the GPU frame yet".into(),
-            });
-        }
         let device = &self.ctx.device;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -281,14 +278,43 @@ impl<'a> ReliefRenderer<'a> {
         Ok(pipeline)
     }
 
+    /// Refuses `technique` when a material lacks a map it reads (the cone map: the packed
+    /// map is always uploaded), as the CPU renderer's `check` does.
+    fn check_maps(&self, technique: Technique) -> Result<()> {
+        for map in technique.descriptor().needs(Kernel::Scalar) {
+            let missing = self.materials.iter().find(|m| map == Map::Cone && !m.has_cone);
+            if let Some(m) = missing {
+                return Err(GpuError::MissingMap {
+                    technique: technique.name(),
+                    map: map.name(),
+                    material: m.name.clone(),
+                });
+            }
+        }
+        Ok(())
+    }
+
     /// Sets up a frame of `technique` from `camera`: checks what the device and the shader
-    /// can do, sizes the targets, writes the frame constants and builds the pipeline.
+    /// can do and that the materials have the technique's maps, sizes the targets, writes the
+    /// frame constants and builds the pipeline.
     fn prepare(&mut self, camera: &Camera, technique: Technique, output: Output) -> Result<()> {
         let (w, h) = (camera.width, camera.height);
         if w == 0 || h == 0 {
             return Err(GpuError::EmptyFrame(w, h));
         }
         self.ctx.check_size("the frame", w, h)?;
+        self.check_maps(technique)?;
+        let (lit, shadow_samples) = match (technique.shading(), technique.shadow()) {
+            (Shading::Unlit, _) => (0, 0),
+            (Shading::LitShadowed, ShadowMode::Soft(n)) => (2, n),
+            (Shading::LitShadowed, ShadowMode::Exact) => {
+                return Err(GpuError::Shader {
+                    technique: technique.name(),
+                    message: "the GPU frame has soft shadows only, not the exact reference's".into(),
+                })
+            }
+            (Shading::Lit | Shading::LitShadowed, _) => (1, 0),
+        };
         let uniform = FrameUniform {
             view_proj: camera.view_projection().to_cols_array_2d(),
             eye: camera.position.extend(1.0).to_array(),
@@ -297,7 +323,9 @@ impl<'a> ReliefRenderer<'a> {
             ambient: self.lighting.ambient,
             specular_exponent: self.lighting.specular_exponent,
             specular_strength: self.lighting.specular_strength,
-            lit: u32::from(technique.shading() != Shading::Unlit),
+            lit,
+            shadow_samples,
+            pad: [0; 3],
         };
         self.pipeline(technique, output)?;
         self.ctx.queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&uniform));

@@ -8,6 +8,7 @@ use renderlab_core::Scene;
 use renderlab_gpu::{shader, GpuError, ReliefRenderer};
 use renderlab_lab::fixtures::{benchmark_camera, benchmark_scene};
 use renderlab_relief::maps::complexity::ComplexityParams;
+use renderlab_relief::techniques::DESCRIPTORS;
 use renderlab_relief::{ReliefMaterial, Technique};
 use renderlab_texture::materials;
 
@@ -19,24 +20,37 @@ fn bricks() -> (Scene, Vec<ReliefMaterial>) {
 }
 
 #[test]
-fn a_technique_without_a_shader_is_refused_by_name() {
+fn every_technique_has_a_shader_that_builds() {
     // Needs no device: the registry says which techniques have shaders.
-    let have = shader::with_shaders();
-    assert_eq!(
-        have,
-        ["basic", "normal", "parallax", "steep", "pom", "adaptive", "relief", "adaptive-relief"]
-    );
-    let t = Technique::parse("pom-shadow").expect("a registry technique");
-    let e = shader::module_source(t).expect_err("no shader yet");
-    assert!(matches!(e, GpuError::NoShader(..)), "{e}");
-    let msg = e.to_string();
-    assert!(msg.contains("pom-shadow") && msg.contains("no GPU shader") && msg.contains("adaptive"), "{msg}");
+    let names: Vec<&str> = DESCRIPTORS.iter().map(|d| d.name).collect();
+    assert_eq!(shader::with_shaders(), names, "every registry technique has a WGSL twin");
 
+    // On the device, every module compiles and validates (with its cone map where it reads one).
+    let Some(ctx) = context() else { return };
+    let scene = benchmark_scene(materials::material("bricks", 64).expect("built-in material"));
+    let mats: Vec<_> =
+        scene.materials.iter().map(|m| ReliefMaterial::new(m, &ComplexityParams::default(), true)).collect();
+    let mut r = ReliefRenderer::new(&ctx, &scene, &mats).expect("scene uploads");
+    for name in names {
+        let t = Technique::parse(name).expect("a registry technique");
+        r.render(&benchmark_camera(30.0, 16, 10), t).unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
+}
+
+/// A technique that reads the cone map, on materials prepared without one, is refused with an
+/// error that names the technique, the map and the material (as the CPU renderer refuses it).
+#[test]
+fn a_missing_cone_map_is_refused_by_name() {
     let Some(ctx) = context() else { return };
     let (scene, mats) = bricks();
     let mut r = ReliefRenderer::new(&ctx, &scene, &mats).expect("scene uploads");
-    let e = r.render(&benchmark_camera(0.0, 32, 20), t).expect_err("no shader yet");
-    assert!(matches!(e, GpuError::NoShader(..)), "{e}");
+    for name in ["cone", "cone-newton"] {
+        let t = Technique::parse(name).expect("a registry technique");
+        let e = r.render(&benchmark_camera(0.0, 16, 10), t).expect_err("no cone map");
+        assert!(matches!(e, GpuError::MissingMap { .. }), "{e}");
+        let msg = e.to_string();
+        assert!(msg.contains(name) && msg.contains("cone map") && msg.contains("bricks"), "{msg}");
+    }
 }
 
 #[test]

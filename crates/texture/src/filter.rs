@@ -8,7 +8,7 @@
 mod aniso;
 mod bicubic;
 mod catalogue;
-mod ewa;
+pub mod ewa;
 
 pub use aniso::Anisotropic;
 pub use bicubic::{catmull_rom_weights, Bicubic};

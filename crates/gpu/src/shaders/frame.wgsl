@@ -19,8 +19,13 @@ struct Frame {
     ambient: f32,
     specular_exponent: f32,
     specular_strength: f32,
-    // 0: unlit (albedo alone); 1: lit.
+    // 0: unlit (albedo alone); 1: lit; 2: lit with soft self-shadows.
     lit: u32,
+    // Samples along the light ray of the soft shadows (`ShadowMode::Soft`).
+    shadow_samples: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 // One material's constants (`MaterialUniform`).
@@ -43,6 +48,10 @@ struct Material {
 @group(1) @binding(2) var normal_map: texture_2d<f32>;
 @group(1) @binding(3) var depth_map: texture_2d<f32>;
 @group(1) @binding(4) var complexity_map: texture_2d<f32>;
+// The relaxed cone ratios, read at the nearest texel (`ConeMap::ratio`).
+@group(1) @binding(5) var cone_map: texture_2d<f32>;
+// The packed map's padded grid: depth (high 16 bits) and cone ratio (low 16 bits) per texel.
+@group(1) @binding(6) var packed_map: texture_2d<u32>;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -136,15 +145,16 @@ fn pow_exponent(x: f32, e: f32) -> f32 {
     return pow(x, e);
 }
 
-// The thesis's ambient + Lambert + Blinn–Phong in tangent space (`light`).
-fn light(albedo: vec3<f32>, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
+// The thesis's ambient + Lambert + Blinn–Phong in tangent space (`light`); `shadow` (1 lit …
+// 0 shadowed) scales what the light adds.
+fn light(albedo: vec3<f32>, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, shadow: f32) -> vec3<f32> {
     let ambient = albedo * frame.ambient;
     let diff = max(dot(n, l), 0.0);
     let hv = l + v;
     let h = select(vec3<f32>(0.0), normalize(hv), dot(hv, hv) > 0.0);
     let spec = pow_exponent(max(dot(n, h), 0.0), frame.specular_exponent) * frame.specular_strength;
     // Light arriving from below the geometric surface reaches no point of it.
-    let facing = select(0.0, 1.0, l.z > 0.0);
+    let facing = select(0.0, shadow, l.z > 0.0);
     return ambient + (albedo * diff + vec3<f32>(spec)) * facing;
 }
 
@@ -157,7 +167,8 @@ struct Shaded {
 
 // Traces and lights one pixel (`shade_point`): the ray enters at its UV moved into the first
 // tile (the field repeats, so the hit is the same and f32 keeps its precision), the hit moves
-// back, and the maps are sampled there with the level of the undisplaced footprint.
+// back, and the maps are sampled there with the level of the undisplaced footprint; a
+// shadowed technique then marches toward the light from the hit (`soft_shadow`).
 fn shade(in: Varyings) -> Shaded {
     let s = surface(in);
     let base = floor(s.uv);
@@ -167,12 +178,16 @@ fn shade(in: Varyings) -> Shaded {
     let albedo_lod = lod(albedo_size, material.albedo_levels, s.duv_dx, s.duv_dy);
     let albedo = textureSampleLevel(albedo_map, map_sampler, hit.uv, albedo_lod).rgb;
     var color = albedo;
-    if frame.lit == 1u {
+    if frame.lit != 0u {
         let normal_size = vec2<f32>(textureDimensions(normal_map));
         let normal_lod = lod(normal_size, material.normal_levels, s.duv_dx, s.duv_dy);
         let raw = textureSampleLevel(normal_map, map_sampler, hit.uv, normal_lod).xyz;
         let n = select(vec3<f32>(0.0, 0.0, 1.0), normalize(raw), dot(raw, raw) > 1e-30);
-        color = light(albedo, n, s.light_ts, s.view_ts);
+        var shadow = 1.0;
+        if frame.lit == 2u {
+            shadow = soft_shadow(hit.uv, hit.depth, s.light_ts, frame.shadow_samples);
+        }
+        color = light(albedo, n, s.light_ts, s.view_ts, shadow);
     }
     return Shaded(color, hit.uv, hit.layers);
 }

@@ -20,9 +20,9 @@ use renderlab_core::fastmath::floor;
 /// Largest quantised value of a depth or a ratio.
 const Q: f32 = 65535.0;
 /// Depth per quantisation step.
-pub(crate) const DEPTH_STEP: f32 = 1.0 / Q;
+pub const DEPTH_STEP: f32 = 1.0 / Q;
 /// Ratio per quantisation step.
-pub(crate) const RATIO_STEP: f32 = MAX_RATIO / Q;
+pub const RATIO_STEP: f32 = MAX_RATIO / Q;
 
 /// Quantises a depth in `[0, 1]` to 16 bits (nearest).
 #[inline]

@@ -23,11 +23,11 @@ use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
 
 /// Smallest depth advance of a cone step (bounds the work where cones are degenerate).
-pub(crate) const MIN_STEP: f32 = 1e-4;
+pub const MIN_STEP: f32 = 1e-4;
 
 /// Smallest rate at which the ray approaches the surface (`d(t − D)/dt`) for which a Newton
 /// step finishes a trace: flatter approaches keep stepping.
-pub(crate) const MIN_SLOPE: f32 = 0.25;
+pub const MIN_SLOPE: f32 = 0.25;
 
 /// The Newton reach of the `cone-newton` technique, in stopping
 /// tolerances: a ray less than 16 tolerances (4 texels at the default 0.25) from the surface
@@ -38,7 +38,7 @@ pub(crate) const MIN_SLOPE: f32 = 0.25;
 pub const JUMP: f32 = 16.0;
 
 /// Largest stopping tolerance in depth units.
-pub(crate) const MAX_EPS: f32 = 1.0;
+pub const MAX_EPS: f32 = 1.0;
 
 /// Fast relaxed cone stepping with at most `steps` cone steps and `secant` refinement steps;
 /// stops once a Newton step would move the hit less than `tol` texels along the surface.

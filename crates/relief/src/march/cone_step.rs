@@ -79,7 +79,7 @@ struct Lane {
 const NO_CONE_MAP: &str = "cone stepping needs the relaxed cone map (checked by render)";
 
 /// Sample count of the fallback linear march after the cone steps run out.
-const TAIL: u32 = 4;
+pub const TAIL: u32 = 4;
 
 impl Lane {
     fn new(cs: &ConeStep, inp: &ReliefInputs, uv0: Vec2, v: Vec3) -> Self {

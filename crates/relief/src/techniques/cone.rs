@@ -44,6 +44,8 @@ impl Entry for ConeStepping {
     const BENCH: &'static [BenchSetting] =
         &[BenchSetting::DEFAULTS, BenchSetting { params: &[24, 3, 1], kernel: KernelChoice::Auto }];
 
+    const WGSL: Option<&'static str> = Some(include_str!("cone.wgsl"));
+
     fn from_params(v: &[u32]) -> Result<Self, String> {
         Ok(ConeStepping { steps: v[0], refine_steps: v[1], refinement: REFINEMENTS[v[2] as usize] })
     }

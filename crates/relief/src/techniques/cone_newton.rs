@@ -83,6 +83,8 @@ impl Entry for ConeNewton {
         shading: Shading::Lit,
     };
 
+    const WGSL: Option<&'static str> = Some(include_str!("cone_newton.wgsl"));
+
     fn from_params(v: &[u32]) -> Result<Self, String> {
         Ok(ConeNewton { steps: v[0], secant: v[1], tol_hundredths: v[2] })
     }

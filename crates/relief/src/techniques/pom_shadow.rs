@@ -29,6 +29,8 @@ impl Entry for PomShadow {
         shading: Shading::LitShadowed,
     };
 
+    const WGSL: Option<&'static str> = Some(include_str!("pom_shadow.wgsl"));
+
     fn from_params(v: &[u32]) -> Result<Self, String> {
         Ok(PomShadow { layers: v[0], shadow_samples: v[1] })
     }

@@ -95,6 +95,25 @@ impl Default for Ewa {
 }
 
 impl Ewa {
+    /// The filter's GPU twin: WGSL (in `ewa.wgsl`, beside this file) that defines
+    /// `fn ewa(uv: vec2<f32>, duv_dx: vec2<f32>, duv_dy: vec2<f32>) -> vec4<f32>` with this
+    /// file's operations, on the bindings of `renderlab-gpu`'s filter frame (the file states
+    /// that contract). Kept with the CPU code so that a change to one is made beside the other.
+    pub const WGSL: &'static str = include_str!("ewa.wgsl");
+
+    /// σ and cut as the filter uses them: clamped to the model's ranges, NaN becoming the
+    /// defaults (for the GPU twin, which takes them clamped).
+    pub fn clamped_kernel(&self) -> (f32, f32) {
+        self.params()
+    }
+
+    /// The eccentricity clamp and the texel budget as the filter uses them: clamped to
+    /// `1..=64` (NaN meaning 16) and `16..=4096`.
+    pub fn clamped_bounds(&self) -> (f32, u32) {
+        let ecc = if self.max_eccentricity.is_nan() { 16.0 } else { self.max_eccentricity.clamp(1.0, 64.0) };
+        (ecc, self.max_texels.clamp(16, 4096))
+    }
+
     /// EWA with the default bounds whose weights follow `kernel`, or `None` for a kernel EWA
     /// cannot apply (the box: its texture-space footprint is a parallelogram, not an
     /// ellipse).
@@ -264,8 +283,8 @@ impl Filter for Ewa {
         let size = tex.size();
         let (dx, dy) = (duv_dx * size, duv_dy * size);
         let ax = Jacobian { du_dx: dx.x, dv_dx: dx.y, du_dy: dy.x, dv_dy: dy.y }.axes();
-        let ecc = if self.max_eccentricity.is_nan() { 16.0 } else { self.max_eccentricity.clamp(1.0, 64.0) };
-        let budget = self.max_texels.clamp(16, 4096) as u64;
+        let (ecc, budget) = self.clamped_bounds();
+        let budget = budget as u64;
         let (sigma, cut) = self.params();
         let inv_s2 = 1.0 / (sigma * sigma);
         // A footprint that is non-finite, or whose major axis exceeds four texture widths,

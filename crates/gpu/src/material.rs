@@ -4,14 +4,23 @@
 //! filtering blends the same texels), the depth field as `R32Float` (one level, bilinear, as
 //! `HeightField::depth`), the complexity map as `R32Float` (read with `textureLoad`, nearest,
 //! as `complexity_at`).
+//!
+//! The two maps of cone stepping keep the CPU's numbers and arithmetic too: the relaxed cone
+//! map as `R32Float`, read with `textureLoad` at the nearest texel (as `ConeMap::ratio`: the
+//! ratio's guarantee holds per texel cell, so it must not be interpolated); the packed map
+//! as `R32Uint`, its 16-bit depth and 16-bit ratio halves together in one texel on the padded
+//! `(w + 1) × (h + 1)` grid, read with four `textureLoad`s and interpolated by the shader with
+//! the operations of `PackedRelief::sample_texel` (the sampler cannot: it would filter the
+//! packed word, and the technique needs the patch's gradient and the cell's ratio as well).
+//! A material without a cone map binds a 1×1 stand-in that no shader reads: the renderer
+//! refuses techniques that need a map its materials lack.
 
 use crate::context::GpuContext;
 use crate::error::Result;
+use crate::upload::{upload_packed, upload_pyramid, upload_scalar};
 use bytemuck::{Pod, Zeroable};
-use glam::Vec4;
 use renderlab_core::Image;
-use renderlab_relief::ReliefMaterial;
-use renderlab_texture::Texture;
+use renderlab_relief::{Map, ReliefMaterial};
 
 /// One material's constants, laid out as `Material` in `frame.wgsl`.
 #[repr(C)]
@@ -25,9 +34,18 @@ pub(crate) struct MaterialUniform {
 
 /// A material's textures and constants, bound as group 1 of the relief pipelines.
 pub(crate) struct GpuMaterial {
-    /// The bind group (uniform, albedo, normal, depth, complexity).
+    /// The material's name (for errors).
+    pub name: String,
+    /// The bind group (uniform, albedo, normal, depth, complexity, cone, packed).
     pub bind_group: wgpu::BindGroup,
+    /// Whether the cone map (and its ratios in the packed map) was uploaded.
+    pub has_cone: bool,
 }
+
+/// The group-1 binding of each map, as `frame.wgsl` declares them.
+const COMPLEXITY: u32 = 4;
+const CONE: u32 = 5;
+const PACKED: u32 = 6;
 
 /// The layout of group 1 (see `frame.wgsl`).
 pub(crate) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
@@ -35,7 +53,11 @@ pub(crate) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         binding,
         visibility: wgpu::ShaderStages::FRAGMENT,
         ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable: binding != 4 },
+            sample_type: match binding {
+                PACKED => wgpu::TextureSampleType::Uint,
+                COMPLEXITY | CONE => wgpu::TextureSampleType::Float { filterable: false },
+                _ => wgpu::TextureSampleType::Float { filterable: true },
+            },
             view_dimension: wgpu::TextureViewDimension::D2,
             multisampled: false,
         },
@@ -55,7 +77,9 @@ pub(crate) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         texture(1),
         texture(2),
         texture(3),
-        texture(4),
+        texture(COMPLEXITY),
+        texture(CONE),
+        texture(PACKED),
     ];
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("material"),
@@ -72,6 +96,14 @@ impl GpuMaterial {
             .expect("a height field's depths fill its size");
         let depth = upload_scalar(ctx, &format!("{}: depth map", m.name), &depth)?;
         let complexity = upload_scalar(ctx, &format!("{}: complexity map", m.name), &m.complexity)?;
+        let has_cone = m.inputs().has(Map::Cone);
+        let cone = match (&m.cone, has_cone) {
+            (Some(c), true) => Image::from_vec(c.width(), c.height(), c.ratios().to_vec())
+                .expect("a cone map's ratios fill its size"),
+            _ => Image::new(1, 1, 0.0),
+        };
+        let cone = upload_scalar(ctx, &format!("{}: cone map", m.name), &cone)?;
+        let packed = upload_packed(ctx, &format!("{}: packed map", m.name), &m.packed)?;
         let uniform = MaterialUniform {
             height_scale: m.height_scale,
             albedo_levels: m.albedo.level_count() as f32,
@@ -85,7 +117,8 @@ impl GpuMaterial {
             mapped_at_creation: false,
         });
         ctx.queue.write_buffer(&buffer, 0, bytemuck::bytes_of(&uniform));
-        let views = [&albedo, &normal, &depth, &complexity].map(|t| t.create_view(&Default::default()));
+        let views = [&albedo, &normal, &depth, &complexity, &cone, &packed]
+            .map(|t| t.create_view(&Default::default()));
         let mut entries = vec![wgpu::BindGroupEntry { binding: 0, resource: buffer.as_entire_binding() }];
         for (i, v) in views.iter().enumerate() {
             entries.push(wgpu::BindGroupEntry {
@@ -98,75 +131,6 @@ impl GpuMaterial {
             layout,
             entries: &entries,
         });
-        Ok(Self { bind_group })
+        Ok(Self { name: m.name.clone(), bind_group, has_cone })
     }
-}
-
-/// A 2-D texture of `levels` mip levels, sampled and written by copies.
-fn create(
-    ctx: &GpuContext,
-    what: &str,
-    w: u32,
-    h: u32,
-    levels: u32,
-    format: wgpu::TextureFormat,
-) -> Result<wgpu::Texture> {
-    ctx.check_size(what, w, h)?;
-    Ok(ctx.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(what),
-        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
-        mip_level_count: levels,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-        view_formats: &[],
-    }))
-}
-
-/// Writes `bytes` (tightly packed rows of `bytes_per_texel · w`) into `level` of `texture`.
-fn write_level(
-    ctx: &GpuContext,
-    texture: &wgpu::Texture,
-    level: u32,
-    w: u32,
-    h: u32,
-    bytes_per_texel: u32,
-    bytes: &[u8],
-) {
-    ctx.queue.write_texture(
-        wgpu::TexelCopyTextureInfo {
-            texture,
-            mip_level: level,
-            origin: wgpu::Origin3d::ZERO,
-            aspect: wgpu::TextureAspect::All,
-        },
-        bytes,
-        wgpu::TexelCopyBufferLayout {
-            offset: 0,
-            bytes_per_row: Some(w * bytes_per_texel),
-            rows_per_image: Some(h),
-        },
-        wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
-    );
-}
-
-/// Uploads a texture with every level of its CPU pyramid, as `Rgba32Float`.
-fn upload_pyramid(ctx: &GpuContext, what: &str, t: &Texture) -> Result<wgpu::Texture> {
-    let base = t.level(0);
-    let levels = t.level_count() as u32;
-    let texture = create(ctx, what, base.width(), base.height(), levels, wgpu::TextureFormat::Rgba32Float)?;
-    for i in 0..levels {
-        let img: &Image<Vec4> = t.level(i as usize);
-        let texels: Vec<[f32; 4]> = img.pixels().iter().map(|v| v.to_array()).collect();
-        write_level(ctx, &texture, i, img.width(), img.height(), 16, bytemuck::cast_slice(&texels));
-    }
-    Ok(texture)
-}
-
-/// Uploads a single-channel map as `R32Float`, one level.
-fn upload_scalar(ctx: &GpuContext, what: &str, img: &Image<f32>) -> Result<wgpu::Texture> {
-    let texture = create(ctx, what, img.width(), img.height(), 1, wgpu::TextureFormat::R32Float)?;
-    write_level(ctx, &texture, 0, img.width(), img.height(), 4, bytemuck::cast_slice(img.pixels()));
-    Ok(texture)
 }

@@ -1,0 +1,487 @@
+//! Texture filtering on the GPU: the hardware's nearest, bilinear, trilinear and anisotropic
+//! samplers, and EWA written in WGSL (`renderlab_texture`'s `ewa.wgsl`, beside its CPU twin),
+//! each rendering one of the texture lab's test scenes headless and read back, so that it can
+//! be compared with the CPU filter of the same name.
+//!
+//! The scene's surface (per pixel the texture coordinate and its exact UV Jacobian, which the
+//! CPU computes in f64 from the scene's projective map) goes up as two textures, and a
+//! full-screen pass filters the scene's texture at each pixel (`shaders/filter.wgsl`): the
+//! GPU and the CPU filter the same coordinates with the same footprints from the same
+//! pyramid (every level as the CPU built it, `Rgba32Float`), so what differs is the filter.
+//! Nearest and bilinear sample level 0 (as the CPU's do); trilinear and anisotropic pass the
+//! Jacobian as the explicit gradients of `textureSampleGrad`, so the hardware chooses the
+//! level (and, anisotropic, its probes) from the footprint as it would from a rasterized
+//! surface's derivatives.
+
+use crate::context::GpuContext;
+use crate::error::{GpuError, Result};
+use crate::readback::read_texture;
+use crate::timing::{median, GpuTiming, PassTimer};
+use crate::upload::{create, upload_pyramid, write_level};
+use bytemuck::{Pod, Zeroable};
+use glam::{Vec2, Vec3};
+use renderlab_core::Image;
+use renderlab_texture::filter::ewa::{COARSE_RECONSTRUCTION_VARIANCE, PER_UNIT, RECONSTRUCTION_VARIANCE};
+use renderlab_texture::scene::{Surface, TestScene};
+use renderlab_texture::{Anisotropic, Ewa, FilterSpec, PixelFilter, Wrap};
+use std::time::Instant;
+
+/// The filter frame's WGSL.
+pub const FILTER_WGSL: &str = include_str!("shaders/filter.wgsl");
+
+/// The colour target: linear light in 32-bit floats; alpha marks surface pixels.
+const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
+/// Most probes the hardware's anisotropic filtering takes (wgpu's and Vulkan's usual limit).
+pub const MAX_ANISOTROPY: u32 = 16;
+
+/// A texture filter the GPU runs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum GpuFilter {
+    /// The hardware's nearest texel on level 0.
+    Nearest,
+    /// The hardware's bilinear filter on level 0.
+    Bilinear,
+    /// The hardware's trilinear filter, its level chosen by the hardware from the footprint.
+    Trilinear,
+    /// The hardware's anisotropic filter with at most this many probes (`anisotropy_clamp`,
+    /// 2..=16): implementation-defined (how many probes, where, with which weights).
+    Anisotropic(u16),
+    /// EWA in WGSL with the CPU filter's parameters.
+    Ewa(Ewa),
+}
+
+impl GpuFilter {
+    /// The GPU filter for the CPU filter `spec`: nearest, bilinear, trilinear, `anisoN:box`
+    /// (the hardware's equal-weight probes; N ≤ 16, and N = 1 is trilinear) and EWA. Bicubic
+    /// and Gaussian-weighted anisotropic probes have no GPU twin: refused with the reason.
+    pub fn from_spec(spec: &FilterSpec) -> Result<GpuFilter> {
+        let refuse = |why: &str| Err(GpuError::NoGpuFilter(spec.name(), why.to_string()));
+        match *spec {
+            FilterSpec::Nearest => Ok(GpuFilter::Nearest),
+            FilterSpec::Bilinear => Ok(GpuFilter::Bilinear),
+            FilterSpec::Trilinear => Ok(GpuFilter::Trilinear),
+            FilterSpec::Bicubic => {
+                refuse("the hardware has no bicubic filter and none is written in WGSL yet")
+            }
+            FilterSpec::Anisotropic(Anisotropic { max_probes, kernel: PixelFilter::Box }) => match max_probes
+            {
+                1 => Ok(GpuFilter::Trilinear),
+                2..=MAX_ANISOTROPY => Ok(GpuFilter::Anisotropic(max_probes as u16)),
+                _ => refuse("the hardware's anisotropic filtering takes at most 16 probes"),
+            },
+            FilterSpec::Anisotropic(_) => {
+                refuse("the hardware's anisotropic probes have equal weights: use anisoN:box")
+            }
+            FilterSpec::Ewa(e) => Ok(GpuFilter::Ewa(e)),
+        }
+    }
+
+    /// Its name: the CPU twin's (`trilinear`, `ewa`), `hw-anisoN` for the hardware's
+    /// anisotropic filter (whose CPU counterpart `anisoN:box` is an approximation of it).
+    pub fn name(&self) -> String {
+        match self {
+            GpuFilter::Nearest => "nearest".into(),
+            GpuFilter::Bilinear => "bilinear".into(),
+            GpuFilter::Trilinear => "trilinear".into(),
+            GpuFilter::Anisotropic(n) => format!("hw-aniso{n}"),
+            GpuFilter::Ewa(e) => FilterSpec::Ewa(*e).name(),
+        }
+    }
+
+    /// The CPU filter it is compared with.
+    pub fn cpu_twin(&self) -> FilterSpec {
+        match *self {
+            GpuFilter::Nearest => FilterSpec::Nearest,
+            GpuFilter::Bilinear => FilterSpec::Bilinear,
+            GpuFilter::Trilinear => FilterSpec::Trilinear,
+            GpuFilter::Anisotropic(n) => FilterSpec::Anisotropic(Anisotropic::box_probes(n as u32)),
+            GpuFilter::Ewa(e) => FilterSpec::Ewa(e),
+        }
+    }
+
+    /// The frame's mode (see `Filter.mode` in `filter.wgsl`).
+    fn mode(&self) -> u32 {
+        match self {
+            GpuFilter::Nearest | GpuFilter::Bilinear => 0,
+            GpuFilter::Trilinear => 1,
+            GpuFilter::Ewa(_) => 2,
+            GpuFilter::Anisotropic(_) => 3,
+        }
+    }
+
+    /// The sampler: EWA's is bilinear within a level (its fallback's).
+    fn sampler(&self, ctx: &GpuContext, wrap: Wrap) -> wgpu::Sampler {
+        let address = match wrap {
+            Wrap::Repeat => wgpu::AddressMode::Repeat,
+            Wrap::Clamp => wgpu::AddressMode::ClampToEdge,
+        };
+        let (filter, mipmap, anisotropy_clamp) = match *self {
+            GpuFilter::Nearest => (wgpu::FilterMode::Nearest, wgpu::MipmapFilterMode::Nearest, 1),
+            GpuFilter::Bilinear | GpuFilter::Trilinear | GpuFilter::Ewa(_) => {
+                (wgpu::FilterMode::Linear, wgpu::MipmapFilterMode::Linear, 1)
+            }
+            GpuFilter::Anisotropic(n) => (wgpu::FilterMode::Linear, wgpu::MipmapFilterMode::Linear, n),
+        };
+        ctx.device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("filter"),
+            address_mode_u: address,
+            address_mode_v: address,
+            address_mode_w: address,
+            mag_filter: filter,
+            min_filter: filter,
+            mipmap_filter: mipmap,
+            anisotropy_clamp,
+            ..Default::default()
+        })
+    }
+}
+
+/// The frame's constants, laid out as `Filter` in `filter.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+struct FilterUniform {
+    background: [f32; 4],
+    mode: u32,
+    wrap: u32,
+    ewa_sigma: f32,
+    ewa_cut: f32,
+    ewa_ecc: f32,
+    ewa_texels: u32,
+    pad: [u32; 2],
+}
+
+/// The filter module: the constants of EWA's CPU code, the frame and EWA's WGSL.
+pub fn module_source() -> String {
+    format!(
+        "// renderlab: texture filters\n\
+         const EWA_PER_UNIT: f32 = {:?}f;\n\
+         const EWA_RECONSTRUCTION_VARIANCE: f32 = {RECONSTRUCTION_VARIANCE:?}f;\n\
+         const EWA_COARSE_RECONSTRUCTION_VARIANCE: f32 = {COARSE_RECONSTRUCTION_VARIANCE:?}f;\n\
+         {FILTER_WGSL}\n{}",
+        PER_UNIT as f32,
+        Ewa::WGSL
+    )
+}
+
+/// Renders one texture-lab scene through the GPU's filters.
+pub struct FilterRenderer<'a> {
+    ctx: &'a GpuContext,
+    width: u32,
+    height: u32,
+    wrap: Wrap,
+    background: Vec3,
+    pipeline: wgpu::RenderPipeline,
+    layout: wgpu::BindGroupLayout,
+    uniform: wgpu::Buffer,
+    texture: wgpu::Texture,
+    /// The level probe (see [`FilterRenderer::levels`]), built on first use.
+    probe: Option<wgpu::Texture>,
+    surface_uv: wgpu::Texture,
+    surface_jacobian: wgpu::Texture,
+    surface_hit: wgpu::Texture,
+    target: wgpu::Texture,
+    timer: Option<PassTimer>,
+}
+
+impl<'a> FilterRenderer<'a> {
+    /// Uploads `scene`'s texture and `surface` (from [`TestScene::surface`]) and builds the
+    /// pipeline; refuses textures or frames larger than the device holds.
+    pub fn new(ctx: &'a GpuContext, scene: &TestScene, surface: &Surface) -> Result<Self> {
+        let (w, h) = surface.pixels.size();
+        if w == 0 || h == 0 {
+            return Err(GpuError::EmptyFrame(w, h));
+        }
+        ctx.check_size("the frame", w, h)?;
+        let device = &ctx.device;
+        let texture = upload_pyramid(ctx, "scene texture", &scene.texture)?;
+        let pixels = surface.pixels.pixels();
+        // The coordinate before its reduction to one period, for the quad's derivatives.
+        let unreduced = |x: u32, y: u32| match scene.view.hit(x as f64 + 0.5, y as f64 + 0.5) {
+            Some(uv) => (uv * scene.uv_scale).as_vec2(),
+            None => Vec2::ZERO,
+        };
+        let uv: Vec<[f32; 4]> = pixels
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let t = unreduced(i as u32 % w, i as u32 / w);
+                [p.uv.x, p.uv.y, t.x, t.y]
+            })
+            .collect();
+        let jacobian: Vec<[f32; 4]> =
+            pixels.iter().map(|p| [p.duv_dx.x, p.duv_dx.y, p.duv_dy.x, p.duv_dy.y]).collect();
+        let hit: Vec<f32> = pixels.iter().map(|p| if p.hit { 1.0 } else { 0.0 }).collect();
+        let upload = |what, format, bytes_per_texel, texels: &[u8]| -> Result<wgpu::Texture> {
+            let t = create(ctx, what, w, h, 1, format)?;
+            write_level(ctx, &t, 0, w, h, bytes_per_texel, texels);
+            Ok(t)
+        };
+        let rgba = wgpu::TextureFormat::Rgba32Float;
+        let surface_uv = upload("surface uv", rgba, 16, bytemuck::cast_slice(&uv))?;
+        let surface_jacobian = upload("surface jacobian", rgba, 16, bytemuck::cast_slice(&jacobian))?;
+        let surface_hit =
+            upload("surface coverage", wgpu::TextureFormat::R32Float, 4, bytemuck::cast_slice(&hit))?;
+        let target = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("filtered"),
+            size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: COLOR_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let layout = bind_group_layout(device);
+        let pipeline = build_pipeline(ctx, &layout)?;
+        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("filter uniform"),
+            size: std::mem::size_of::<FilterUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        ctx.check()?;
+        Ok(Self {
+            ctx,
+            width: w,
+            height: h,
+            wrap: scene.texture.wrap(),
+            background: scene.background,
+            pipeline,
+            layout,
+            uniform,
+            texture,
+            probe: None,
+            surface_uv,
+            surface_jacobian,
+            surface_hit,
+            target,
+            timer: PassTimer::new(ctx),
+        })
+    }
+
+    /// The scene through `filter`, in linear light (the background where no surface shows).
+    pub fn render(&mut self, filter: &GpuFilter) -> Result<Image<Vec3>> {
+        let group = self.prepare(filter, false);
+        self.draw(&group, false)?;
+        self.read()
+    }
+
+    /// The level of detail the hardware's trilinear filter chose at every pixel (0 off the
+    /// surface): the scene rendered through the trilinear sampler from a probe texture of the
+    /// scene texture's size whose level `i` holds the value `i`, so that the blend between
+    /// levels returns the level itself, clamped to the pyramid as the CPU's `lod` is.
+    pub fn levels(&mut self) -> Result<Image<f32>> {
+        if self.probe.is_none() {
+            let base = self.texture.size();
+            let levels = self.texture.mip_level_count();
+            let t = create(self.ctx, "level probe", base.width, base.height, levels, COLOR_FORMAT)?;
+            for i in 0..levels {
+                // The pyramid's rule (the CPU's and the device's): each side halved, rounding
+                // down, never below 1.
+                let (w, h) = ((base.width >> i).max(1), (base.height >> i).max(1));
+                let texels = vec![[i as f32; 4]; (w * h) as usize];
+                write_level(self.ctx, &t, i, w, h, 16, bytemuck::cast_slice(&texels));
+            }
+            self.probe = Some(t);
+        }
+        let group = self.prepare(&GpuFilter::Trilinear, true);
+        self.draw(&group, false)?;
+        let texels: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&read_texture(self.ctx, &self.target, 16)?);
+        let level = texels.iter().map(|c| if c[3] > 0.5 { c[0] } else { 0.0 }).collect();
+        Ok(Image::from_vec(self.width, self.height, level).expect("the target has the frame's size"))
+    }
+
+    /// Times the scene through `filter`: `warmup` frames, then `reps` timed ones, each
+    /// submitted alone and waited for; medians of the pass's GPU time (timestamp queries,
+    /// where the adapter has them) and of the wall clock from submission to completion.
+    pub fn time(&mut self, filter: &GpuFilter, warmup: u32, reps: u32) -> Result<GpuTiming> {
+        let group = self.prepare(filter, false);
+        let (mut gpu, mut wall) = (Vec::new(), Vec::new());
+        for i in 0..warmup + reps {
+            let timed = i >= warmup;
+            let started = Instant::now();
+            self.draw(&group, timed)?;
+            let elapsed = started.elapsed().as_secs_f64() * 1e3;
+            if timed {
+                wall.push(elapsed);
+                if let Some(timer) = &self.timer {
+                    gpu.push(timer.read_ms(self.ctx)?);
+                }
+            }
+        }
+        Ok(GpuTiming {
+            gpu_ms: self.timer.as_ref().map(|_| median(&mut gpu)),
+            wall_ms: median(&mut wall),
+            reps,
+        })
+    }
+
+    /// Writes the frame constants of `filter` and binds the scene's texture (or the level
+    /// probe) with its sampler.
+    fn prepare(&self, filter: &GpuFilter, probe: bool) -> wgpu::BindGroup {
+        let (sigma, cut, ecc, texels) = match filter {
+            GpuFilter::Ewa(e) => {
+                let ((sigma, cut), (ecc, texels)) = (e.clamped_kernel(), e.clamped_bounds());
+                (sigma, cut, ecc, texels)
+            }
+            _ => (0.0, 0.0, 0.0, 0),
+        };
+        let uniform = FilterUniform {
+            background: self.background.extend(0.0).to_array(),
+            mode: filter.mode(),
+            wrap: u32::from(self.wrap == Wrap::Clamp),
+            ewa_sigma: sigma,
+            ewa_cut: cut,
+            ewa_ecc: ecc,
+            ewa_texels: texels,
+            pad: [0; 2],
+        };
+        self.ctx.queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
+        let sampler = filter.sampler(self.ctx, self.wrap);
+        let texture = match (&self.probe, probe) {
+            (Some(p), true) => p,
+            _ => &self.texture,
+        };
+        let views = [texture, &self.surface_uv, &self.surface_jacobian, &self.surface_hit]
+            .map(|t| t.create_view(&Default::default()));
+        self.ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("filter"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: self.uniform.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&views[0]) },
+                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::Sampler(&sampler) },
+                wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::TextureView(&views[1]) },
+                wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(&views[2]) },
+                wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(&views[3]) },
+            ],
+        })
+    }
+
+    /// Draws one frame with `group` and waits for it (timed: with timestamps around the pass).
+    fn draw(&self, group: &wgpu::BindGroup, timed: bool) -> Result<()> {
+        let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
+        {
+            let view = self.target.create_view(&Default::default());
+            let bg = self.background.as_dvec3();
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("filter"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color { r: bg.x, g: bg.y, b: bg.z, a: 0.0 }),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: if timed { self.timer.as_ref().map(PassTimer::writes) } else { None },
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(0, group, &[]);
+            pass.draw(0..3, 0..1);
+        }
+        if let (true, Some(timer)) = (timed, &self.timer) {
+            timer.resolve(&mut encoder);
+        }
+        self.ctx.queue.submit([encoder.finish()]);
+        self.ctx.wait()
+    }
+
+    /// The colour target as an image.
+    fn read(&self) -> Result<Image<Vec3>> {
+        let texels: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&read_texture(self.ctx, &self.target, 16)?);
+        let img = texels.iter().map(|c| Vec3::new(c[0], c[1], c[2])).collect();
+        Ok(Image::from_vec(self.width, self.height, img).expect("the target has the frame's size"))
+    }
+}
+
+/// The layout of the filter frame's bindings (see `filter.wgsl`).
+fn bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let texture = |binding, filterable| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    };
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("filter"),
+        entries: &[
+            wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            },
+            texture(1, true),
+            wgpu::BindGroupLayoutEntry {
+                binding: 2,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                count: None,
+            },
+            texture(3, false),
+            texture(4, false),
+            texture(5, false),
+        ],
+    })
+}
+
+/// The filter frame's pipeline; a shader that fails to build is an error naming it.
+fn build_pipeline(ctx: &GpuContext, layout: &wgpu::BindGroupLayout) -> Result<wgpu::RenderPipeline> {
+    let device = &ctx.device;
+    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("texture filters"),
+        source: wgpu::ShaderSource::Wgsl(module_source().into()),
+    });
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("texture filters"),
+        bind_group_layouts: &[Some(layout)],
+        immediate_size: 0,
+    });
+    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("texture filters"),
+        layout: Some(&pipeline_layout),
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: Default::default(),
+        depth_stencil: None,
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("fs_main"),
+            compilation_options: Default::default(),
+            targets: &[Some(wgpu::ColorTargetState {
+                format: COLOR_FORMAT,
+                blend: None,
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+        }),
+        multiview_mask: None,
+        cache: None,
+    });
+    if let Some(e) = pollster::block_on(scope.pop()) {
+        return Err(GpuError::Shader {
+            technique: "texture filters".into(),
+            message: crate::context::one_line(&e.to_string()),
+        });
+    }
+    Ok(pipeline)
+}
