@@ -47,7 +47,7 @@ pub enum GpuError {
     /// A shader or pipeline failed to compile or validate.
     #[error("the shader of '{technique}' failed to build: {message}")]
     Shader {
-        /// Technique name.
+        /// Technique name (`texture filters` for the filter frame).
         technique: String,
         /// wgpu's (naga's) message.
         message: String,

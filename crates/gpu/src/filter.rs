@@ -3,15 +3,18 @@
 //! each rendering one of the texture lab's test scenes headless and read back, so that it can
 //! be compared with the CPU filter of the same name.
 //!
-//! The scene's surface (per pixel the texture coordinate and its exact UV Jacobian, which the
-//! CPU computes in f64 from the scene's projective map) goes up as two textures, and a
-//! full-screen pass filters the scene's texture at each pixel (`shaders/filter.wgsl`): the
-//! GPU and the CPU filter the same coordinates with the same footprints from the same
-//! pyramid (every level as the CPU built it, `Rgba32Float`), so what differs is the filter.
-//! Nearest and bilinear sample level 0 (as the CPU's do); trilinear and anisotropic pass the
-//! Jacobian as the explicit gradients of `textureSampleGrad`, so the hardware chooses the
-//! level (and, anisotropic, its probes) from the footprint as it would from a rasterized
-//! surface's derivatives.
+//! The scene's surface (per pixel the texture coordinate, reduced to one period and not, its
+//! exact UV Jacobian, which the CPU computes in f64 from the scene's projective map, and
+//! whether the surface shows) goes up as textures, and a full-screen pass filters the scene's
+//! texture at each pixel (`shaders/filter.wgsl`): the GPU and the CPU filter the same
+//! coordinates with the same footprints from the same pyramid (every level as the CPU built
+//! it, `Rgba32Float`), so what differs is the filter. Nearest and bilinear sample level 0 (as
+//! the CPU's do); trilinear passes the Jacobian as the explicit gradients of
+//! `textureSampleGrad`, so the hardware chooses the level from the exact footprint. The
+//! anisotropic filter takes its footprint from the 2×2 quad's implicit derivatives of the
+//! unreduced coordinate, as on a rasterized surface (differences of the exact mapping
+//! between neighbouring pixels), because a driver may ignore explicit gradients there
+//! (lavapipe's does).
 
 use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
