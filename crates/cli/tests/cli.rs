@@ -595,5 +595,27 @@ fn relief_render_backends() {
     let run = renderlab(&with(&["-t", "pom-shadow", "--backend", "auto"]));
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     assert!(out.exists());
+    std::fs::remove_file(&out).unwrap();
+    // Without any Vulkan driver: `gpu` fails in one line naming the cause, `auto` falls back.
+    let no_driver = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_renderlab"))
+            .args(args)
+            .env("VK_ICD_FILENAMES", "/nonexistent.json")
+            .env("VK_DRIVER_FILES", "/nonexistent.json")
+            .output()
+            .expect("binary runs")
+    };
+    let gpu = no_driver(&with(&["-t", "pom", "--backend", "gpu"]));
+    let err = String::from_utf8_lossy(&gpu.stderr);
+    assert_eq!(gpu.status.code(), Some(1), "{err}");
+    let lines: Vec<&str> =
+        err.lines().filter(|l| !l.trim().is_empty() && !l.contains("XDG_RUNTIME_DIR")).collect();
+    assert_eq!(lines.len(), 1, "one line: {err}");
+    assert!(err.contains("adapter"), "{err}");
+    assert!(!out.exists(), "no output after a failure");
+    let auto = no_driver(&with(&["-t", "pom", "--backend", "auto"]));
+    assert!(auto.status.success(), "{}", String::from_utf8_lossy(&auto.stderr));
+    assert!(String::from_utf8_lossy(&auto.stdout).contains("rendering on the CPU instead"));
+    assert!(out.exists());
     fails_with(&with(&["--backend", "metal"]), "--backend");
 }
