@@ -81,7 +81,8 @@ impl Aabb {
         // |M|·max(|min|, |max|) + |t| bounds every term of every corner's sums.
         let reach = self.min.abs().max(self.max.abs());
         let m3 = m.matrix3;
-        let abs = glam::Mat3::from_cols(m3.x_axis.abs().into(), m3.y_axis.abs().into(), m3.z_axis.abs().into());
+        let abs =
+            glam::Mat3::from_cols(m3.x_axis.abs().into(), m3.y_axis.abs().into(), m3.z_axis.abs().into());
         let magnitude = abs * reach + Vec3::from(m.translation).abs();
         let pad = magnitude * (16.0 * f32::EPSILON) + (out.max - out.min) * 1e-6;
         Aabb { min: out.min - pad, max: out.max + pad }

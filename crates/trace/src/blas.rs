@@ -32,8 +32,10 @@ impl Blas {
     /// Builds the BVH of an indexed mesh. Triangles with a non-finite vertex or zero area are
     /// left out (they can never be hit; see [`crate::triangle::is_hittable`]).
     pub fn build(positions: &[Vec3], indices: &[[u32; 3]]) -> Result<Blas, BuildError> {
-        if let Some((triangle, &index)) =
-            indices.iter().enumerate().find_map(|(t, ix)| ix.iter().find(|&&i| i as usize >= positions.len()).map(|i| (t, i)))
+        if let Some((triangle, &index)) = indices
+            .iter()
+            .enumerate()
+            .find_map(|(t, ix)| ix.iter().find(|&&i| i as usize >= positions.len()).map(|i| (t, i)))
         {
             return Err(BuildError::IndexOutOfRange { triangle, index, vertices: positions.len() });
         }
@@ -54,7 +56,8 @@ impl Blas {
             .with_min_len(4096)
             .filter_map(|t| {
                 let [a, b, c] = tri(t);
-                is_hittable(a, b, c).then(|| PrimRef { bounds: Aabb::from_points(&[a, b, c]), index: t as u32 })
+                is_hittable(a, b, c)
+                    .then(|| PrimRef { bounds: Aabb::from_points(&[a, b, c]), index: t as u32 })
             })
             .collect();
         let hittable = refs.len();
@@ -102,6 +105,22 @@ impl Blas {
     /// Leaf blocks.
     pub fn block_count(&self) -> usize {
         self.blocks.len()
+    }
+
+    /// The wide nodes, root first (for inspection, and for uploading to a GPU).
+    pub fn nodes(&self) -> &[WideNode] {
+        &self.nodes
+    }
+
+    /// The leaf blocks.
+    pub fn blocks(&self) -> &[TriBlock] {
+        &self.blocks
+    }
+
+    /// The root's reference: node 0, a leaf (a mesh of at most four triangles) or
+    /// [`crate::node::EMPTY`].
+    pub fn root(&self) -> u32 {
+        self.root
     }
 
     /// Wide levels on the longest root-to-leaf path (0 when the root is a leaf or empty).

@@ -33,7 +33,9 @@ pub fn closest_hit_mesh(tris: &[[Vec3; 3]], ray: &Ray, instance: u32) -> Option<
         if !is_hittable(a, b, c) {
             continue;
         }
-        let Some(h) = intersect(&q.tri, a.to_array(), b.to_array(), c.to_array(), q.t_min, q.t_max) else { continue };
+        let Some(h) = intersect(&q.tri, a.to_array(), b.to_array(), c.to_array(), q.t_min, q.t_max) else {
+            continue;
+        };
         if best.as_ref().is_none_or(|b| Hit::precedes(h.t, instance, p as u32, b)) {
             best = Some(Hit { t: h.t, u: h.u, v: h.v, primitive: p as u32, instance });
         }

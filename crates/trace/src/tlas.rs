@@ -74,7 +74,11 @@ impl Tlas {
         let mut refs = Vec::with_capacity(instances.len());
         for (i, inst) in instances.iter().enumerate() {
             let Some(blas) = meshes.get(inst.mesh as usize) else {
-                return Err(BuildError::MeshOutOfRange { instance: i, mesh: inst.mesh, meshes: meshes.len() });
+                return Err(BuildError::MeshOutOfRange {
+                    instance: i,
+                    mesh: inst.mesh,
+                    meshes: meshes.len(),
+                });
             };
             let w2o = inst.world_to_object();
             placed.push(Placed { mesh: inst.mesh, world_to_object: w2o.unwrap_or(Affine3A::IDENTITY) });

@@ -45,11 +45,7 @@ impl TriRay {
         if d[kz] < 0.0 {
             std::mem::swap(&mut kx, &mut ky);
         }
-        TriRay {
-            org: org.to_array(),
-            k: [kx, ky, kz],
-            shear: [d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]],
-        }
+        TriRay { org: org.to_array(), k: [kx, ky, kz], shear: [d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]] }
     }
 }
 
@@ -76,7 +72,14 @@ pub fn edge_functions_f64(ax: f32, ay: f32, bx: f32, by: f32, cx: f32, cy: f32) 
 /// The test for one triangle: the hit in `[t_min, t_max]`, if any. Triangles with a NaN
 /// vertex never hit (every comparison with NaN fails).
 #[inline(always)]
-pub fn intersect(r: &TriRay, v0: [f32; 3], v1: [f32; 3], v2: [f32; 3], t_min: f32, t_max: f32) -> Option<TriHit> {
+pub fn intersect(
+    r: &TriRay,
+    v0: [f32; 3],
+    v1: [f32; 3],
+    v2: [f32; 3],
+    t_min: f32,
+    t_max: f32,
+) -> Option<TriHit> {
     let [kx, ky, kz] = r.k;
     let [sx, sy, sz] = r.shear;
     let o = r.org;

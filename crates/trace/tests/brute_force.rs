@@ -82,7 +82,12 @@ fn larger_mesh_matches_brute_force() {
     let h = |x: f32, z: f32| (x * 7.3).sin() * (z * 5.1).cos() * 0.3;
     for i in 0..n {
         for j in 0..n {
-            let (x0, z0, x1, z1) = (i as f32 / n as f32, j as f32 / n as f32, (i + 1) as f32 / n as f32, (j + 1) as f32 / n as f32);
+            let (x0, z0, x1, z1) = (
+                i as f32 / n as f32,
+                j as f32 / n as f32,
+                (i + 1) as f32 / n as f32,
+                (j + 1) as f32 / n as f32,
+            );
             let p = |x: f32, z: f32| Vec3::new(x, h(x, z), z);
             tris.push([p(x0, z0), p(x1, z0), p(x1, z1)]);
             tris.push([p(x0, z0), p(x1, z1), p(x0, z1)]);
@@ -91,7 +96,10 @@ fn larger_mesh_matches_brute_force() {
     let meshes = vec![tris];
     let instances = vec![
         Instance::new(0, Affine3A::IDENTITY),
-        Instance::new(0, Affine3A::from_rotation_y(0.7) * Affine3A::from_translation(Vec3::new(0.3, 0.2, -0.4))),
+        Instance::new(
+            0,
+            Affine3A::from_rotation_y(0.7) * Affine3A::from_translation(Vec3::new(0.3, 0.2, -0.4)),
+        ),
     ];
     let tlases: Vec<Tlas> = kernels().into_iter().map(|k| scene(&meshes, &instances, k)).collect();
     let mut state = 12345u64;

@@ -134,7 +134,14 @@ pub fn depth(bvh: &Bvh2, i: usize) -> usize {
     }
 }
 
-fn build_node(refs: &mut [PrimRef], first: usize, nodes: &mut [Node2], slot: u32, depth: usize, p: &SahParams) {
+fn build_node(
+    refs: &mut [PrimRef],
+    first: usize,
+    nodes: &mut [Node2],
+    slot: u32,
+    depth: usize,
+    p: &SahParams,
+) {
     let n = refs.len();
     let (bounds, centroids) = bounds_of(refs);
     let mut mid = 0;
@@ -185,7 +192,8 @@ fn blocks(n: usize, p: &SahParams) -> f32 {
 /// The primitives' bounds and their centroids' bounds.
 fn bounds_of(refs: &[PrimRef]) -> (Aabb, Aabb) {
     let seq = |refs: &[PrimRef]| {
-        refs.iter().fold((Aabb::EMPTY, Aabb::EMPTY), |(b, c), r| (b.union(r.bounds), c.grow(r.bounds.centre())))
+        refs.iter()
+            .fold((Aabb::EMPTY, Aabb::EMPTY), |(b, c), r| (b.union(r.bounds), c.grow(r.bounds.centre())))
     };
     if refs.len() >= PAR_BIN {
         refs.par_chunks(CHUNK)

@@ -23,7 +23,12 @@ pub fn collapse(bvh: &Bvh2, make_leaf: &mut impl FnMut(&[PrimRef]) -> u32) -> (V
     (out, r)
 }
 
-fn wide(bvh: &Bvh2, slot: usize, out: &mut Vec<WideNode>, make_leaf: &mut impl FnMut(&[PrimRef]) -> u32) -> u32 {
+fn wide(
+    bvh: &Bvh2,
+    slot: usize,
+    out: &mut Vec<WideNode>,
+    make_leaf: &mut impl FnMut(&[PrimRef]) -> u32,
+) -> u32 {
     let index = out.len();
     out.push(WideNode::EMPTY);
     let top = &bvh.nodes[slot];

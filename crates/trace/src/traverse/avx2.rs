@@ -42,7 +42,11 @@ impl Backend for Avx2 {
             far: q.far,
             t_min: _mm256_set1_ps(q.t_min),
             tri: q.tri,
-            tri_org: [_mm_set1_ps(q.tri.org[k[0]]), _mm_set1_ps(q.tri.org[k[1]]), _mm_set1_ps(q.tri.org[k[2]])],
+            tri_org: [
+                _mm_set1_ps(q.tri.org[k[0]]),
+                _mm_set1_ps(q.tri.org[k[1]]),
+                _mm_set1_ps(q.tri.org[k[2]]),
+            ],
             shear: [_mm_set1_ps(q.tri.shear[0]), _mm_set1_ps(q.tri.shear[1]), _mm_set1_ps(q.tri.shear[2])],
             t_min4: _mm_set1_ps(q.t_min),
         }
@@ -57,7 +61,10 @@ impl Backend for Avx2 {
         // every intrinsic inside this function's target features.)
         macro_rules! slab {
             ($a:expr, $r:expr) => {
-                _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b.get_unchecked($r).as_ptr()), p.org[$a]), p.inv[$a])
+                _mm256_mul_ps(
+                    _mm256_sub_ps(_mm256_load_ps(b.get_unchecked($r).as_ptr()), p.org[$a]),
+                    p.inv[$a],
+                )
             };
         }
         let near = _mm256_max_ps(
@@ -106,7 +113,8 @@ impl Backend for Avx2 {
         let mut v = _mm_sub_ps(_mm_mul_ps(ax, cy), _mm_mul_ps(ay, cx));
         let mut w = _mm_sub_ps(_mm_mul_ps(bx, ay), _mm_mul_ps(by, ax));
         let zero = _mm_setzero_ps();
-        let on_edge = _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(u, zero), _mm_cmpeq_ps(v, zero)), _mm_cmpeq_ps(w, zero));
+        let on_edge =
+            _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(u, zero), _mm_cmpeq_ps(v, zero)), _mm_cmpeq_ps(w, zero));
         let on_edge = _mm_movemask_ps(on_edge);
         if on_edge != 0 {
             (u, v, w) = exact_edges(on_edge, [ax, ay, bx, by, cx, cy], [u, v, w]);
@@ -148,7 +156,8 @@ unsafe fn exact_edges(lanes: i32, proj: [__m128; 6], uvw: [__m128; 3]) -> (__m12
     }
     for lane in 0..4 {
         if lanes & (1 << lane) != 0 {
-            let [u, v, w] = edge_functions_f64(p[0][lane], p[1][lane], p[2][lane], p[3][lane], p[4][lane], p[5][lane]);
+            let [u, v, w] =
+                edge_functions_f64(p[0][lane], p[1][lane], p[2][lane], p[3][lane], p[4][lane], p[5][lane]);
             (e[0][lane], e[1][lane], e[2][lane]) = (u, v, w);
         }
     }

@@ -43,8 +43,10 @@ impl RayQuery {
     /// The query for `ray`, or `None` when the ray can hit nothing: a non-finite origin or
     /// direction, a zero direction, or an empty or NaN interval.
     pub fn new(ray: &Ray) -> Option<RayQuery> {
-        let t_min = ray.t_min.max(0.0);
-        if !(ray.origin.is_finite() && ray.dir.is_finite() && ray.dir != Vec3::ZERO && t_min <= ray.t_max) {
+        let t_min = if ray.t_min > 0.0 { ray.t_min } else { 0.0 };
+        if ray.t_min.is_nan()
+            || !(ray.origin.is_finite() && ray.dir.is_finite() && ray.dir != Vec3::ZERO && t_min <= ray.t_max)
+        {
             return None;
         }
         let d = ray.dir.to_array();

@@ -59,8 +59,13 @@ impl<B: Backend, F: HitFilter> Leaves for Triangles<'_, B, F> {
         while mask != 0 {
             let lane = mask.trailing_zeros() as usize;
             mask &= mask - 1;
-            let hit =
-                Hit { t: hits.t[lane], u: hits.u[lane], v: hits.v[lane], primitive: block.prim[lane], instance: self.instance };
+            let hit = Hit {
+                t: hits.t[lane],
+                u: hits.u[lane],
+                v: hits.v[lane],
+                primitive: block.prim[lane],
+                instance: self.instance,
+            };
             if self.filter.accept(&hit) {
                 *self.best = hit;
                 return true;
@@ -97,8 +102,13 @@ impl<B: Backend, F: HitFilter> Leaves for Instances<'_, B, F> {
     unsafe fn closest(&mut self, instance: u32, t_max: &mut f32) {
         let Some((blas, q)) = self.enter(instance, *t_max) else { return };
         let p = B::prepare(&q);
-        let mut tris =
-            Triangles::<B, F> { blocks: &blas.blocks, prepared: &p, instance, best: self.best, filter: self.filter };
+        let mut tris = Triangles::<B, F> {
+            blocks: &blas.blocks,
+            prepared: &p,
+            instance,
+            best: self.best,
+            filter: self.filter,
+        };
         walk::closest::<B, _>(&blas.nodes, blas.root, &p, &mut tris, t_max);
     }
 
@@ -106,8 +116,13 @@ impl<B: Backend, F: HitFilter> Leaves for Instances<'_, B, F> {
     unsafe fn any(&mut self, instance: u32, t_max: f32) -> bool {
         let Some((blas, q)) = self.enter(instance, t_max) else { return false };
         let p = B::prepare(&q);
-        let mut tris =
-            Triangles::<B, F> { blocks: &blas.blocks, prepared: &p, instance, best: self.best, filter: self.filter };
+        let mut tris = Triangles::<B, F> {
+            blocks: &blas.blocks,
+            prepared: &p,
+            instance,
+            best: self.best,
+            filter: self.filter,
+        };
         walk::any::<B, _>(&blas.nodes, blas.root, &p, &mut tris, t_max)
     }
 }
@@ -122,7 +137,13 @@ pub unsafe fn blas_closest<B: Backend, F: HitFilter>(blas: &Blas, ray: &Ray, fil
     let p = B::prepare(&q);
     let mut best = no_hit(q.t_max);
     let mut t_max = q.t_max;
-    let mut tris = Triangles::<B, F> { blocks: &blas.blocks, prepared: &p, instance: Hit::NO_INSTANCE, best: &mut best, filter };
+    let mut tris = Triangles::<B, F> {
+        blocks: &blas.blocks,
+        prepared: &p,
+        instance: Hit::NO_INSTANCE,
+        best: &mut best,
+        filter,
+    };
     walk::closest::<B, _>(&blas.nodes, blas.root, &p, &mut tris, &mut t_max);
     (best.primitive != u32::MAX).then_some(best)
 }
@@ -136,7 +157,13 @@ pub unsafe fn blas_any<B: Backend, F: HitFilter>(blas: &Blas, ray: &Ray, filter:
     let q = RayQuery::new(ray)?;
     let p = B::prepare(&q);
     let mut best = no_hit(q.t_max);
-    let mut tris = Triangles::<B, F> { blocks: &blas.blocks, prepared: &p, instance: Hit::NO_INSTANCE, best: &mut best, filter };
+    let mut tris = Triangles::<B, F> {
+        blocks: &blas.blocks,
+        prepared: &p,
+        instance: Hit::NO_INSTANCE,
+        best: &mut best,
+        filter,
+    };
     walk::any::<B, _>(&blas.nodes, blas.root, &p, &mut tris, q.t_max).then_some(best)
 }
 

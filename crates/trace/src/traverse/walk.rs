@@ -130,7 +130,13 @@ pub unsafe fn closest<B: Backend, L: Leaves>(
 /// # Safety
 /// As for [`closest`].
 #[inline(always)]
-pub unsafe fn any<B: Backend, L: Leaves>(nodes: &[WideNode], root: u32, p: &B::Prepared, leaves: &mut L, t_max: f32) -> bool {
+pub unsafe fn any<B: Backend, L: Leaves>(
+    nodes: &[WideNode],
+    root: u32,
+    p: &B::Prepared,
+    leaves: &mut L,
+    t_max: f32,
+) -> bool {
     if root == EMPTY {
         return false;
     }

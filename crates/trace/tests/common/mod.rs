@@ -13,7 +13,10 @@ pub fn vertex() -> impl Strategy<Value = Vec3> {
 
 /// A small triangle soup: up to `max` triangles, some sharing vertices, some tiny, some huge.
 pub fn mesh(max: usize) -> impl Strategy<Value = Vec<[Vec3; 3]>> {
-    (prop::collection::vec(vertex(), 3..24), prop::collection::vec((0usize..64, 0usize..64, 0usize..64, 0u8..8), 0..max))
+    (
+        prop::collection::vec(vertex(), 3..24),
+        prop::collection::vec((0usize..64, 0usize..64, 0usize..64, 0u8..8), 0..max),
+    )
         .prop_map(|(pool, picks)| {
             picks
                 .into_iter()
@@ -33,16 +36,23 @@ pub fn mesh(max: usize) -> impl Strategy<Value = Vec<[Vec3; 3]>> {
 pub fn transform() -> impl Strategy<Value = Affine3A> {
     let quat = (-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0)
         .prop_map(|(x, y, z, w)| Quat::from_xyzw(x, y, z, w + 2.0).normalize());
-    (quat.clone(), quat, (0.25f32..4.0, 0.25f32..4.0, 0.25f32..4.0), vertex()).prop_map(|(r1, r2, (sx, sy, sz), t)| {
-        let m = Mat3::from_quat(r1) * Mat3::from_diagonal(Vec3::new(sx, sy, sz)) * Mat3::from_quat(r2);
-        Affine3A::from_mat3_translation(m, t * 3.0)
-    })
+    (quat.clone(), quat, (0.25f32..4.0, 0.25f32..4.0, 0.25f32..4.0), vertex()).prop_map(
+        |(r1, r2, (sx, sy, sz), t)| {
+            let m = Mat3::from_quat(r1) * Mat3::from_diagonal(Vec3::new(sx, sy, sz)) * Mat3::from_quat(r2);
+            Affine3A::from_mat3_translation(m, t * 3.0)
+        },
+    )
 }
 
 /// A ray: from a random origin, either in a random direction or at a random point of a
 /// random triangle of a random instance (so that most rays hit something); sometimes with a
 /// finite interval.
-pub fn ray(meshes: &[Vec<[Vec3; 3]>], instances: &[Instance], seed: (u64, f32, f32, f32, f32, f32), origin: Vec3) -> Ray {
+pub fn ray(
+    meshes: &[Vec<[Vec3; 3]>],
+    instances: &[Instance],
+    seed: (u64, f32, f32, f32, f32, f32),
+    origin: Vec3,
+) -> Ray {
     let (pick, r1, r2, r3, tmin, tmax) = seed;
     let mut target = None;
     if pick % 4 != 0 && !instances.is_empty() {
@@ -66,7 +76,10 @@ pub fn ray(meshes: &[Vec<[Vec3; 3]>], instances: &[Instance], seed: (u64, f32, f
 }
 
 pub fn ray_seed() -> impl Strategy<Value = ((u64, f32, f32, f32, f32, f32), Vec3)> {
-    ((any::<u64>(), 0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0), vertex().prop_map(|v| v * 4.0))
+    (
+        (any::<u64>(), 0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0),
+        vertex().prop_map(|v| v * 4.0),
+    )
 }
 
 /// The scene's structure with `kernel`.
@@ -77,7 +90,12 @@ pub fn scene(meshes: &[Vec<[Vec3; 3]>], instances: &[Instance], kernel: Kernel) 
 
 /// Checks every query of `ray` against brute force: the closest hit bit for bit, any-hit's
 /// existence, and the kernels against each other.
-pub fn check(tlases: &[Tlas], meshes: &[Vec<[Vec3; 3]>], instances: &[Instance], ray: &Ray) -> Result<(), TestCaseError> {
+pub fn check(
+    tlases: &[Tlas],
+    meshes: &[Vec<[Vec3; 3]>],
+    instances: &[Instance],
+    ray: &Ray,
+) -> Result<(), TestCaseError> {
     let expected = brute::closest_hit(meshes, instances, ray);
     for tlas in tlases {
         let got = tlas.closest_hit(ray);
