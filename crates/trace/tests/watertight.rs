@@ -151,3 +151,21 @@ fn instanced_icospheres_are_watertight() {
         }
     }
 }
+
+#[test]
+fn edge_functions_that_round_to_zero_are_decided_exactly() {
+    // Two triangles share the edge B–C, which passes 2⁻⁴⁶ from the ray (the z axis). In f32 the
+    // edge function of B–C rounds to exactly 0 ((1 + ε)² rounds to 1 + 2ε), so without the
+    // f64 recomputation both triangles would claim the ray; with it exactly one does.
+    let e = f32::EPSILON;
+    let b = Vec3::new(1.0, 1.0 + e, 0.0);
+    let c = Vec3::new(-(1.0 + e), -(1.0 + 2.0 * e), 0.0);
+    let outside = [Vec3::new(-1.0, 1.0, 0.0), b, c];
+    let inside = [Vec3::new(1.0, -1.0, 0.0), b, c];
+    let ray = Ray::new(Vec3::new(0.0, 0.0, -1.0), Vec3::Z);
+    for k in kernels() {
+        let hits = |t: [Vec3; 3]| Blas::from_triangles(&[t]).unwrap().with_kernel(k).closest_hit(&ray);
+        assert_eq!(hits(outside), None, "kernel {k}");
+        assert!(hits(inside).is_some(), "kernel {k}");
+    }
+}
