@@ -56,15 +56,14 @@ impl Blas {
             .with_min_len(4096)
             .filter_map(|t| {
                 let [a, b, c] = tri(t);
-                is_hittable(a, b, c)
-                    .then(|| PrimRef { bounds: Aabb::from_points(&[a, b, c]), index: t as u32 })
+                is_hittable(a, b, c).then(|| PrimRef::new(&Aabb::from_points(&[a, b, c]), t as u32))
             })
             .collect();
         let hittable = refs.len();
         let bvh = binned::build(refs, &BLAS_SAH);
         let mut blocks = Vec::with_capacity(hittable.div_ceil(3));
         let (nodes, root) = collapse(&bvh, &mut |leaf: &[PrimRef]| {
-            blocks.push(TriBlock::new(leaf.iter().map(|r| (r.index, tri(r.index as usize)))));
+            blocks.push(TriBlock::new(leaf.iter().map(|r| (r.index(), tri(r.index() as usize)))));
             LEAF_BIT | (blocks.len() - 1) as u32
         });
         let bounds = if hittable == 0 { Aabb::EMPTY } else { bvh.nodes[0].bounds() };

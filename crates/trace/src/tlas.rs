@@ -84,13 +84,13 @@ impl Tlas {
             placed.push(Placed { mesh: inst.mesh, world_to_object: w2o.unwrap_or(Affine3A::IDENTITY) });
             if let Some(bounds) = w2o.map(|_| blas.bounds().transformed(&inst.object_to_world)) {
                 if !bounds.is_empty() && bounds.min.is_finite() && bounds.max.is_finite() {
-                    refs.push(PrimRef { bounds, index: i as u32 });
+                    refs.push(PrimRef::new(&bounds, i as u32));
                 }
             }
         }
         let live = refs.len();
         let bvh = binned::build(refs, &TLAS_SAH);
-        let (nodes, root) = collapse(&bvh, &mut |leaf: &[PrimRef]| LEAF_BIT | leaf[0].index);
+        let (nodes, root) = collapse(&bvh, &mut |leaf: &[PrimRef]| LEAF_BIT | leaf[0].index());
         let bounds = if live == 0 { Aabb::EMPTY } else { bvh.nodes[0].bounds() };
         Ok(Tlas { meshes, placed, nodes, root, kernel: Kernel::best(), bounds, live })
     }

@@ -7,6 +7,10 @@
 //! intersection *blocks* (`⌈n / block⌉`), since a leaf's triangles are tested four at a time:
 //! a leaf of four costs what a leaf of one does, and the build makes full leaves.
 //!
+//! A node's bins also give its children's boxes and centroid bounds, so each level reads the
+//! primitives twice (binning, partitioning). Small nodes use fewer bins (about one per
+//! primitive), which keeps the plane sweep from costing more than the binning.
+//!
 //! Parallelism: the two subtrees of a node with at least [`PAR_NODE`] primitives are built as
 //! rayon tasks, and a node with at least [`PAR_BIN`] primitives bins in parallel chunks. The
 //! result does not depend on the number of threads: bins merge by integer sums and exact
@@ -19,10 +23,10 @@
 //! split (all centroids in one bin) but that are too large for a leaf.
 
 use crate::aabb::Aabb;
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
-/// Bins per axis.
+/// Bins per axis (for nodes of at least that many primitives).
 pub const BINS: usize = 32;
 
 /// Depth below which SAH is no longer tried.
@@ -42,13 +46,99 @@ pub const PAR_BIN: usize = 1 << 15;
 
 const CHUNK: usize = 1 << 13;
 
-/// A primitive as the builder sees it: its box and its index in the caller's list.
+/// A primitive as the builder sees it: its box in two 4-lane vectors (so that unions are one
+/// SIMD min and max), with its index in the caller's list stored in the bits of `lo.w`.
 #[derive(Clone, Copy, Debug)]
 pub struct PrimRef {
-    /// The primitive's bounds.
-    pub bounds: Aabb,
+    lo: Vec4,
+    hi: Vec4,
+}
+
+impl PrimRef {
+    /// The primitive `index` with box `b`.
+    pub fn new(b: &Aabb, index: u32) -> PrimRef {
+        PrimRef { lo: b.min.extend(f32::from_bits(index)), hi: b.max.extend(0.0) }
+    }
+
     /// The primitive's index.
-    pub index: u32,
+    #[inline]
+    pub fn index(&self) -> u32 {
+        self.lo.w.to_bits()
+    }
+
+    /// The primitive's box.
+    pub fn bounds(&self) -> Aabb {
+        Aabb { min: self.lo.truncate(), max: self.hi.truncate() }
+    }
+
+    /// Twice the box's centre (lane w meaningless).
+    #[inline(always)]
+    fn centre2(&self) -> Vec4 {
+        self.lo + self.hi
+    }
+}
+
+/// A box in 4-lane vectors, lane w ignored.
+#[derive(Clone, Copy, Debug)]
+struct Box4 {
+    lo: Vec4,
+    hi: Vec4,
+}
+
+impl Box4 {
+    const EMPTY: Box4 = Box4 { lo: Vec4::splat(f32::INFINITY), hi: Vec4::splat(f32::NEG_INFINITY) };
+
+    #[inline(always)]
+    fn union(self, o: Box4) -> Box4 {
+        Box4 { lo: self.lo.min(o.lo), hi: self.hi.max(o.hi) }
+    }
+
+    #[inline(always)]
+    fn grow(self, p: Vec4) -> Box4 {
+        Box4 { lo: self.lo.min(p), hi: self.hi.max(p) }
+    }
+
+    #[inline(always)]
+    fn half_area(&self) -> f32 {
+        let d = self.hi - self.lo;
+        if !(d.x >= 0.0 && d.y >= 0.0 && d.z >= 0.0) {
+            return 0.0;
+        }
+        d.x * d.y + d.y * d.z + d.z * d.x
+    }
+
+    fn aabb(&self) -> Aabb {
+        Aabb { min: self.lo.truncate(), max: self.hi.truncate() }
+    }
+}
+
+/// A set's box and the box of its doubled centroids.
+#[derive(Clone, Copy, Debug)]
+struct Bounds {
+    geometry: Box4,
+    centres: Box4,
+}
+
+impl Bounds {
+    const EMPTY: Bounds = Bounds { geometry: Box4::EMPTY, centres: Box4::EMPTY };
+
+    fn of(refs: &[PrimRef]) -> Bounds {
+        let seq = |refs: &[PrimRef]| {
+            refs.iter().fold(Bounds::EMPTY, |b, r| Bounds {
+                geometry: b.geometry.union(Box4 { lo: r.lo, hi: r.hi }),
+                centres: b.centres.grow(r.centre2()),
+            })
+        };
+        if refs.len() >= PAR_BIN {
+            refs.par_chunks(CHUNK).map(seq).reduce(|| Bounds::EMPTY, Bounds::union)
+        } else {
+            seq(refs)
+        }
+    }
+
+    fn union(self, o: Bounds) -> Bounds {
+        Bounds { geometry: self.geometry.union(o.geometry), centres: self.centres.union(o.centres) }
+    }
 }
 
 /// A binary node of 32 bytes: its box and two words. An inner node's words are its children's
@@ -120,18 +210,9 @@ pub fn build(mut refs: Vec<PrimRef>, params: &SahParams) -> Bvh2 {
     }
     let mut nodes = vec![Node2::default(); 2 * refs.len() - 1];
     let params = SahParams { max_leaf: params.max_leaf.max(1), block: params.block.max(1), ..*params };
-    build_node(&mut refs, 0, &mut nodes, 0, 0, &params);
+    let bounds = Bounds::of(&refs);
+    build_node(&mut refs, 0, &mut nodes, 0, 0, bounds, &params, &mut Bins::new());
     Bvh2 { nodes, refs }
-}
-
-/// The depth of the deepest leaf below slot `i` (0 for a leaf).
-pub fn depth(bvh: &Bvh2, i: usize) -> usize {
-    let n = &bvh.nodes[i];
-    if n.is_leaf() {
-        0
-    } else {
-        1 + depth(bvh, n.a as usize).max(depth(bvh, n.b as usize))
-    }
 }
 
 fn build_node(
@@ -140,46 +221,64 @@ fn build_node(
     nodes: &mut [Node2],
     slot: u32,
     depth: usize,
+    bounds: Bounds,
     p: &SahParams,
+    scratch: &mut Bins,
 ) {
     let n = refs.len();
-    let (bounds, centroids) = bounds_of(refs);
-    let mut mid = 0;
-    if n > 1 {
-        let fits_leaf = n <= p.max_leaf;
+    let fits_leaf = n <= p.max_leaf;
+    // A leaf of one block costs the parent's area; any split costs at least that much more.
+    let surely_leaf = fits_leaf && blocks(n, p) == 1.0 && p.traversal_cost >= 1.0;
+    let mut split = None;
+    if n > 1 && !surely_leaf {
         if depth < SAH_DEPTH {
-            if let Some(split) = sah_split(refs, &centroids, p) {
-                let area = bounds.half_area();
+            if let Some(s) = sah_split(refs, &bounds, p, scratch) {
+                let area = bounds.geometry.half_area();
                 let leaf_cost = blocks(n, p) * area;
-                let split_cost = p.traversal_cost * area + split.cost;
+                let split_cost = p.traversal_cost * area + s.cost;
                 if !(fits_leaf && leaf_cost <= split_cost) {
-                    let binner = Binner::new(&centroids);
-                    mid = partition(refs, |r| binner.bin(r.bounds.centre(), split.axis) <= split.bin);
+                    let binner = &s.binner;
+                    let mid = partition(refs, |r| binner.bin(r.centre2(), s.axis) <= s.bin);
+                    if mid > 0 && mid < n {
+                        split = Some((mid, s.left, s.right));
+                    }
                 }
             }
         }
-        if (mid == 0 || mid == n) && !fits_leaf {
-            mid = median_split(refs, &centroids);
-        } else if mid == n {
-            mid = 0;
+        if split.is_none() && !fits_leaf {
+            let mid = median_split(refs, &bounds.centres);
+            split = Some((mid, Bounds::of(&refs[..mid]), Bounds::of(&refs[mid..])));
         }
     }
-    let (min, max) = (bounds.min.to_array(), bounds.max.to_array());
-    if mid == 0 {
+    let b = bounds.geometry.aabb();
+    let (min, max) = (b.min.to_array(), b.max.to_array());
+    let Some((mid, left_bounds, right_bounds)) = split else {
         nodes[0] = Node2 { min, a: first as u32, max, b: Node2::LEAF | n as u32 };
         return;
-    }
+    };
     let right = slot + 2 * mid as u32;
     nodes[0] = Node2 { min, a: slot + 1, max, b: right };
     let (left_nodes, right_nodes) = nodes[1..].split_at_mut(2 * mid - 1);
     let (left_refs, right_refs) = refs.split_at_mut(mid);
-    let mut left = move || build_node(left_refs, first, left_nodes, slot + 1, depth + 1, p);
-    let mut right = move || build_node(right_refs, first + mid, right_nodes, right, depth + 1, p);
     if n >= PAR_NODE {
-        rayon::join(left, right);
+        rayon::join(
+            || build_node(left_refs, first, left_nodes, slot + 1, depth + 1, left_bounds, p, scratch),
+            || {
+                build_node(
+                    right_refs,
+                    first + mid,
+                    right_nodes,
+                    right,
+                    depth + 1,
+                    right_bounds,
+                    p,
+                    &mut Bins::new(),
+                )
+            },
+        );
     } else {
-        left();
-        right();
+        build_node(left_refs, first, left_nodes, slot + 1, depth + 1, left_bounds, p, scratch);
+        build_node(right_refs, first + mid, right_nodes, right, depth + 1, right_bounds, p, scratch);
     }
 }
 
@@ -189,66 +288,81 @@ fn blocks(n: usize, p: &SahParams) -> f32 {
     n.div_ceil(p.block) as f32
 }
 
-/// The primitives' bounds and their centroids' bounds.
-fn bounds_of(refs: &[PrimRef]) -> (Aabb, Aabb) {
-    let seq = |refs: &[PrimRef]| {
-        refs.iter()
-            .fold((Aabb::EMPTY, Aabb::EMPTY), |(b, c), r| (b.union(r.bounds), c.grow(r.bounds.centre())))
-    };
-    if refs.len() >= PAR_BIN {
-        refs.par_chunks(CHUNK)
-            .map(seq)
-            .reduce(|| (Aabb::EMPTY, Aabb::EMPTY), |a, b| (a.0.union(b.0), a.1.union(b.1)))
-    } else {
-        seq(refs)
-    }
-}
-
-/// Maps centroids to bins along each axis.
+/// Maps doubled centroids to bins along each axis.
+#[derive(Clone, Copy, Debug)]
 struct Binner {
-    origin: Vec3,
+    origin: Vec4,
     /// Bins per unit length (0 along an axis where all centroids coincide).
-    scale: Vec3,
+    scale: Vec4,
+    bins: usize,
 }
 
 impl Binner {
-    fn new(centroids: &Aabb) -> Binner {
-        let extent = centroids.max - centroids.min;
-        let k = BINS as f32 * (1.0 - 1e-5);
-        let scale = Vec3::select(extent.cmpgt(Vec3::ZERO), k / extent, Vec3::ZERO);
-        Binner { origin: centroids.min, scale }
+    fn new(centres: &Box4, n: usize) -> Binner {
+        let bins = n.clamp(4, BINS);
+        let extent = centres.hi - centres.lo;
+        let k = bins as f32 * (1.0 - 1e-5);
+        let mut scale = Vec4::select(extent.cmpgt(Vec4::ZERO), k / extent, Vec4::ZERO);
+        scale.w = 0.0;
+        Binner { origin: centres.lo, scale, bins }
     }
 
     #[inline(always)]
-    fn bin(&self, c: Vec3, axis: usize) -> usize {
-        // `as usize` saturates (and maps NaN to 0), so the index is always in range.
-        (((c[axis] - self.origin[axis]) * self.scale[axis]) as usize).min(BINS - 1)
+    fn bins_of(&self, c: Vec4) -> [usize; 3] {
+        // `as usize` saturates (and maps NaN to 0); `min` keeps the top edge in range.
+        let f = ((c - self.origin) * self.scale).to_array();
+        [0, 1, 2].map(|a| (f[a] as usize).min(self.bins - 1))
+    }
+
+    #[inline(always)]
+    fn bin(&self, c: Vec4, axis: usize) -> usize {
+        self.bins_of(c)[axis]
     }
 }
 
 #[derive(Clone, Copy)]
 struct Bin {
-    bounds: Aabb,
+    bounds: Bounds,
     count: u32,
 }
 
-const EMPTY_BIN: Bin = Bin { bounds: Aabb::EMPTY, count: 0 };
+const EMPTY_BIN: Bin = Bin { bounds: Bounds::EMPTY, count: 0 };
 
+/// Bins along the three axes; a node uses the first [`Binner::bins`] of each row. One set is
+/// reused by every node of a sequentially built subtree, so that a small node does not pay
+/// for clearing all of them.
 #[derive(Clone, Copy)]
 struct Bins([[Bin; BINS]; 3]);
 
 impl Bins {
+    fn new() -> Bins {
+        Bins([[EMPTY_BIN; BINS]; 3])
+    }
+
     fn fill(refs: &[PrimRef], binner: &Binner) -> Bins {
-        let mut bins = Bins([[EMPTY_BIN; BINS]; 3]);
+        let mut bins = Bins::new();
+        bins.add(refs, binner);
+        bins
+    }
+
+    fn clear(&mut self, bins: usize) {
+        for row in &mut self.0 {
+            row[..bins].fill(EMPTY_BIN);
+        }
+    }
+
+    fn add(&mut self, refs: &[PrimRef], binner: &Binner) {
+        let bins = self;
         for r in refs {
-            let c = r.bounds.centre();
-            for axis in 0..3 {
-                let b = &mut bins.0[axis][binner.bin(c, axis)];
-                b.bounds = b.bounds.union(r.bounds);
+            let c = r.centre2();
+            let g = Box4 { lo: r.lo, hi: r.hi };
+            for (axis, i) in binner.bins_of(c).into_iter().enumerate() {
+                let b = &mut bins.0[axis][i];
+                b.bounds.geometry = b.bounds.geometry.union(g);
+                b.bounds.centres = b.bounds.centres.grow(c);
                 b.count += 1;
             }
         }
-        bins
     }
 
     fn merge(mut self, other: Bins) -> Bins {
@@ -264,53 +378,60 @@ impl Bins {
 
 /// The cheapest binned plane: primitives in bins `0..=bin` along `axis` go left.
 struct Split {
+    binner: Binner,
     axis: usize,
     bin: usize,
     /// `Σ half_area(side) · blocks(side)` over the two sides.
     cost: f32,
+    left: Bounds,
+    right: Bounds,
 }
 
-fn sah_split(refs: &[PrimRef], centroids: &Aabb, p: &SahParams) -> Option<Split> {
-    let binner = Binner::new(centroids);
-    if binner.scale == Vec3::ZERO {
+fn sah_split(refs: &[PrimRef], bounds: &Bounds, p: &SahParams, scratch: &mut Bins) -> Option<Split> {
+    let binner = Binner::new(&bounds.centres, refs.len());
+    if binner.scale == Vec4::ZERO {
         return None;
     }
-    let bins = if refs.len() >= PAR_BIN {
-        refs.par_chunks(CHUNK)
-            .map(|c| Bins::fill(c, &binner))
-            .reduce(|| Bins([[EMPTY_BIN; BINS]; 3]), Bins::merge)
+    if refs.len() >= PAR_BIN {
+        *scratch = refs.par_chunks(CHUNK).map(|c| Bins::fill(c, &binner)).reduce(Bins::new, Bins::merge);
     } else {
-        Bins::fill(refs, &binner)
-    };
-    let mut best: Option<Split> = None;
+        scratch.clear(binner.bins);
+        scratch.add(refs, &binner);
+    }
+    let bins = &*scratch;
+    let nb = binner.bins;
+    let mut best: Option<(usize, usize, f32)> = None;
     for axis in 0..3 {
         if binner.scale[axis] == 0.0 {
             continue;
         }
-        let row = &bins.0[axis];
-        // right[i]: the cost of bins i.. as one side.
+        let row = &bins.0[axis][..nb];
+        // right[i]: the cost of bins i.. as one side, and their count.
         let mut right = [(0.0f32, 0usize); BINS];
-        let (mut acc, mut count) = (Aabb::EMPTY, 0usize);
-        for i in (1..BINS).rev() {
-            acc = acc.union(row[i].bounds);
+        let (mut acc, mut count) = (Box4::EMPTY, 0usize);
+        for i in (1..nb).rev() {
+            acc = acc.union(row[i].bounds.geometry);
             count += row[i].count as usize;
             right[i] = (acc.half_area() * blocks(count, p), count);
         }
-        let (mut acc, mut count) = (Aabb::EMPTY, 0usize);
-        for i in 0..BINS - 1 {
-            acc = acc.union(row[i].bounds);
+        let (mut acc, mut count) = (Box4::EMPTY, 0usize);
+        for i in 0..nb - 1 {
+            acc = acc.union(row[i].bounds.geometry);
             count += row[i].count as usize;
             let (right_cost, right_count) = right[i + 1];
             if count == 0 || right_count == 0 {
                 continue;
             }
             let cost = acc.half_area() * blocks(count, p) + right_cost;
-            if best.as_ref().is_none_or(|b| cost < b.cost) {
-                best = Some(Split { axis, bin: i, cost });
+            if best.is_none_or(|b| cost < b.2) {
+                best = Some((axis, i, cost));
             }
         }
     }
-    best
+    let (axis, bin, cost) = best?;
+    let row = &bins.0[axis][..nb];
+    let side = |bins: &[Bin]| bins.iter().fold(Bounds::EMPTY, |acc, b| acc.union(b.bounds));
+    Some(Split { binner, axis, bin, cost, left: side(&row[..=bin]), right: side(&row[bin + 1..]) })
 }
 
 /// Moves the primitives for which `left` holds to the front; returns how many there are.
@@ -328,8 +449,8 @@ fn partition(refs: &mut [PrimRef], left: impl Fn(&PrimRef) -> bool) -> usize {
 }
 
 /// Splits at the median centroid along the widest centroid axis; returns `n / 2`.
-fn median_split(refs: &mut [PrimRef], centroids: &Aabb) -> usize {
-    let e = centroids.max - centroids.min;
+fn median_split(refs: &mut [PrimRef], centres: &Box4) -> usize {
+    let e = centres.hi - centres.lo;
     let axis = if e.x >= e.y && e.x >= e.z {
         0
     } else if e.y >= e.z {
@@ -338,6 +459,6 @@ fn median_split(refs: &mut [PrimRef], centroids: &Aabb) -> usize {
         2
     };
     let mid = refs.len() / 2;
-    refs.select_nth_unstable_by(mid, |a, b| a.bounds.centre()[axis].total_cmp(&b.bounds.centre()[axis]));
+    refs.select_nth_unstable_by(mid, |a, b| a.centre2()[axis].total_cmp(&b.centre2()[axis]));
     mid
 }
