@@ -6,8 +6,14 @@
 //! across it. Incoherent rays: one cosine-weighted diffuse bounce from every primary hit.
 //! Shadow rays: from every primary hit towards a point light (any-hit).
 //!
-//! Builds run on the global rayon pool (all cores) for both libraries; obvhs is built with its
-//! `medium_build` preset ("around the same build time as Embree but with faster traversal").
+//! Builds run on the global rayon pool (all cores) for both libraries and are timed by the wall
+//! clock; obvhs is built with its `medium_build` preset ("around the same build time as Embree
+//! but with faster traversal").
+//!
+//! Rays are traced on one thread and timed by that thread's CPU time (what criterion reports
+//! for the ray groups), so that other processes sharing the cores do not count against either
+//! library; the summary printed at the end gives both CPU-time and wall-clock rates and the
+//! load average, and the ratio to obvhs within each group.
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 use glam::{Affine3A, Vec3};
@@ -16,7 +22,8 @@ use obvhs::cwbvh::CwBvh;
 use obvhs::{ray as ob, BvhBuildParams};
 use renderlab_trace::{Blas, Instance, Kernel, Ray, Tlas};
 use std::hint::black_box;
-use std::time::Duration;
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
 
 const GRID: usize = 708;
 const SIZE: f32 = 100.0;
@@ -170,6 +177,74 @@ fn agreement(blas: &Blas, o: &Obvhs, rays: &[Ray]) -> (usize, usize, f64) {
     (rays.len(), ours_hits, agree as f64 / rays.len() as f64)
 }
 
+/// This thread's CPU time.
+fn thread_cpu() -> Duration {
+    let mut ts = libc::timespec { tv_sec: 0, tv_nsec: 0 };
+    // SAFETY: `ts` is a valid timespec to write to.
+    unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+    Duration::new(ts.tv_sec as u64, ts.tv_nsec as u32)
+}
+
+fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+        .unwrap_or_default()
+}
+
+/// Per benchmark: rays traced, wall time, CPU time.
+static TOTALS: Mutex<Vec<(String, u64, Duration, Duration)>> = Mutex::new(Vec::new());
+
+/// Times `trace` (which traces `rays` rays) by this thread's CPU time, keeping totals for the
+/// summary.
+fn rays<M>(
+    g: &mut criterion::BenchmarkGroup<'_, M>,
+    group: &str,
+    name: &str,
+    rays: usize,
+    trace: impl Fn() -> f32,
+) where
+    M: criterion::measurement::Measurement<Value = Duration>,
+{
+    let id = format!("{group}/{name}");
+    g.bench_function(name, |b| {
+        b.iter_custom(|iters| {
+            let (wall, cpu) = (Instant::now(), thread_cpu());
+            for _ in 0..iters {
+                black_box(trace());
+            }
+            let (wall, cpu) = (wall.elapsed(), thread_cpu() - cpu);
+            let mut totals = TOTALS.lock().unwrap();
+            match totals.iter_mut().find(|t| t.0 == id) {
+                Some(t) => (t.1, t.2, t.3) = (t.1 + iters * rays as u64, t.2 + wall, t.3 + cpu),
+                None => totals.push((id.clone(), iters * rays as u64, wall, cpu)),
+            }
+            cpu
+        })
+    });
+}
+
+fn summary(loads: &[(String, String, String)]) {
+    eprintln!("\nsummary (million rays per second on one thread; ratio to obvhs by CPU time):");
+    let totals = TOTALS.lock().unwrap();
+    for (id, n, wall, cpu) in totals.iter() {
+        let group = id.split('/').next().unwrap();
+        let rate = |d: &Duration| *n as f64 / d.as_secs_f64() / 1e6;
+        let obvhs = totals
+            .iter()
+            .find(|t| t.0 == format!("{group}/obvhs"))
+            .map(|t| t.1 as f64 / t.3.as_secs_f64() / 1e6);
+        eprintln!(
+            "  {id:24} {:6.2} (CPU time)  {:6.2} (wall)  x{:.2}",
+            rate(cpu),
+            rate(wall),
+            obvhs.map_or(f64::NAN, |o| rate(cpu) / o)
+        );
+    }
+    for (group, before, after) in loads {
+        eprintln!("  load average during {group}: {before} -> {after}");
+    }
+}
+
 fn bench(c: &mut Criterion) {
     let (pos, tris) = terrain();
     let ob_tris = ob_triangles(&pos, &tris);
@@ -203,6 +278,7 @@ fn bench(c: &mut Criterion) {
     let occluded = shadow.iter().filter(|r| blas.any_hit(r)).count();
     eprintln!("shadow: {} rays, {occluded} occluded", shadow.len());
 
+    eprintln!("load average before the builds: {}", load_average());
     let mut g = c.benchmark_group("build");
     g.sample_size(10).measurement_time(Duration::from_secs(20));
     g.throughput(Throughput::Elements(tris.len() as u64));
@@ -211,38 +287,47 @@ fn bench(c: &mut Criterion) {
         b.iter_batched(|| (), |_| ob_build(black_box(&ob_tris)), BatchSize::PerIteration)
     });
     g.finish();
+    eprintln!("load average after the builds: {}", load_average());
 
+    let mut loads = Vec::new();
+    let before = load_average();
     let mut g = c.benchmark_group("primary");
     g.sample_size(30).measurement_time(Duration::from_secs(15));
     g.throughput(Throughput::Elements(primary.len() as u64));
-    g.bench_function("ours", |b| b.iter(|| trace_ours(&blas, black_box(&primary))));
-    g.bench_function("obvhs", |b| b.iter(|| trace_obvhs(&obvhs, black_box(&ob_primary))));
-    g.bench_function("ours-scalar", |b| b.iter(|| trace_ours(&scalar, black_box(&primary))));
-    g.bench_function("ours-tlas", |b| {
-        b.iter(|| black_box(&primary).iter().map(|r| tlas.closest_hit(r).map_or(0.0, |h| h.t)).sum::<f32>())
+    rays(&mut g, "primary", "ours", primary.len(), || trace_ours(&blas, black_box(&primary)));
+    rays(&mut g, "primary", "obvhs", primary.len(), || trace_obvhs(&obvhs, black_box(&ob_primary)));
+    rays(&mut g, "primary", "ours-scalar", primary.len(), || trace_ours(&scalar, black_box(&primary)));
+    rays(&mut g, "primary", "ours-tlas", primary.len(), || {
+        black_box(&primary).iter().map(|r| tlas.closest_hit(r).map_or(0.0, |h| h.t)).sum::<f32>()
     });
     g.finish();
+    loads.push(("primary".to_string(), before, load_average()));
 
+    let before = load_average();
     let mut g = c.benchmark_group("incoherent");
     g.sample_size(30).measurement_time(Duration::from_secs(15));
     g.throughput(Throughput::Elements(bounce.len() as u64));
-    g.bench_function("ours", |b| b.iter(|| trace_ours(&blas, black_box(&bounce))));
-    g.bench_function("obvhs", |b| b.iter(|| trace_obvhs(&obvhs, black_box(&ob_bounce))));
+    rays(&mut g, "incoherent", "ours", bounce.len(), || trace_ours(&blas, black_box(&bounce)));
+    rays(&mut g, "incoherent", "obvhs", bounce.len(), || trace_obvhs(&obvhs, black_box(&ob_bounce)));
     g.finish();
+    loads.push(("incoherent".to_string(), before, load_average()));
 
+    let before = load_average();
     let mut g = c.benchmark_group("shadow");
     g.sample_size(30).measurement_time(Duration::from_secs(10));
     g.throughput(Throughput::Elements(shadow.len() as u64));
-    g.bench_function("ours", |b| b.iter(|| black_box(&shadow).iter().filter(|r| blas.any_hit(r)).count()));
-    g.bench_function("obvhs", |b| {
-        b.iter(|| {
-            black_box(&ob_shadow)
-                .iter()
-                .filter(|r| !obvhs.bvh.ray_traverse_miss(**r, |ray, id| obvhs.tris[id].intersect(ray)))
-                .count()
-        })
+    rays(&mut g, "shadow", "ours", shadow.len(), || {
+        black_box(&shadow).iter().filter(|r| blas.any_hit(r)).count() as f32
+    });
+    rays(&mut g, "shadow", "obvhs", shadow.len(), || {
+        black_box(&ob_shadow)
+            .iter()
+            .filter(|r| !obvhs.bvh.ray_traverse_miss(**r, |ray, id| obvhs.tris[id].intersect(ray)))
+            .count() as f32
     });
     g.finish();
+    loads.push(("shadow".to_string(), before, load_average()));
+    summary(&loads);
 }
 
 criterion_group!(benches, bench);
