@@ -211,20 +211,29 @@ pub fn build(mut refs: Vec<PrimRef>, params: &SahParams) -> Bvh2 {
     let mut nodes = vec![Node2::default(); 2 * refs.len() - 1];
     let params = SahParams { max_leaf: params.max_leaf.max(1), block: params.block.max(1), ..*params };
     let bounds = Bounds::of(&refs);
-    build_node(&mut refs, 0, &mut nodes, 0, 0, bounds, &params, &mut Bins::new());
+    let at = At { first: 0, slot: 0, depth: 0 };
+    build_node(&mut refs, &mut nodes, at, bounds, &params, &mut Bins::new());
     Bvh2 { nodes, refs }
+}
+
+/// Where a subtree goes: its first primitive's position in the final order, its root's slot,
+/// its root's depth.
+#[derive(Clone, Copy, Debug)]
+struct At {
+    first: usize,
+    slot: u32,
+    depth: usize,
 }
 
 fn build_node(
     refs: &mut [PrimRef],
-    first: usize,
     nodes: &mut [Node2],
-    slot: u32,
-    depth: usize,
+    at: At,
     bounds: Bounds,
     p: &SahParams,
     scratch: &mut Bins,
 ) {
+    let At { first, slot, depth } = at;
     let n = refs.len();
     let fits_leaf = n <= p.max_leaf;
     // A leaf of one block costs the parent's area; any split costs at least that much more.
@@ -260,25 +269,16 @@ fn build_node(
     nodes[0] = Node2 { min, a: slot + 1, max, b: right };
     let (left_nodes, right_nodes) = nodes[1..].split_at_mut(2 * mid - 1);
     let (left_refs, right_refs) = refs.split_at_mut(mid);
+    let left_at = At { first, slot: slot + 1, depth: depth + 1 };
+    let right_at = At { first: first + mid, slot: right, depth: depth + 1 };
     if n >= PAR_NODE {
         rayon::join(
-            || build_node(left_refs, first, left_nodes, slot + 1, depth + 1, left_bounds, p, scratch),
-            || {
-                build_node(
-                    right_refs,
-                    first + mid,
-                    right_nodes,
-                    right,
-                    depth + 1,
-                    right_bounds,
-                    p,
-                    &mut Bins::new(),
-                )
-            },
+            || build_node(left_refs, left_nodes, left_at, left_bounds, p, scratch),
+            || build_node(right_refs, right_nodes, right_at, right_bounds, p, &mut Bins::new()),
         );
     } else {
-        build_node(left_refs, first, left_nodes, slot + 1, depth + 1, left_bounds, p, scratch);
-        build_node(right_refs, first + mid, right_nodes, right, depth + 1, right_bounds, p, scratch);
+        build_node(left_refs, left_nodes, left_at, left_bounds, p, scratch);
+        build_node(right_refs, right_nodes, right_at, right_bounds, p, scratch);
     }
 }
 

@@ -21,14 +21,14 @@ impl Backend for Scalar {
     unsafe fn node(q: &RayQuery, node: &WideNode, t_max: f32) -> (u32, [f32; 8]) {
         let mut mask = 0;
         let mut dist = [0.0; WIDTH];
-        for i in 0..WIDTH {
+        for (i, d) in dist.iter_mut().enumerate() {
             let slab = |a: usize, row: usize| (node.bounds[row][i] - q.org[a]) * q.inv[a];
             let near =
                 max_ps(slab(0, q.near[0]), max_ps(slab(1, q.near[1]), max_ps(slab(2, q.near[2]), q.t_min)));
             let far =
                 min_ps(slab(0, q.far[0]), min_ps(slab(1, q.far[1]), min_ps(slab(2, q.far[2]), t_max))) * IZE;
             mask |= ((near <= far) as u32) << i;
-            dist[i] = near;
+            *d = near;
         }
         (mask, dist)
     }
