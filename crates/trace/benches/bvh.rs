@@ -1,0 +1,334 @@
+//! Our BVH against `obvhs` (a fast Rust BVH: PLOC build, compressed 8-wide CWBVH nodes): the
+//! same triangles, the same rays, one thread tracing (rays per second per core).
+//!
+//! Scene: a procedural terrain of 708 × 708 quads (1,002,528 triangles), displaced by a sum of
+//! ridged sine octaves into hills and canyons. Primary rays: a 512 × 512 pinhole camera looking
+//! across it. Incoherent rays: one cosine-weighted diffuse bounce from every primary hit.
+//! Shadow rays: from every primary hit towards a point light (any-hit).
+//!
+//! Builds run on the global rayon pool (all cores) for both libraries and are timed by the wall
+//! clock; obvhs is built with its `medium_build` preset ("around the same build time as Embree
+//! but with faster traversal").
+//!
+//! Rays are traced on one thread and timed by that thread's CPU time (what criterion reports
+//! for the ray groups), so that other processes sharing the cores do not count against either
+//! library; the summary printed at the end gives both CPU-time and wall-clock rates and the
+//! load average, and the ratio to obvhs within each group.
+
+use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
+use glam::{Affine3A, Vec3};
+use obvhs::cwbvh::builder::build_cwbvh_from_tris;
+use obvhs::cwbvh::CwBvh;
+use obvhs::{ray as ob, BvhBuildParams};
+use renderlab_trace::{Blas, Instance, Kernel, Ray, Tlas};
+use std::hint::black_box;
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+const GRID: usize = 708;
+const SIZE: f32 = 100.0;
+const WIDTH: usize = 512;
+const HEIGHT: usize = 512;
+
+fn height(x: f32, z: f32) -> f32 {
+    let mut h = 0.0;
+    let (mut amp, mut freq) = (9.0f32, 0.045f32);
+    for o in 0..7 {
+        let a = o as f32 * 1.7 + 0.3;
+        let (s, c) = a.sin_cos();
+        let u = (x * c + z * s) * freq;
+        let v = (z * c - x * s) * freq;
+        // Ridged: sharp crests and round valleys.
+        h += amp * (1.0 - (u.sin() * (v * 0.8 + o as f32).cos()).abs() * 2.0);
+        amp *= 0.5;
+        freq *= 2.03;
+    }
+    h
+}
+
+/// The terrain: positions and indexed triangles.
+fn terrain() -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    let n = GRID;
+    let mut pos = Vec::with_capacity((n + 1) * (n + 1));
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, z) = (i as f32 / n as f32 * SIZE, j as f32 / n as f32 * SIZE);
+            pos.push(Vec3::new(x, height(x, z), z));
+        }
+    }
+    let mut tris = Vec::with_capacity(2 * n * n);
+    let at = |i: usize, j: usize| (j * (n + 1) + i) as u32;
+    for j in 0..n {
+        for i in 0..n {
+            tris.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+            tris.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+        }
+    }
+    (pos, tris)
+}
+
+fn camera_rays() -> Vec<Ray> {
+    let eye = Vec3::new(50.0, 32.0, -12.0);
+    let forward = (Vec3::new(50.0, 0.0, 45.0) - eye).normalize();
+    let right = forward.cross(Vec3::Y).normalize();
+    let up = right.cross(forward);
+    let half = (55f32.to_radians() / 2.0).tan();
+    let mut rays = Vec::with_capacity(WIDTH * HEIGHT);
+    for y in 0..HEIGHT {
+        for x in 0..WIDTH {
+            let sx = ((x as f32 + 0.5) / WIDTH as f32 * 2.0 - 1.0) * half;
+            let sy = (1.0 - (y as f32 + 0.5) / HEIGHT as f32 * 2.0) * half;
+            rays.push(Ray::new(eye, (forward + right * sx + up * sy).normalize()));
+        }
+    }
+    rays
+}
+
+/// A small deterministic generator for the bounce directions.
+struct Pcg(u64);
+
+impl Pcg {
+    fn next(&mut self) -> f32 {
+        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        ((self.0 >> 40) as f32) / (1u64 << 24) as f32
+    }
+}
+
+/// From every primary hit: a cosine-weighted bounce about the facing geometric normal, and a
+/// shadow ray towards a point light.
+fn secondary_rays(blas: &Blas, pos: &[Vec3], tris: &[[u32; 3]], primary: &[Ray]) -> (Vec<Ray>, Vec<Ray>) {
+    let light = Vec3::new(20.0, 60.0, 80.0);
+    let mut rng = Pcg(7);
+    let (mut bounce, mut shadow) = (Vec::new(), Vec::new());
+    for ray in primary {
+        let Some(hit) = blas.closest_hit(ray) else { continue };
+        let [a, b, c] = tris[hit.primitive as usize].map(|i| pos[i as usize]);
+        let mut n = (b - a).cross(c - a).normalize();
+        if n.dot(ray.dir) > 0.0 {
+            n = -n;
+        }
+        let p = ray.at(hit.t) + n * 1e-3;
+        let (t, s) = n.any_orthonormal_pair();
+        let (r1, r2) = (rng.next(), rng.next());
+        let (sin_phi, cos_phi) = (2.0 * std::f32::consts::PI * r1).sin_cos();
+        let r = r2.sqrt();
+        let d = t * (r * cos_phi) + s * (r * sin_phi) + n * (1.0 - r2).max(0.0).sqrt();
+        bounce.push(Ray::new(p, d.normalize()));
+        let to_light = light - p;
+        shadow.push(Ray::segment(p, to_light.normalize(), 0.0, to_light.length()));
+    }
+    (bounce, shadow)
+}
+
+fn ob_ray(r: &Ray) -> ob::Ray {
+    let v = |v: Vec3| glam_obvhs::vec3a(v.x, v.y, v.z);
+    ob::Ray::new(v(r.origin), v(r.dir), r.t_min, r.t_max)
+}
+
+struct Obvhs {
+    bvh: CwBvh,
+    /// The triangles in the order of the BVH's primitive indices (as obvhs's examples do).
+    tris: Vec<obvhs::triangle::Triangle>,
+}
+
+fn ob_triangles(pos: &[Vec3], tris: &[[u32; 3]]) -> Vec<obvhs::triangle::Triangle> {
+    let v = |i: u32| {
+        let p = pos[i as usize];
+        glam_obvhs::vec3a(p.x, p.y, p.z)
+    };
+    tris.iter().map(|t| obvhs::triangle::Triangle { v0: v(t[0]), v1: v(t[1]), v2: v(t[2]) }).collect()
+}
+
+fn ob_build(tris: &[obvhs::triangle::Triangle]) -> Obvhs {
+    let bvh = build_cwbvh_from_tris(tris, BvhBuildParams::medium_build(), &mut Duration::default());
+    let tris = bvh.primitive_indices.iter().map(|&i| tris[i as usize]).collect();
+    Obvhs { bvh, tris }
+}
+
+fn ob_closest(o: &Obvhs, r: &ob::Ray) -> Option<(f32, u32)> {
+    let mut hit = ob::RayHit::none();
+    o.bvh
+        .ray_traverse(*r, &mut hit, |ray, id| o.tris[id].intersect(ray))
+        .then(|| (hit.t, o.bvh.primitive_indices[hit.primitive_id as usize]))
+}
+
+/// Sums of hit distances, so that no trace is optimised away.
+fn trace_ours(blas: &Blas, rays: &[Ray]) -> f32 {
+    rays.iter().map(|r| blas.closest_hit(r).map_or(0.0, |h| h.t)).sum()
+}
+
+fn trace_obvhs(o: &Obvhs, rays: &[ob::Ray]) -> f32 {
+    rays.iter().map(|r| ob_closest(o, r).map_or(0.0, |h| h.0)).sum()
+}
+
+/// How often the two agree (both miss, or both hit within 1e-4 relative distance).
+fn agreement(blas: &Blas, o: &Obvhs, rays: &[Ray]) -> (usize, usize, f64) {
+    let (mut ours_hits, mut agree) = (0, 0);
+    for r in rays {
+        let a = blas.closest_hit(r);
+        let b = ob_closest(o, &ob_ray(r));
+        ours_hits += a.is_some() as usize;
+        agree += match (a, b) {
+            (None, None) => 1,
+            (Some(a), Some((t, _))) => ((a.t - t).abs() <= 1e-4 * a.t.max(1.0)) as usize,
+            _ => 0,
+        };
+    }
+    (rays.len(), ours_hits, agree as f64 / rays.len() as f64)
+}
+
+/// This thread's CPU time.
+fn thread_cpu() -> Duration {
+    let mut ts = libc::timespec { tv_sec: 0, tv_nsec: 0 };
+    // SAFETY: `ts` is a valid timespec to write to.
+    unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+    Duration::new(ts.tv_sec as u64, ts.tv_nsec as u32)
+}
+
+fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+        .unwrap_or_default()
+}
+
+/// Per benchmark: rays traced, wall time, CPU time.
+static TOTALS: Mutex<Vec<(String, u64, Duration, Duration)>> = Mutex::new(Vec::new());
+
+/// Times `trace` (which traces `rays` rays) by this thread's CPU time, keeping totals for the
+/// summary.
+fn rays<M>(
+    g: &mut criterion::BenchmarkGroup<'_, M>,
+    group: &str,
+    name: &str,
+    rays: usize,
+    trace: impl Fn() -> f32,
+) where
+    M: criterion::measurement::Measurement<Value = Duration>,
+{
+    let id = format!("{group}/{name}");
+    g.bench_function(name, |b| {
+        b.iter_custom(|iters| {
+            let (wall, cpu) = (Instant::now(), thread_cpu());
+            for _ in 0..iters {
+                black_box(trace());
+            }
+            let (wall, cpu) = (wall.elapsed(), thread_cpu() - cpu);
+            let mut totals = TOTALS.lock().unwrap();
+            match totals.iter_mut().find(|t| t.0 == id) {
+                Some(t) => (t.1, t.2, t.3) = (t.1 + iters * rays as u64, t.2 + wall, t.3 + cpu),
+                None => totals.push((id.clone(), iters * rays as u64, wall, cpu)),
+            }
+            cpu
+        })
+    });
+}
+
+fn summary(loads: &[(String, String, String)]) {
+    eprintln!("\nsummary (million rays per second on one thread; ratio to obvhs by CPU time):");
+    let totals = TOTALS.lock().unwrap();
+    for (id, n, wall, cpu) in totals.iter() {
+        let group = id.split('/').next().unwrap();
+        let rate = |d: &Duration| *n as f64 / d.as_secs_f64() / 1e6;
+        let obvhs = totals
+            .iter()
+            .find(|t| t.0 == format!("{group}/obvhs"))
+            .map(|t| t.1 as f64 / t.3.as_secs_f64() / 1e6);
+        eprintln!(
+            "  {id:24} {:6.2} (CPU time)  {:6.2} (wall)  x{:.2}",
+            rate(cpu),
+            rate(wall),
+            obvhs.map_or(f64::NAN, |o| rate(cpu) / o)
+        );
+    }
+    for (group, before, after) in loads {
+        eprintln!("  load average during {group}: {before} -> {after}");
+    }
+}
+
+fn bench(c: &mut Criterion) {
+    let (pos, tris) = terrain();
+    let ob_tris = ob_triangles(&pos, &tris);
+    let blas = Blas::build(&pos, &tris).unwrap();
+    let scalar = blas.clone().with_kernel(Kernel::Scalar);
+    let tlas = Tlas::build(vec![blas.clone()], &[Instance::new(0, Affine3A::IDENTITY)]).unwrap();
+    let obvhs = ob_build(&ob_tris);
+    let primary = camera_rays();
+    let (bounce, shadow) = secondary_rays(&blas, &pos, &tris, &primary);
+    let ob_primary: Vec<ob::Ray> = primary.iter().map(ob_ray).collect();
+    let ob_bounce: Vec<ob::Ray> = bounce.iter().map(ob_ray).collect();
+    let ob_shadow: Vec<ob::Ray> = shadow.iter().map(ob_ray).collect();
+
+    eprintln!(
+        "scene: {} triangles; ours: {} wide nodes, {} leaf blocks, depth {}, {:.1} MiB; obvhs: {} nodes",
+        tris.len(),
+        blas.node_count(),
+        blas.block_count(),
+        blas.depth(),
+        blas.memory_bytes() as f64 / (1 << 20) as f64,
+        obvhs.bvh.nodes.len()
+    );
+    for (name, rays) in [("primary", &primary), ("bounce", &bounce)] {
+        let (n, hits, agree) = agreement(&blas, &obvhs, rays);
+        eprintln!(
+            "{name}: {n} rays, {hits} hit ({:.1}%), ours and obvhs agree on {:.4}%",
+            100.0 * hits as f64 / n as f64,
+            100.0 * agree
+        );
+    }
+    let occluded = shadow.iter().filter(|r| blas.any_hit(r)).count();
+    eprintln!("shadow: {} rays, {occluded} occluded", shadow.len());
+
+    eprintln!("load average before the builds: {}", load_average());
+    let mut g = c.benchmark_group("build");
+    g.sample_size(10).measurement_time(Duration::from_secs(20));
+    g.throughput(Throughput::Elements(tris.len() as u64));
+    g.bench_function("ours", |b| b.iter(|| Blas::build(black_box(&pos), black_box(&tris)).unwrap()));
+    g.bench_function("obvhs", |b| {
+        b.iter_batched(|| (), |_| ob_build(black_box(&ob_tris)), BatchSize::PerIteration)
+    });
+    g.finish();
+    eprintln!("load average after the builds: {}", load_average());
+
+    let mut loads = Vec::new();
+    let before = load_average();
+    let mut g = c.benchmark_group("primary");
+    g.sample_size(30).measurement_time(Duration::from_secs(15));
+    g.throughput(Throughput::Elements(primary.len() as u64));
+    rays(&mut g, "primary", "ours", primary.len(), || trace_ours(&blas, black_box(&primary)));
+    rays(&mut g, "primary", "obvhs", primary.len(), || trace_obvhs(&obvhs, black_box(&ob_primary)));
+    rays(&mut g, "primary", "ours-scalar", primary.len(), || trace_ours(&scalar, black_box(&primary)));
+    rays(&mut g, "primary", "ours-tlas", primary.len(), || {
+        black_box(&primary).iter().map(|r| tlas.closest_hit(r).map_or(0.0, |h| h.t)).sum::<f32>()
+    });
+    g.finish();
+    loads.push(("primary".to_string(), before, load_average()));
+
+    let before = load_average();
+    let mut g = c.benchmark_group("incoherent");
+    g.sample_size(30).measurement_time(Duration::from_secs(15));
+    g.throughput(Throughput::Elements(bounce.len() as u64));
+    rays(&mut g, "incoherent", "ours", bounce.len(), || trace_ours(&blas, black_box(&bounce)));
+    rays(&mut g, "incoherent", "obvhs", bounce.len(), || trace_obvhs(&obvhs, black_box(&ob_bounce)));
+    g.finish();
+    loads.push(("incoherent".to_string(), before, load_average()));
+
+    let before = load_average();
+    let mut g = c.benchmark_group("shadow");
+    g.sample_size(30).measurement_time(Duration::from_secs(10));
+    g.throughput(Throughput::Elements(shadow.len() as u64));
+    rays(&mut g, "shadow", "ours", shadow.len(), || {
+        black_box(&shadow).iter().filter(|r| blas.any_hit(r)).count() as f32
+    });
+    rays(&mut g, "shadow", "obvhs", shadow.len(), || {
+        black_box(&ob_shadow)
+            .iter()
+            .filter(|r| !obvhs.bvh.ray_traverse_miss(**r, |ray, id| obvhs.tris[id].intersect(ray)))
+            .count() as f32
+    });
+    g.finish();
+    loads.push(("shadow".to_string(), before, load_average()));
+    summary(&loads);
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

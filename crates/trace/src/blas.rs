@@ -1,0 +1,134 @@
+//! The bottom level: one 8-wide BVH over one mesh's triangles, in the mesh's own (object)
+//! space, like DXR's bottom-level acceleration structure.
+
+use crate::aabb::Aabb;
+use crate::build::binned::{self, PrimRef, SahParams, MAX_PRIMS};
+use crate::build::collapse::collapse;
+use crate::error::BuildError;
+use crate::kernel::Kernel;
+use crate::node::{TriBlock, WideNode, BLOCK, LEAF_BIT};
+use crate::triangle::is_hittable;
+use glam::Vec3;
+use rayon::prelude::*;
+
+/// The SAH of bottom levels: leaves of up to one 4-triangle block, and a node visit priced as
+/// one block test (both are one vector operation on a handful of registers).
+pub const BLAS_SAH: SahParams = SahParams { max_leaf: BLOCK, block: BLOCK, traversal_cost: 1.0 };
+
+/// A mesh's BVH: 8-wide nodes over leaves of up to four triangles, stored with the leaves'
+/// vertices (so a query never reads the mesh).
+#[derive(Clone, Debug)]
+pub struct Blas {
+    pub(crate) nodes: Vec<WideNode>,
+    pub(crate) blocks: Vec<TriBlock>,
+    pub(crate) root: u32,
+    pub(crate) kernel: Kernel,
+    bounds: Aabb,
+    triangles: usize,
+    hittable: usize,
+}
+
+impl Blas {
+    /// Builds the BVH of an indexed mesh. Triangles with a non-finite vertex or zero area are
+    /// left out (they can never be hit; see [`crate::triangle::is_hittable`]).
+    pub fn build(positions: &[Vec3], indices: &[[u32; 3]]) -> Result<Blas, BuildError> {
+        if let Some((triangle, &index)) = indices
+            .iter()
+            .enumerate()
+            .find_map(|(t, ix)| ix.iter().find(|&&i| i as usize >= positions.len()).map(|i| (t, i)))
+        {
+            return Err(BuildError::IndexOutOfRange { triangle, index, vertices: positions.len() });
+        }
+        Blas::build_with(indices.len(), |t| indices[t].map(|i| positions[i as usize]))
+    }
+
+    /// Builds the BVH of a triangle soup (three vertices per triangle).
+    pub fn from_triangles(triangles: &[[Vec3; 3]]) -> Result<Blas, BuildError> {
+        Blas::build_with(triangles.len(), |t| triangles[t])
+    }
+
+    fn build_with(count: usize, tri: impl Fn(usize) -> [Vec3; 3] + Sync) -> Result<Blas, BuildError> {
+        if count > MAX_PRIMS {
+            return Err(BuildError::TooMany { what: "triangles", count, limit: MAX_PRIMS });
+        }
+        let refs: Vec<PrimRef> = (0..count)
+            .into_par_iter()
+            .with_min_len(4096)
+            .filter_map(|t| {
+                let [a, b, c] = tri(t);
+                is_hittable(a, b, c).then(|| PrimRef::new(&Aabb::from_points(&[a, b, c]), t as u32))
+            })
+            .collect();
+        let hittable = refs.len();
+        let bvh = binned::build(refs, &BLAS_SAH);
+        let mut blocks = Vec::with_capacity(hittable.div_ceil(3));
+        let (nodes, root) = collapse(&bvh, &mut |leaf: &[PrimRef]| {
+            blocks.push(TriBlock::new(leaf.iter().map(|r| (r.index(), tri(r.index() as usize)))));
+            LEAF_BIT | (blocks.len() - 1) as u32
+        });
+        let bounds = if hittable == 0 { Aabb::EMPTY } else { bvh.nodes[0].bounds() };
+        Ok(Blas { nodes, blocks, root, kernel: Kernel::best(), bounds, triangles: count, hittable })
+    }
+
+    /// The same hierarchy queried with `kernel` (the scalar kernel where the CPU lacks it).
+    pub fn with_kernel(mut self, kernel: Kernel) -> Blas {
+        self.kernel = if kernel.available() { kernel } else { Kernel::Scalar };
+        self
+    }
+
+    /// The kernel queries run on.
+    pub fn kernel(&self) -> Kernel {
+        self.kernel
+    }
+
+    /// The bounds of the hittable triangles (empty when there are none).
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// Triangles given to the build.
+    pub fn triangle_count(&self) -> usize {
+        self.triangles
+    }
+
+    /// Triangles in the hierarchy (those that can be hit).
+    pub fn hittable_count(&self) -> usize {
+        self.hittable
+    }
+
+    /// Wide nodes.
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Leaf blocks.
+    pub fn block_count(&self) -> usize {
+        self.blocks.len()
+    }
+
+    /// The wide nodes, root first (for inspection, and for uploading to a GPU).
+    pub fn nodes(&self) -> &[WideNode] {
+        &self.nodes
+    }
+
+    /// The leaf blocks.
+    pub fn blocks(&self) -> &[TriBlock] {
+        &self.blocks
+    }
+
+    /// The root's reference: node 0, a leaf (a mesh of at most four triangles) or
+    /// [`crate::node::EMPTY`].
+    pub fn root(&self) -> u32 {
+        self.root
+    }
+
+    /// Wide levels on the longest root-to-leaf path (0 when the root is a leaf or empty).
+    pub fn depth(&self) -> usize {
+        crate::node::depth(&self.nodes, self.root)
+    }
+
+    /// Bytes of nodes and leaf blocks.
+    pub fn memory_bytes(&self) -> usize {
+        std::mem::size_of_val(self.nodes.as_slice()) + std::mem::size_of_val(self.blocks.as_slice())
+    }
+}

@@ -1,0 +1,138 @@
+//! The top level: an 8-wide BVH over instances (a mesh placed by an affine transform), like
+//! DXR's top-level acceleration structure. A ray reaching an instance's leaf is carried into
+//! the mesh's space by the instance's world-to-object transform and continues in the mesh's
+//! bottom level with the same distances.
+
+use crate::aabb::Aabb;
+use crate::blas::Blas;
+use crate::build::binned::{self, PrimRef, SahParams, MAX_PRIMS};
+use crate::build::collapse::collapse;
+use crate::error::BuildError;
+use crate::kernel::Kernel;
+use crate::node::{WideNode, LEAF_BIT};
+use glam::Affine3A;
+
+/// The SAH of the top level: one instance per leaf, a node visit priced as an instance visit.
+pub const TLAS_SAH: SahParams = SahParams { max_leaf: 1, block: 1, traversal_cost: 1.0 };
+
+/// A mesh placed in the world.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Instance {
+    /// Index of the mesh in the list given to [`Tlas::build`].
+    pub mesh: u32,
+    /// Object to world.
+    pub object_to_world: Affine3A,
+}
+
+impl Instance {
+    /// An instance of `mesh` placed by `object_to_world`.
+    pub fn new(mesh: u32, object_to_world: Affine3A) -> Instance {
+        Instance { mesh, object_to_world }
+    }
+
+    /// World to object, or `None` when the transform is not finite or not invertible; such an
+    /// instance is never hit (like a zero-scale instance in DXR).
+    pub fn world_to_object(&self) -> Option<Affine3A> {
+        let m = &self.object_to_world;
+        let det = m.matrix3.determinant();
+        if !(m.is_finite() && det.is_finite() && det != 0.0) {
+            return None;
+        }
+        let inv = m.inverse();
+        inv.is_finite().then_some(inv)
+    }
+}
+
+/// What a query needs of an instance.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Placed {
+    pub(crate) mesh: u32,
+    pub(crate) world_to_object: Affine3A,
+}
+
+/// The scene's acceleration structure: its meshes' bottom levels and a top level over the
+/// instances. Instance `i` of the list given to [`Tlas::build`] reports `instance == i`.
+#[derive(Clone, Debug)]
+pub struct Tlas {
+    pub(crate) meshes: Vec<Blas>,
+    pub(crate) placed: Vec<Placed>,
+    pub(crate) nodes: Vec<WideNode>,
+    pub(crate) root: u32,
+    pub(crate) kernel: Kernel,
+    bounds: Aabb,
+    live: usize,
+}
+
+impl Tlas {
+    /// Builds the top level over `instances` of `meshes`. Instances whose transform is not
+    /// invertible or whose mesh has nothing to hit are left out of the hierarchy.
+    pub fn build(meshes: Vec<Blas>, instances: &[Instance]) -> Result<Tlas, BuildError> {
+        if instances.len() > MAX_PRIMS {
+            return Err(BuildError::TooMany { what: "instances", count: instances.len(), limit: MAX_PRIMS });
+        }
+        let mut placed = Vec::with_capacity(instances.len());
+        let mut refs = Vec::with_capacity(instances.len());
+        for (i, inst) in instances.iter().enumerate() {
+            let Some(blas) = meshes.get(inst.mesh as usize) else {
+                return Err(BuildError::MeshOutOfRange {
+                    instance: i,
+                    mesh: inst.mesh,
+                    meshes: meshes.len(),
+                });
+            };
+            let w2o = inst.world_to_object();
+            placed.push(Placed { mesh: inst.mesh, world_to_object: w2o.unwrap_or(Affine3A::IDENTITY) });
+            if let Some(bounds) = w2o.map(|_| blas.bounds().transformed(&inst.object_to_world)) {
+                if !bounds.is_empty() && bounds.min.is_finite() && bounds.max.is_finite() {
+                    refs.push(PrimRef::new(&bounds, i as u32));
+                }
+            }
+        }
+        let live = refs.len();
+        let bvh = binned::build(refs, &TLAS_SAH);
+        let (nodes, root) = collapse(&bvh, &mut |leaf: &[PrimRef]| LEAF_BIT | leaf[0].index());
+        let bounds = if live == 0 { Aabb::EMPTY } else { bvh.nodes[0].bounds() };
+        Ok(Tlas { meshes, placed, nodes, root, kernel: Kernel::best(), bounds, live })
+    }
+
+    /// The same structure queried with `kernel` (the scalar kernel where the CPU lacks it).
+    pub fn with_kernel(mut self, kernel: Kernel) -> Tlas {
+        self.kernel = if kernel.available() { kernel } else { Kernel::Scalar };
+        self
+    }
+
+    /// The kernel queries run on.
+    pub fn kernel(&self) -> Kernel {
+        self.kernel
+    }
+
+    /// The meshes' bottom levels.
+    pub fn meshes(&self) -> &[Blas] {
+        &self.meshes
+    }
+
+    /// Instances given to the build.
+    pub fn instance_count(&self) -> usize {
+        self.placed.len()
+    }
+
+    /// Instances in the hierarchy (those that can be hit).
+    pub fn live_instance_count(&self) -> usize {
+        self.live
+    }
+
+    /// The world bounds of the instances in the hierarchy.
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// Top-level wide levels on the longest path (0 when the root is a leaf or empty).
+    pub fn depth(&self) -> usize {
+        crate::node::depth(&self.nodes, self.root)
+    }
+
+    /// Top-level wide nodes.
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+}

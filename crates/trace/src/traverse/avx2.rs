@@ -1,0 +1,165 @@
+//! The AVX2 kernel: a wide node's eight slab tests in one 256-bit register per plane, a leaf's
+//! four watertight triangle tests in one 128-bit register per quantity. Each lane performs
+//! exactly the scalar kernel's operations (no fused multiply-adds, `maxps`/`minps` operand
+//! order as the scalar `max_ps`/`min_ps`), so both kernels produce the same bits.
+
+#![cfg(target_arch = "x86_64")]
+
+use crate::node::{TriBlock, WideNode};
+use crate::traverse::backend::{Backend, BlockHits, RayQuery, IZE};
+use crate::triangle::{edge_functions_f64, TriRay};
+use std::arch::x86_64::*;
+
+/// The AVX2 kernel.
+#[derive(Clone, Copy, Debug)]
+pub struct Avx2;
+
+/// A ray broadcast into registers.
+#[derive(Clone, Copy, Debug)]
+pub struct Prepared {
+    org: [__m256; 3],
+    inv: [__m256; 3],
+    near: [usize; 3],
+    far: [usize; 3],
+    t_min: __m256,
+    tri: TriRay,
+    tri_org: [__m128; 3],
+    shear: [__m128; 3],
+    t_min4: __m128,
+}
+
+impl Backend for Avx2 {
+    type Prepared = Prepared;
+
+    #[inline]
+    #[target_feature(enable = "avx2")]
+    unsafe fn prepare(q: &RayQuery) -> Prepared {
+        let k = q.tri.k;
+        Prepared {
+            org: [_mm256_set1_ps(q.org[0]), _mm256_set1_ps(q.org[1]), _mm256_set1_ps(q.org[2])],
+            inv: [_mm256_set1_ps(q.inv[0]), _mm256_set1_ps(q.inv[1]), _mm256_set1_ps(q.inv[2])],
+            near: q.near,
+            far: q.far,
+            t_min: _mm256_set1_ps(q.t_min),
+            tri: q.tri,
+            tri_org: [
+                _mm_set1_ps(q.tri.org[k[0]]),
+                _mm_set1_ps(q.tri.org[k[1]]),
+                _mm_set1_ps(q.tri.org[k[2]]),
+            ],
+            shear: [_mm_set1_ps(q.tri.shear[0]), _mm_set1_ps(q.tri.shear[1]), _mm_set1_ps(q.tri.shear[2])],
+            t_min4: _mm_set1_ps(q.t_min),
+        }
+    }
+
+    #[inline]
+    #[target_feature(enable = "avx2")]
+    unsafe fn node(p: &Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; 8]) {
+        let b = &node.bounds;
+        // Rows are 32-byte aligned ([`WideNode`] is `align(32)`, rows are 32 bytes); the row
+        // indices are 0..6 by construction of [`RayQuery`]. (Macros rather than closures keep
+        // every intrinsic inside this function's target features.)
+        macro_rules! slab {
+            ($a:expr, $r:expr) => {
+                _mm256_mul_ps(
+                    _mm256_sub_ps(_mm256_load_ps(b.get_unchecked($r).as_ptr()), p.org[$a]),
+                    p.inv[$a],
+                )
+            };
+        }
+        let near = _mm256_max_ps(
+            slab!(0, p.near[0]),
+            _mm256_max_ps(slab!(1, p.near[1]), _mm256_max_ps(slab!(2, p.near[2]), p.t_min)),
+        );
+        let far = _mm256_mul_ps(
+            _mm256_min_ps(
+                slab!(0, p.far[0]),
+                _mm256_min_ps(slab!(1, p.far[1]), _mm256_min_ps(slab!(2, p.far[2]), _mm256_set1_ps(t_max))),
+            ),
+            _mm256_set1_ps(IZE),
+        );
+        let hit = _mm256_cmp_ps::<_CMP_LE_OQ>(near, far);
+        let mut dist = [0.0f32; 8];
+        _mm256_storeu_ps(dist.as_mut_ptr(), near);
+        (_mm256_movemask_ps(hit) as u32, dist)
+    }
+
+    #[inline]
+    #[target_feature(enable = "avx2")]
+    unsafe fn block(p: &Prepared, block: &TriBlock, t_max: f32) -> BlockHits {
+        let [kx, ky, kz] = p.tri.k;
+        let [sx, sy, sz] = p.shear;
+        // Rows are 16-byte aligned ([`TriBlock`] is `align(16)`, rows are 16 bytes); `k` is a
+        // permutation of 0..3.
+        macro_rules! rel {
+            ($j:expr) => {
+                (
+                    _mm_sub_ps(_mm_load_ps(block.v.get_unchecked(3 * $j + kx).as_ptr()), p.tri_org[0]),
+                    _mm_sub_ps(_mm_load_ps(block.v.get_unchecked(3 * $j + ky).as_ptr()), p.tri_org[1]),
+                    _mm_sub_ps(_mm_load_ps(block.v.get_unchecked(3 * $j + kz).as_ptr()), p.tri_org[2]),
+                )
+            };
+        }
+        let (a_x, a_y, a_z) = rel!(0);
+        let (b_x, b_y, b_z) = rel!(1);
+        let (c_x, c_y, c_z) = rel!(2);
+        let ax = _mm_sub_ps(a_x, _mm_mul_ps(sx, a_z));
+        let ay = _mm_sub_ps(a_y, _mm_mul_ps(sy, a_z));
+        let bx = _mm_sub_ps(b_x, _mm_mul_ps(sx, b_z));
+        let by = _mm_sub_ps(b_y, _mm_mul_ps(sy, b_z));
+        let cx = _mm_sub_ps(c_x, _mm_mul_ps(sx, c_z));
+        let cy = _mm_sub_ps(c_y, _mm_mul_ps(sy, c_z));
+        let mut u = _mm_sub_ps(_mm_mul_ps(cx, by), _mm_mul_ps(cy, bx));
+        let mut v = _mm_sub_ps(_mm_mul_ps(ax, cy), _mm_mul_ps(ay, cx));
+        let mut w = _mm_sub_ps(_mm_mul_ps(bx, ay), _mm_mul_ps(by, ax));
+        let zero = _mm_setzero_ps();
+        let on_edge =
+            _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(u, zero), _mm_cmpeq_ps(v, zero)), _mm_cmpeq_ps(w, zero));
+        let on_edge = _mm_movemask_ps(on_edge);
+        if on_edge != 0 {
+            (u, v, w) = exact_edges(on_edge, [ax, ay, bx, by, cx, cy], [u, v, w]);
+        }
+        let neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(u, zero), _mm_cmplt_ps(v, zero)), _mm_cmplt_ps(w, zero));
+        let pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(u, zero), _mm_cmpgt_ps(v, zero)), _mm_cmpgt_ps(w, zero));
+        let det = _mm_add_ps(_mm_add_ps(u, v), w);
+        let az = _mm_mul_ps(sz, a_z);
+        let bz = _mm_mul_ps(sz, b_z);
+        let cz = _mm_mul_ps(sz, c_z);
+        let tt = _mm_add_ps(_mm_add_ps(_mm_mul_ps(u, az), _mm_mul_ps(v, bz)), _mm_mul_ps(w, cz));
+        let rcp = _mm_div_ps(_mm_set1_ps(1.0), det);
+        let t = _mm_mul_ps(tt, rcp);
+        let in_range = _mm_and_ps(_mm_cmpge_ps(t, p.t_min4), _mm_cmple_ps(t, _mm_set1_ps(t_max)));
+        let ok = _mm_andnot_ps(_mm_and_ps(neg, pos), _mm_and_ps(_mm_cmpneq_ps(det, zero), in_range));
+        let mask = _mm_movemask_ps(ok) as u32;
+        let mut hits = BlockHits { mask, ..BlockHits::default() };
+        if mask != 0 {
+            _mm_storeu_ps(hits.t.as_mut_ptr(), t);
+            _mm_storeu_ps(hits.u.as_mut_ptr(), _mm_mul_ps(v, rcp));
+            _mm_storeu_ps(hits.v.as_mut_ptr(), _mm_mul_ps(w, rcp));
+        }
+        hits
+    }
+}
+
+/// Recomputes the edge functions of the lanes in `lanes` in f64, as the scalar test does.
+#[cold]
+#[inline(never)]
+#[target_feature(enable = "avx2")]
+unsafe fn exact_edges(lanes: i32, proj: [__m128; 6], uvw: [__m128; 3]) -> (__m128, __m128, __m128) {
+    let mut p = [[0.0f32; 4]; 6];
+    for (dst, src) in p.iter_mut().zip(proj) {
+        _mm_storeu_ps(dst.as_mut_ptr(), src);
+    }
+    let mut e = [[0.0f32; 4]; 3];
+    for (dst, src) in e.iter_mut().zip(uvw) {
+        _mm_storeu_ps(dst.as_mut_ptr(), src);
+    }
+    for lane in 0..4 {
+        if lanes & (1 << lane) != 0 {
+            let [u, v, w] =
+                edge_functions_f64(p[0][lane], p[1][lane], p[2][lane], p[3][lane], p[4][lane], p[5][lane]);
+            (e[0][lane], e[1][lane], e[2][lane]) = (u, v, w);
+        }
+    }
+    (_mm_loadu_ps(e[0].as_ptr()), _mm_loadu_ps(e[1].as_ptr()), _mm_loadu_ps(e[2].as_ptr()))
+}

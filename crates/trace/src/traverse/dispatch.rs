@@ -1,0 +1,77 @@
+//! The run-time choice of kernel: each query is instantiated once per kernel, the AVX2 copy
+//! inside a function compiled for AVX2, and called after the CPU check made when the
+//! hierarchy's kernel was chosen.
+
+use crate::blas::Blas;
+use crate::hit::{Hit, HitFilter};
+use crate::kernel::Kernel;
+use crate::ray::Ray;
+use crate::tlas::Tlas;
+use crate::traverse::leaves;
+use crate::traverse::scalar::Scalar;
+
+/// Which query.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Query {
+    /// The closest accepted hit.
+    Closest,
+    /// Any accepted hit.
+    Any,
+}
+
+#[cfg(target_arch = "x86_64")]
+mod simd {
+    use super::*;
+    use crate::traverse::avx2::Avx2;
+
+    #[target_feature(enable = "avx2")]
+    pub unsafe fn blas(blas: &Blas, ray: &Ray, filter: &mut impl HitFilter, query: Query) -> Option<Hit> {
+        match query {
+            Query::Closest => leaves::blas_closest::<Avx2, _>(blas, ray, filter),
+            Query::Any => leaves::blas_any::<Avx2, _>(blas, ray, filter),
+        }
+    }
+
+    #[target_feature(enable = "avx2")]
+    pub unsafe fn tlas(tlas: &Tlas, ray: &Ray, filter: &mut impl HitFilter, query: Query) -> Option<Hit> {
+        match query {
+            Query::Closest => leaves::tlas_closest::<Avx2, _>(tlas, ray, filter),
+            Query::Any => leaves::tlas_any::<Avx2, _>(tlas, ray, filter),
+        }
+    }
+}
+
+/// Runs `query` on one mesh with the mesh's kernel.
+#[inline]
+pub fn blas(blas: &Blas, ray: &Ray, filter: &mut impl HitFilter, query: Query) -> Option<Hit> {
+    match blas.kernel {
+        // SAFETY: a hierarchy's kernel is `Simd` only when the CPU has AVX2 (`with_kernel`,
+        // `Kernel::best`).
+        #[cfg(target_arch = "x86_64")]
+        Kernel::Simd => unsafe { simd::blas(blas, ray, filter, query) },
+        // SAFETY: the scalar kernel needs no CPU feature.
+        _ => unsafe {
+            match query {
+                Query::Closest => leaves::blas_closest::<Scalar, _>(blas, ray, filter),
+                Query::Any => leaves::blas_any::<Scalar, _>(blas, ray, filter),
+            }
+        },
+    }
+}
+
+/// Runs `query` on a scene with the scene's kernel.
+#[inline]
+pub fn tlas(tlas: &Tlas, ray: &Ray, filter: &mut impl HitFilter, query: Query) -> Option<Hit> {
+    match tlas.kernel {
+        // SAFETY: as in [`blas`].
+        #[cfg(target_arch = "x86_64")]
+        Kernel::Simd => unsafe { simd::tlas(tlas, ray, filter, query) },
+        // SAFETY: the scalar kernel needs no CPU feature.
+        _ => unsafe {
+            match query {
+                Query::Closest => leaves::tlas_closest::<Scalar, _>(tlas, ray, filter),
+                Query::Any => leaves::tlas_any::<Scalar, _>(tlas, ray, filter),
+            }
+        },
+    }
+}

@@ -1,0 +1,196 @@
+//! What a leaf is at each level, and the queries assembled from walks and leaves.
+//!
+//! A bottom-level leaf is a block of four triangles: the kernel tests them together and each
+//! hit lane, in lane order, is offered to the filter if it precedes the best hit so far
+//! ([`Hit::precedes`]). A top-level leaf is an instance: the ray is carried into its object
+//! space and walks the mesh's bottom level with the same (shortened) interval.
+
+use crate::blas::Blas;
+use crate::hit::{Hit, HitFilter};
+use crate::node::TriBlock;
+use crate::ray::Ray;
+use crate::tlas::Tlas;
+use crate::traverse::backend::{Backend, RayQuery};
+use crate::traverse::walk::{self, Leaves};
+use std::marker::PhantomData;
+
+/// The best hit so far, starting as a sentinel at the ray's `t_max` that every real hit there
+/// precedes.
+fn no_hit(t_max: f32) -> Hit {
+    Hit { t: t_max, u: 0.0, v: 0.0, primitive: u32::MAX, instance: u32::MAX }
+}
+
+/// Leaves of a bottom level: triangle blocks.
+struct Triangles<'a, B: Backend, F> {
+    blocks: &'a [TriBlock],
+    prepared: &'a B::Prepared,
+    instance: u32,
+    best: &'a mut Hit,
+    filter: &'a mut F,
+}
+
+impl<B: Backend, F: HitFilter> Leaves for Triangles<'_, B, F> {
+    #[inline(always)]
+    unsafe fn closest(&mut self, leaf: u32, t_max: &mut f32) {
+        debug_assert!((leaf as usize) < self.blocks.len());
+        let block = self.blocks.get_unchecked(leaf as usize);
+        let hits = B::block(self.prepared, block, *t_max);
+        let mut mask = hits.mask;
+        while mask != 0 {
+            let lane = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            let (t, primitive) = (hits.t[lane], block.prim[lane]);
+            if Hit::precedes(t, self.instance, primitive, self.best) {
+                let hit = Hit { t, u: hits.u[lane], v: hits.v[lane], primitive, instance: self.instance };
+                if self.filter.accept(&hit) {
+                    *self.best = hit;
+                    *t_max = t;
+                }
+            }
+        }
+    }
+
+    #[inline(always)]
+    unsafe fn any(&mut self, leaf: u32, t_max: f32) -> bool {
+        debug_assert!((leaf as usize) < self.blocks.len());
+        let block = self.blocks.get_unchecked(leaf as usize);
+        let hits = B::block(self.prepared, block, t_max);
+        let mut mask = hits.mask;
+        while mask != 0 {
+            let lane = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            let hit = Hit {
+                t: hits.t[lane],
+                u: hits.u[lane],
+                v: hits.v[lane],
+                primitive: block.prim[lane],
+                instance: self.instance,
+            };
+            if self.filter.accept(&hit) {
+                *self.best = hit;
+                return true;
+            }
+        }
+        false
+    }
+}
+
+/// Leaves of the top level: instances.
+struct Instances<'a, B: Backend, F> {
+    tlas: &'a Tlas,
+    ray: &'a Ray,
+    best: &'a mut Hit,
+    filter: &'a mut F,
+    backend: PhantomData<B>,
+}
+
+impl<'a, B: Backend, F: HitFilter> Instances<'a, B, F> {
+    /// The instance's mesh and the ray in its space over `[t_min, t_max]`.
+    #[inline(always)]
+    unsafe fn enter(&self, instance: u32, t_max: f32) -> Option<(&'a Blas, RayQuery)> {
+        debug_assert!((instance as usize) < self.tlas.placed.len());
+        let placed = self.tlas.placed.get_unchecked(instance as usize);
+        let mut ray = self.ray.transformed(&placed.world_to_object);
+        ray.t_max = t_max;
+        let q = RayQuery::new(&ray)?;
+        Some((self.tlas.meshes.get_unchecked(placed.mesh as usize), q))
+    }
+}
+
+impl<B: Backend, F: HitFilter> Leaves for Instances<'_, B, F> {
+    #[inline(always)]
+    unsafe fn closest(&mut self, instance: u32, t_max: &mut f32) {
+        let Some((blas, q)) = self.enter(instance, *t_max) else { return };
+        let p = B::prepare(&q);
+        let mut tris = Triangles::<B, F> {
+            blocks: &blas.blocks,
+            prepared: &p,
+            instance,
+            best: self.best,
+            filter: self.filter,
+        };
+        walk::closest::<B, _>(&blas.nodes, blas.root, &p, &mut tris, t_max);
+    }
+
+    #[inline(always)]
+    unsafe fn any(&mut self, instance: u32, t_max: f32) -> bool {
+        let Some((blas, q)) = self.enter(instance, t_max) else { return false };
+        let p = B::prepare(&q);
+        let mut tris = Triangles::<B, F> {
+            blocks: &blas.blocks,
+            prepared: &p,
+            instance,
+            best: self.best,
+            filter: self.filter,
+        };
+        walk::any::<B, _>(&blas.nodes, blas.root, &p, &mut tris, t_max)
+    }
+}
+
+/// The closest accepted hit of `ray` in one mesh.
+///
+/// # Safety
+/// The CPU has `B`'s features.
+#[inline(always)]
+pub unsafe fn blas_closest<B: Backend, F: HitFilter>(blas: &Blas, ray: &Ray, filter: &mut F) -> Option<Hit> {
+    let q = RayQuery::new(ray)?;
+    let p = B::prepare(&q);
+    let mut best = no_hit(q.t_max);
+    let mut t_max = q.t_max;
+    let mut tris = Triangles::<B, F> {
+        blocks: &blas.blocks,
+        prepared: &p,
+        instance: Hit::NO_INSTANCE,
+        best: &mut best,
+        filter,
+    };
+    walk::closest::<B, _>(&blas.nodes, blas.root, &p, &mut tris, &mut t_max);
+    (best.primitive != u32::MAX).then_some(best)
+}
+
+/// Any accepted hit of `ray` in one mesh (the first found, not the closest).
+///
+/// # Safety
+/// The CPU has `B`'s features.
+#[inline(always)]
+pub unsafe fn blas_any<B: Backend, F: HitFilter>(blas: &Blas, ray: &Ray, filter: &mut F) -> Option<Hit> {
+    let q = RayQuery::new(ray)?;
+    let p = B::prepare(&q);
+    let mut best = no_hit(q.t_max);
+    let mut tris = Triangles::<B, F> {
+        blocks: &blas.blocks,
+        prepared: &p,
+        instance: Hit::NO_INSTANCE,
+        best: &mut best,
+        filter,
+    };
+    walk::any::<B, _>(&blas.nodes, blas.root, &p, &mut tris, q.t_max).then_some(best)
+}
+
+/// The closest accepted hit of `ray` among all instances.
+///
+/// # Safety
+/// The CPU has `B`'s features.
+#[inline(always)]
+pub unsafe fn tlas_closest<B: Backend, F: HitFilter>(tlas: &Tlas, ray: &Ray, filter: &mut F) -> Option<Hit> {
+    let q = RayQuery::new(ray)?;
+    let p = B::prepare(&q);
+    let mut best = no_hit(q.t_max);
+    let mut t_max = q.t_max;
+    let mut insts = Instances::<B, F> { tlas, ray, best: &mut best, filter, backend: PhantomData };
+    walk::closest::<B, _>(&tlas.nodes, tlas.root, &p, &mut insts, &mut t_max);
+    (best.primitive != u32::MAX).then_some(best)
+}
+
+/// Any accepted hit of `ray` among all instances.
+///
+/// # Safety
+/// The CPU has `B`'s features.
+#[inline(always)]
+pub unsafe fn tlas_any<B: Backend, F: HitFilter>(tlas: &Tlas, ray: &Ray, filter: &mut F) -> Option<Hit> {
+    let q = RayQuery::new(ray)?;
+    let p = B::prepare(&q);
+    let mut best = no_hit(q.t_max);
+    let mut insts = Instances::<B, F> { tlas, ray, best: &mut best, filter, backend: PhantomData };
+    walk::any::<B, _>(&tlas.nodes, tlas.root, &p, &mut insts, q.t_max).then_some(best)
+}

@@ -1,0 +1,10 @@
+//! Traversal: one generic walk ([`walk`]) over a backend trait ([`backend`]) with two
+//! implementations, [`scalar`] and [`avx2`], that compute bit-identical node and triangle
+//! results; [`leaves`] says what a leaf is in each level; [`dispatch`] picks the kernel.
+
+pub mod avx2;
+pub mod backend;
+pub mod dispatch;
+pub mod leaves;
+pub mod scalar;
+pub mod walk;

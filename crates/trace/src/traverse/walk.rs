@@ -1,0 +1,173 @@
+//! The traversal loop, written once for every kernel and both levels.
+//!
+//! Closest hit: at a node the kernel tests all eight child boxes; one hit child is entered
+//! directly, two are ordered by entry distance (the farther pushed), more are pushed and sorted
+//! so the nearest is on top, and the nearest is entered. A leaf may shorten the ray (`t_max`);
+//! popped entries farther than the shortened ray are dropped. Any hit: the same without
+//! ordering, stopping at the first accepted hit.
+//!
+//! The stack is a fixed array: each level of a path leaves at most seven entries, and the
+//! builder bounds paths to [`MAX_DEPTH`] levels.
+
+use crate::build::binned::MAX_DEPTH;
+use crate::node::{WideNode, EMPTY, LEAF_BIT, WIDTH};
+use crate::traverse::backend::{Backend, IZE};
+use std::mem::MaybeUninit;
+
+/// Stack entries a walk can need.
+pub const STACK: usize = (WIDTH - 1) * MAX_DEPTH + 1;
+
+/// What a walk does at a leaf.
+pub trait Leaves {
+    /// Tests the leaf with payload `leaf` (its reference without [`LEAF_BIT`]) for a closer
+    /// hit, lowering `*t_max` to it.
+    ///
+    /// # Safety
+    /// The CPU has the walk's kernel features.
+    unsafe fn closest(&mut self, leaf: u32, t_max: &mut f32);
+
+    /// Whether the leaf has any accepted hit before `t_max`.
+    ///
+    /// # Safety
+    /// The CPU has the walk's kernel features.
+    unsafe fn any(&mut self, leaf: u32, t_max: f32) -> bool;
+}
+
+#[derive(Clone, Copy)]
+struct Entry {
+    node: u32,
+    dist: f32,
+}
+
+/// Walks the hierarchy `nodes` from `root` for the closest hit.
+///
+/// # Safety
+/// The CPU has `B`'s features; `nodes` and `root` come from one build (child references in
+/// range, depth within [`MAX_DEPTH`]).
+#[inline(always)]
+pub unsafe fn closest<B: Backend, L: Leaves>(
+    nodes: &[WideNode],
+    root: u32,
+    p: &B::Prepared,
+    leaves: &mut L,
+    t_max: &mut f32,
+) {
+    if root == EMPTY {
+        return;
+    }
+    let mut stack = [const { MaybeUninit::<Entry>::uninit() }; STACK];
+    let mut sp = 0usize;
+    let mut cur = root;
+    'walk: loop {
+        if cur & LEAF_BIT == 0 {
+            debug_assert!((cur as usize) < nodes.len());
+            let node = nodes.get_unchecked(cur as usize);
+            let (mut mask, dist) = B::node(p, node, *t_max);
+            if mask != 0 {
+                let i0 = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                if mask == 0 {
+                    cur = node.children[i0];
+                    continue 'walk;
+                }
+                let i1 = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                if mask == 0 {
+                    let (near, far) = if dist[i1] < dist[i0] { (i1, i0) } else { (i0, i1) };
+                    debug_assert!(sp < STACK);
+                    stack.get_unchecked_mut(sp).write(Entry { node: node.children[far], dist: dist[far] });
+                    sp += 1;
+                    cur = node.children[near];
+                    continue 'walk;
+                }
+                // Three or more: push all, then sort them so that the nearest is on top (and,
+                // at equal distances, the lowest slot).
+                let base = sp;
+                for i in [i0, i1] {
+                    stack.get_unchecked_mut(sp).write(Entry { node: node.children[i], dist: dist[i] });
+                    sp += 1;
+                }
+                while mask != 0 {
+                    let i = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    stack.get_unchecked_mut(sp).write(Entry { node: node.children[i], dist: dist[i] });
+                    sp += 1;
+                }
+                debug_assert!(sp <= STACK);
+                for k in base + 1..sp {
+                    let x = stack.get_unchecked(k).assume_init();
+                    let mut j = k;
+                    while j > base && stack.get_unchecked(j - 1).assume_init().dist <= x.dist {
+                        let y = stack.get_unchecked(j - 1).assume_init();
+                        stack.get_unchecked_mut(j).write(y);
+                        j -= 1;
+                    }
+                    stack.get_unchecked_mut(j).write(x);
+                }
+                sp -= 1;
+                cur = stack.get_unchecked(sp).assume_init().node;
+                continue 'walk;
+            }
+        } else {
+            leaves.closest(cur & !LEAF_BIT, t_max);
+        }
+        loop {
+            if sp == 0 {
+                break 'walk;
+            }
+            sp -= 1;
+            let e = stack.get_unchecked(sp).assume_init();
+            if e.dist <= *t_max * IZE {
+                cur = e.node;
+                continue 'walk;
+            }
+        }
+    }
+}
+
+/// Walks the hierarchy for any accepted hit; returns whether there is one.
+///
+/// # Safety
+/// As for [`closest`].
+#[inline(always)]
+pub unsafe fn any<B: Backend, L: Leaves>(
+    nodes: &[WideNode],
+    root: u32,
+    p: &B::Prepared,
+    leaves: &mut L,
+    t_max: f32,
+) -> bool {
+    if root == EMPTY {
+        return false;
+    }
+    let mut stack = [const { MaybeUninit::<u32>::uninit() }; STACK];
+    let mut sp = 0usize;
+    let mut cur = root;
+    loop {
+        if cur & LEAF_BIT == 0 {
+            debug_assert!((cur as usize) < nodes.len());
+            let node = nodes.get_unchecked(cur as usize);
+            let (mut mask, _) = B::node(p, node, t_max);
+            if mask != 0 {
+                let first = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                while mask != 0 {
+                    let i = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    debug_assert!(sp < STACK);
+                    stack.get_unchecked_mut(sp).write(node.children[i]);
+                    sp += 1;
+                }
+                cur = node.children[first];
+                continue;
+            }
+        } else if leaves.any(cur & !LEAF_BIT, t_max) {
+            return true;
+        }
+        if sp == 0 {
+            return false;
+        }
+        sp -= 1;
+        cur = stack.get_unchecked(sp).assume_init();
+    }
+}
