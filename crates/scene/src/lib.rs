@@ -1,0 +1,29 @@
+//! Physically based scenes for the hybrid lab (ray tracing against rasterization).
+//!
+//! One description feeds every renderer: the rasterized deferred pipeline, the ray-traced
+//! stages and the path-traced reference all read a [`HybridScene`] and evaluate surfaces
+//! through the same [`ShadingPoint`] and the same [`brdf`], so that a difference between
+//! their images is a difference of method, never of material model.
+//!
+//! Layout: [`material`] (PBR parameters and their textures), [`light`] (point, spot,
+//! directional and rectangular area lights, each able to give a sample toward a surface
+//! point), [`brdf`] (Cook–Torrance with GGX, Schlick–GGX and Schlick's Fresnel, as the
+//! thesis writes it, plus the sampling routines the tracers need), [`scene`] (meshes,
+//! instances, cameras, validation) and [`shading`] (a hit or a G-buffer texel resolved into
+//! material values).
+
+#![warn(missing_docs)]
+
+pub mod brdf;
+pub mod error;
+pub mod light;
+pub mod material;
+pub mod sampling;
+pub mod scene;
+pub mod shading;
+
+pub use error::{Result, SceneError};
+pub use light::{Light, LightKind, LightSample};
+pub use material::{PbrMaterial, Texture};
+pub use scene::{HybridScene, Instance, SceneCamera};
+pub use shading::ShadingPoint;
