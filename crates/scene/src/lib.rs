@@ -10,12 +10,14 @@
 //! point), [`brdf`] (Cook–Torrance with GGX, Schlick–GGX and Schlick's Fresnel, as the
 //! thesis writes it, plus the sampling routines the tracers need), [`scene`] (meshes,
 //! instances, cameras, validation) and [`shading`] (a hit or a G-buffer texel resolved into
-//! material values).
+//! material values); [`gbuffer`] is the contract between the pipeline's stages (the
+//! G-buffer they read, the lighting terms they write, and how the terms compose).
 
 #![warn(missing_docs)]
 
 pub mod brdf;
 pub mod error;
+pub mod gbuffer;
 pub mod light;
 pub mod material;
 pub mod sampling;
@@ -23,6 +25,7 @@ pub mod scene;
 pub mod shading;
 
 pub use error::{Result, SceneError};
+pub use gbuffer::{GBuffer, LightingTerms};
 pub use light::{Light, LightKind, LightSample};
 pub use material::{PbrMaterial, Texture};
 pub use scene::{HybridScene, Instance, SceneCamera};
