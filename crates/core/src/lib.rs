@@ -15,6 +15,7 @@ pub mod error;
 pub mod fastmath;
 pub mod image;
 pub mod io;
+pub mod kernel;
 pub mod material;
 pub mod mesh;
 pub mod scene;

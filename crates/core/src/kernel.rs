@@ -1,0 +1,113 @@
+//! Kernels: how a computation runs (portable scalar code or vector lanes), as opposed to which
+//! method it is. The relief techniques and the BVH traversal both offer a vector kernel beside
+//! their scalar one, chosen at run time from the CPU's features; the choice is an option
+//! recorded with every result, never a method of its own. Each crate says what its lanes hold
+//! and how its kernels agree (bit-identical, or within a stated bound).
+
+use std::fmt;
+use std::str::FromStr;
+
+/// A kernel a computation runs on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Kernel {
+    /// Portable scalar code, one item at a time.
+    Scalar,
+    /// AVX2 vector lanes (compiled with AVX-512's 32 registers where the CPU has them).
+    Simd,
+}
+
+impl Kernel {
+    /// Every kernel, slowest first.
+    pub const ALL: [Kernel; 2] = [Kernel::Scalar, Kernel::Simd];
+
+    /// The kernel's name (`scalar`, `simd`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Kernel::Scalar => "scalar",
+            Kernel::Simd => "simd",
+        }
+    }
+
+    /// Whether this CPU can run the kernel.
+    pub fn available(self) -> bool {
+        match self {
+            Kernel::Scalar => true,
+            Kernel::Simd => has_avx2(),
+        }
+    }
+
+    /// The fastest kernel this CPU runs.
+    pub fn best() -> Kernel {
+        if Kernel::Simd.available() {
+            Kernel::Simd
+        } else {
+            Kernel::Scalar
+        }
+    }
+}
+
+impl fmt::Display for Kernel {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Kernel {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "scalar" => Ok(Kernel::Scalar),
+            "simd" => Ok(Kernel::Simd),
+            _ => Err(format!("unknown kernel '{s}' (known: scalar, simd)")),
+        }
+    }
+}
+
+impl serde::Serialize for Kernel {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}
+
+/// Whether the CPU has AVX2 (the vector kernels' baseline).
+#[inline]
+pub fn has_avx2() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx2")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+/// Whether the CPU has AVX-512 F and VL: vector kernels can then be compiled with 32 vector
+/// registers, so that their lanes' state need not spill.
+#[inline]
+pub fn has_avx512() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx512f") && std::arch::is_x86_feature_detected!("avx512vl")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_parse_back_and_scalar_always_runs() {
+        for k in Kernel::ALL {
+            assert_eq!(k.name().parse::<Kernel>(), Ok(k));
+        }
+        assert!(Kernel::Scalar.available());
+        assert!(Kernel::best().available());
+        assert!("avx".parse::<Kernel>().unwrap_err().contains("known: scalar, simd"));
+    }
+}
