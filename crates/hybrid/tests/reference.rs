@@ -42,7 +42,12 @@ fn furnace_sphere_matches_the_integral_equation() {
     let reference = r.reference(&cam, 64, 7).unwrap();
     let mean = reference.hdr.iter().map(|p| p.x as f64).sum::<f64>() / reference.hdr.len() as f64;
 
-    let sp = ShadingPoint { base_color: Vec3::splat(0.5), roughness: 1.0, normal: Vec3::Z, ..ShadingPoint::default() };
+    let sp = ShadingPoint {
+        base_color: Vec3::splat(0.5),
+        roughness: 1.0,
+        normal: Vec3::Z,
+        ..ShadingPoint::default()
+    };
     let (nt, np) = (64usize, 128usize);
     let dt = std::f64::consts::FRAC_PI_2 / nt as f64;
     let dp = 2.0 * std::f64::consts::PI / np as f64;
@@ -56,7 +61,11 @@ fn furnace_sphere_matches_the_integral_equation() {
                     (0..np)
                         .map(|k| {
                             let p = (k as f64 + 0.5) * dp;
-                            let l = Vec3::new((t.sin() * p.cos()) as f32, (t.sin() * p.sin()) as f32, t.cos() as f32);
+                            let l = Vec3::new(
+                                (t.sin() * p.cos()) as f32,
+                                (t.sin() * p.sin()) as f32,
+                                t.cos() as f32,
+                            );
                             eval(&sp, v, l).x as f64 * t.sin() * dt * dp
                         })
                         .sum()
@@ -81,7 +90,10 @@ fn furnace_sphere_matches_the_integral_equation() {
 fn a_lit_plane_matches_the_analytic_irradiance() {
     let mut b = SceneBuilder::new("plane", Vec3::ZERO);
     let albedo = 0.5;
-    b.add(quad(Vec3::ZERO, Vec3::new(0.0, 0.0, 50.0), Vec3::new(50.0, 0.0, 0.0)), PbrMaterial::dielectric("floor", Vec3::splat(albedo), 1.0));
+    b.add(
+        quad(Vec3::ZERO, Vec3::new(0.0, 0.0, 50.0), Vec3::new(50.0, 0.0, 0.0)),
+        PbrMaterial::dielectric("floor", Vec3::splat(albedo), 1.0),
+    );
     let dir = Vec3::new(0.3, -1.0, 0.2).normalize();
     let e = 3.0;
     b.light(light(LightKind::Directional, Vec3::ZERO, dir, e));
@@ -109,10 +121,16 @@ fn the_noise_floor_falls_as_one_over_spp() {
     let low = r.reference(&cam, 8, 11).unwrap();
     let high = r.reference(&cam, 32, 11).unwrap();
     let ratio = low.noise.mse_halves / high.noise.mse_halves;
-    assert!((2.5..6.5).contains(&ratio), "mse ratio {ratio} ({} / {})", low.noise.mse_halves, high.noise.mse_halves);
+    assert!(
+        (2.5..6.5).contains(&ratio),
+        "mse ratio {ratio} ({} / {})",
+        low.noise.mse_halves,
+        high.noise.mse_halves
+    );
     assert!((high.noise.mse_full * 4.0 - high.noise.mse_halves).abs() < 1e-12);
     assert!(high.noise.psnr_full > high.noise.psnr_halves);
     // The per-pixel variance estimate averages to the full image's expected MSE.
-    let mean_var = high.noise.variance.iter().map(|&v| v as f64).sum::<f64>() / high.noise.variance.len() as f64;
+    let mean_var =
+        high.noise.variance.iter().map(|&v| v as f64).sum::<f64>() / high.noise.variance.len() as f64;
     assert!((mean_var / high.noise.mse_full - 1.0).abs() < 1e-3);
 }
