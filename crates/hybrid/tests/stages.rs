@@ -113,8 +113,7 @@ fn area_light_shadow_fraction_matches_the_solid_angle_share() {
 }
 
 /// A mirror floor (roughness 0) reflects an emissive red panel: the ray-traced reflection
-/// shows it at the pixel where the panel's mirror image projects, and SSR's stand-in (the
-/// sky) does not.
+/// shows it at the pixel where the panel's mirror image projects.
 #[test]
 fn a_mirror_shows_the_reflected_object_at_the_mirrored_pixel() {
     let mut b = SceneBuilder::new("mirror", Vec3::splat(0.1));
@@ -133,7 +132,6 @@ fn a_mirror_shows_the_reflected_object_at_the_mirrored_pixel() {
         ..StageConfig::all_raster()
     };
     let rt = r.render(&cam, &cfg, 1).unwrap();
-    let ssr = r.render(&cam, &StageConfig::all_raster(), 1).unwrap();
     let (x, y) = project(&cam, centre * Vec3::new(1.0, -1.0, 1.0));
     let i = (y * cam.width + x) as usize;
     assert!(
@@ -142,7 +140,6 @@ fn a_mirror_shows_the_reflected_object_at_the_mirrored_pixel() {
     );
     let s = rt.terms.specular_indirect[i];
     assert!(s.x > 3.0 && s.y < 0.01 && s.z < 0.01, "reflection {s}");
-    assert!(ssr.terms.specular_indirect[i].x < 0.2);
     // Pixels whose reflection misses the panel see the sky.
     let corner = rt.terms.specular_indirect[(cam.height - 1) as usize * cam.width as usize];
     assert!(corner.x < 0.2, "{corner}");
@@ -159,7 +156,8 @@ fn slab_scene(ior: f32) -> renderlab_scene::HybridScene {
 #[test]
 fn a_glass_slab_displaces_a_ray_by_the_analytic_offset() {
     let (ior, d) = (1.5f32, 0.5f32);
-    let r = HybridRenderer::new(&slab_scene(ior)).unwrap();
+    let scene = slab_scene(ior);
+    let r = HybridRenderer::new(&scene).unwrap();
     let theta = 0.7f32;
     let dir = Vec3::new(theta.sin(), -theta.cos(), 0.0);
     let origin = Vec3::new(-1.0, 2.0, 0.3);
@@ -251,7 +249,7 @@ fn gi_converges_as_spp_grows() {
     let errors: Vec<f64> = [2, 8, 32].iter().map(|&s| mse(&gi(s, 1), &truth)).collect();
     assert!(errors[1] < errors[0] * 0.5 && errors[2] < errors[1] * 0.5, "GI errors {errors:?}");
 
-    let mut pt = r.clone();
+    let mut pt = HybridRenderer::new(&scene).unwrap();
     pt.path_tracer.max_depth = 2;
     let reference = pt.reference(&cam, 512, 5).unwrap();
     let full = |spp: u32| {

@@ -34,11 +34,11 @@ pub fn cornell(size: u32) -> (HybridScene, Camera) {
     b.add(quad(Vec3::new(0.0, 1.0, -h), Vec3::new(h, 0.0, 0.0), Vec3::new(0.0, h, 0.0)), white.clone());
     b.add(quad(Vec3::new(0.0, 1.0, h), Vec3::new(0.0, h, 0.0), Vec3::new(h, 0.0, 0.0)), white);
     b.add(
-        quad(Vec3::new(-h, 1.0, 0.0), Vec3::new(0.0, 0.0, h), Vec3::new(0.0, h, 0.0)),
+        quad(Vec3::new(-h, 1.0, 0.0), Vec3::new(0.0, h, 0.0), Vec3::new(0.0, 0.0, h)),
         PbrMaterial::dielectric("red", Vec3::new(0.7, 0.1, 0.1), 1.0),
     );
     b.add(
-        quad(Vec3::new(h, 1.0, 0.0), Vec3::new(0.0, h, 0.0), Vec3::new(0.0, 0.0, h)),
+        quad(Vec3::new(h, 1.0, 0.0), Vec3::new(0.0, 0.0, h), Vec3::new(0.0, h, 0.0)),
         PbrMaterial::dielectric("green", Vec3::new(0.1, 0.7, 0.1), 1.0),
     );
     b.light(light(LightKind::Point, Vec3::new(0.0, 1.8, 0.0), Vec3::ZERO, 2.0));
