@@ -23,8 +23,27 @@ pub fn direct_light(
     rng: &mut Rng,
     rays: &mut u64,
 ) -> Vec3 {
+    direct_light_from(scene, accel, sp, v, area_samples, true, rng, rays)
+}
+
+/// [`direct_light`], with or without the area lights (`with_area`): the path tracer finds
+/// the area lights of a smooth surface with the surface's own scattered ray instead.
+#[allow(clippy::too_many_arguments)]
+pub fn direct_light_from(
+    scene: &HybridScene,
+    accel: &Accel,
+    sp: &ShadingPoint,
+    v: Vec3,
+    area_samples: u32,
+    with_area: bool,
+    rng: &mut Rng,
+    rays: &mut u64,
+) -> Vec3 {
     let mut sum = Vec3::ZERO;
     for light in &scene.lights {
+        if !with_area && light.is_area() {
+            continue;
+        }
         let n = if light.is_area() { area_samples.max(1) } else { 1 };
         let shift = rng.vec2();
         let mut acc = Vec3::ZERO;

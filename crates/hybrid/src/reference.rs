@@ -22,9 +22,29 @@
 //!   `min(max throughput, 0.95)`, and stops at [`PathTracer::max_depth`] segments.
 //!
 //! A path that leaves the scene sees the sky.
+//!
+//! **Area lights on smooth surfaces.** On a surface smoother than [`SMOOTH_FOR_LIGHTS`],
+//! next-event estimation skips the area lights, and the path's own scattered ray adds an
+//! area light's radiance when it passes through the light's rectangle before it hits
+//! anything. Each surface thus finds each area light by exactly one strategy, so the
+//! estimate stays unbiased; the choice avoids sampling a random point of a panel and
+//! evaluating a near-mirror's needle-thin lobe toward it, whose rare hits were the
+//! reference's worst fireflies. Lights are not geometry: they block no ray, and a camera ray
+//! does not see a panel directly (as in the rasterized and hybrid frames).
+//!
+//! **Caustics are left out** (path regularisation): once a path has scattered off a rough
+//! surface (roughness at least [`PathTracer::regularize_roughness`]), every later surface is
+//! treated as at least that rough. Without it, light reaching a diffuse surface by way of a
+//! near-mirror (diffuse → mirror → light) is found only when a random direction happens to
+//! line up with the mirror's very narrow lobe, which gives rare, enormous samples
+//! (fireflies) that no affordable sample count averages out. None of the compared methods
+//! renders caustics either (their shadow rays also treat glass as opaque), so the reference
+//! keeps only what they attempt: it is the converged image of the scene without caustics,
+//! and the error the lab measures is the methods' error on that. Paths that have met only
+//! smooth surfaces (mirror in mirror, glass) stay exact.
 
 use crate::accel::{resolve, Accel};
-use crate::lighting::direct_light;
+use crate::lighting::direct_light_from;
 use crate::renderer::{NoiseFloor, Reference};
 use crate::rng::{Rng, Stream};
 use crate::stages::par_pixels;
@@ -32,8 +52,17 @@ use glam::Vec3;
 use renderlab_core::Camera;
 use renderlab_scene::brdf::{alpha, d_ggx, eval, f0, fresnel_schlick};
 use renderlab_scene::sampling::{cosine_hemisphere, ggx_g1, ggx_visible_normal, reflect, refract, Frame};
-use renderlab_scene::{GBuffer, HybridScene, ShadingPoint};
+use renderlab_scene::{GBuffer, HybridScene, LightKind, ShadingPoint};
 use std::f32::consts::PI;
+
+/// The default roughness from which path regularisation applies (see the module's notes):
+/// below it a lobe is narrow enough to make fireflies from light sampling after a diffuse
+/// bounce.
+pub const REGULARIZE_ROUGHNESS: f32 = 0.3;
+
+/// Roughness below which a surface finds the area lights with its scattered ray rather than
+/// by next-event estimation (see the module's notes).
+pub const SMOOTH_FOR_LIGHTS: f32 = 0.2;
 
 /// Settings of the path tracer.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -42,11 +71,15 @@ pub struct PathTracer {
     pub max_depth: u32,
     /// Bounces before Russian roulette starts.
     pub roulette_after: u32,
+    /// Roughness from which a surface counts as rough for path regularisation: after the
+    /// path has scattered off such a surface, later surfaces are at least this rough
+    /// (`0` turns regularisation off and keeps caustics, with their fireflies).
+    pub regularize_roughness: f32,
 }
 
 impl Default for PathTracer {
     fn default() -> Self {
-        Self { max_depth: 16, roulette_after: 3 }
+        Self { max_depth: 16, roulette_after: 3, regularize_roughness: REGULARIZE_ROUGHNESS }
     }
 }
 
@@ -108,15 +141,31 @@ impl PathTracer {
         let (mut origin, mut dir) = (origin, dir);
         let mut throughput = Vec3::ONE;
         let mut radiance = Vec3::ZERO;
+        let mut min_roughness = 0.0f32;
+        // Whether the vertex this ray left was smooth, so that the ray itself gathers the
+        // area lights it passes through (the camera's ray is not: lights are not seen
+        // directly).
+        let mut gathers_area = false;
         for depth in 0..self.max_depth {
             *rays += 1;
-            let Some(hit) = accel.closest(origin, dir, f32::INFINITY) else {
+            let hit = accel.closest(origin, dir, f32::INFINITY);
+            if gathers_area {
+                let t_max = hit.as_ref().map_or(f32::INFINITY, |h| h.t);
+                radiance += throughput * area_lights_on_segment(scene, origin, dir, t_max);
+            }
+            let Some(hit) = hit else {
                 radiance += throughput * scene.sky;
                 break;
             };
-            let sp = resolve(scene, &hit, dir);
+            let mut sp = resolve(scene, &hit, dir);
+            sp.roughness = sp.roughness.max(min_roughness);
+            if self.regularize_roughness > 0.0 && sp.roughness >= self.regularize_roughness {
+                min_roughness = self.regularize_roughness;
+            }
             let v = -dir;
-            radiance += throughput * (sp.emissive + direct_light(scene, accel, &sp, v, 1, rng, rays));
+            gathers_area = sp.roughness < SMOOTH_FOR_LIGHTS;
+            radiance += throughput
+                * (sp.emissive + direct_light_from(scene, accel, &sp, v, 1, !gathers_area, rng, rays));
             let Some((next, weight)) = sample_bsdf(&sp, v, rng) else { break };
             throughput *= weight;
             if !throughput.is_finite() || throughput == Vec3::ZERO {
@@ -134,6 +183,31 @@ impl PathTracer {
         }
         radiance
     }
+}
+
+/// The radiance of the area lights whose emitting side the ray `origin + t·dir` passes
+/// through for `t < t_max`.
+pub fn area_lights_on_segment(scene: &HybridScene, origin: Vec3, dir: Vec3, t_max: f32) -> Vec3 {
+    let mut sum = Vec3::ZERO;
+    for light in &scene.lights {
+        let LightKind::Area { half_u, half_v } = light.kind else { continue };
+        let n = half_u.cross(half_v);
+        let d_n = dir.dot(n);
+        // The light shines toward +n; the ray must travel against it.
+        if d_n >= 0.0 {
+            continue;
+        }
+        let t = (light.position - origin).dot(n) / d_n;
+        if !(t > 0.0 && t < t_max) {
+            continue;
+        }
+        let q = origin + dir * t - light.position;
+        let (a, b) = (q.dot(half_u) / half_u.length_squared(), q.dot(half_v) / half_v.length_squared());
+        if a.abs() <= 1.0 && b.abs() <= 1.0 {
+            sum += light.color * light.intensity;
+        }
+    }
+    sum
 }
 
 /// Samples the next direction at `sp` seen from `v`; returns it with its weight

@@ -12,6 +12,7 @@
 //! GI equals a path tracer limited to paths of two segments (and no refraction).
 
 use crate::lighting::{diffuse_albedo, direct_light};
+use crate::reference::REGULARIZE_ROUGHNESS;
 use crate::rng::{stratified, Rng, Stream};
 use crate::stages::par_pixels;
 use crate::Accel;
@@ -52,7 +53,12 @@ pub fn run(
             rays += 1;
             sum += match accel.surface(scene, sp.offset_origin(dir), dir) {
                 None => scene.sky,
-                Some(hit) => hit.emissive + direct_light(scene, accel, &hit, -dir, 1, &mut rng, &mut rays),
+                Some(mut hit) => {
+                    // After this diffuse bounce the reference regularises (no caustics); so
+                    // does the stage, so that it converges to the reference's answer.
+                    hit.roughness = hit.roughness.max(REGULARIZE_ROUGHNESS);
+                    hit.emissive + direct_light(scene, accel, &hit, -dir, 1, &mut rng, &mut rays)
+                }
             };
         }
         *out = albedo * sum / n as f32;

@@ -35,7 +35,12 @@ pub fn specular_weight(sp: &ShadingPoint, n_dot_v: f32) -> Vec3 {
 
 /// `specular_indirect` by screen-space reflections of `lit` (the lit opaque image,
 /// row-major, the sky where no surface is), the sky as the fallback.
-pub fn screen_space_reflections(gbuffer: &GBuffer, lit: &[Vec3], sky: Vec3, settings: &SsrSettings) -> Vec<Vec3> {
+pub fn screen_space_reflections(
+    gbuffer: &GBuffer,
+    lit: &[Vec3],
+    sky: Vec3,
+    settings: &SsrSettings,
+) -> Vec<Vec3> {
     let depth = view_depth(gbuffer);
     let marcher = Marcher::new(gbuffer, &depth, settings);
     gbuffer
@@ -76,7 +81,10 @@ impl<'a> Marcher<'a> {
     fn project(&self, p: Vec3) -> (Vec2, f32) {
         let c = self.view_projection * p.extend(1.0);
         let cam = &self.gbuffer.camera;
-        let s = Vec2::new((c.x / c.w + 1.0) * 0.5 * cam.width as f32, (1.0 - c.y / c.w) * 0.5 * cam.height as f32);
+        let s = Vec2::new(
+            (c.x / c.w + 1.0) * 0.5 * cam.width as f32,
+            (1.0 - c.y / c.w) * 0.5 * cam.height as f32,
+        );
         (s, 1.0 / c.w)
     }
 
@@ -146,7 +154,12 @@ mod tests {
 
     #[test]
     fn the_weight_is_about_f0_for_a_head_on_mirror_and_grows_at_grazing() {
-        let sp = ShadingPoint { roughness: 0.0, metallic: 1.0, base_color: Vec3::new(0.9, 0.5, 0.2), ..Default::default() };
+        let sp = ShadingPoint {
+            roughness: 0.0,
+            metallic: 1.0,
+            base_color: Vec3::new(0.9, 0.5, 0.2),
+            ..Default::default()
+        };
         let head_on = specular_weight(&sp, 1.0);
         assert!((head_on - sp.base_color).abs().max_element() < 0.02, "{head_on}");
         let dielectric = ShadingPoint { roughness: 0.0, ..Default::default() };
