@@ -1,0 +1,104 @@
+//! Shading shared by the ray-traced stages and the path tracer: direct light with shadow
+//! rays, and the raster pipeline's specular and diffuse weights and ambient term (called from
+//! `renderlab_raster::deferred`, so that a ray-traced stage and the raster stage it replaces
+//! weight the light they gather alike).
+
+use crate::accel::Accel;
+use crate::rng::{stratified, Rng};
+use glam::{Vec2, Vec3};
+use renderlab_raster::deferred;
+use renderlab_scene::brdf::eval;
+use renderlab_scene::{HybridScene, ShadingPoint};
+
+/// Direct light at `sp` seen from the unit direction `v` (toward the viewer): for every
+/// light, `brdf::eval · radiance · visible`, visibility from one shadow ray per sample. A
+/// punctual light takes one sample (exact); an area light takes `area_samples` stratified
+/// samples with a random rotation drawn from `rng`. Adds the shadow rays traced to `rays`.
+pub fn direct_light(
+    scene: &HybridScene,
+    accel: &Accel,
+    sp: &ShadingPoint,
+    v: Vec3,
+    area_samples: u32,
+    rng: &mut Rng,
+    rays: &mut u64,
+) -> Vec3 {
+    direct_light_from(scene, accel, sp, v, area_samples, true, rng, rays)
+}
+
+/// [`direct_light`], with or without the area lights (`with_area`): the path tracer finds
+/// the area lights of a smooth surface with the surface's own scattered ray instead.
+#[allow(clippy::too_many_arguments)]
+pub fn direct_light_from(
+    scene: &HybridScene,
+    accel: &Accel,
+    sp: &ShadingPoint,
+    v: Vec3,
+    area_samples: u32,
+    with_area: bool,
+    rng: &mut Rng,
+    rays: &mut u64,
+) -> Vec3 {
+    let mut sum = Vec3::ZERO;
+    for light in &scene.lights {
+        if !with_area && light.is_area() {
+            continue;
+        }
+        let n = if light.is_area() { area_samples.max(1) } else { 1 };
+        let shift = rng.vec2();
+        let mut acc = Vec3::ZERO;
+        for i in 0..n {
+            let s = light.sample(sp.position, stratified(i, n, shift));
+            if s.radiance == Vec3::ZERO {
+                continue;
+            }
+            let f = eval(sp, v, s.to_light);
+            if f == Vec3::ZERO {
+                continue;
+            }
+            *rays += 1;
+            if !accel.occluded(sp.offset_origin(s.to_light), s.to_light, s.distance) {
+                acc += f * s.radiance;
+            }
+        }
+        sum += acc / n as f32;
+    }
+    sum
+}
+
+/// Direct light without shadows, area lights by a fixed `n`-sample stratified pattern (the
+/// denominator of a shadowed fraction in tests and diagnostics).
+pub fn unshadowed_direct(scene: &HybridScene, sp: &ShadingPoint, v: Vec3, n: u32) -> Vec3 {
+    let mut sum = Vec3::ZERO;
+    for light in &scene.lights {
+        let n = if light.is_area() { n.max(1) } else { 1 };
+        let mut acc = Vec3::ZERO;
+        for i in 0..n {
+            let s = light.sample(sp.position, stratified(i, n, Vec2::ZERO));
+            acc += eval(sp, v, s.to_light) * s.radiance;
+        }
+        sum += acc / n as f32;
+    }
+    sum
+}
+
+/// The weight of the indirect specular term, the raster SSR's own
+/// ([`deferred::specular_weight`]: Karis's analytic fit of the split-sum DFG, `F0·A + B`).
+/// Radiance gathered along the lobe (by SSR or by a reflected ray) times this weight
+/// estimates the specular reflection of indirect light.
+pub fn specular_weight(sp: &ShadingPoint, v: Vec3) -> Vec3 {
+    deferred::specular_weight(sp, sp.normal.dot(v))
+}
+
+/// `kd · base_colour` with `kd = (1 − F(n·v))(1 − metal)(1 − transmission)`
+/// ([`deferred::diffuse_albedo`]): the factor the cosine-weighted mean of incident radiance
+/// is multiplied by to give the diffuse reflection.
+pub fn diffuse_albedo(sp: &ShadingPoint, v: Vec3) -> Vec3 {
+    deferred::diffuse_albedo(sp, v)
+}
+
+/// The raster pipeline's ambient ("GI off") term: the sky radiance times the diffuse albedo,
+/// as if the sky were seen over the whole hemisphere.
+pub fn ambient(sky: Vec3, sp: &ShadingPoint, v: Vec3) -> Vec3 {
+    sky * diffuse_albedo(sp, v)
+}
