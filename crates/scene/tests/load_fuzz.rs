@@ -51,7 +51,10 @@ fn mutate(mut bytes: Vec<u8>, kind: u8, at: f64, byte: u8) -> Vec<u8> {
         3 => {
             bytes.remove(i);
         }
-        _ => bytes[i] = b"0123456789-.e,:[]{}\"/ \nfv"[byte as usize % 26],
+        _ => {
+            let table = b"0123456789-.e,:[]{}\"/ \nfv";
+            bytes[i] = table[byte as usize % table.len()];
+        }
     }
     bytes
 }

@@ -25,7 +25,7 @@ use crate::material::{PbrMaterial, Texture};
 use crate::scene::{HybridScene, Instance, SceneCamera};
 use ::gltf::accessor::{DataType, Dimensions};
 use ::gltf::khr_lights_punctual::Kind;
-use ::gltf::{buffer, camera::Projection, image, Accessor, Document, Gltf, Semantic};
+use ::gltf::{buffer, camera::Projection, Accessor, Document, Gltf, Semantic};
 use base64::Engine;
 use glam::{Affine3A, Mat4, Vec2, Vec3, Vec4};
 use renderlab_core::color::srgb8_to_linear_table;
@@ -42,6 +42,7 @@ pub fn from_slice(bytes: &[u8], name: &str, base: Option<&Path>, limits: &LoadLi
     let Gltf { document, blob } = Gltf::from_slice(bytes).map_err(|e| Problem::Gltf(e.to_string()))?;
     let buffers = load_buffers(&document, blob, base, limits)?;
     let mut loader = Loader {
+        document: &document,
         buffers: &buffers,
         base,
         limits,
@@ -65,8 +66,10 @@ pub fn from_slice(bytes: &[u8], name: &str, base: Option<&Path>, limits: &LoadLi
     let root = document.default_scene().or_else(|| document.scenes().next());
     match root {
         Some(scene) => {
+            // Depth first in document order (children pushed reversed onto the stack).
             let mut stack: Vec<(::gltf::Node, Affine3A, usize)> =
                 scene.nodes().map(|n| (n, Affine3A::IDENTITY, 0)).collect();
+            stack.reverse();
             let mut visits = 0usize;
             while let Some((node, parent, depth)) = stack.pop() {
                 visits += 1;
@@ -76,7 +79,9 @@ pub fn from_slice(bytes: &[u8], name: &str, base: Option<&Path>, limits: &LoadLi
                 let local = Affine3A::from_mat4(Mat4::from_cols_array_2d(&node.transform().matrix()));
                 let world = parent * local;
                 loader.node(&node, world)?;
+                let first = stack.len();
                 stack.extend(node.children().map(|c| (c, world, depth + 1)));
+                stack[first..].reverse();
             }
         }
         None => loader.warnings.push("the file has no scene: nothing to draw".into()),
@@ -152,6 +157,7 @@ fn percent_decode(s: &str) -> String {
 
 /// The state of one load: the document, its buffers, what has been converted so far.
 struct Loader<'a> {
+    document: &'a Document,
     buffers: &'a [Vec<u8>],
     base: Option<&'a Path>,
     limits: &'a LoadLimits,
@@ -381,15 +387,21 @@ impl Loader<'_> {
             return Ok(done);
         }
         let what = format!("image {}", source.index());
-        let bytes = match source.source() {
-            image::Source::View { view, .. } => {
+        // Read the image's JSON directly: `image::Image::source` panics on an image with a
+        // buffer view but no MIME type, or with neither a view nor a URI.
+        let json = self.document.as_json().images.get(source.index());
+        let view = json.and_then(|j| j.buffer_view.as_ref()).map(|v| self.document.views().nth(v.value()));
+        let uri = json.and_then(|j| j.uri.as_deref());
+        let bytes = match (view, uri) {
+            (Some(Some(view)), _) => {
                 let data = self.buffers.get(view.buffer().index()).map(Vec::as_slice).unwrap_or(&[]);
                 let end = view.offset().checked_add(view.length());
                 end.and_then(|e| data.get(view.offset()..e))
                     .ok_or_else(|| Problem::Image(format!("{what}: its buffer view lies outside the buffer")))?
                     .to_vec()
             }
-            image::Source::Uri { uri, .. } => uri_bytes(uri, self.base, self.limits).map_err(|e| Problem::Image(format!("{what}: {e}")))?,
+            (None, Some(uri)) => uri_bytes(uri, self.base, self.limits).map_err(|e| Problem::Image(format!("{what}: {e}")))?,
+            _ => return Err(Problem::Image(format!("{what}: neither a buffer view nor a URI"))),
         };
         let image = decode_image(&bytes, srgb, self.limits).map_err(|e| Problem::Image(format!("{what}: {e}")))?;
         self.scene.textures.push(Texture::new(image));
