@@ -28,7 +28,8 @@ fn rich() -> Doc {
     d.meshes[0]["primitives"][0]["material"] = json!(0);
     d.lights.push(json!({"type": "point", "intensity": 5.0}));
     d.cameras.push(json!({"type": "perspective", "perspective": {"yfov": 0.7, "znear": 0.1}}));
-    let light = d.node(json!({"translation": [0.0, 2.0, 0.0], "extensions": {"KHR_lights_punctual": {"light": 0}}}));
+    let light =
+        d.node(json!({"translation": [0.0, 2.0, 0.0], "extensions": {"KHR_lights_punctual": {"light": 0}}}));
     let cam = d.node(json!({"camera": 0, "translation": [0.0, 0.0, 3.0], "children": [light]}));
     d.roots.push(cam);
     d
@@ -66,7 +67,8 @@ fn check(result: Result<renderlab_scene::LoadedScene, renderlab_scene::load::Pro
 }
 
 fn run_all(mutations: &[(u8, f64, u8)]) {
-    let sources = [rich().glb(), rich().gltf_embedded(), CUBE_OBJ.as_bytes().to_vec(), CUBE_MTL.as_bytes().to_vec()];
+    let sources =
+        [rich().glb(), rich().gltf_embedded(), CUBE_OBJ.as_bytes().to_vec(), CUBE_MTL.as_bytes().to_vec()];
     for (k, src) in sources.into_iter().enumerate() {
         let mut bytes = src;
         for &(kind, at, byte) in mutations {
@@ -113,8 +115,9 @@ fn soak_with_many_mutations_when_asked() {
     };
     for _ in 0..n {
         let count = 1 + next() % 8;
-        let m: Vec<(u8, f64, u8)> =
-            (0..count).map(|_| ((next() % 5) as u8, (next() % 1_000_000) as f64 / 1e6, next() as u8)).collect();
+        let m: Vec<(u8, f64, u8)> = (0..count)
+            .map(|_| ((next() % 5) as u8, (next() % 1_000_000) as f64 / 1e6, next() as u8))
+            .collect();
         run_all(&m);
     }
 }

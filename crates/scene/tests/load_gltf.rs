@@ -58,7 +58,9 @@ fn a_glb_with_materials_lights_and_camera() {
     assert_eq!(m.emissive, Vec3::new(0.5, 0.0, 0.0));
     assert_eq!(s.lights.len(), 2);
     let l = &s.lights[0];
-    assert!(matches!(l.kind, LightKind::Spot { inner_cone, outer_cone } if inner_cone == 0.2 && outer_cone == 0.5));
+    assert!(
+        matches!(l.kind, LightKind::Spot { inner_cone, outer_cone } if inner_cone == 0.2 && outer_cone == 0.5)
+    );
     assert!((l.direction - Vec3::NEG_Y).length() < 1e-5, "{}", l.direction);
     assert!((l.position - Vec3::new(0.0, 5.0, 0.0)).length() < 1e-6);
     assert_eq!(l.range, Some(10.0));
@@ -67,7 +69,9 @@ fn a_glb_with_materials_lights_and_camera() {
     let c = &s.cameras[0].camera;
     assert_eq!((c.width, c.height), (1920, 960));
     assert!((c.fov_y_deg - 0.8f32.to_degrees()).abs() < 1e-4);
-    assert!((c.forward - Vec3::NEG_Z).length() < 1e-6 && (c.position - Vec3::new(0.0, 1.0, 4.0)).length() < 1e-6);
+    assert!(
+        (c.forward - Vec3::NEG_Z).length() < 1e-6 && (c.position - Vec3::new(0.0, 1.0, 4.0)).length() < 1e-6
+    );
     assert!(!loaded.warnings.iter().any(|w| w.contains("no lights")));
 }
 
@@ -77,7 +81,8 @@ fn a_node_hierarchy_composes_translation_scale_and_rotation() {
     d.roots.clear();
     let q = std::f32::consts::FRAC_PI_4.sin_cos(); // 90° about Y
     let child = d.node(json!({"mesh": 0, "rotation": [0.0, q.0, 0.0, q.1]}));
-    let parent = d.node(json!({"translation": [1.0, 0.0, 0.0], "scale": [2.0, 2.0, 2.0], "children": [child]}));
+    let parent =
+        d.node(json!({"translation": [1.0, 0.0, 0.0], "scale": [2.0, 2.0, 2.0], "children": [child]}));
     d.roots.push(parent);
     let s = from_slice(&d.gltf_embedded(), "h", None, &limits()).unwrap().scene;
     assert_eq!(s.instances.len(), 1);
@@ -106,11 +111,27 @@ fn a_sparse_accessor_overrides_its_base() {
 fn a_non_indexed_mesh_with_uvs_and_a_degenerate_triangle() {
     let mut d = Doc::default();
     let pos = d.vec3(&[
-        [0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0],
-        [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0],
-        [0.0, 0.0, 0.0], [1.0, 1.0, 1.0], [2.0, 2.0, 2.0], // collinear
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 0.0],
+        [1.0, 1.0, 1.0],
+        [2.0, 2.0, 2.0], // collinear
     ]);
-    let uv = d.vec2(&[[0.0, 1.0], [1.0, 1.0], [0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0], [0.0; 2], [0.0; 2], [0.0; 2]]);
+    let uv = d.vec2(&[
+        [0.0, 1.0],
+        [1.0, 1.0],
+        [0.0, 0.0],
+        [1.0, 1.0],
+        [1.0, 0.0],
+        [0.0, 0.0],
+        [0.0; 2],
+        [0.0; 2],
+        [0.0; 2],
+    ]);
     let mesh = d.mesh(json!({"POSITION": pos, "TEXCOORD_0": uv}), None, None);
     let node = d.node(json!({"mesh": mesh}));
     d.roots.push(node);

@@ -27,10 +27,14 @@ fn quads_ngons_negative_indices_and_the_mtl_mapping() {
     // The cube is closed and wound outward: its signed volume is +1.
     let i = s.instances.iter().find(|i| i.name == "cube").unwrap();
     let m = &s.meshes[i.mesh as usize];
-    let vol: f32 = m.triangles.iter().map(|t| {
-        let [a, b, c] = t.map(|k| m.vertices[k as usize].position);
-        a.dot(b.cross(c)) / 6.0
-    }).sum();
+    let vol: f32 = m
+        .triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|k| m.vertices[k as usize].position);
+            a.dot(b.cross(c)) / 6.0
+        })
+        .sum();
     assert!((vol - 1.0).abs() < 1e-5, "volume {vol}");
     assert_eq!(red.base_color, Vec3::new(0.8, 0.1, 0.1));
     assert!((red.roughness - renderlab_scene::load::obj::roughness_from_shininess(100.0)).abs() < 1e-6);

@@ -62,8 +62,11 @@ pub fn clean(raw: RawMesh, rule: NormalRule) -> Result<Cleaned, Problem> {
     if let Some(v) = raw.positions.iter().position(|p| !p.is_finite()) {
         return Err(Problem::Invalid(format!("mesh {name:?}: vertex {v} has a non-finite position")));
     }
-    if let Some((t, &i)) =
-        raw.triangles.iter().enumerate().find_map(|(t, tri)| tri.iter().find(|&&i| i as usize >= n).map(|i| (t, i)))
+    if let Some((t, &i)) = raw
+        .triangles
+        .iter()
+        .enumerate()
+        .find_map(|(t, tri)| tri.iter().find(|&&i| i as usize >= n).map(|i| (t, i)))
     {
         return Err(Problem::Invalid(format!(
             "mesh {name:?}: triangle {t} uses vertex {i}, but there are only {n} vertices"
@@ -139,7 +142,12 @@ fn flat(positions: &[Vec3], uvs: &[Vec2], triangles: &[[u32; 3]]) -> Mesh {
         let normal = (b - a).cross(c - a).normalize_or_zero();
         let base = mesh.vertices.len() as u32;
         for &i in t {
-            mesh.vertices.push(Vertex { position: positions[i as usize], normal, uv: uvs[i as usize], tangent: Vec4::ZERO });
+            mesh.vertices.push(Vertex {
+                position: positions[i as usize],
+                normal,
+                uv: uvs[i as usize],
+                tangent: Vec4::ZERO,
+            });
         }
         mesh.triangles.push([base, base + 1, base + 2]);
     }

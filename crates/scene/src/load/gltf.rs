@@ -38,8 +38,13 @@ const MAX_DEPTH: usize = 256;
 
 /// Loads a glTF document from memory. `base` is the folder that relative URIs are
 /// resolved against (`None`: only embedded data is allowed).
-pub fn from_slice(bytes: &[u8], name: &str, base: Option<&Path>, limits: &LoadLimits) -> Result<LoadedScene, Problem> {
-    let Gltf { document, blob } = Gltf::from_slice(bytes).map_err(|e| Problem::Gltf(e.to_string()))?;
+pub fn from_slice(
+    bytes: &[u8],
+    name: &str,
+    base: Option<&Path>,
+    limits: &LoadLimits,
+) -> Result<LoadedScene, Problem> {
+    let Gltf { document, blob } = parse(bytes)?;
     let buffers = load_buffers(&document, blob, base, limits)?;
     let mut loader = Loader {
         document: &document,
@@ -94,15 +99,49 @@ pub fn from_slice(bytes: &[u8], name: &str, base: Option<&Path>, limits: &LoadLi
     Ok(LoadedScene { scene, warnings })
 }
 
+/// Parses and validates the document. The `gltf` crate's validation indexes the
+/// accessor list with a primitive's POSITION index before checking it, so that index is
+/// checked here first; any other panic inside the parser (none known) is caught and
+/// reported as a malformed file rather than taking the program down.
+fn parse(bytes: &[u8]) -> Result<Gltf, Problem> {
+    let parsed = std::panic::catch_unwind(|| {
+        let Gltf { document, blob } =
+            Gltf::from_slice_without_validation(bytes).map_err(|e| Problem::Gltf(e.to_string()))?;
+        let root = document.into_json();
+        for (m, mesh) in root.meshes.iter().enumerate() {
+            for prim in &mesh.primitives {
+                let accessors = prim
+                    .attributes
+                    .values()
+                    .map(|a| a.value())
+                    .chain(prim.indices.as_ref().map(|i| i.value()));
+                if let Some(bad) = accessors.into_iter().find(|&a| a >= root.accessors.len()) {
+                    return Err(Problem::Gltf(format!(
+                        "mesh {m} refers to accessor {bad}, which does not exist"
+                    )));
+                }
+            }
+        }
+        let document = Document::from_json(root).map_err(|e| Problem::Gltf(e.to_string()))?;
+        Ok(Gltf { document, blob })
+    });
+    parsed.unwrap_or_else(|_| Err(Problem::Gltf("the parser failed on malformed input".into())))
+}
+
 /// Every buffer's bytes: the GLB binary chunk, a data URI or an external file.
-fn load_buffers(document: &Document, blob: Option<Vec<u8>>, base: Option<&Path>, limits: &LoadLimits) -> Result<Vec<Vec<u8>>, Problem> {
+fn load_buffers(
+    document: &Document,
+    blob: Option<Vec<u8>>,
+    base: Option<&Path>,
+    limits: &LoadLimits,
+) -> Result<Vec<Vec<u8>>, Problem> {
     let mut blob = blob;
     let mut out = Vec::new();
     for b in document.buffers() {
         let data = match b.source() {
-            buffer::Source::Bin => blob
-                .take()
-                .ok_or_else(|| Problem::Invalid(format!("buffer {} refers to a missing GLB binary chunk", b.index())))?,
+            buffer::Source::Bin => blob.take().ok_or_else(|| {
+                Problem::Invalid(format!("buffer {} refers to a missing GLB binary chunk", b.index()))
+            })?,
             buffer::Source::Uri(uri) => uri_bytes(uri, base, limits)?,
         };
         if data.len() < b.length() {
@@ -125,7 +164,10 @@ fn uri_bytes(uri: &str, base: Option<&Path>, limits: &LoadLimits) -> Result<Vec<
             .split_once(";base64,")
             .ok_or_else(|| Problem::Invalid("a data URI is not base64-encoded".into()))?;
         if payload.len() as u64 / 4 * 3 > limits.max_file_bytes {
-            return Err(Problem::TooLarge { size: payload.len() as u64 / 4 * 3, limit: limits.max_file_bytes });
+            return Err(Problem::TooLarge {
+                size: payload.len() as u64 / 4 * 3,
+                limit: limits.max_file_bytes,
+            });
         }
         return base64::engine::general_purpose::STANDARD
             .decode(payload.trim_end())
@@ -183,7 +225,12 @@ impl Loader<'_> {
             } else {
                 for prim in mesh.primitives() {
                     if let Some((m, mat)) = self.primitive(&mesh, &prim)? {
-                        self.scene.instances.push(Instance { name: name.clone(), mesh: m, material: mat, transform: world });
+                        self.scene.instances.push(Instance {
+                            name: name.clone(),
+                            mesh: m,
+                            material: mat,
+                            transform: world,
+                        });
                     }
                 }
             }
@@ -199,7 +246,8 @@ impl Loader<'_> {
                 Kind::Directional => LightKind::Directional,
                 Kind::Point => LightKind::Point,
                 Kind::Spot { inner_cone_angle, outer_cone_angle } => {
-                    let outer = finite_or(outer_cone_angle, std::f32::consts::FRAC_PI_4).clamp(1e-3, std::f32::consts::FRAC_PI_2);
+                    let outer = finite_or(outer_cone_angle, std::f32::consts::FRAC_PI_4)
+                        .clamp(1e-3, std::f32::consts::FRAC_PI_2);
                     let inner = finite_or(inner_cone_angle, 0.0).clamp(0.0, outer - 1e-3 * outer);
                     LightKind::Spot { inner_cone: inner, outer_cone: outer }
                 }
@@ -207,7 +255,9 @@ impl Loader<'_> {
             let color = Vec3::from(light.color());
             let intensity = light.intensity();
             if !(color.is_finite() && intensity.is_finite() && intensity >= 0.0) {
-                return Err(Problem::Invalid(format!("{name}: light colour or intensity is not a finite, non-negative number")));
+                return Err(Problem::Invalid(format!(
+                    "{name}: light colour or intensity is not a finite, non-negative number"
+                )));
             }
             self.scene.lights.push(Light {
                 name: light.name().map_or_else(|| name.clone(), str::to_string),
@@ -226,12 +276,24 @@ impl Loader<'_> {
                         self.warnings.push(format!("{name}: camera with a degenerate transform skipped"));
                         return Ok(());
                     };
-                    let aspect = p.aspect_ratio().filter(|a| a.is_finite() && (0.1..=10.0).contains(a)).unwrap_or(16.0 / 9.0);
+                    let aspect = p
+                        .aspect_ratio()
+                        .filter(|a| a.is_finite() && (0.1..=10.0).contains(a))
+                        .unwrap_or(16.0 / 9.0);
                     let fov = p.yfov().to_degrees();
                     let near = p.znear();
                     let far = p.zfar().unwrap_or(near * 1e5);
-                    if !(fov.is_finite() && fov > 0.0 && fov < 180.0 && near.is_finite() && near > 0.0 && far.is_finite() && far > near) {
-                        return Err(Problem::Invalid(format!("{name}: camera field of view or clipping distances out of range")));
+                    if !(fov.is_finite()
+                        && fov > 0.0
+                        && fov < 180.0
+                        && near.is_finite()
+                        && near > 0.0
+                        && far.is_finite()
+                        && far > near)
+                    {
+                        return Err(Problem::Invalid(format!(
+                            "{name}: camera field of view or clipping distances out of range"
+                        )));
                     }
                     let width = 1920u32;
                     let height = ((width as f32 / aspect).round() as u32).max(1);
@@ -239,14 +301,20 @@ impl Loader<'_> {
                     let cam_name = node.camera().and_then(|c| c.name().map(str::to_string)).unwrap_or(name);
                     self.scene.cameras.push(SceneCamera { name: cam_name, camera });
                 }
-                Projection::Orthographic(_) => self.warnings.push(format!("{name}: orthographic camera ignored")),
+                Projection::Orthographic(_) => {
+                    self.warnings.push(format!("{name}: orthographic camera ignored"))
+                }
             }
         }
         Ok(())
     }
 
     /// The scene mesh and material of a primitive, converted once however many nodes use it.
-    fn primitive(&mut self, mesh: &::gltf::Mesh, prim: &::gltf::Primitive) -> Result<Option<(u32, u32)>, Problem> {
+    fn primitive(
+        &mut self,
+        mesh: &::gltf::Mesh,
+        prim: &::gltf::Primitive,
+    ) -> Result<Option<(u32, u32)>, Problem> {
         let key = (mesh.index(), prim.index());
         if let Some(&done) = self.primitives.get(&key) {
             return Ok(done);
@@ -256,8 +324,16 @@ impl Loader<'_> {
         Ok(result)
     }
 
-    fn convert_primitive(&mut self, mesh: &::gltf::Mesh, prim: &::gltf::Primitive) -> Result<Option<(u32, u32)>, Problem> {
-        let label = format!("{} primitive {}", mesh.name().map_or_else(|| format!("mesh {}", mesh.index()), str::to_string), prim.index());
+    fn convert_primitive(
+        &mut self,
+        mesh: &::gltf::Mesh,
+        prim: &::gltf::Primitive,
+    ) -> Result<Option<(u32, u32)>, Problem> {
+        let label = format!(
+            "{} primitive {}",
+            mesh.name().map_or_else(|| format!("mesh {}", mesh.index()), str::to_string),
+            prim.index()
+        );
         if prim.mode() != ::gltf::mesh::Mode::Triangles {
             self.warnings.push(format!("{label}: mode {:?} is not triangles, skipped", prim.mode()));
             return Ok(None);
@@ -269,8 +345,10 @@ impl Loader<'_> {
         check(&pos_acc, &[DataType::F32], Dimensions::Vec3, self.buffers, &label)?;
         let buffers = self.buffers;
         let reader = prim.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
-        let unreadable = |what: &str| Problem::Invalid(format!("{label}: the {what} accessor does not fit its buffer"));
-        let positions: Vec<Vec3> = reader.read_positions().ok_or_else(|| unreadable("position"))?.map(Vec3::from).collect();
+        let unreadable =
+            |what: &str| Problem::Invalid(format!("{label}: the {what} accessor does not fit its buffer"));
+        let positions: Vec<Vec3> =
+            reader.read_positions().ok_or_else(|| unreadable("position"))?.map(Vec3::from).collect();
         let normals = match prim.get(&Semantic::Normals) {
             Some(a) => {
                 check(&a, &[DataType::F32], Dimensions::Vec3, buffers, &label)?;
@@ -288,14 +366,28 @@ impl Loader<'_> {
         let uvs = match prim.get(&Semantic::TexCoords(0)) {
             Some(a) => {
                 check(&a, &[DataType::F32, DataType::U8, DataType::U16], Dimensions::Vec2, buffers, &label)?;
-                Some(reader.read_tex_coords(0).ok_or_else(|| unreadable("texture coordinate"))?.into_f32().map(Vec2::from).collect())
+                Some(
+                    reader
+                        .read_tex_coords(0)
+                        .ok_or_else(|| unreadable("texture coordinate"))?
+                        .into_f32()
+                        .map(Vec2::from)
+                        .collect(),
+                )
             }
             None => None,
         };
         let triangles = match prim.indices() {
             Some(a) => {
-                check(&a, &[DataType::U8, DataType::U16, DataType::U32], Dimensions::Scalar, buffers, &label)?;
-                let idx: Vec<u32> = reader.read_indices().ok_or_else(|| unreadable("index"))?.into_u32().collect();
+                check(
+                    &a,
+                    &[DataType::U8, DataType::U16, DataType::U32],
+                    Dimensions::Scalar,
+                    buffers,
+                    &label,
+                )?;
+                let idx: Vec<u32> =
+                    reader.read_indices().ok_or_else(|| unreadable("index"))?.into_u32().collect();
                 idx.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect::<Vec<_>>()
             }
             None => {
@@ -328,7 +420,9 @@ impl Loader<'_> {
         let pbr = m.pbr_metallic_roughness();
         let base = Vec4::from(pbr.base_color_factor());
         let mut out = PbrMaterial {
-            name: m.name().map_or_else(|| format!("material {}", m.index().map_or(-1, |i| i as i64)), str::to_string),
+            name: m
+                .name()
+                .map_or_else(|| format!("material {}", m.index().map_or(-1, |i| i as i64)), str::to_string),
             base_color: clamp01(base.truncate()),
             roughness: unit(pbr.roughness_factor()),
             metallic: unit(pbr.metallic_factor()),
@@ -342,7 +436,8 @@ impl Loader<'_> {
         }
         let label = out.name.clone();
         if base.w < 1.0 && m.alpha_mode() == ::gltf::material::AlphaMode::Blend {
-            self.warnings.push(format!("{label}: alpha blending is drawn opaque (use KHR_materials_transmission)"));
+            self.warnings
+                .push(format!("{label}: alpha blending is drawn opaque (use KHR_materials_transmission)"));
         }
         if let Some(info) = pbr.base_color_texture() {
             self.uv_set(&label, info.tex_coord());
@@ -360,7 +455,8 @@ impl Loader<'_> {
             // The scene's material has a constant emission: fold the map in as its mean.
             let t = self.texture(&info.texture(), true)?;
             let img = &self.scene.textures[t as usize].image;
-            let mean = img.pixels().iter().map(|p| p.truncate()).sum::<Vec3>() / img.pixels().len().max(1) as f32;
+            let mean =
+                img.pixels().iter().map(|p| p.truncate()).sum::<Vec3>() / img.pixels().len().max(1) as f32;
             out.emissive *= mean;
             self.warnings.push(format!("{label}: emissive texture folded into a constant (its mean)"));
         }
@@ -397,13 +493,18 @@ impl Loader<'_> {
                 let data = self.buffers.get(view.buffer().index()).map(Vec::as_slice).unwrap_or(&[]);
                 let end = view.offset().checked_add(view.length());
                 end.and_then(|e| data.get(view.offset()..e))
-                    .ok_or_else(|| Problem::Image(format!("{what}: its buffer view lies outside the buffer")))?
+                    .ok_or_else(|| {
+                        Problem::Image(format!("{what}: its buffer view lies outside the buffer"))
+                    })?
                     .to_vec()
             }
-            (None, Some(uri)) => uri_bytes(uri, self.base, self.limits).map_err(|e| Problem::Image(format!("{what}: {e}")))?,
+            (None, Some(uri)) => {
+                uri_bytes(uri, self.base, self.limits).map_err(|e| Problem::Image(format!("{what}: {e}")))?
+            }
             _ => return Err(Problem::Image(format!("{what}: neither a buffer view nor a URI"))),
         };
-        let image = decode_image(&bytes, srgb, self.limits).map_err(|e| Problem::Image(format!("{what}: {e}")))?;
+        let image =
+            decode_image(&bytes, srgb, self.limits).map_err(|e| Problem::Image(format!("{what}: {e}")))?;
         self.scene.textures.push(Texture::new(image));
         let index = (self.scene.textures.len() - 1) as u32;
         self.textures.insert(key, index);
@@ -413,7 +514,9 @@ impl Loader<'_> {
 
 /// Decodes a PNG or JPEG into linear RGBA, from sRGB when `srgb`.
 pub(crate) fn decode_image(bytes: &[u8], srgb: bool, limits: &LoadLimits) -> Result<Image<Vec4>, String> {
-    let reader = ::image::ImageReader::new(std::io::Cursor::new(bytes)).with_guessed_format().map_err(|e| e.to_string())?;
+    let reader = ::image::ImageReader::new(std::io::Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| e.to_string())?;
     let mut decode_limits = ::image::Limits::default();
     decode_limits.max_alloc = Some(limits.max_texture_texels.saturating_mul(16));
     let mut reader = reader;
@@ -422,7 +525,9 @@ pub(crate) fn decode_image(bytes: &[u8], srgb: bool, limits: &LoadLimits) -> Res
     if u64::from(w) * u64::from(h) > limits.max_texture_texels {
         return Err(format!("{w}×{h} is more than the limit of {} texels", limits.max_texture_texels));
     }
-    let mut reader = ::image::ImageReader::new(std::io::Cursor::new(bytes)).with_guessed_format().map_err(|e| e.to_string())?;
+    let mut reader = ::image::ImageReader::new(std::io::Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| e.to_string())?;
     reader.limits(decode_limits);
     let rgba = reader.decode().map_err(|e| e.to_string())?.to_rgba8();
     let table = srgb8_to_linear_table();
@@ -439,10 +544,20 @@ pub(crate) fn decode_image(bytes: &[u8], srgb: bool, limits: &LoadLimits) -> Res
 /// Checks an accessor before the `gltf` crate's reader touches it: the component type and
 /// shape the attribute needs, a stride no smaller than an element, and every element
 /// (including a sparse accessor's indices and values) inside its buffer.
-fn check(a: &Accessor, types: &[DataType], dims: Dimensions, buffers: &[Vec<u8>], label: &str) -> Result<(), Problem> {
+fn check(
+    a: &Accessor,
+    types: &[DataType],
+    dims: Dimensions,
+    buffers: &[Vec<u8>],
+    label: &str,
+) -> Result<(), Problem> {
     let bad = |why: String| Err(Problem::Invalid(format!("{label}: accessor {}: {why}", a.index())));
     if !types.contains(&a.data_type()) || a.dimensions() != dims {
-        return bad(format!("{:?} {:?} where {dims:?} of {types:?} is needed", a.dimensions(), a.data_type()));
+        return bad(format!(
+            "{:?} {:?} where {dims:?} of {types:?} is needed",
+            a.dimensions(),
+            a.data_type()
+        ));
     }
     if a.count() == 0 {
         return bad("it has no elements".into());
@@ -451,12 +566,19 @@ fn check(a: &Accessor, types: &[DataType], dims: Dimensions, buffers: &[Vec<u8>]
     let fits = |view: &::gltf::buffer::View, offset: usize, count: usize, size: usize| -> bool {
         let stride = view.stride().unwrap_or(size);
         let Some(data) = buffers.get(view.buffer().index()) else { return false };
-        let span = stride.checked_mul(count - 1).and_then(|s| s.checked_add(size)).and_then(|s| s.checked_add(offset));
+        let span = stride
+            .checked_mul(count - 1)
+            .and_then(|s| s.checked_add(size))
+            .and_then(|s| s.checked_add(offset));
         let view_end = view.offset().checked_add(view.length());
-        stride >= size && span.is_some_and(|s| s <= view.length()) && view_end.is_some_and(|e| e <= data.len())
+        stride >= size
+            && span.is_some_and(|s| s <= view.length())
+            && view_end.is_some_and(|e| e <= data.len())
     };
     match a.view() {
-        Some(view) if !fits(&view, a.offset(), a.count(), elem) => return bad("its elements lie outside the buffer".into()),
+        Some(view) if !fits(&view, a.offset(), a.count(), elem) => {
+            return bad("its elements lie outside the buffer".into())
+        }
         None if a.sparse().is_none() => return bad("it has neither a buffer view nor sparse data".into()),
         _ => {}
     }
@@ -479,7 +601,9 @@ fn check(a: &Accessor, types: &[DataType], dims: Dimensions, buffers: &[Vec<u8>]
             let at = idx.view().offset() + idx.offset() + k * stride;
             let v = match idx.index_type() {
                 ::gltf::accessor::sparse::IndexType::U8 => u64::from(data[at]),
-                ::gltf::accessor::sparse::IndexType::U16 => u64::from(u16::from_le_bytes([data[at], data[at + 1]])),
+                ::gltf::accessor::sparse::IndexType::U16 => {
+                    u64::from(u16::from_le_bytes([data[at], data[at + 1]]))
+                }
                 ::gltf::accessor::sparse::IndexType::U32 => {
                     u64::from(u32::from_le_bytes([data[at], data[at + 1], data[at + 2], data[at + 3]]))
                 }

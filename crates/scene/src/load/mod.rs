@@ -120,7 +120,9 @@ pub fn load_with(path: impl AsRef<Path>, limits: &LoadLimits) -> Result<LoadedSc
     let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
     let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("scene");
     let loaded = match ext.as_str() {
-        "gltf" | "glb" => read_limited(path, limits).and_then(|b| gltf::from_slice(&b, name, Some(&base), limits)),
+        "gltf" | "glb" => {
+            read_limited(path, limits).and_then(|b| gltf::from_slice(&b, name, Some(&base), limits))
+        }
         "obj" => read_limited(path, limits).and_then(|b| obj::from_slice(&b, name, Some(&base), limits)),
         _ => Err(Problem::UnknownFormat(ext)),
     };
@@ -135,7 +137,8 @@ pub(crate) fn read_limited(path: &Path, limits: &LoadLimits) -> Result<Vec<u8>, 
     if size > limits.max_file_bytes {
         return Err(Problem::TooLarge { size, limit: limits.max_file_bytes });
     }
-    std::fs::read(path).map_err(|e| Problem::Io(std::io::Error::new(e.kind(), format!("{}: {e}", path.display()))))
+    std::fs::read(path)
+        .map_err(|e| Problem::Io(std::io::Error::new(e.kind(), format!("{}: {e}", path.display()))))
 }
 
 /// Resolves a file named inside a scene file relative to the scene's folder. Names that

@@ -31,9 +31,15 @@ use std::path::Path;
 
 /// Loads an OBJ document from memory; `base` is the folder MTL files and textures are
 /// resolved against (`None`: none can be loaded).
-pub fn from_slice(bytes: &[u8], name: &str, base: Option<&Path>, limits: &LoadLimits) -> Result<LoadedScene, Problem> {
+pub fn from_slice(
+    bytes: &[u8],
+    name: &str,
+    base: Option<&Path>,
+    limits: &LoadLimits,
+) -> Result<LoadedScene, Problem> {
     let mut warnings = Vec::new();
-    let options = tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
+    let options =
+        tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
     let mtl_notes = std::cell::RefCell::new(Vec::new());
     let (models, materials) = tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &options, |p| {
         let loaded = p
@@ -46,7 +52,9 @@ pub fn from_slice(bytes: &[u8], name: &str, base: Option<&Path>, limits: &LoadLi
                 mtl_notes.borrow_mut().push(format!("MTL file {}: {e}; default material used", p.display()));
             }),
             Err(e) => {
-                mtl_notes.borrow_mut().push(format!("MTL file {} not loaded ({e}); default material used", p.display()));
+                mtl_notes
+                    .borrow_mut()
+                    .push(format!("MTL file {} not loaded ({e}); default material used", p.display()));
                 Err(tobj::LoadError::OpenFileFailed)
             }
         }
@@ -77,7 +85,8 @@ pub fn from_slice(bytes: &[u8], name: &str, base: Option<&Path>, limits: &LoadLi
         let uvs = (m.texcoords.len() == 2 * n && n > 0)
             .then(|| m.texcoords.chunks_exact(2).map(|c| Vec2::new(c[0], 1.0 - c[1])).collect());
         let tris = m.indices.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
-        let raw = RawMesh { name: model.name.clone(), positions, normals, uvs, tangents: None, triangles: tris };
+        let raw =
+            RawMesh { name: model.name.clone(), positions, normals, uvs, tangents: None, triangles: tris };
         let cleaned = clean(raw, NormalRule::Smooth)?;
         dropped += cleaned.dropped;
         warnings.extend(cleaned.notes);
@@ -129,7 +138,9 @@ fn convert(
     limits: &LoadLimits,
 ) -> Result<PbrMaterial, Problem> {
     let unit = |x: f32| if x.is_finite() { x.clamp(0.0, 1.0) } else { 0.0 };
-    let param = |key: &str| m.unknown_param.get(key).and_then(|v| v.trim().parse::<f32>().ok()).filter(|v| v.is_finite());
+    let param = |key: &str| {
+        m.unknown_param.get(key).and_then(|v| v.trim().parse::<f32>().ok()).filter(|v| v.is_finite())
+    };
     let mut out = PbrMaterial { name: m.name.clone(), ..PbrMaterial::default() };
     if let Some(kd) = m.diffuse {
         out.base_color = Vec3::from(kd.map(unit));
@@ -162,7 +173,8 @@ fn convert(
         let bytes = resolve(base, file_name)
             .and_then(|p| read_limited(&p, limits))
             .map_err(|e| Problem::Image(format!("{file_name:?}: {e}")))?;
-        let image = decode_image(&bytes, srgb, limits).map_err(|e| Problem::Image(format!("{file_name:?}: {e}")))?;
+        let image =
+            decode_image(&bytes, srgb, limits).map_err(|e| Problem::Image(format!("{file_name:?}: {e}")))?;
         scene.textures.push(Texture::new(image));
         let index = (scene.textures.len() - 1) as u32;
         textures.insert((file.to_string(), srgb), index);

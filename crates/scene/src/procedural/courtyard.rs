@@ -57,7 +57,11 @@ pub fn build() -> HybridScene {
     }
     s.add(
         "gallery roof",
-        cuboid(Vec3::new(0.0, col_h + 1.65, (z - HALF) * 0.5), Vec3::new(6.6, 0.15, (HALF + z).abs() * 0.5 + 0.3), 1.0),
+        cuboid(
+            Vec3::new(0.0, col_h + 1.65, (z - HALF) * 0.5),
+            Vec3::new(6.6, 0.15, (HALF + z).abs() * 0.5 + 0.3),
+            1.0,
+        ),
         stone,
     );
 
@@ -83,16 +87,32 @@ pub fn build() -> HybridScene {
     s.add("copper ball", translated(sphere(0.6, 96, 48), Vec3::new(4.0, 0.6, 3.0)), copper);
     s.add("chrome urn", translated(vase(1.2, 96, 32), Vec3::new(-4.5, 0.0, -1.5)), chrome);
     let crate_mesh = s.mesh(cuboid(Vec3::ZERO, Vec3::splat(0.5), 1.0));
-    for (i, (x, zz, yaw)) in [(-5.5f32, 4.0f32, 15.0f32), (-6.6, 4.6, -20.0), (6.5, -3.5, 40.0)].into_iter().enumerate() {
+    for (i, (x, zz, yaw)) in
+        [(-5.5f32, 4.0f32, 15.0f32), (-6.6, 4.6, -20.0), (6.5, -3.5, 40.0)].into_iter().enumerate()
+    {
         s.place(&format!("crate {i}"), crate_mesh, wood, place_at(Vec3::new(x, 0.5, zz), yaw, Vec3::ONE));
     }
     s.add("glass vase", translated(vase(0.7, 96, 32), Vec3::new(-5.5, 1.0, 4.0)), glass);
 
     // Lights.
     s.directional("sun", Vec3::new(0.55, -0.6, -0.58), SUN, 3.5);
-    s.area("gallery panel", Vec3::new(0.0, col_h + 1.45, -8.8), Vec3::X * 3.0, Vec3::Z * 0.5, Vec3::NEG_Y, COOL, 5.0);
+    s.area(
+        "gallery panel",
+        Vec3::new(0.0, col_h + 1.45, -8.8),
+        [Vec3::X * 3.0, Vec3::Z * 0.5],
+        Vec3::NEG_Y,
+        COOL,
+        5.0,
+    );
     s.point("lantern", Vec3::new(-3.0, 2.5, 3.0), WARM, 8.0);
-    s.spot("fountain spot", Vec3::new(8.5, 5.0, 8.5), Vec3::new(0.0, 1.2, 0.0), (10.0, 18.0), Vec3::ONE, 120.0);
+    s.spot(
+        "fountain spot",
+        Vec3::new(8.5, 5.0, 8.5),
+        Vec3::new(0.0, 1.2, 0.0),
+        (10.0, 18.0),
+        Vec3::ONE,
+        120.0,
+    );
     s.point("corner lamp", Vec3::new(8.0, 3.0, -8.5), WARM, 10.0);
 
     s.camera("cam1", Vec3::new(0.0, 1.7, 9.0), Vec3::new(0.0, 1.2, 0.0), 55.0);

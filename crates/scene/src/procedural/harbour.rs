@@ -42,7 +42,9 @@ pub fn build() -> HybridScene {
     // The water: 80 m × 80 m of gentle waves in front of the quay face (z = 10); its near
     // edge runs 0.6 m into the quay's mass, so that no seam shows.
     let waves = |x: f32, z: f32| {
-        0.05 * (0.9 * x + 0.4 * z).sin() + 0.03 * (1.7 * z - 0.6 * x + 1.0).sin() + 0.015 * (3.1 * x + 2.3 * z).sin()
+        0.05 * (0.9 * x + 0.4 * z).sin()
+            + 0.03 * (1.7 * z - 0.6 * x + 1.0).sin()
+            + 0.015 * (3.1 * x + 2.3 * z).sin()
     };
     let slab = water_slab(200, 200, Vec2::new(80.0, 80.6), WATER_FLOOR, 4.0, waves);
     s.add("water", translated(slab, Vec3::new(0.0, 0.0, -29.7)), water);
@@ -50,7 +52,10 @@ pub fn build() -> HybridScene {
     // The quay: a brick mass with a paved top, stairs down into the water.
     s.add("quay", cuboid(Vec3::new(0.0, -0.85, 16.0), Vec3::new(40.0, 2.15, 6.0), 1.5), bricks);
     s.add("quay top", cuboid(Vec3::new(0.0, QUAY - 0.1, 16.0), Vec3::new(40.0, 0.1, 6.0), 2.0), pavement);
-    let flight = Affine3A::from_rotation_translation(Quat::from_rotation_y(std::f32::consts::PI), Vec3::new(-10.0, -1.7, 6.0));
+    let flight = Affine3A::from_rotation_translation(
+        Quat::from_rotation_y(std::f32::consts::PI),
+        Vec3::new(-10.0, -1.7, 6.0),
+    );
     let flight_mesh = s.mesh(stairs(8, 3.0, 0.4, 0.5, 1.0));
     s.place("stairs", flight_mesh, stone, flight);
 
@@ -91,7 +96,9 @@ pub fn build() -> HybridScene {
 
     // Boats, buoys, bollards, lamp posts and the pieces on the quay.
     let boat = s.mesh(hull(5.0, 1.8, 0.8, 64, 16));
-    for (i, (x, z, yaw)) in [(-3.0f32, -4.0f32, 10.0f32), (12.0, -8.0, -25.0), (-18.0, -6.0, 70.0)].into_iter().enumerate() {
+    for (i, (x, z, yaw)) in
+        [(-3.0f32, -4.0f32, 10.0f32), (12.0, -8.0, -25.0), (-18.0, -6.0, 70.0)].into_iter().enumerate()
+    {
         s.place(&format!("boat {i}"), boat, paint, place_at(Vec3::new(x, 0.35, z), yaw, Vec3::ONE));
     }
     let buoy = s.mesh(sphere(0.5, 64, 32));
@@ -118,8 +125,22 @@ pub fn build() -> HybridScene {
     // Lights.
     s.directional("sun", Vec3::new(-0.3, -0.4, 0.87), SUN, 3.0);
     s.point("lighthouse lamp", Vec3::new(6.0, 13.8, -33.0), WARM, 150.0);
-    s.area("quay awning", Vec3::new(-6.0, QUAY + 4.0, 17.0), Vec3::X * 2.0, Vec3::Z * 1.0, Vec3::NEG_Y, WARM, 6.0);
-    s.area("arcade panel", Vec3::new(-22.0, 7.1, -16.8), Vec3::X * 4.0, Vec3::Z * 0.5, Vec3::NEG_Y, COOL, 8.0);
+    s.area(
+        "quay awning",
+        Vec3::new(-6.0, QUAY + 4.0, 17.0),
+        [Vec3::X * 2.0, Vec3::Z * 1.0],
+        Vec3::NEG_Y,
+        WARM,
+        6.0,
+    );
+    s.area(
+        "arcade panel",
+        Vec3::new(-22.0, 7.1, -16.8),
+        [Vec3::X * 4.0, Vec3::Z * 0.5],
+        Vec3::NEG_Y,
+        COOL,
+        8.0,
+    );
     s.spot("boat spot", Vec3::new(8.0, 6.0, 12.0), Vec3::new(-3.0, 0.3, -4.0), (8.0, 16.0), Vec3::ONE, 400.0);
     s.spot("tower spot", Vec3::new(8.0, 1.5, -25.0), Vec3::new(6.0, 6.0, -33.0), (10.0, 20.0), COOL, 200.0);
 

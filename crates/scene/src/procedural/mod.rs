@@ -120,8 +120,17 @@ impl SceneBuilder {
     }
 
     /// Adds a spot light at `position` aimed at `target` with cone half-angles in degrees.
-    pub fn spot(&mut self, name: &str, position: Vec3, target: Vec3, cones_deg: (f32, f32), color: Vec3, intensity: f32) {
-        let kind = LightKind::Spot { inner_cone: cones_deg.0.to_radians(), outer_cone: cones_deg.1.to_radians() };
+    pub fn spot(
+        &mut self,
+        name: &str,
+        position: Vec3,
+        target: Vec3,
+        cones_deg: (f32, f32),
+        color: Vec3,
+        intensity: f32,
+    ) {
+        let kind =
+            LightKind::Spot { inner_cone: cones_deg.0.to_radians(), outer_cone: cones_deg.1.to_radians() };
         self.light(name, kind, position, (target - position).normalize(), color, intensity);
     }
 
@@ -130,16 +139,41 @@ impl SceneBuilder {
         self.light(name, LightKind::Directional, Vec3::ZERO, direction.normalize(), color, irradiance);
     }
 
-    /// Adds a rectangular area light centred at `centre` with half-edges `half_u` and
-    /// `half_v`, shining toward the side of `facing` (the edges' order is chosen for it).
-    pub fn area(&mut self, name: &str, centre: Vec3, half_u: Vec3, half_v: Vec3, facing: Vec3, color: Vec3, radiance: f32) {
-        let (half_u, half_v) = if half_u.cross(half_v).dot(facing) >= 0.0 { (half_u, half_v) } else { (half_v, half_u) };
+    /// Adds a rectangular area light centred at `centre` with half-edges `half`, shining
+    /// toward the side of `facing` (the edges' order is chosen for it).
+    pub fn area(
+        &mut self,
+        name: &str,
+        centre: Vec3,
+        half: [Vec3; 2],
+        facing: Vec3,
+        color: Vec3,
+        radiance: f32,
+    ) {
+        let [a, b] = half;
+        let (half_u, half_v) = if a.cross(b).dot(facing) >= 0.0 { (a, b) } else { (b, a) };
         let kind = LightKind::Area { half_u, half_v };
         self.light(name, kind, centre, facing.normalize(), color, radiance);
     }
 
-    fn light(&mut self, name: &str, kind: LightKind, position: Vec3, direction: Vec3, color: Vec3, intensity: f32) {
-        self.scene.lights.push(Light { name: name.into(), kind, position, direction, color, intensity, range: None });
+    fn light(
+        &mut self,
+        name: &str,
+        kind: LightKind,
+        position: Vec3,
+        direction: Vec3,
+        color: Vec3,
+        intensity: f32,
+    ) {
+        self.scene.lights.push(Light {
+            name: name.into(),
+            kind,
+            position,
+            direction,
+            color,
+            intensity,
+            range: None,
+        });
     }
 
     /// Adds a fixed camera at the default resolution.
@@ -174,7 +208,14 @@ impl SceneBuilder {
             return;
         }
         // The full rows span `size`; the partial row lies just beyond its far edge.
-        let mesh = shapes::height_field(cols, rows.max(1), if rows == 0 { 0 } else { extra }, size, uv_scale, height);
+        let mesh = shapes::height_field(
+            cols,
+            rows.max(1),
+            if rows == 0 { 0 } else { extra },
+            size,
+            uv_scale,
+            height,
+        );
         let m = self.mesh(mesh);
         self.place(name, m, material, transform);
     }

@@ -18,7 +18,11 @@ pub fn column(height: f32, r: f32, flutes: u32, segments: u32, rings: u32) -> Me
     let shaft0 = plinth_h + base_h;
     let shaft1 = height - abacus_h - cap_h;
     let mut b = MeshBuilder::default();
-    b.append(&cuboid(Vec3::new(0.0, plinth_h * 0.5, 0.0), Vec3::new(1.35 * r, plinth_h * 0.5, 1.35 * r), 0.5));
+    b.append(&cuboid(
+        Vec3::new(0.0, plinth_h * 0.5, 0.0),
+        Vec3::new(1.35 * r, plinth_h * 0.5, 1.35 * r),
+        0.5,
+    ));
     // Base moulding: a half-round torus profile from the plinth to the shaft.
     let torus_profile: Vec<Vec2> = (0..=8)
         .map(|i| {

@@ -238,7 +238,16 @@ pub fn arch(inner: f32, outer: f32, thickness: f32, stones: u32, uv_scale: f32) 
         // Bottom face = the stone's side at angle a0, top face = at a1, so that "up" runs
         // along the arch.
         let stone = hexahedron(
-            [at(inner, a0, hz), at(outer, a0, hz), at(outer, a0, -hz), at(inner, a0, -hz), at(inner, a1, hz), at(outer, a1, hz), at(outer, a1, -hz), at(inner, a1, -hz)],
+            [
+                at(inner, a0, hz),
+                at(outer, a0, hz),
+                at(outer, a0, -hz),
+                at(inner, a0, -hz),
+                at(inner, a1, hz),
+                at(outer, a1, hz),
+                at(outer, a1, -hz),
+                at(inner, a1, -hz),
+            ],
             uv_scale,
         );
         b.append(&fix_winding(stone));
@@ -323,7 +332,10 @@ pub fn height_field(
                 break;
             }
             // Counter-clockwise seen from +Y: (i, j) → (i+1, j) → (i+1, j+1).
-            let tris = [[idx(i, j), idx(i + 1, j), idx(i + 1, j + 1)], [idx(i, j), idx(i + 1, j + 1), idx(i, j + 1)]];
+            let tris = [
+                [idx(i, j), idx(i + 1, j), idx(i + 1, j + 1)],
+                [idx(i, j), idx(i + 1, j + 1), idx(i, j + 1)],
+            ];
             for t in tris {
                 if i == rows {
                     if emitted >= extra {
@@ -341,7 +353,14 @@ pub fn height_field(
 /// A closed slab of water: its top a `cols × rows` height field `height(x, z)` over
 /// `size` (centred on the origin), vertical sides down to `y = floor`, and a bottom
 /// triangulated as a fan from its centre, so that the solid is closed without T-junctions.
-pub fn water_slab(cols: u32, rows: u32, size: Vec2, floor: f32, uv_scale: f32, height: impl Fn(f32, f32) -> f32) -> Mesh {
+pub fn water_slab(
+    cols: u32,
+    rows: u32,
+    size: Vec2,
+    floor: f32,
+    uv_scale: f32,
+    height: impl Fn(f32, f32) -> f32,
+) -> Mesh {
     let top = height_field(cols, rows, 0, size, uv_scale, &height);
     let mut b = MeshBuilder::default();
     b.append(&top);

@@ -31,7 +31,11 @@ pub fn build() -> HybridScene {
     let terracotta = s.material(PbrMaterial::dielectric("terracotta", Vec3::new(0.7, 0.33, 0.2), 0.9));
 
     // Platform with three steps up at the front (+Z).
-    s.add("platform", cuboid(Vec3::new(0.0, FLOOR * 0.5, 0.0), Vec3::new(10.0, FLOOR * 0.5, 18.0), 2.0), pavement);
+    s.add(
+        "platform",
+        cuboid(Vec3::new(0.0, FLOOR * 0.5, 0.0), Vec3::new(10.0, FLOOR * 0.5, 18.0), 2.0),
+        pavement,
+    );
     let steps = stairs(3, 20.0, FLOOR / 3.0, 0.5, 2.0);
     s.add("steps", translated(steps, Vec3::new(0.0, 0.0, 19.5)), marble);
 
@@ -41,7 +45,12 @@ pub fn build() -> HybridScene {
     for k in 0..8 {
         let z = -15.0 + k as f32 * 30.0 / 7.0;
         for x in [-8.5, 8.5] {
-            s.place(&format!("column {x} {k}"), col, marble, Affine3A::from_translation(Vec3::new(x, FLOOR, z)));
+            s.place(
+                &format!("column {x} {k}"),
+                col,
+                marble,
+                Affine3A::from_translation(Vec3::new(x, FLOOR, z)),
+            );
         }
         spots.push(z);
     }
@@ -102,7 +111,9 @@ pub fn build() -> HybridScene {
     s.place("gold ring", ring_mesh, gold, ring);
     s.add("terracotta ball", translated(sphere(0.5, 64, 32), Vec3::new(-5.5, FLOOR + 0.5, 8.0)), terracotta);
     let block = s.mesh(cuboid(Vec3::ZERO, Vec3::new(0.6, 0.4, 0.9), 0.5));
-    for (i, (x, z, yaw)) in [(5.0f32, 9.0f32, 20.0f32), (-5.0, -12.5, -35.0), (4.5, 5.5, 65.0)].into_iter().enumerate() {
+    for (i, (x, z, yaw)) in
+        [(5.0f32, 9.0f32, 20.0f32), (-5.0, -12.5, -35.0), (4.5, 5.5, 65.0)].into_iter().enumerate()
+    {
         s.place(&format!("block {i}"), block, marble, place_at(Vec3::new(x, FLOOR + 0.4, z), yaw, Vec3::ONE));
     }
 
@@ -135,15 +146,38 @@ pub fn build() -> HybridScene {
 
     // Sun, a skylight panel over the centrepiece and a bright panel behind the arches.
     s.directional("sun", Vec3::new(-0.4, -0.8, -0.45), SUN, 3.0);
-    s.area("skylight", Vec3::new(0.0, top + 0.9, -4.0), Vec3::X * 1.5, Vec3::Z * 1.5, Vec3::NEG_Y, COOL, 6.0);
-    s.area("apse glow", Vec3::new(0.0, FLOOR + 3.5, -21.0), Vec3::X * 3.0, Vec3::Y * 2.0, Vec3::Z, WARM, 8.0);
+    s.area(
+        "skylight",
+        Vec3::new(0.0, top + 0.9, -4.0),
+        [Vec3::X * 1.5, Vec3::Z * 1.5],
+        Vec3::NEG_Y,
+        COOL,
+        6.0,
+    );
+    s.area(
+        "apse glow",
+        Vec3::new(0.0, FLOOR + 3.5, -21.0),
+        [Vec3::X * 3.0, Vec3::Y * 2.0],
+        Vec3::Z,
+        WARM,
+        8.0,
+    );
 
     s.camera("cam1", Vec3::new(0.0, FLOOR + 1.7, 17.0), Vec3::new(0.0, FLOOR + 2.0, -10.0), 55.0);
     s.camera("cam2", Vec3::new(0.6, FLOOR + 1.6, 3.2), Vec3::new(0.0, FLOOR + 1.4, -4.0), 50.0);
     s.camera("cam3", Vec3::new(24.0, 15.0, 32.0), Vec3::new(0.0, 4.0, -2.0), 45.0);
 
     // The rest of the budget: rolling terrain around the platform, flat under it.
-    s.pad("terrain", TRIANGLES, 600, Vec2::new(160.0, 160.0), 4.0, ground, Affine3A::IDENTITY, terrain_height);
+    s.pad(
+        "terrain",
+        TRIANGLES,
+        600,
+        Vec2::new(160.0, 160.0),
+        4.0,
+        ground,
+        Affine3A::IDENTITY,
+        terrain_height,
+    );
     s.finish()
 }
 

@@ -46,7 +46,9 @@ fn every_builtin_scene_has_the_thesis_size_and_validates() {
             s.lights.iter().any(|l| matches!(l.kind, LightKind::Directional)),
         ];
         assert_eq!(kinds, [true; 3], "{name}: point, spot and directional lights");
-        let has = |f: &dyn Fn(&PbrMaterial) -> bool| s.instances.iter().any(|i| f(&s.materials[i.material as usize]));
+        let has = |f: &dyn Fn(&PbrMaterial) -> bool| {
+            s.instances.iter().any(|i| f(&s.materials[i.material as usize]))
+        };
         assert!(has(&|m| m.metallic == 1.0 && m.roughness < 0.1), "{name}: polished metal");
         assert!(has(&|m| m.metallic == 1.0 && m.roughness > 0.3), "{name}: rough metal");
         assert!(has(&|m| m.is_translucent()), "{name}: glass");

@@ -33,9 +33,7 @@ pub struct Doc {
 impl Doc {
     /// Appends raw bytes as a buffer view (4-byte aligned) and returns its index.
     pub fn view(&mut self, bytes: &[u8]) -> usize {
-        while self.bin.len() % 4 != 0 {
-            self.bin.push(0);
-        }
+        self.bin.resize(self.bin.len().next_multiple_of(4), 0);
         self.views.push(json!({"buffer": 0, "byteOffset": self.bin.len(), "byteLength": bytes.len()}));
         self.bin.extend_from_slice(bytes);
         self.views.len() - 1
@@ -44,7 +42,8 @@ impl Doc {
     /// An accessor of `count` elements of `ty` over a new view of `bytes`.
     pub fn accessor(&mut self, bytes: &[u8], component: u32, ty: &str, count: usize) -> usize {
         let view = self.view(bytes);
-        self.accessors.push(json!({"bufferView": view, "componentType": component, "type": ty, "count": count}));
+        self.accessors
+            .push(json!({"bufferView": view, "componentType": component, "type": ty, "count": count}));
         self.accessors.len() - 1
     }
 
@@ -107,7 +106,12 @@ impl Doc {
             "buffers": [buffer],
         });
         let mut used = Vec::new();
-        for (key, list) in [("materials", &self.materials), ("cameras", &self.cameras), ("images", &self.images), ("textures", &self.textures)] {
+        for (key, list) in [
+            ("materials", &self.materials),
+            ("cameras", &self.cameras),
+            ("images", &self.images),
+            ("textures", &self.textures),
+        ] {
             if !list.is_empty() {
                 doc[key] = json!(list);
             }
@@ -137,13 +141,9 @@ impl Doc {
     /// `.glb` bytes: header, JSON chunk (space-padded), BIN chunk (zero-padded).
     pub fn glb(&self) -> Vec<u8> {
         let mut json = self.json(None).to_string().into_bytes();
-        while json.len() % 4 != 0 {
-            json.push(b' ');
-        }
+        json.resize(json.len().next_multiple_of(4), b' ');
         let mut bin = self.bin.clone();
-        while bin.len() % 4 != 0 {
-            bin.push(0);
-        }
+        bin.resize(bin.len().next_multiple_of(4), 0);
         let total = 12 + 8 + json.len() + 8 + bin.len();
         let mut out = Vec::with_capacity(total);
         out.extend_from_slice(b"glTF");
