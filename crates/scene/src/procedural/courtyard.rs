@@ -6,7 +6,7 @@
 
 use super::parts::{bowl, column, vase};
 use super::shapes::{arch, cuboid, cylinder, lathe, sphere, translated};
-use super::{place_at, SceneBuilder, COOL, SUN, WARM};
+use super::{place_at, relief_maps, SceneBuilder, COOL, SUN, WARM};
 use crate::material::PbrMaterial;
 use crate::scene::HybridScene;
 use glam::{Affine3A, Vec2, Vec3};
@@ -18,8 +18,13 @@ const HALF: f32 = 10.0;
 /// Height of the walls.
 const WALL: f32 = 6.0;
 
+/// The relief materials dressing the scene.
+const RELIEFS: [&str; 3] = ["brick_pavement", "bricks", "bark_willow"];
+
 /// Builds the scene.
 pub fn build() -> HybridScene {
+    // Make the relief maps this scene uses together, in parallel.
+    relief_maps(&RELIEFS);
     let mut s = SceneBuilder::new("courtyard", Vec3::new(0.5, 0.62, 0.85));
     let pavement = s.relief_material("brick_pavement", Vec3::ONE, 0.75);
     let bricks = s.relief_material("bricks", Vec3::ONE, 0.85);

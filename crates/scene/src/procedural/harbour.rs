@@ -8,7 +8,7 @@
 
 use super::parts::{bollard, hull, lamp_post, vase};
 use super::shapes::{arch, cuboid, cylinder, lathe, sphere, stairs, translated, water_slab};
-use super::{place_at, SceneBuilder, COOL, SUN, WARM};
+use super::{place_at, relief_maps, SceneBuilder, COOL, SUN, WARM};
 use crate::material::PbrMaterial;
 use crate::scene::HybridScene;
 use glam::{Affine3A, Quat, Vec2, Vec3};
@@ -20,8 +20,13 @@ const QUAY: f32 = 1.5;
 /// Depth of the water slab's floor.
 const WATER_FLOOR: f32 = -2.5;
 
+/// The relief materials dressing the scene.
+const RELIEFS: [&str; 4] = ["brick_pavement", "bricks", "bark_willow", "sand_rocks"];
+
 /// Builds the scene.
 pub fn build() -> HybridScene {
+    // Make the relief maps this scene uses together, in parallel.
+    relief_maps(&RELIEFS);
     let mut s = SceneBuilder::new("harbour", Vec3::new(0.55, 0.62, 0.8));
     let water = s.material(PbrMaterial {
         base_color: Vec3::new(0.85, 0.95, 0.95),

@@ -92,9 +92,7 @@ impl SceneBuilder {
     /// and normal map. Falls back to the plain tint if the relief material cannot be made.
     pub fn relief_material(&mut self, relief: &str, tint: Vec3, roughness: f32) -> u32 {
         let mut m = PbrMaterial::dielectric(relief, tint, roughness);
-        if let Ok(maps) = renderlab_texture::materials::material(relief, RELIEF_TEXTURE_SIZE) {
-            let albedo = Texture::new(maps.albedo.map(|c| c.extend(1.0)));
-            let normal = Texture::new(maps.normal.map(|n| (n * 0.5 + Vec3::splat(0.5)).extend(1.0)));
+        if let Some((albedo, normal)) = relief_maps(&[relief]).pop().flatten() {
             self.scene.textures.push(albedo);
             m.base_color_texture = Some((self.scene.textures.len() - 1) as u32);
             self.scene.textures.push(normal);
@@ -224,6 +222,36 @@ impl SceneBuilder {
     pub fn finish(self) -> HybridScene {
         self.scene
     }
+}
+
+/// Albedo and normal-map textures of relief materials, made once per process (in
+/// parallel for those not made yet) and shared by every later build: making them is most
+/// of a build's cost.
+pub(crate) fn relief_maps(names: &[&str]) -> Vec<Option<(Texture, Texture)>> {
+    use rayon::prelude::*;
+    use std::collections::HashMap;
+    use std::sync::{Mutex, OnceLock};
+    type Maps = Option<(Texture, Texture)>;
+    static CACHE: OnceLock<Mutex<HashMap<String, Maps>>> = OnceLock::new();
+    let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
+    let missing: Vec<&str> = {
+        let held = cache.lock().unwrap_or_else(|e| e.into_inner());
+        names.iter().copied().filter(|n| !held.contains_key(*n)).collect()
+    };
+    let made: Vec<(String, Maps)> = missing
+        .par_iter()
+        .map(|&name| {
+            let maps = renderlab_texture::materials::material(name, RELIEF_TEXTURE_SIZE).ok().map(|m| {
+                let albedo = Texture::new(m.albedo.map(|c| c.extend(1.0)));
+                let normal = Texture::new(m.normal.map(|n| (n * 0.5 + Vec3::splat(0.5)).extend(1.0)));
+                (albedo, normal)
+            });
+            (name.to_string(), maps)
+        })
+        .collect();
+    let mut held = cache.lock().unwrap_or_else(|e| e.into_inner());
+    held.extend(made);
+    names.iter().map(|n| held.get(*n).cloned().flatten()).collect()
 }
 
 /// A warm-white light colour of about 3000 K in linear RGB (lamps, braziers).

@@ -6,7 +6,7 @@
 
 use super::parts::{bowl, column, vase};
 use super::shapes::{arch, cuboid, cylinder, sphere, stairs, torus, translated};
-use super::{place_at, SceneBuilder, COOL, SUN, WARM};
+use super::{place_at, relief_maps, SceneBuilder, COOL, SUN, WARM};
 use crate::material::PbrMaterial;
 use crate::scene::HybridScene;
 use glam::{Affine3A, Quat, Vec2, Vec3};
@@ -16,8 +16,13 @@ const TRIANGLES: usize = 547_800;
 /// Height of the platform's top (the temple floor).
 const FLOOR: f32 = 1.2;
 
+/// The relief materials dressing the scene.
+const RELIEFS: [&str; 3] = ["brick_pavement", "bricks", "sand_rocks"];
+
 /// Builds the scene.
 pub fn build() -> HybridScene {
+    // Make the relief maps this scene uses together, in parallel.
+    relief_maps(&RELIEFS);
     let mut s = SceneBuilder::new("temple", Vec3::new(0.45, 0.6, 0.85));
     let marble = s.material(PbrMaterial::dielectric("marble", Vec3::new(0.82, 0.8, 0.76), 0.35));
     let pavement = s.relief_material("brick_pavement", Vec3::ONE, 0.7);
