@@ -121,7 +121,7 @@ pub fn build() -> HybridScene {
     s.point("corner lamp", Vec3::new(8.0, 3.0, -8.5), WARM, 10.0);
 
     s.camera("cam1", Vec3::new(0.0, 1.7, 9.0), Vec3::new(0.0, 1.2, 0.0), 55.0);
-    s.camera("cam2", Vec3::new(5.0, 1.6, -8.8), Vec3::new(0.0, 1.0, 2.0), 60.0);
+    s.camera("cam2", Vec3::new(1.5, 1.6, -9.2), Vec3::new(-0.5, 1.0, 2.0), 60.0);
     s.camera("cam3", Vec3::new(9.0, 5.5, 9.0), Vec3::new(-2.0, 0.5, -3.0), 50.0);
 
     // The rest of the budget: the paved floor (its partial row runs under the front wall).
