@@ -36,9 +36,24 @@ fn error_lines(out: &Output) -> Vec<String> {
 
 fn bench_args<'a>(out: &'a str, backend: &'a str) -> Vec<&'a str> {
     vec![
-        "relief", "bench", "--out", out, "--resolution", "64x40", "--texture-size", "64",
-        "--techniques", "basic,pom:32", "--angles", "0,60", "--reps", "1", "--warmup", "0",
-        "--backend", backend,
+        "relief",
+        "bench",
+        "--out",
+        out,
+        "--resolution",
+        "64x40",
+        "--texture-size",
+        "64",
+        "--techniques",
+        "basic,pom:32",
+        "--angles",
+        "0,60",
+        "--reps",
+        "1",
+        "--warmup",
+        "0",
+        "--backend",
+        backend,
     ]
 }
 
@@ -63,7 +78,9 @@ fn relief_bench_both_backends_side_by_side() {
     assert_eq!(recs.len(), 8, "2 techniques × 2 angles on each backend");
     let csv = std::fs::read_to_string(dir.path().join("results.csv")).unwrap();
     let header = csv.lines().next().unwrap();
-    for key in ["backend", "device", "adapter", "driver", "software", "gpu_timestamps", "gpu_ms", "cpu_over_gpu"] {
+    for key in
+        ["backend", "device", "adapter", "driver", "software", "gpu_timestamps", "gpu_ms", "cpu_over_gpu"]
+    {
         assert!(header.split(',').any(|h| h == key), "CSV header lacks {key}: {header}");
         assert!(recs.iter().all(|r| r.get(key).is_some()), "a JSON record lacks {key}");
     }
@@ -94,7 +111,10 @@ fn relief_bench_both_backends_side_by_side() {
     }
     // The CPU and the GPU record of a pair carry the same ratio.
     for g in &gpu {
-        let c = cpu.iter().find(|c| c["technique"] == g["technique"] && c["angle_deg"] == g["angle_deg"]).unwrap();
+        let c = cpu
+            .iter()
+            .find(|c| c["technique"] == g["technique"] && c["angle_deg"] == g["angle_deg"])
+            .unwrap();
         assert_eq!(c["cpu_over_gpu"], g["cpu_over_gpu"]);
     }
     let html = std::fs::read_to_string(dir.path().join("index.html")).unwrap();
@@ -125,7 +145,9 @@ fn gpu_backends_without_a_driver_fail_in_one_line() {
 fn bad_resolutions_are_one_line_errors() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().to_str().unwrap();
-    for (res, needle) in [("64", "--resolution"), ("64x", "--resolution"), ("4x4", "too small"), ("20000x8", "16384")] {
+    for (res, needle) in
+        [("64", "--resolution"), ("64x", "--resolution"), ("4x4", "too small"), ("20000x8", "16384")]
+    {
         let mut args = bench_args(out, "cpu");
         let i = args.iter().position(|&a| a == "64x40").unwrap();
         args[i] = res;

@@ -77,7 +77,10 @@ impl ReliefBenchConfig {
     /// Whether `technique` runs on the GPU at `angle`.
     pub fn on_gpu(&self, technique: Technique, angle: f32) -> bool {
         self.backend.gpu()
-            && self.gpu_subset.as_ref().is_none_or(|s| s.techniques.contains(&technique) && s.angles.contains(&angle))
+            && self
+                .gpu_subset
+                .as_ref()
+                .is_none_or(|s| s.techniques.contains(&technique) && s.angles.contains(&angle))
     }
 }
 

@@ -35,7 +35,10 @@ mod tests {
             device_label(&report("llvmpipe (LLVM 15.0.6, 256 bits)", "llvmpipe", true)),
             "CPU-emulated GPU (lavapipe)"
         );
-        assert_eq!(device_label(&report("SwiftShader", "swiftshader", true)), "CPU-emulated GPU (SwiftShader)");
+        assert_eq!(
+            device_label(&report("SwiftShader", "swiftshader", true)),
+            "CPU-emulated GPU (SwiftShader)"
+        );
         assert_eq!(device_label(&report("NVIDIA H100", "NVIDIA", false)), "GPU (NVIDIA H100)");
     }
 }

@@ -169,7 +169,8 @@ impl GpuAnalysis<'_> {
             frame.layers.pixels().iter().map(|&l| l as f64).sum::<f64>() / covered as f64
         };
         let psnr_vs_cpu_db = cpu.map(|(image, mask, _)| {
-            let both = Image::from_fn(mask.width(), mask.height(), |x, y| mask.get(x, y) && frame.mask.get(x, y));
+            let both =
+                Image::from_fn(mask.width(), mask.height(), |x, y| mask.get(x, y) && frame.mask.get(x, y));
             psnr(&frame.image, image, Some(&both))
         });
         let r = self.report;
@@ -235,7 +236,8 @@ mod tests {
 
     #[test]
     fn gpu_times_without_timestamps_have_no_gpu_figure() {
-        let with = [FrameTime { gpu_ms: Some(2.0), wall_ms: 5.0 }, FrameTime { gpu_ms: Some(4.0), wall_ms: 7.0 }];
+        let with =
+            [FrameTime { gpu_ms: Some(2.0), wall_ms: 5.0 }, FrameTime { gpu_ms: Some(4.0), wall_ms: 7.0 }];
         let t = GpuTimes::from_frames(&with);
         assert_eq!((t.gpu_ms, t.wall.median_ms, t.wall.reps), (Some(3.0), 6.0, 2));
         let without = [FrameTime { gpu_ms: None, wall_ms: 5.0 }];

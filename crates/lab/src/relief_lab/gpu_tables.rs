@@ -28,7 +28,9 @@ pub(super) fn gpu_thesis_table(gpu: &[ReliefRecord], angles: &[f32]) -> Vec<Vec<
             for t in thesis_columns() {
                 row.push(match find_gpu(gpu, t, a) {
                     Some(r) => match (r.gpu_fps, r.gpu_ms) {
-                        (Some(fps), Some(ms)) => format!("{} ({} ms)", format_number(fps, 1), format_number(ms, 2)),
+                        (Some(fps), Some(ms)) => {
+                            format!("{} ({} ms)", format_number(fps, 1), format_number(ms, 2))
+                        }
                         _ => format!("– (wall {} ms)", format_number(r.time_ms, 2)),
                     },
                     None => "–".into(),
@@ -66,9 +68,9 @@ pub(super) fn side_by_side(cpu: &[ReliefRecord], gpu: &[ReliefRecord]) -> Vec<Ve
     gpu.iter()
         .filter_map(|g| {
             let ratio = g.cpu_over_gpu?;
-            let c = cpu
-                .iter()
-                .find(|c| c.technique == g.technique && c.angle_deg == g.angle_deg && c.cpu_over_gpu.is_some())?;
+            let c = cpu.iter().find(|c| {
+                c.technique == g.technique && c.angle_deg == g.angle_deg && c.cpu_over_gpu.is_some()
+            })?;
             Some(vec![
                 g.technique.name(),
                 label(c.technique, c.kernel),
@@ -109,11 +111,8 @@ pub(super) fn gpu_measurements(gpu: &[ReliefRecord]) -> Vec<Vec<String>> {
 /// CPU/GPU whole-frame ratio of each technique timed on both, averaged over its angles.
 pub(super) fn gpu_findings(cpu: &[ReliefRecord], gpu: &[ReliefRecord], angles: &[f32]) -> Vec<String> {
     let Some(first) = gpu.first() else { return Vec::new() };
-    let mut out = vec![format!(
-        "GPU records ran on {} ({}).",
-        first.device,
-        first.adapter.as_deref().unwrap_or("?")
-    )];
+    let mut out =
+        vec![format!("GPU records ran on {} ({}).", first.device, first.adapter.as_deref().unwrap_or("?"))];
     let timestamps = all_timestamped(gpu);
     if !timestamps {
         out.push(
@@ -125,7 +124,9 @@ pub(super) fn gpu_findings(cpu: &[ReliefRecord], gpu: &[ReliefRecord], angles: &
     let fps = |t: Technique| -> Option<f64> {
         let v: Option<Vec<f64>> = angles
             .iter()
-            .map(|&a| find_gpu(gpu, t, a).and_then(|r| if timestamps { r.gpu_fps } else { Some(r.fps_equivalent) }))
+            .map(|&a| {
+                find_gpu(gpu, t, a).and_then(|r| if timestamps { r.gpu_fps } else { Some(r.fps_equivalent) })
+            })
             .collect();
         v.map(|v| v.iter().sum::<f64>() / v.len() as f64)
     };

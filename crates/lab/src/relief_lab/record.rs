@@ -135,7 +135,9 @@ pub(super) fn find(records: &[ReliefRecord], k: Key, angle: f32) -> Option<&Reli
 
 /// The record of `technique` at `angle` on the GPU.
 pub(super) fn find_gpu(records: &[ReliefRecord], technique: Technique, angle: f32) -> Option<&ReliefRecord> {
-    records.iter().find(|r| r.backend == RecordBackend::Gpu && r.technique == technique && r.angle_deg == angle)
+    records
+        .iter()
+        .find(|r| r.backend == RecordBackend::Gpu && r.technique == technique && r.angle_deg == angle)
 }
 
 /// Mean over the angles of `f(record)` for one technique; `None` if any angle is missing.

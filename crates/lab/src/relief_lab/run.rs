@@ -111,7 +111,16 @@ pub fn run_relief_bench(
         for (i, &(t, kernel)) in methods.iter().enumerate().filter(|_| cfg.backend.cpu()) {
             progress(done, total, &format!("{angle}°: {}", label(t, kernel)));
             let mut cpu_pass = || {
-                render_into(view.input(), mats, t, kernel, scene.lighting, scene.background, false, &mut frame)
+                render_into(
+                    view.input(),
+                    mats,
+                    t,
+                    kernel,
+                    scene.lighting,
+                    scene.background,
+                    false,
+                    &mut frame,
+                )
             };
             let paired = cfg.backend == Backend::Both
                 && on_gpu.contains(&t)
@@ -158,21 +167,23 @@ pub fn run_relief_bench(
                 refs.push((shading, r));
             }
         }
-        let ctx = Analysis { view: &view, scene: &scene, mats, refs: &refs, material, img_dir: &img_dir, cfg };
-        let keep: Vec<bool> =
-            (0..timings.len()).map(|i| gpu_runs.iter().any(|(_, _, p)| p.is_some_and(|(j, _)| j == i))).collect();
+        let ctx =
+            Analysis { view: &view, scene: &scene, mats, refs: &refs, material, img_dir: &img_dir, cfg };
+        let keep: Vec<bool> = (0..timings.len())
+            .map(|i| gpu_runs.iter().any(|(_, _, p)| p.is_some_and(|(j, _)| j == i)))
+            .collect();
         let analysed: Vec<(ReliefRecord, Option<ImageSet>, Option<Frame>)> = methods
             .par_iter()
             .zip(&timings)
             .zip(&keep)
-            .map(|((&(t, kernel), &(pass, trace, ratio)), &keep)| ctx.analyse(t, kernel, pass, trace, ratio, keep))
+            .map(|((&(t, kernel), &(pass, trace, ratio)), &keep)| {
+                ctx.analyse(t, kernel, pass, trace, ratio, keep)
+            })
             .collect::<crate::Result<_>>()?;
         if let (Some(r), Some(gctx)) = (&mut renderer, &gpu_ctx) {
             let g = GpuAnalysis { report: &gctx.report, material, img_dir: &img_dir, cfg };
             for &(t, times, paired) in &gpu_runs {
-                let cpu = paired.and_then(|(i, ms)| {
-                    analysed[i].2.as_ref().map(|f| (&f.image, &f.mask, ms))
-                });
+                let cpu = paired.and_then(|(i, ms)| analysed[i].2.as_ref().map(|f| (&f.image, &f.mask, ms)));
                 let (rec, set) = g.record(r, &camera, t, angle, times, reference_for(&refs, t), cpu)?;
                 gpu_records.push(rec);
                 images.extend(set);
@@ -192,7 +203,11 @@ pub fn run_relief_bench(
     findings.extend(gpu_note.clone());
     let headline = headline(&records, &cfg.angles);
     let index = out.join("index.html");
-    let gpu = GpuPart { records: &gpu_records, note: gpu_note.as_deref(), adapter: gpu_ctx.as_ref().map(|c| &c.report) };
+    let gpu = GpuPart {
+        records: &gpu_records,
+        note: gpu_note.as_deref(),
+        adapter: gpu_ctx.as_ref().map(|c| &c.report),
+    };
     write_report(&index, material, cfg, &records, gpu, &findings, &images)?;
     progress(total, total, "done");
     records.extend(gpu_records);

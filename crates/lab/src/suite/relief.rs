@@ -31,7 +31,8 @@ impl Lab for ReliefLab {
     /// the GPU was skipped.
     fn report_preset() -> Result<Self> {
         let material = materials::material("bricks", materials::DEFAULT_SIZE)?;
-        let gpu_subset = GpuSubset { techniques: vec![Technique::Basic(Basic), POM_32], angles: vec![0.0, 60.0] };
+        let gpu_subset =
+            GpuSubset { techniques: vec![Technique::Basic(Basic), POM_32], angles: vec![0.0, 60.0] };
         let config = ReliefBenchConfig {
             reps: 3,
             backend: Backend::Both,
