@@ -105,7 +105,7 @@ pub fn run_relief_bench(
         let mut timings = Vec::with_capacity(methods.len());
         // Each GPU-timed technique with, when it was timed in turn with a CPU pass, the index
         // of that CPU method and the CPU pass's median.
-        let mut gpu_runs: Vec<(Technique, GpuTimes, Option<(usize, f64)>)> = Vec::new();
+        let mut gpu_runs: Vec<GpuRun> = Vec::new();
         // One framebuffer serves every timed pass, as a renderer reuses its own.
         let mut frame = Frame::blank(cfg.width, cfg.height, scene.background);
         for (i, &(t, kernel)) in methods.iter().enumerate().filter(|_| cfg.backend.cpu()) {
@@ -213,6 +213,10 @@ pub fn run_relief_bench(
     records.extend(gpu_records);
     Ok(ReliefSummary { records, findings, headline, index, gpu_note })
 }
+
+/// A technique timed on the GPU at one angle: its times and, when it was timed in turn with a
+/// CPU pass, the index of that CPU method and the CPU pass's median (ms).
+type GpuRun = (Technique, GpuTimes, Option<(usize, f64)>);
 
 /// What the untimed half of a run needs to turn one technique's timings into a record.
 struct Analysis<'a> {
