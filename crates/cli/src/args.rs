@@ -164,6 +164,14 @@ pub struct BenchArgs {
     /// Frame height in pixels.
     #[arg(long, default_value_t = 800)]
     pub height: u32,
+    /// Frame size as WxH (e.g. 1920x1080, 3840x2160), in place of --width and --height.
+    #[arg(long, conflicts_with_all = ["width", "height"], value_parser = parse_resolution)]
+    pub resolution: Option<(u32, u32)>,
+    /// Renderers: cpu; gpu (the techniques' WGSL shaders on wgpu: a GPU, or Mesa's lavapipe on
+    /// the CPU; an error when no adapter is found); or both, side by side, their frames timed
+    /// in turn, with the ratio of their frame times.
+    #[arg(long, value_enum, default_value_t = BenchBackend::Cpu)]
+    pub backend: BenchBackend,
     /// View angles in degrees from the wall normal, comma-separated (each in [0, 89]).
     #[arg(long, value_delimiter = ',', default_value = "0,45,60,80")]
     pub angles: Vec<f32>,
@@ -219,6 +227,26 @@ pub enum Backend {
     /// The GPU renderer where an adapter is found and the technique has a shader; otherwise
     /// the CPU renderer, saying so.
     Auto,
+}
+
+/// Which renderers `relief bench` measures.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BenchBackend {
+    /// The CPU renderer.
+    Cpu,
+    /// The GPU renderer alone (the exact reference is still computed on the CPU).
+    Gpu,
+    /// Both, their frames timed in turn, with the ratio of their whole-frame times.
+    Both,
+}
+
+/// Parses `WxH` (`1920x1080`; `×` and `X` are accepted too) into a width and a height.
+fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("'{s}' is not WIDTHxHEIGHT (e.g. 1920x1080)");
+    let (w, h) = s.split_once(['x', 'X', '×']).ok_or_else(bad)?;
+    let w: u32 = w.trim().parse().map_err(|_| bad())?;
+    let h: u32 = h.trim().parse().map_err(|_| bad())?;
+    Ok((w, h))
 }
 
 /// Which scene `relief render` draws.

@@ -411,26 +411,13 @@ impl<'a> ReliefRenderer<'a> {
         warmup: u32,
         reps: u32,
     ) -> Result<GpuTiming> {
-        self.prepare(camera, technique, Output::Color)?;
         let mut gpu = Vec::with_capacity(reps as usize);
         let mut wall = Vec::with_capacity(reps as usize);
         for i in 0..warmup + reps {
-            let timed = i >= warmup;
-            let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
-            self.record(&mut encoder, technique, Output::Color, timed);
-            if let (true, Some(timer)) = (timed, &self.timer) {
-                timer.resolve(&mut encoder);
-            }
-            let commands = encoder.finish();
-            let started = Instant::now();
-            self.ctx.queue.submit([commands]);
-            self.ctx.wait()?;
-            let elapsed = started.elapsed().as_secs_f64() * 1e3;
-            if timed {
-                wall.push(elapsed);
-                if let Some(timer) = &self.timer {
-                    gpu.push(timer.read_ms(self.ctx)?);
-                }
+            let t = self.time_frame(camera, technique, false)?;
+            if i >= warmup {
+                wall.push(t.wall_ms);
+                gpu.extend(t.gpu_ms);
             }
         }
         Ok(GpuTiming {
@@ -439,6 +426,45 @@ impl<'a> ReliefRenderer<'a> {
             reps,
         })
     }
+
+    /// Renders and times one frame of `technique` from `camera` (colour target only): the
+    /// pass's GPU time from timestamp queries where the adapter has them, and the wall-clock
+    /// time from submission to completion, or, with `readback`, until the colour image has
+    /// been copied back to the CPU as well (the whole frame, comparable with a CPU renderer
+    /// whose image is in memory when it returns). A caller interleaving this with other work
+    /// (the relief lab times CPU and GPU frames alternately) takes its own medians.
+    pub fn time_frame(&mut self, camera: &Camera, technique: Technique, readback: bool) -> Result<FrameTime> {
+        self.prepare(camera, technique, Output::Color)?;
+        let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
+        self.record(&mut encoder, technique, Output::Color, true);
+        if let Some(timer) = &self.timer {
+            timer.resolve(&mut encoder);
+        }
+        let commands = encoder.finish();
+        let started = Instant::now();
+        self.ctx.queue.submit([commands]);
+        self.ctx.wait()?;
+        if readback {
+            let targets = self.targets.as_ref().expect("prepare sized the targets");
+            read_texture(self.ctx, &targets.color, 16)?;
+        }
+        let wall_ms = started.elapsed().as_secs_f64() * 1e3;
+        let gpu_ms = match &self.timer {
+            Some(timer) => Some(timer.read_ms(self.ctx)?),
+            None => None,
+        };
+        Ok(FrameTime { gpu_ms, wall_ms })
+    }
+}
+
+/// One timed GPU frame (see [`ReliefRenderer::time_frame`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameTime {
+    /// GPU time of the render pass in milliseconds (timestamp queries); `None` where the
+    /// adapter has no timestamps.
+    pub gpu_ms: Option<f64>,
+    /// Wall-clock milliseconds from submission to completion (and read-back, if asked).
+    pub wall_ms: f64,
 }
 
 /// A read-back target as an image (its texel count is the frame's by construction).

@@ -28,6 +28,10 @@ pub enum LabError {
     /// A perspective-mapping parameter was rejected.
     #[error(transparent)]
     Mapping(#[from] renderlab_texture::MappingError),
+    /// The GPU side of a relief run failed (no adapter, a shader that does not build, a frame
+    /// larger than the device's textures, a device error).
+    #[error(transparent)]
+    Gpu(#[from] renderlab_gpu::GpuError),
     /// A value could not be turned into JSON or CSV (for CSV: a field that is not a scalar,
     /// or rows whose columns differ).
     #[error("{path}: cannot serialise results: {reason}")]

@@ -3,13 +3,14 @@
 use super::{create_dir, frame_size};
 use crate::args::*;
 use crate::progress::Progress;
-use anyhow::{bail, Result};
+use anyhow::{bail, Context, Result};
 use glam::Vec3;
 use renderlab_core::error::check_range;
 use renderlab_core::{io, Material};
 use renderlab_lab::fixtures::{benchmark_camera, benchmark_scene, room_camera, thesis_room};
 use renderlab_lab::relief_lab::{
-    debug_view, default_techniques, run_relief_bench, DebugView as Debug, Method, ReliefBenchConfig, View,
+    debug_view, default_techniques, run_relief_bench, Backend, DebugView as Debug, Method, ReliefBenchConfig,
+    View,
 };
 use renderlab_relief::maps::complexity::{complexity_map, ComplexityParams};
 use renderlab_relief::render::render as render_frame;
@@ -81,7 +82,12 @@ fn check_angles(angles: &[f32]) -> Result<()> {
 
 /// `renderlab relief bench`.
 pub(super) fn bench(a: BenchArgs) -> Result<()> {
-    frame_size(a.width, a.height)?;
+    let (width, height) = a.resolution.unwrap_or((a.width, a.height));
+    if a.resolution.is_some() {
+        frame_size(width, height).context("--resolution")?;
+    } else {
+        frame_size(width, height)?;
+    }
     check_angles(&a.angles)?;
     if a.reps == 0 || a.reps > 1000 {
         bail!("--reps: {} must lie in 1..=1000", a.reps);
@@ -89,9 +95,14 @@ pub(super) fn bench(a: BenchArgs) -> Result<()> {
     if a.warmup > 100 {
         bail!("--warmup: {} must lie in 0..=100", a.warmup);
     }
+    let backend = match a.backend {
+        BenchBackend::Cpu => Backend::Cpu,
+        BenchBackend::Gpu => Backend::Gpu,
+        BenchBackend::Both => Backend::Both,
+    };
     let cfg = ReliefBenchConfig {
-        width: a.width,
-        height: a.height,
+        width,
+        height,
         angles: a.angles.clone(),
         techniques: methods(&a.techniques, a.kernel),
         warmup: a.warmup,
@@ -99,6 +110,9 @@ pub(super) fn bench(a: BenchArgs) -> Result<()> {
         complexity: params(&a.complexity)?,
         write_images: !a.no_images,
         cone_size: a.cone_size,
+        backend,
+        gpu_subset: None,
+        gpu_required: true,
     };
     if !(16..=4096).contains(&a.cone_size) {
         bail!("--cone-size: {} must lie in 16..=4096", a.cone_size);

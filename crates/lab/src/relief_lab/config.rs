@@ -28,6 +28,60 @@ pub struct ReliefBenchConfig {
     pub write_images: bool,
     /// Largest side of the relaxed cone map built for cone-step methods.
     pub cone_size: u32,
+    /// Which renderers run: the CPU's, the GPU's, or both side by side.
+    pub backend: Backend,
+    /// With a GPU backend: only these techniques and angles run on the GPU (`None`: every
+    /// technique at every angle). The report uses it to keep its run short.
+    pub gpu_subset: Option<GpuSubset>,
+    /// With a GPU backend: whether a missing adapter is an error (`relief bench --backend
+    /// gpu|both`) or a stated skip (the report, which must run on any machine).
+    pub gpu_required: bool,
+}
+
+/// Which renderers a relief run measures.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Backend {
+    /// The CPU renderer alone.
+    #[default]
+    Cpu,
+    /// The GPU renderer alone (wgpu on Vulkan: a GPU, or lavapipe on the CPU); the exact
+    /// reference it is measured against is still the CPU's.
+    Gpu,
+    /// Both, with their repetitions interleaved frame by frame, so that the ratio of their
+    /// whole-frame times is measured under the same load.
+    Both,
+}
+
+impl Backend {
+    /// Whether the CPU renderer runs.
+    pub fn cpu(self) -> bool {
+        self != Backend::Gpu
+    }
+
+    /// Whether the GPU renderer runs.
+    pub fn gpu(self) -> bool {
+        self != Backend::Cpu
+    }
+}
+
+/// The techniques and angles that run on the GPU when not all of them should.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GpuSubset {
+    /// Techniques (each must also be in the run's list to run).
+    pub techniques: Vec<Technique>,
+    /// Angles in degrees (each must also be one of the run's angles).
+    pub angles: Vec<f32>,
+}
+
+impl ReliefBenchConfig {
+    /// Whether `technique` runs on the GPU at `angle`.
+    pub fn on_gpu(&self, technique: Technique, angle: f32) -> bool {
+        self.backend.gpu()
+            && self
+                .gpu_subset
+                .as_ref()
+                .is_none_or(|s| s.techniques.contains(&technique) && s.angles.contains(&angle))
+    }
 }
 
 /// One technique on one kernel choice.
@@ -86,6 +140,9 @@ impl Default for ReliefBenchConfig {
             complexity: ComplexityParams::default(),
             write_images: true,
             cone_size: renderlab_relief::render::material::CONE_MAP_SIZE,
+            backend: Backend::Cpu,
+            gpu_subset: None,
+            gpu_required: true,
         }
     }
 }

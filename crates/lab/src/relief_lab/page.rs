@@ -2,12 +2,15 @@
 //! the records (numbers formatted here, prose in the template).
 
 use super::config::ReliefBenchConfig;
+use super::device::device_label;
+use super::gpu_tables::{gpu_measurements, gpu_thesis_errors, gpu_thesis_table, side_by_side};
 use super::record::{find, label, ReliefRecord};
 use super::verdicts::{versus_pom32, THESIS_ADAPTIVE, THESIS_POMS, THESIS_TABLE_4_1};
 use crate::fixtures::BENCH_ANGLES_DEG;
 use crate::plot::{scatter_svg, Series};
 use crate::report::{format_number, write_page, Template};
 use renderlab_core::Material;
+use renderlab_gpu::AdapterReport;
 use renderlab_relief::{Kernel, Technique};
 use serde::Serialize;
 use std::path::Path;
@@ -82,6 +85,49 @@ struct Page<'a> {
     pass_plot: String,
     measurements: Vec<Vec<String>>,
     angles: Vec<AngleImages<'a>>,
+    gpu: Option<GpuSection>,
+    gpu_note: Option<&'a str>,
+}
+
+/// The GPU side of a run, as the page gets it.
+#[derive(Clone, Copy)]
+pub(super) struct GpuPart<'a> {
+    /// The GPU records.
+    pub records: &'a [ReliefRecord],
+    /// Why the GPU side did not run (the report without an adapter).
+    pub note: Option<&'a str>,
+    /// The adapter, when one was opened.
+    pub adapter: Option<&'a AdapterReport>,
+}
+
+/// The page's GPU sections.
+#[derive(Serialize)]
+struct GpuSection {
+    /// `CPU-emulated GPU (lavapipe)` or `GPU (name)`.
+    device: String,
+    /// The adapter's full description.
+    adapter: String,
+    software: bool,
+    timestamps: bool,
+    thesis_table: Vec<Vec<String>>,
+    thesis_errors: Vec<Vec<String>>,
+    side_by_side: Vec<Vec<String>>,
+    measurements: Vec<Vec<String>>,
+}
+
+impl GpuSection {
+    fn new(report: &AdapterReport, records: &[ReliefRecord], cpu: &[ReliefRecord], angles: &[f32]) -> Self {
+        GpuSection {
+            device: device_label(report),
+            adapter: report.to_string(),
+            software: report.software,
+            timestamps: report.timestamps,
+            thesis_table: gpu_thesis_table(records, angles),
+            thesis_errors: gpu_thesis_errors(records, angles),
+            side_by_side: side_by_side(cpu, records),
+            measurements: gpu_measurements(records),
+        }
+    }
 }
 
 /// Thesis Table 4.1 beside ours: per angle, `thesis | ours` for each POM setting and adaptive.
@@ -175,6 +221,7 @@ pub(super) fn write_report(
     material: &Material,
     cfg: &ReliefBenchConfig,
     records: &[ReliefRecord],
+    gpu: GpuPart,
     findings: &[String],
     images: &[ImageSet],
 ) -> crate::Result<()> {
@@ -209,6 +256,8 @@ pub(super) fn write_report(
         pass_plot: cost_error_plot(records, "shading pass time (ms)", |r| r.time_ms),
         measurements: measurements(records),
         angles,
+        gpu: gpu.adapter.map(|a| GpuSection::new(a, gpu.records, records, &cfg.angles)),
+        gpu_note: gpu.note,
     };
     write_page(path, TEMPLATE, "Relief-surface lab", &page)
 }

@@ -4,30 +4,73 @@ use renderlab_relief::{Kernel, Technique};
 use serde::Serialize;
 use std::path::PathBuf;
 
-/// One technique at one angle: cost and error.
+/// Which renderer produced a record.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RecordBackend {
+    /// The CPU renderer (`renderlab-relief`).
+    Cpu,
+    /// The GPU renderer (`renderlab-gpu`, the technique's WGSL shader).
+    Gpu,
+}
+
+/// One technique at one angle on one renderer: cost and error.
+///
+/// CPU and GPU records share the fields; what one renderer cannot measure is NaN (`null` in
+/// JSON) or `None` (empty in CSV), never a stand-in figure.
 #[derive(Clone, Debug, Serialize)]
 pub struct ReliefRecord {
+    /// Which renderer: `cpu` or `gpu`.
+    pub backend: RecordBackend,
+    /// What ran the frame, for tables: `CPU (N threads)`, `GPU (name)` or, for a software
+    /// adapter, `CPU-emulated GPU (lavapipe)`.
+    pub device: String,
+    /// The GPU adapter's name (GPU records only).
+    pub adapter: Option<String>,
+    /// The GPU adapter's driver name and version (GPU records only).
+    pub driver: Option<String>,
+    /// Whether the adapter is a software one, a CPU emulating a GPU (GPU records only).
+    pub software: Option<bool>,
+    /// Whether the adapter has timestamp queries, i.e. whether `gpu_ms` could be measured
+    /// (GPU records only).
+    pub gpu_timestamps: Option<bool>,
     /// The technique (written as its canonical name, e.g. `pom:32`).
     pub technique: Technique,
     /// Technique family (e.g. `pom`).
     pub family: &'static str,
-    /// The kernel it ran on (`scalar`, `simd`).
+    /// The kernel it ran on (`scalar`, `simd`); GPU records say `scalar` (the shader marches
+    /// each pixel's ray alone).
     pub kernel: Kernel,
     /// Nominal layer or step count (0 when not applicable).
     pub layers: u32,
     /// View angle from the wall normal, degrees.
     pub angle_deg: f32,
-    /// Median time of the whole shading pass (relief trace + texture filtering + lighting), ms.
+    /// Median time of the whole frame, ms. CPU: the shading pass (relief trace + texture
+    /// filtering + lighting) into the framebuffer in memory. GPU: wall clock from submitting
+    /// the frame until its colour image has been read back to memory.
     pub time_ms: f64,
-    /// Median time of the relief trace alone over the frame (the technique's own cost), ms.
+    /// Median time of the relief trace alone over the frame (the technique's own cost), ms;
+    /// NaN for GPU records (a shader cannot run its trace alone).
     pub trace_ms: f64,
+    /// Median GPU time of the render pass from timestamp queries, ms (GPU records on an
+    /// adapter with timestamps; `None` otherwise).
+    pub gpu_ms: Option<f64>,
+    /// `1000 / gpu_ms`: the frame rate the pass alone would allow on the device.
+    pub gpu_fps: Option<f64>,
+    /// With `--backend both`: this technique's CPU whole-frame time over its GPU whole-frame
+    /// time at this angle (medians of repetitions interleaved frame by frame); on both the
+    /// CPU and the GPU record of the pair.
+    pub cpu_over_gpu: Option<f64>,
+    /// With `--backend both`, on GPU records: PSNR of the GPU image against the CPU image
+    /// of the same frame (covered pixels), dB; infinite (`null` in JSON) where identical.
+    pub psnr_vs_cpu_db: Option<f64>,
     /// Fastest repetition, ms.
     pub time_min_ms: f64,
     /// Slowest repetition, ms.
     pub time_max_ms: f64,
-    /// `1000 / time_ms`: the frame rate this pass alone would allow.
+    /// `1000 / time_ms`: the frame rate the whole frame would allow.
     pub fps_equivalent: f64,
-    /// Mean height fetches per covered pixel.
+    /// Mean height fetches per covered pixel (NaN for GPU records: a shader does not count).
     pub samples_per_pixel: f64,
     /// Mean planned layer count per covered pixel (0 when not applicable).
     pub mean_layers: f64,
@@ -56,6 +99,8 @@ pub struct ReliefSummary {
     pub headline: String,
     /// Path of the HTML page.
     pub index: PathBuf,
+    /// What the GPU side did when it did not run as asked (`no GPU adapter: skipped`).
+    pub gpu_note: Option<String>,
 }
 
 /// How a technique on a kernel is labelled in tables and findings: its name, with the kernel
@@ -86,6 +131,13 @@ pub(super) fn key(r: &ReliefRecord) -> Key {
 
 pub(super) fn find(records: &[ReliefRecord], k: Key, angle: f32) -> Option<&ReliefRecord> {
     records.iter().find(|r| key(r) == k && r.angle_deg == angle)
+}
+
+/// The record of `technique` at `angle` on the GPU.
+pub(super) fn find_gpu(records: &[ReliefRecord], technique: Technique, angle: f32) -> Option<&ReliefRecord> {
+    records
+        .iter()
+        .find(|r| r.backend == RecordBackend::Gpu && r.technique == technique && r.angle_deg == angle)
 }
 
 /// Mean over the angles of `f(record)` for one technique; `None` if any angle is missing.

@@ -1,8 +1,10 @@
 //! The run: rasterize each view, time every technique, then measure its error.
 
-use super::config::{resolve, ReliefBenchConfig};
-use super::page::{write_report, ImageSet};
-use super::record::{label, slug, ReliefRecord, ReliefSummary};
+use super::config::{resolve, Backend, ReliefBenchConfig};
+use super::gpu_side::{self, time_gpu, time_interleaved, GpuAnalysis, GpuTimes};
+use super::gpu_tables::gpu_findings;
+use super::page::{write_report, GpuPart, ImageSet};
+use super::record::{label, slug, RecordBackend, ReliefRecord, ReliefSummary};
 use super::uv_error::{mean_and_p95, uv_error_map};
 use super::verdicts::{findings, headline};
 use crate::fixtures::{benchmark_camera, benchmark_scene};
@@ -15,6 +17,7 @@ use glam::Vec2;
 use rayon::prelude::*;
 use renderlab_core::io::{save_color, save_rgb8};
 use renderlab_core::{Camera, CoreError, Material, Scene};
+use renderlab_gpu::ReliefRenderer;
 use renderlab_raster::{rasterize, GBuffer};
 use renderlab_relief::render::{check, render, render_into, render_reference, trace_only};
 use renderlab_relief::{Frame, FrameInput, Kernel, Map, ReliefMaterial, Shading, Technique};
@@ -50,6 +53,12 @@ impl View {
 /// Per angle, every technique is timed first, one after another with the machine to itself;
 /// then the untimed work (the counted render, the metrics, the images) runs for all of them
 /// at once, spread over the threads. The order changes no figure and no byte of an image.
+///
+/// With a GPU backend ([`ReliefBenchConfig::backend`]) the device is opened first (no
+/// adapter, or a frame larger than its textures, is an error before any work unless
+/// [`ReliefBenchConfig::gpu_required`] is off, in which case the summary says the GPU was
+/// skipped); each technique's shader is timed alone (`gpu`) or frame by frame in turn with
+/// the CPU pass (`both`), and its frame is measured against the same reference.
 pub fn run_relief_bench(
     material: &Material,
     cfg: &ReliefBenchConfig,
@@ -57,6 +66,7 @@ pub fn run_relief_bench(
     progress: Progress,
 ) -> crate::Result<ReliefSummary> {
     cfg.complexity.validate()?;
+    let (gpu_ctx, gpu_note) = gpu_side::open(cfg)?;
     let img_dir = out.join("img");
     std::fs::create_dir_all(&img_dir).map_err(|source| CoreError::Write { path: img_dir.clone(), source })?;
     let methods = resolve(&cfg.techniques)?;
@@ -67,20 +77,40 @@ pub fn run_relief_bench(
         check(t, kernel, std::slice::from_ref(&mat))?;
     }
     let scene = benchmark_scene(material.clone());
-    let total = cfg.angles.len() * methods.len();
+    let mats = std::slice::from_ref(&mat);
+    let mut renderer = match &gpu_ctx {
+        Some(ctx) => Some(ReliefRenderer::new(ctx, &scene, mats)?),
+        None => None,
+    };
+    // The techniques the GPU runs at an angle: each once, whatever its CPU kernels.
+    let has_gpu = renderer.is_some();
+    let gpu_techniques = |angle: f32| -> Vec<Technique> {
+        let mut v: Vec<Technique> = Vec::new();
+        for &(t, _) in &methods {
+            if has_gpu && cfg.on_gpu(t, angle) && !v.contains(&t) {
+                v.push(t);
+            }
+        }
+        v
+    };
+    let cpu_count = if cfg.backend.cpu() { methods.len() } else { 0 };
+    let total: usize = cfg.angles.iter().map(|&a| cpu_count + gpu_techniques(a).len()).sum();
     let mut done = 0;
-    let mut records = Vec::new();
+    let (mut records, mut gpu_records) = (Vec::new(), Vec::new());
     let mut images: Vec<ImageSet> = Vec::new();
     for &angle in &cfg.angles {
         let camera = benchmark_camera(angle, cfg.width, cfg.height);
         let view = View::new(&scene, &camera, angle);
-        let mats = std::slice::from_ref(&mat);
+        let on_gpu = gpu_techniques(angle);
         let mut timings = Vec::with_capacity(methods.len());
+        // Each GPU-timed technique with, when it was timed in turn with a CPU pass, the index
+        // of that CPU method and the CPU pass's median.
+        let mut gpu_runs: Vec<GpuRun> = Vec::new();
         // One framebuffer serves every timed pass, as a renderer reuses its own.
         let mut frame = Frame::blank(cfg.width, cfg.height, scene.background);
-        for &(t, kernel) in &methods {
+        for (i, &(t, kernel)) in methods.iter().enumerate().filter(|_| cfg.backend.cpu()) {
             progress(done, total, &format!("{angle}°: {}", label(t, kernel)));
-            let (pass, rendered): (Timing, _) = measure(cfg.warmup, cfg.reps, || {
+            let mut cpu_pass = || {
                 render_into(
                     view.input(),
                     mats,
@@ -91,12 +121,38 @@ pub fn run_relief_bench(
                     false,
                     &mut frame,
                 )
-            });
-            rendered?;
+            };
+            let paired = cfg.backend == Backend::Both
+                && on_gpu.contains(&t)
+                && gpu_runs.iter().all(|(g, _, _)| *g != t);
+            let (pass, ratio) = match (&mut renderer, paired) {
+                (Some(r), true) => {
+                    let (pass, gpu) = time_interleaved(r, &camera, t, cfg.warmup, cfg.reps, || {
+                        cpu_pass().map_err(Into::into)
+                    })?;
+                    gpu_runs.push((t, gpu, Some((i, pass.median_ms))));
+                    done += 1;
+                    (pass, Some(pass.median_ms / gpu.wall.median_ms))
+                }
+                _ => {
+                    let (pass, rendered): (Timing, _) = measure(cfg.warmup, cfg.reps, &mut cpu_pass);
+                    rendered?;
+                    (pass, None)
+                }
+            };
             // The pass just traced the same frame with the same maps: the trace is warm.
             let (trace, _) = measure(0, cfg.reps, || trace_only(view.input(), mats, t, kernel));
-            timings.push((pass, trace));
+            timings.push((pass, trace, ratio));
             done += 1;
+        }
+        if let Some(r) = &mut renderer {
+            let alone: Vec<Technique> =
+                on_gpu.iter().copied().filter(|&t| gpu_runs.iter().all(|(g, _, _)| *g != t)).collect();
+            for t in alone {
+                progress(done, total, &format!("{angle}°: {} (GPU)", t.name()));
+                gpu_runs.push((t, time_gpu(r, &camera, t, cfg.warmup, cfg.reps)?, None));
+                done += 1;
+            }
         }
         progress(done, total, &format!("{angle}°: references, errors and images"));
         let mut refs: Vec<(Shading, Frame)> = Vec::new();
@@ -113,26 +169,54 @@ pub fn run_relief_bench(
         }
         let ctx =
             Analysis { view: &view, scene: &scene, mats, refs: &refs, material, img_dir: &img_dir, cfg };
-        let analysed: Vec<(ReliefRecord, Option<ImageSet>)> = methods
+        let keep: Vec<bool> = (0..timings.len())
+            .map(|i| gpu_runs.iter().any(|(_, _, p)| p.is_some_and(|(j, _)| j == i)))
+            .collect();
+        let analysed: Vec<(ReliefRecord, Option<ImageSet>, Option<Frame>)> = methods
             .par_iter()
             .zip(&timings)
-            .map(|(&(t, kernel), &(pass, trace))| ctx.analyse(t, kernel, pass, trace))
+            .zip(&keep)
+            .map(|((&(t, kernel), &(pass, trace, ratio)), &keep)| {
+                ctx.analyse(t, kernel, pass, trace, ratio, keep)
+            })
             .collect::<crate::Result<_>>()?;
-        for (rec, set) in analysed {
+        if let (Some(r), Some(gctx)) = (&mut renderer, &gpu_ctx) {
+            let g = GpuAnalysis { report: &gctx.report, material, img_dir: &img_dir, cfg };
+            for &(t, times, paired) in &gpu_runs {
+                let cpu = paired.and_then(|(i, ms)| analysed[i].2.as_ref().map(|f| (&f.image, &f.mask, ms)));
+                let (rec, set) = g.record(r, &camera, t, angle, times, reference_for(&refs, t), cpu)?;
+                gpu_records.push(rec);
+                images.extend(set);
+            }
+        }
+        for (rec, set, _) in analysed {
             records.push(rec);
             images.extend(set);
         }
     }
     progress(done, total, "writing results and report");
-    write_json(out.join("results.json"), &records)?;
-    write_csv(out.join("results.csv"), &records)?;
-    let findings = findings(&records, &cfg.angles);
+    let all: Vec<ReliefRecord> = records.iter().chain(&gpu_records).cloned().collect();
+    write_json(out.join("results.json"), &all)?;
+    write_csv(out.join("results.csv"), &all)?;
+    let mut findings = findings(&records, &cfg.angles);
+    findings.extend(gpu_findings(&records, &gpu_records, &cfg.angles));
+    findings.extend(gpu_note.clone());
     let headline = headline(&records, &cfg.angles);
     let index = out.join("index.html");
-    write_report(&index, material, cfg, &records, &findings, &images)?;
+    let gpu = GpuPart {
+        records: &gpu_records,
+        note: gpu_note.as_deref(),
+        adapter: gpu_ctx.as_ref().map(|c| &c.report),
+    };
+    write_report(&index, material, cfg, &records, gpu, &findings, &images)?;
     progress(total, total, "done");
-    Ok(ReliefSummary { records, findings, headline, index })
+    records.extend(gpu_records);
+    Ok(ReliefSummary { records, findings, headline, index, gpu_note })
 }
+
+/// A technique timed on the GPU at one angle: its times and, when it was timed in turn with a
+/// CPU pass, the index of that CPU method and the CPU pass's median (ms).
+type GpuRun = (Technique, GpuTimes, Option<(usize, f64)>);
 
 /// What the untimed half of a run needs to turn one technique's timings into a record.
 struct Analysis<'a> {
@@ -147,19 +231,22 @@ struct Analysis<'a> {
 
 impl Analysis<'_> {
     /// Renders `t` once more with its counters and debug targets, measures its error against
-    /// the reference of its shading and writes its images.
+    /// the reference of its shading and writes its images; hands the frame back when `keep`
+    /// (a GPU frame is to be compared with it). `cpu_over_gpu` is the ratio measured when the
+    /// pass was timed in turn with the GPU's frame.
     fn analyse(
         &self,
         t: Technique,
         kernel: Kernel,
         pass: Timing,
         trace: Timing,
-    ) -> crate::Result<(ReliefRecord, Option<ImageSet>)> {
+        cpu_over_gpu: Option<f64>,
+        keep: bool,
+    ) -> crate::Result<(ReliefRecord, Option<ImageSet>, Option<Frame>)> {
         let (view, scene, angle) = (self.view, self.scene, self.view.angle);
         let frame: Frame =
             render(view.input(), self.mats, t, kernel, scene.lighting, scene.background, true)?;
-        let shading = t.shading();
-        let reference = &self.refs.iter().find(|(s, _)| *s == shading).expect("a reference per shading").1;
+        let reference = reference_for(self.refs, t);
         let cmp = compare(&frame.image, &reference.image, Some(&frame.mask));
         // UV error is counted in texels of the height map, where the relief is defined (the
         // albedo may have another resolution).
@@ -174,6 +261,12 @@ impl Analysis<'_> {
             frame.layers.pixels().iter().map(|&l| l as f64).sum::<f64>() / covered as f64
         };
         let rec = ReliefRecord {
+            backend: RecordBackend::Cpu,
+            device: format!("CPU ({} threads)", rayon::current_num_threads()),
+            adapter: None,
+            driver: None,
+            software: None,
+            gpu_timestamps: None,
             technique: t,
             family: t.family(),
             kernel,
@@ -181,6 +274,10 @@ impl Analysis<'_> {
             angle_deg: angle,
             time_ms: pass.median_ms,
             trace_ms: trace.median_ms,
+            gpu_ms: None,
+            gpu_fps: None,
+            cpu_over_gpu,
+            psnr_vs_cpu_db: None,
             time_min_ms: pass.min_ms,
             time_max_ms: pass.max_ms,
             fps_equivalent: 1000.0 / pass.median_ms,
@@ -194,7 +291,7 @@ impl Analysis<'_> {
             covered_pixels: covered,
         };
         if !self.cfg.write_images {
-            return Ok((rec, None));
+            return Ok((rec, None, keep.then_some(frame)));
         }
         let dir = self.img_dir;
         let base = format!("{}_{}", slug(t, kernel), angle);
@@ -210,8 +307,13 @@ impl Analysis<'_> {
             save_rgb8(dir.join(format!("{base}_layers.png")), &heat)?;
         }
         let set = ImageSet { angle, label: label(t, kernel), base, has_layers: t.layers() > 0 };
-        Ok((rec, Some(set)))
+        Ok((rec, Some(set), keep.then_some(frame)))
     }
+}
+
+/// The reference of `t`'s shading among `refs` (the run renders one per shading it needs).
+fn reference_for(refs: &[(Shading, Frame)], t: Technique) -> &Frame {
+    &refs.iter().find(|(s, _)| *s == t.shading()).expect("a reference per shading").1
 }
 
 fn shading_name(s: Shading) -> &'static str {

@@ -3,8 +3,10 @@
 
 use crate::error::Result;
 use crate::lab::{create_dir, existing, files_under, Lab, LabSummary, Progress};
-use crate::relief_lab::{run_relief_bench, ReliefBenchConfig};
+use crate::relief_lab::{run_relief_bench, Backend, GpuSubset, ReliefBenchConfig, POM_32};
 use renderlab_core::Material;
+use renderlab_relief::techniques::basic::Basic;
+use renderlab_relief::Technique;
 use renderlab_texture::materials;
 use std::path::Path;
 use std::time::Instant;
@@ -23,10 +25,22 @@ impl Lab for ReliefLab {
     const NAME: &'static str = "relief";
     const TITLE: &'static str = "Relief surfaces (thesis 000)";
 
-    /// Bricks at the built-in size, the lab's defaults with three timed repetitions.
+    /// Bricks at the built-in size, the lab's defaults with three timed repetitions, and the
+    /// CPU renderer against the GPU's shaders for a small set (basic and POM-32 at 0° and
+    /// 60°, a few seconds even on lavapipe) where an adapter exists; without one the page says
+    /// the GPU was skipped.
     fn report_preset() -> Result<Self> {
         let material = materials::material("bricks", materials::DEFAULT_SIZE)?;
-        Ok(ReliefLab { material, config: ReliefBenchConfig { reps: 3, ..ReliefBenchConfig::default() } })
+        let gpu_subset =
+            GpuSubset { techniques: vec![Technique::Basic(Basic), POM_32], angles: vec![0.0, 60.0] };
+        let config = ReliefBenchConfig {
+            reps: 3,
+            backend: Backend::Both,
+            gpu_subset: Some(gpu_subset),
+            gpu_required: false,
+            ..ReliefBenchConfig::default()
+        };
+        Ok(ReliefLab { material, config })
     }
 
     /// A 640×400 frame, one repetition and no warm-up.
