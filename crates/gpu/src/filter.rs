@@ -19,6 +19,7 @@
 use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
 use crate::readback::read_texture;
+use crate::shader::build_checked;
 use crate::timing::{median, GpuTiming, PassTimer};
 use crate::upload::{create, upload_pyramid, write_level};
 use bytemuck::{Pod, Zeroable};
@@ -445,21 +446,17 @@ fn bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
 /// The filter frame's pipeline; a shader that fails to build is an error naming it.
 fn build_pipeline(ctx: &GpuContext, layout: &wgpu::BindGroupLayout) -> Result<wgpu::RenderPipeline> {
     let device = &ctx.device;
-    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("texture filters"),
-        source: wgpu::ShaderSource::Wgsl(module_source().into()),
-    });
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some("texture filters"),
         bind_group_layouts: &[Some(layout)],
         immediate_size: 0,
     });
-    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+    build_checked(ctx, "texture filters", &module_source(), |module| {
+        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some("texture filters"),
         layout: Some(&pipeline_layout),
         vertex: wgpu::VertexState {
-            module: &module,
+            module,
             entry_point: Some("vs_main"),
             compilation_options: Default::default(),
             buffers: &[],
@@ -468,7 +465,7 @@ fn build_pipeline(ctx: &GpuContext, layout: &wgpu::BindGroupLayout) -> Result<wg
         depth_stencil: None,
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {
-            module: &module,
+            module,
             entry_point: Some("fs_main"),
             compilation_options: Default::default(),
             targets: &[Some(wgpu::ColorTargetState {
@@ -479,12 +476,6 @@ fn build_pipeline(ctx: &GpuContext, layout: &wgpu::BindGroupLayout) -> Result<wg
         }),
         multiview_mask: None,
         cache: None,
-    });
-    if let Some(e) = pollster::block_on(scope.pop()) {
-        return Err(GpuError::Shader {
-            technique: "texture filters".into(),
-            message: crate::context::one_line(&e.to_string()),
-        });
-    }
-    Ok(pipeline)
+    })
+    })
 }

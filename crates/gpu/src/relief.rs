@@ -11,7 +11,7 @@ use crate::error::{GpuError, Result};
 use crate::material::{material_layout, GpuMaterial};
 use crate::mesh::{vertex_layout, GpuMesh};
 use crate::readback::read_texture;
-use crate::shader::{module_source, params};
+use crate::shader::{build_checked, module_source, params};
 use crate::timing::{median, GpuTiming, PassTimer};
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
@@ -225,22 +225,18 @@ impl<'a> ReliefRenderer<'a> {
     fn build_pipeline(&self, technique: Technique, output: Output) -> Result<wgpu::RenderPipeline> {
         let source = module_source(technique)?;
         let device = &self.ctx.device;
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(&technique.name()),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
         let color =
             |format| Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL });
         let (entry, targets) = match output {
             Output::Color => ("fs_color", vec![color(COLOR_FORMAT)]),
             Output::Debug => ("fs_debug", vec![color(COLOR_FORMAT), color(UV_FORMAT), color(LAYERS_FORMAT)]),
         };
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        build_checked(self.ctx, &technique.name(), &source, |module| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some(&technique.name()),
             layout: Some(&self.layout),
             vertex: wgpu::VertexState {
-                module: &module,
+                module,
                 entry_point: Some("vs_main"),
                 compilation_options: Default::default(),
                 buffers: &[Some(vertex_layout())],
@@ -261,21 +257,15 @@ impl<'a> ReliefRenderer<'a> {
             }),
             multisample: Default::default(),
             fragment: Some(wgpu::FragmentState {
-                module: &module,
+                module,
                 entry_point: Some(entry),
                 compilation_options: Default::default(),
                 targets: &targets,
             }),
             multiview_mask: None,
             cache: None,
-        });
-        if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(GpuError::Shader {
-                technique: technique.name(),
-                message: crate::context::one_line(&e.to_string()),
-            });
-        }
-        Ok(pipeline)
+        })
+        })
     }
 
     /// Refuses `technique` when a material lacks a map it reads (the cone map: the packed

@@ -6,6 +6,7 @@
 //! beside its CPU twin. WGSL declarations may come in any order, so the module is their
 //! concatenation.
 
+use crate::context::{one_line, GpuContext};
 use crate::error::{GpuError, Result};
 use renderlab_relief::maps::packed::{DEPTH_STEP, RATIO_STEP};
 use renderlab_relief::march::{cone_newton, cone_step};
@@ -81,4 +82,30 @@ pub(crate) fn params(technique: Technique) -> Result<[u32; 4]> {
     let mut out = [0u32; 4];
     out[..p.len()].copy_from_slice(&p);
     Ok(out)
+}
+
+/// Compiles `source` into a shader module and runs `build` on it (which creates the
+/// pipelines), all inside a validation error scope: a shader that fails to parse or validate,
+/// or a pipeline that does not match it, comes back as [`GpuError::Shader`] naming `label`, on
+/// one line, instead of reaching wgpu's default handler (which panics). A lost device comes
+/// back as [`GpuError::DeviceLost`].
+pub fn build_checked<T>(
+    ctx: &GpuContext,
+    label: &str,
+    source: &str,
+    build: impl FnOnce(&wgpu::ShaderModule) -> T,
+) -> Result<T> {
+    ctx.check()?;
+    let device = &ctx.device;
+    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    let built = build(&module);
+    if let Some(e) = pollster::block_on(scope.pop()) {
+        return Err(GpuError::Shader { technique: label.to_string(), message: one_line(&e.to_string()) });
+    }
+    ctx.check()?;
+    Ok(built)
 }
