@@ -636,8 +636,10 @@ fn shaders_export_writes_files_and_refuses_bad_input() {
     let ds = d.to_str().unwrap();
     let out = renderlab(&["shaders", "export", "--lang", "glsl,spv", "--technique", "pom:16", "--out", ds]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let mut names: Vec<String> =
-        std::fs::read_dir(&d).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    let mut names: Vec<String> = std::fs::read_dir(&d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
     names.sort();
     assert_eq!(names, ["README.md", "pom.fs_debug.frag", "pom.frag", "pom.spv", "pom.vert"]);
 
@@ -652,5 +654,8 @@ fn shaders_export_writes_files_and_refuses_bad_input() {
     let file = dir.path().join("file");
     std::fs::write(&file, b"x").unwrap();
     let under = file.join("shaders");
-    fails_with(&["shaders", "export", "--lang", "wgsl", "--out", under.to_str().unwrap()], "cannot create directory");
+    fails_with(
+        &["shaders", "export", "--lang", "wgsl", "--out", under.to_str().unwrap()],
+        "cannot create directory",
+    );
 }

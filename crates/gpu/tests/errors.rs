@@ -85,7 +85,8 @@ fn materials_must_match_the_scene() {
 #[test]
 fn a_shader_that_fails_to_compile_is_an_error() {
     let Some(ctx) = context() else { return };
-    let e = shader::build_checked(&ctx, "broken", "fn f( -> f32 { return 1.0; }", |_| ()).err().expect("refused");
+    let e =
+        shader::build_checked(&ctx, "broken", "fn f( -> f32 { return 1.0; }", |_| ()).err().expect("refused");
     assert!(matches!(e, GpuError::Shader { .. }), "{e}");
     let msg = e.to_string();
     assert!(msg.contains("broken") && !msg.contains('\n'), "{msg}");

@@ -168,8 +168,14 @@ pub fn translate(shader: &ExportShader, parsed: &Parsed, lang: Lang) -> Result<V
             }
             files
         }
-        Lang::Hlsl => vec![file(format!("{}.hlsl", shader.name), hlsl(parsed, &rows).map_err(|e| fail(&e))?.into_bytes())],
-        Lang::Msl => vec![file(format!("{}.metal", shader.name), msl(parsed, &rows).map_err(|e| fail(&e))?.into_bytes())],
+        Lang::Hlsl => vec![file(
+            format!("{}.hlsl", shader.name),
+            hlsl(parsed, &rows).map_err(|e| fail(&e))?.into_bytes(),
+        )],
+        Lang::Msl => vec![file(
+            format!("{}.metal", shader.name),
+            msl(parsed, &rows).map_err(|e| fail(&e))?.into_bytes(),
+        )],
         Lang::Spv => {
             let words = spv(parsed, &rows).map_err(|e| fail(&e))?;
             vec![file(format!("{}.spv", shader.name), words.iter().flat_map(|w| w.to_le_bytes()).collect())]
@@ -213,7 +219,8 @@ fn glsl(
         binding_map,
         zero_initialize_workgroup_memory: true,
     };
-    let pipeline = glsl::PipelineOptions { shader_stage: stage, entry_point: entry.to_string(), multiview: None };
+    let pipeline =
+        glsl::PipelineOptions { shader_stage: stage, entry_point: entry.to_string(), multiview: None };
     let mut text = String::new();
     let mut writer = glsl::Writer::new(
         &mut text,
@@ -245,7 +252,9 @@ fn hlsl(parsed: &Parsed, rows: &[BindingRow]) -> std::result::Result<String, nag
         options.binding_map.insert(r.resource_binding(), target);
         if r.class == ResourceClass::Sampler {
             let index_buffer = hlsl::BindTarget { space: u8::MAX, register: r.group, ..target };
-            options.sampler_buffer_binding_map.insert(hlsl::SamplerIndexBufferKey { group: r.group }, index_buffer);
+            options
+                .sampler_buffer_binding_map
+                .insert(hlsl::SamplerIndexBufferKey { group: r.group }, index_buffer);
         }
     }
     let pipeline = hlsl::PipelineOptions::default();
@@ -271,11 +280,17 @@ fn msl(parsed: &Parsed, rows: &[BindingRow]) -> std::result::Result<String, naga
     let per_entry = msl::EntryPointResources { resources, immediates_buffer: None, sizes_buffer: None };
     let options = msl::Options {
         lang_version: (2, 1),
-        per_entry_point_map: parsed.module.entry_points.iter().map(|ep| (ep.name.clone(), per_entry.clone())).collect(),
+        per_entry_point_map: parsed
+            .module
+            .entry_points
+            .iter()
+            .map(|ep| (ep.name.clone(), per_entry.clone()))
+            .collect(),
         fake_missing_bindings: false,
         ..Default::default()
     };
-    let (text, _) = msl::write_string(&parsed.module, &parsed.info, &options, &msl::PipelineOptions::default())?;
+    let (text, _) =
+        msl::write_string(&parsed.module, &parsed.info, &options, &msl::PipelineOptions::default())?;
     Ok(text)
 }
 

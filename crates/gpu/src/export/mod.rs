@@ -187,7 +187,8 @@ pub fn export(dir: &Path, langs: &[Lang], shaders: &[ExportShader]) -> Result<Ve
         parsed.push(p);
     }
     let readme = readme::readme(shaders, &parsed, langs, &files);
-    std::fs::create_dir_all(dir).map_err(|e| GpuError::Export(format!("{}: cannot create directory: {e}", dir.display())))?;
+    std::fs::create_dir_all(dir)
+        .map_err(|e| GpuError::Export(format!("{}: cannot create directory: {e}", dir.display())))?;
     let mut written = Vec::with_capacity(files.len() + 1);
     let mut write = |name: &str, bytes: &[u8]| -> Result<()> {
         let path = dir.join(name);

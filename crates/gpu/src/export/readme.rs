@@ -105,7 +105,9 @@ so an ordinary positive-height Vulkan viewport draws the frame upright.",
 /// what may differ).
 fn same_interface(a: &[Item], b: &[Item]) -> bool {
     a.len() == b.len()
-        && a.iter().zip(b).all(|(x, y)| x.key == y.key && x.kind == y.kind && x.ty == y.ty && x.place == y.place)
+        && a.iter()
+            .zip(b)
+            .all(|(x, y)| x.key == y.key && x.kind == y.kind && x.ty == y.ty && x.place == y.place)
 }
 
 /// A description, or a mark that it is missing (the tests refuse such a shader).
@@ -126,7 +128,10 @@ fn interface_tables(s: &mut String, parsed: &Parsed, interface: &[Item], langs: 
         s.push_str("---|");
     }
     s.push_str("---|---|\n");
-    for item in interface.iter().filter(|i| matches!(i.kind, ItemKind::Uniform | ItemKind::Texture | ItemKind::Sampler)) {
+    for item in interface
+        .iter()
+        .filter(|i| matches!(i.kind, ItemKind::Uniform | ItemKind::Texture | ItemKind::Sampler))
+    {
         let _ = write!(s, "| `{}` | {} | {} |", item.key, item.kind.label(), item.place);
         let row = rows.iter().find(|r| r.name == item.key);
         for l in &others {
@@ -143,13 +148,23 @@ fn interface_tables(s: &mut String, parsed: &Parsed, interface: &[Item], langs: 
     }
     let members: Vec<&Item> = interface.iter().filter(|i| i.kind == ItemKind::UniformMember).collect();
     if !members.is_empty() {
-        s.push_str("\n### Uniform members (std140 offsets in bytes)\n\n| member | type | offset | meaning and unit |\n|---|---|---|---|\n");
+        s.push_str("\n### Uniform members (byte offsets in the block)\n\n| member | type | offset | meaning and unit |\n|---|---|---|---|\n");
         for m in members {
-            let _ = writeln!(s, "| `{}` | `{}` | {} | {} |", m.key, m.ty, m.place.trim_start_matches("offset "), meaning(&m.key));
+            let _ = writeln!(
+                s,
+                "| `{}` | `{}` | {} | {} |",
+                m.key,
+                m.ty,
+                m.place.trim_start_matches("offset "),
+                meaning(&m.key)
+            );
         }
     }
     s.push_str("\n### Stage inputs and outputs\n\n| name | kind | binding | type | entry points | meaning |\n|---|---|---|---|---|---|\n");
-    for item in interface.iter().filter(|i| matches!(i.kind, ItemKind::VertexInput | ItemKind::Varying | ItemKind::FragmentOutput)) {
+    for item in interface
+        .iter()
+        .filter(|i| matches!(i.kind, ItemKind::VertexInput | ItemKind::Varying | ItemKind::FragmentOutput))
+    {
         let _ = writeln!(
             s,
             "| `{}` | {} | `{}` | `{}` | {} | {} |",
@@ -172,7 +187,9 @@ fn shader_section(s: &mut String, shader: &ExportShader, parsed: &Parsed, interf
             let lit = match d.shading {
                 Shading::Unlit => "`Frame.lit` = 0 (unlit)",
                 Shading::Lit => "`Frame.lit` = 1 (lit)",
-                Shading::LitShadowed => "`Frame.lit` = 2 (lit, soft self-shadows; `Frame.shadow_samples` > 0)",
+                Shading::LitShadowed => {
+                    "`Frame.lit` = 2 (lit, soft self-shadows; `Frame.shadow_samples` > 0)"
+                }
             };
             let _ = writeln!(s, "The relief technique `{}`: {}. Draw it with {lit}.", d.name, d.summary);
             if d.params.is_empty() {
@@ -190,8 +207,12 @@ fn shader_section(s: &mut String, shader: &ExportShader, parsed: &Parsed, interf
              hardware's sampler or with EWA written in the shader (`Filter.mode`).\n",
         ),
     }
-    let entries: Vec<String> =
-        parsed.module.entry_points.iter().map(|ep| format!("`{}` ({:?})", ep.name, ep.stage).to_lowercase()).collect();
+    let entries: Vec<String> = parsed
+        .module
+        .entry_points
+        .iter()
+        .map(|ep| format!("`{}` ({:?})", ep.name, ep.stage).to_lowercase())
+        .collect();
     let _ = writeln!(s, "\nEntry points: {}.", entries.join(", "));
     for ep in parsed.module.entry_points.iter().filter(|ep| ep.stage == naga::ShaderStage::Fragment) {
         let reads: Vec<String> = interface

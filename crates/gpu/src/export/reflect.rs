@@ -117,7 +117,15 @@ pub fn items(parsed: &Parsed) -> Vec<Item> {
             io(module, arg.ty, arg.binding.as_ref(), plain, input_kind, &ep.name, &mut out);
         }
         if let Some(r) = &f.result {
-            io(module, r.ty, r.binding.as_ref(), format!("{}.result", ep.name), output_kind, &ep.name, &mut out);
+            io(
+                module,
+                r.ty,
+                r.binding.as_ref(),
+                format!("{}.result", ep.name),
+                output_kind,
+                &ep.name,
+                &mut out,
+            );
         }
     }
     out
@@ -156,7 +164,11 @@ fn io(
         TypeInner::Struct { members, .. } if binding.is_none() => {
             let struct_name = types[ty].name.clone().unwrap_or_default();
             for m in members {
-                add(format!("{struct_name}.{}", m.name.as_deref().unwrap_or_default()), m.ty, m.binding.as_ref());
+                add(
+                    format!("{struct_name}.{}", m.name.as_deref().unwrap_or_default()),
+                    m.ty,
+                    m.binding.as_ref(),
+                );
             }
         }
         _ => add(plain_key, ty, binding),
