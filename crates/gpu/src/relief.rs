@@ -11,7 +11,7 @@ use crate::error::{GpuError, Result};
 use crate::material::{material_layout, GpuMaterial};
 use crate::mesh::{vertex_layout, GpuMesh};
 use crate::readback::read_texture;
-use crate::shader::{build_checked, module_source, params};
+use crate::shader::{module_source, params, ShaderBuild};
 use crate::timing::{median, GpuTiming, PassTimer};
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
@@ -225,47 +225,48 @@ impl<'a> ReliefRenderer<'a> {
     fn build_pipeline(&self, technique: Technique, output: Output) -> Result<wgpu::RenderPipeline> {
         let source = module_source(technique)?;
         let device = &self.ctx.device;
+        let (build, module) = ShaderBuild::begin(self.ctx, &technique.name(), &source)?;
         let color =
             |format| Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL });
         let (entry, targets) = match output {
             Output::Color => ("fs_color", vec![color(COLOR_FORMAT)]),
             Output::Debug => ("fs_debug", vec![color(COLOR_FORMAT), color(UV_FORMAT), color(LAYERS_FORMAT)]),
         };
-        build_checked(self.ctx, &technique.name(), &source, |module| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(&technique.name()),
-                layout: Some(&self.layout),
-                vertex: wgpu::VertexState {
-                    module,
-                    entry_point: Some("vs_main"),
-                    compilation_options: Default::default(),
-                    buffers: &[Some(vertex_layout())],
-                },
-                primitive: wgpu::PrimitiveState {
-                    topology: wgpu::PrimitiveTopology::TriangleList,
-                    front_face: wgpu::FrontFace::Ccw,
-                    cull_mode: Some(wgpu::Face::Back),
-                    ..Default::default()
-                },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: DEPTH_FORMAT,
-                    depth_write_enabled: Some(true),
-                    // Strictly nearer wins, so depth ties keep the earlier object, as on the CPU.
-                    depth_compare: Some(wgpu::CompareFunction::Less),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module,
-                    entry_point: Some(entry),
-                    compilation_options: Default::default(),
-                    targets: &targets,
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
-        })
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(&technique.name()),
+            layout: Some(&self.layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[Some(vertex_layout())],
+            },
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::TriangleList,
+                front_face: wgpu::FrontFace::Ccw,
+                cull_mode: Some(wgpu::Face::Back),
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                // Strictly nearer wins, so depth ties keep the earlier object, as on the CPU.
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                targets: &targets,
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        build.finish()?;
+        Ok(pipeline)
     }
 
     /// Refuses `technique` when a material lacks a map it reads (the cone map: the packed

@@ -86,7 +86,7 @@ fn materials_must_match_the_scene() {
 fn a_shader_that_fails_to_compile_is_an_error() {
     let Some(ctx) = context() else { return };
     let e =
-        shader::build_checked(&ctx, "broken", "fn f( -> f32 { return 1.0; }", |_| ()).err().expect("refused");
+        shader::build_checked(&ctx, "broken", "fn f( -> f32 { return 1.0; }", |_| ()).expect_err("refused");
     assert!(matches!(e, GpuError::Shader { .. }), "{e}");
     let msg = e.to_string();
     assert!(msg.contains("broken") && !msg.contains('\n'), "{msg}");
@@ -110,8 +110,7 @@ fn a_shader_that_fails_to_compile_is_an_error() {
             cache: None,
         })
     })
-    .err()
-    .expect("no such entry point");
+    .expect_err("no such entry point");
     assert!(matches!(e, GpuError::Shader { .. }) && e.to_string().contains("no vertex stage"), "{e}");
 
     // Still usable: the real shaders build and draw.
@@ -132,6 +131,6 @@ fn a_lost_device_is_an_error_on_the_next_call() {
     let e = ctx.check().expect_err("it stays gone");
     assert!(matches!(e, GpuError::DeviceLost(_)), "{e}");
     let source = shader::module_source(Technique::parse("pom").expect("pom")).expect("pom has a shader");
-    let e = shader::build_checked(&ctx, "pom", &source, |_| ()).err().expect("refused");
+    let e = shader::build_checked(&ctx, "pom", &source, |_| ()).expect_err("refused");
     assert!(matches!(e, GpuError::DeviceLost(_)) && !e.to_string().contains('\n'), "{e}");
 }

@@ -34,7 +34,7 @@ fn the_default_set_is_every_technique_and_the_filters() {
 /// instruction's word count inside the module and ending exactly at its end, and one
 /// `OpEntryPoint` per entry point of the WGSL module.
 fn check_spirv(name: &str, bytes: &[u8], entry_points: usize) {
-    assert!(bytes.len() % 4 == 0 && bytes.len() > 20, "{name}: {} bytes", bytes.len());
+    assert!(bytes.len().is_multiple_of(4) && bytes.len() > 20, "{name}: {} bytes", bytes.len());
     let words: Vec<u32> =
         bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
     assert_eq!(words[0], SPIRV_MAGIC, "{name}: magic");
