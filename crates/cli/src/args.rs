@@ -597,8 +597,8 @@ pub enum ShadersCommand {
 /// `renderlab shaders export`.
 #[derive(Args, Debug)]
 pub struct ShadersExportArgs {
-    /// Languages, comma-separated: wgsl, glsl, hlsl, msl, spv.
-    #[arg(long, required = true, value_delimiter = ',', value_parser = parse_lang)]
+    /// Languages, comma-separated (at least one): wgsl, glsl, hlsl, msl, spv.
+    #[arg(long, value_delimiter = ',', value_parser = parse_lang)]
     pub lang: Vec<renderlab_gpu::export::Lang>,
     /// Output directory (created if missing).
     #[arg(long)]

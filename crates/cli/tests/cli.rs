@@ -641,7 +641,7 @@ fn shaders_export_writes_files_and_refuses_bad_input() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     names.sort();
-    assert_eq!(names, ["README.md", "pom.fs_debug.frag", "pom.frag", "pom.spv", "pom.vert"]);
+    assert_eq!(names, ["README.md", "pom.frag", "pom.fs_debug.frag", "pom.spv", "pom.vert"]);
 
     // Bad input: one line, exit 1, and nothing written.
     let bad = dir.path().join("bad");
