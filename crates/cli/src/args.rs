@@ -88,6 +88,9 @@ pub enum Command {
     /// Writes --frames PNG frames (frame_0000.png, …) and the same frames as one looping
     /// animation (animation.png, APNG) to --out.
     Smoke(SmokeArgs),
+    /// Shaders for other engines: export the GPU renderer's shaders, translated by naga.
+    #[command(subcommand)]
+    Shaders(ShadersCommand),
 }
 
 /// `renderlab report`.
@@ -604,4 +607,38 @@ fn filters_help() -> String {
         list.join("\n"),
         defaults.join(", ")
     )
+}
+
+/// `renderlab shaders …`.
+#[derive(Subcommand, Debug)]
+pub enum ShadersCommand {
+    /// Write every relief technique's shader (and the texture filters' frame with EWA), parsed
+    /// and validated by naga and translated into each --lang, with README.md in --out naming
+    /// each shader's inputs: every texture (which map, its encoding), sampler, uniform member
+    /// (with its unit), vertex attribute and fragment output, and where each language binds
+    /// it. Languages: wgsl (the module renderlab runs), glsl (4.50 core, NAME.vert and
+    /// NAME.frag per entry point), hlsl (shader model 6.0), msl (Metal 2.1), spv (SPIR-V 1.0,
+    /// binary). Files are written atomically; nothing is written when a translation fails.
+    Export(ShadersExportArgs),
+}
+
+/// `renderlab shaders export`.
+#[derive(Args, Debug)]
+pub struct ShadersExportArgs {
+    /// Languages, comma-separated (at least one): wgsl, glsl, hlsl, msl, spv.
+    #[arg(long, value_delimiter = ',', value_parser = parse_lang)]
+    pub lang: Vec<renderlab_gpu::export::Lang>,
+    /// Output directory (created if missing).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Only this technique's shader (repeat, or comma-separate, for several; parameters are
+    /// uniforms, so `pom:16` exports pom's shader). Default: every technique and the texture
+    /// filters.
+    #[arg(long, value_delimiter = ',', value_parser = parse_technique)]
+    pub technique: Vec<Technique>,
+}
+
+/// Reads one `--lang` value.
+fn parse_lang(s: &str) -> Result<renderlab_gpu::export::Lang, String> {
+    renderlab_gpu::export::Lang::parse(s).map_err(|e| e.to_string())
 }

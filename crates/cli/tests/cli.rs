@@ -54,6 +54,8 @@ fn every_command_has_help() {
         vec!["noise", "--help"],
         vec!["water", "--help"],
         vec!["smoke", "--help"],
+        vec!["shaders", "--help"],
+        vec!["shaders", "export", "--help"],
     ] {
         let out = renderlab(&args);
         assert!(out.status.success(), "{args:?}");
@@ -618,4 +620,42 @@ fn relief_render_backends() {
     assert!(String::from_utf8_lossy(&auto.stdout).contains("rendering on the CPU instead"));
     assert!(out.exists());
     fails_with(&with(&["--backend", "metal"]), "--backend");
+}
+
+#[test]
+fn shaders_export_writes_files_and_refuses_bad_input() {
+    let out = renderlab(&["shaders", "export", "--help"]);
+    assert!(out.status.success());
+    let help = String::from_utf8_lossy(&out.stdout);
+    for word in ["wgsl", "glsl", "hlsl", "msl", "spv", "README.md", "--technique"] {
+        assert!(help.contains(word), "shaders export --help lacks {word}");
+    }
+
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path().join("shaders");
+    let ds = d.to_str().unwrap();
+    let out = renderlab(&["shaders", "export", "--lang", "glsl,spv", "--technique", "pom:16", "--out", ds]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let mut names: Vec<String> = std::fs::read_dir(&d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["README.md", "pom.frag", "pom.fs_debug.frag", "pom.spv", "pom.vert"]);
+
+    // Bad input: one line, exit 1, and nothing written.
+    let bad = dir.path().join("bad");
+    let bs = bad.to_str().unwrap();
+    fails_with(&["shaders", "export", "--lang", "cuda", "--out", bs], "cuda");
+    fails_with(&["shaders", "export", "--lang", "glsl", "--technique", "nope", "--out", bs], "nope");
+    fails_with(&["shaders", "export", "--out", bs], "--lang");
+    assert!(!bad.exists());
+    // An output directory that cannot be created: a file stands where it would go.
+    let file = dir.path().join("file");
+    std::fs::write(&file, b"x").unwrap();
+    let under = file.join("shaders");
+    fails_with(
+        &["shaders", "export", "--lang", "wgsl", "--out", under.to_str().unwrap()],
+        "cannot create directory",
+    );
 }

@@ -2,9 +2,10 @@
 //! lavapipe allowed), opening it with the features the renderer uses, and reporting what it
 //! is, so that every GPU result can say which device produced it.
 //!
-//! Errors the device raises while running (validation, out of memory, a lost device) are
-//! caught by an error handler and returned by [`GpuContext::check`] instead of wgpu's default
-//! panic.
+//! Errors the device raises while running (validation, out of memory) are caught by an error
+//! handler and returned by [`GpuContext::check`] instead of wgpu's default panic; a lost
+//! device is recorded by the device-lost callback and every later check returns
+//! [`GpuError::DeviceLost`].
 
 use crate::error::{GpuError, Result};
 use std::sync::{Arc, Mutex};
@@ -50,6 +51,8 @@ pub struct GpuContext {
     pub report: AdapterReport,
     /// The first error the device raised that no caller has collected yet.
     errors: Arc<Mutex<Option<String>>>,
+    /// Why the device was lost, once it has been (it stays lost).
+    lost: Arc<Mutex<Option<String>>>,
 }
 
 /// Preference order of device types: hardware first, software last.
@@ -104,10 +107,11 @@ impl GpuContext {
             let mut slot = sink.lock().unwrap_or_else(|p| p.into_inner());
             slot.get_or_insert_with(|| one_line(&e.to_string()));
         }));
-        let lost = Arc::clone(&errors);
+        let lost = Arc::new(Mutex::new(None::<String>));
+        let lost_sink = Arc::clone(&lost);
         device.set_device_lost_callback(move |reason, message| {
-            let mut slot = lost.lock().unwrap_or_else(|p| p.into_inner());
-            slot.get_or_insert_with(|| format!("device lost ({reason:?}): {}", one_line(&message)));
+            let mut slot = lost_sink.lock().unwrap_or_else(|p| p.into_inner());
+            slot.get_or_insert_with(|| format!("{reason:?}: {}", one_line(&message)));
         });
         let report = AdapterReport {
             name: info.name,
@@ -117,11 +121,16 @@ impl GpuContext {
             software: info.device_type == wgpu::DeviceType::Cpu,
             timestamps,
         };
-        Ok(Self { device, queue, report, errors })
+        Ok(Self { device, queue, report, errors, lost })
     }
 
-    /// The first error the device raised since the last check, as an error; `Ok` if none.
+    /// [`GpuError::DeviceLost`] once the device has been lost (on every call after: a lost
+    /// device stays lost), else the first error the device raised since the last check, as
+    /// an error; `Ok` if none.
     pub fn check(&self) -> Result<()> {
+        if let Some(why) = self.lost.lock().unwrap_or_else(|p| p.into_inner()).as_ref() {
+            return Err(GpuError::DeviceLost(why.clone()));
+        }
         let mut slot = self.errors.lock().unwrap_or_else(|p| p.into_inner());
         match slot.take() {
             Some(e) => Err(GpuError::Runtime(e)),
@@ -131,9 +140,11 @@ impl GpuContext {
 
     /// Waits until the device has finished all submitted work.
     pub fn wait(&self) -> Result<()> {
-        self.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| GpuError::Runtime(e.to_string()))?;
+        if let Err(e) = self.device.poll(wgpu::PollType::wait_indefinitely()) {
+            // A lost device says so rather than giving the poll's own error.
+            self.check()?;
+            return Err(GpuError::Runtime(one_line(&e.to_string())));
+        }
         self.check()
     }
 

@@ -76,6 +76,15 @@ pub enum GpuError {
     /// Reading results back failed.
     #[error("reading back from the GPU failed: {0}")]
     Readback(String),
+    /// The device was lost (driver reset, removal, out of memory); it cannot be used again.
+    #[error("the GPU device was lost: {0}")]
+    DeviceLost(String),
+    /// A shader could not be exported (unknown language, a translation naga refused).
+    #[error("shader export: {0}")]
+    Export(String),
+    /// An output file could not be written.
+    #[error(transparent)]
+    Output(#[from] renderlab_core::CoreError),
 }
 
 /// Results of the GPU renderer.

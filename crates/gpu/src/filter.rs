@@ -19,6 +19,7 @@
 use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
 use crate::readback::read_texture;
+use crate::shader::ShaderBuild;
 use crate::timing::{median, GpuTiming, PassTimer};
 use crate::upload::{create, upload_pyramid, write_level};
 use bytemuck::{Pod, Zeroable};
@@ -445,11 +446,7 @@ fn bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
 /// The filter frame's pipeline; a shader that fails to build is an error naming it.
 fn build_pipeline(ctx: &GpuContext, layout: &wgpu::BindGroupLayout) -> Result<wgpu::RenderPipeline> {
     let device = &ctx.device;
-    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("texture filters"),
-        source: wgpu::ShaderSource::Wgsl(module_source().into()),
-    });
+    let (build, module) = ShaderBuild::begin(ctx, "texture filters", &module_source())?;
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some("texture filters"),
         bind_group_layouts: &[Some(layout)],
@@ -480,11 +477,6 @@ fn build_pipeline(ctx: &GpuContext, layout: &wgpu::BindGroupLayout) -> Result<wg
         multiview_mask: None,
         cache: None,
     });
-    if let Some(e) = pollster::block_on(scope.pop()) {
-        return Err(GpuError::Shader {
-            technique: "texture filters".into(),
-            message: crate::context::one_line(&e.to_string()),
-        });
-    }
+    build.finish()?;
     Ok(pipeline)
 }

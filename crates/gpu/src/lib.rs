@@ -32,6 +32,7 @@
 
 pub mod context;
 pub mod error;
+pub mod export;
 pub mod filter;
 mod material;
 mod mesh;

@@ -11,7 +11,7 @@ use crate::error::{GpuError, Result};
 use crate::material::{material_layout, GpuMaterial};
 use crate::mesh::{vertex_layout, GpuMesh};
 use crate::readback::read_texture;
-use crate::shader::{module_source, params};
+use crate::shader::{module_source, params, ShaderBuild};
 use crate::timing::{median, GpuTiming, PassTimer};
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
@@ -225,11 +225,7 @@ impl<'a> ReliefRenderer<'a> {
     fn build_pipeline(&self, technique: Technique, output: Output) -> Result<wgpu::RenderPipeline> {
         let source = module_source(technique)?;
         let device = &self.ctx.device;
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(&technique.name()),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
+        let (build, module) = ShaderBuild::begin(self.ctx, &technique.name(), &source)?;
         let color =
             |format| Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL });
         let (entry, targets) = match output {
@@ -269,12 +265,7 @@ impl<'a> ReliefRenderer<'a> {
             multiview_mask: None,
             cache: None,
         });
-        if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(GpuError::Shader {
-                technique: technique.name(),
-                message: crate::context::one_line(&e.to_string()),
-            });
-        }
+        build.finish()?;
         Ok(pipeline)
     }
 

@@ -6,6 +6,7 @@
 //! beside its CPU twin. WGSL declarations may come in any order, so the module is their
 //! concatenation.
 
+use crate::context::{one_line, GpuContext};
 use crate::error::{GpuError, Result};
 use renderlab_relief::maps::packed::{DEPTH_STEP, RATIO_STEP};
 use renderlab_relief::march::{cone_newton, cone_step};
@@ -81,4 +82,51 @@ pub(crate) fn params(technique: Technique) -> Result<[u32; 4]> {
     let mut out = [0u32; 4];
     out[..p.len()].copy_from_slice(&p);
     Ok(out)
+}
+
+/// The validation error scope around building one shader and its pipelines: a shader that
+/// fails to parse or validate, or a pipeline that does not match it, comes back from
+/// [`ShaderBuild::finish`] as [`GpuError::Shader`] naming the shader, on one line, instead of
+/// reaching wgpu's default handler (which panics). A lost device comes back as
+/// [`GpuError::DeviceLost`].
+pub struct ShaderBuild<'a> {
+    ctx: &'a GpuContext,
+    label: String,
+    scope: wgpu::ErrorScopeGuard,
+}
+
+impl<'a> ShaderBuild<'a> {
+    /// Opens the scope and compiles `source` (named `label` in errors); create the pipelines
+    /// from the module, then call [`ShaderBuild::finish`].
+    pub fn begin(ctx: &'a GpuContext, label: &str, source: &str) -> Result<(Self, wgpu::ShaderModule)> {
+        ctx.check()?;
+        let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let module = ctx.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(label),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        Ok((Self { ctx, label: label.to_string(), scope }, module))
+    }
+
+    /// Closes the scope: the first validation error raised inside it, if any, as an error.
+    pub fn finish(self) -> Result<()> {
+        if let Some(e) = pollster::block_on(self.scope.pop()) {
+            return Err(GpuError::Shader { technique: self.label, message: one_line(&e.to_string()) });
+        }
+        self.ctx.check()
+    }
+}
+
+/// Compiles `source` and runs `build` on the module (to create its pipelines) inside a
+/// [`ShaderBuild`]: what `build` made, or the shader's error.
+pub fn build_checked<T>(
+    ctx: &GpuContext,
+    label: &str,
+    source: &str,
+    build: impl FnOnce(&wgpu::ShaderModule) -> T,
+) -> Result<T> {
+    let (scope, module) = ShaderBuild::begin(ctx, label, source)?;
+    let built = build(&module);
+    scope.finish()?;
+    Ok(built)
 }

@@ -78,3 +78,59 @@ fn materials_must_match_the_scene() {
     let e = ReliefRenderer::new(&ctx, &scene, &[]).err().expect("no materials");
     assert!(matches!(e, GpuError::Scene(_)), "{e}");
 }
+
+/// A shader that fails to compile, and a pipeline that does not match its shader, come back
+/// through the renderer's own build path as one-line `GpuError::Shader`s naming the shader,
+/// never as wgpu's panic; the device stays usable.
+#[test]
+fn a_shader_that_fails_to_compile_is_an_error() {
+    let Some(ctx) = context() else { return };
+    let e =
+        shader::build_checked(&ctx, "broken", "fn f( -> f32 { return 1.0; }", |_| ()).expect_err("refused");
+    assert!(matches!(e, GpuError::Shader { .. }), "{e}");
+    let msg = e.to_string();
+    assert!(msg.contains("broken") && !msg.contains('\n'), "{msg}");
+
+    let fragment_only = "@fragment fn fs() -> @location(0) vec4<f32> { return vec4<f32>(1.0); }";
+    let e = shader::build_checked(&ctx, "no vertex stage", fragment_only, |module| {
+        ctx.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: None,
+            layout: None,
+            vertex: wgpu::VertexState {
+                module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: None,
+            multiview_mask: None,
+            cache: None,
+        })
+    })
+    .expect_err("no such entry point");
+    assert!(matches!(e, GpuError::Shader { .. }) && e.to_string().contains("no vertex stage"), "{e}");
+
+    // Still usable: the real shaders build and draw.
+    let (scene, mats) = bricks();
+    let mut r = ReliefRenderer::new(&ctx, &scene, &mats).expect("scene uploads");
+    let pom = Technique::parse("pom").expect("a registry technique");
+    r.render(&benchmark_camera(0.0, 16, 10), pom).expect("renders after the refusals");
+}
+
+/// A device lost mid-run (here destroyed on purpose) is `GpuError::DeviceLost` on the next
+/// call and on every call after, never a panic.
+#[test]
+fn a_lost_device_is_an_error_on_the_next_call() {
+    let Some(ctx) = context() else { return };
+    ctx.device.destroy();
+    let e = ctx.wait().expect_err("the device is gone");
+    assert!(matches!(e, GpuError::DeviceLost(_)), "{e}");
+    let e = ctx.check().expect_err("it stays gone");
+    assert!(matches!(e, GpuError::DeviceLost(_)), "{e}");
+    let source = shader::module_source(Technique::parse("pom").expect("pom")).expect("pom has a shader");
+    let e = shader::build_checked(&ctx, "pom", &source, |_| ()).expect_err("refused");
+    assert!(matches!(e, GpuError::DeviceLost(_)) && !e.to_string().contains('\n'), "{e}");
+}

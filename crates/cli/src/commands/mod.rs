@@ -3,6 +3,7 @@
 
 mod noise;
 mod relief;
+mod shaders;
 mod texture;
 
 use crate::args::*;
@@ -25,6 +26,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Noise(a) => noise::noise(a),
         Command::Water(a) => noise::water(a),
         Command::Smoke(a) => noise::smoke(a),
+        Command::Shaders(ShadersCommand::Export(a)) => shaders::export(a),
     }
 }
 
