@@ -6,6 +6,9 @@ use renderlab_texture::filter::FilterSpec;
 use renderlab_texture::reference::PixelFilter;
 use std::path::PathBuf;
 
+mod hybrid;
+pub use hybrid::*;
+
 /// Reads one technique name for clap (the error names the problem; clap adds the flag).
 fn parse_technique(s: &str) -> Result<Technique, String> {
     Technique::parse(s).map_err(|e| e.to_string())
@@ -88,6 +91,14 @@ pub enum Command {
     /// Writes --frames PNG frames (frame_0000.png, …) and the same frames as one looping
     /// animation (animation.png, APNG) to --out.
     Smoke(SmokeArgs),
+    /// Hybrid lab (ray tracing against rasterization): render a scene with any mix of
+    /// raster and ray-traced stages, or run the thesis's sweeps against path-traced
+    /// references.
+    #[command(subcommand)]
+    Hybrid(HybridCommand),
+    /// Combine the shards of a `hybrid bench --shard K/N` run (one directory each) into one
+    /// run directory with results.json, results.csv and index.html.
+    Merge(MergeArgs),
 }
 
 /// `renderlab report`.
