@@ -10,8 +10,9 @@
 //! * [`stages`] holds the ray-traced stages, one file each, every one writing one slot of
 //!   the scene crate's `LightingTerms` (translucency: the final image); [`reference`] holds
 //!   the path tracer; [`lighting`] the shading they share; [`accel`] the BVH as they query it.
-//! * [`raster_standin`] is TEMPORARY: minimal raster stages used until the rasterized
-//!   deferred pipeline (`renderlab_raster::deferred`) is merged.
+//! * The raster choices of every stage are `renderlab_raster::deferred`'s stage functions
+//!   (geometry pass, shadow maps, SSR, SSAO, ambient, sorted forward translucency), called
+//!   one by one so that any of them can be replaced.
 //! * [`shapes`] builds the small meshes and scenes of the tests and benchmarks.
 //!
 //! Every stage draws its random numbers from a per-pixel stream seeded by `(seed, pixel,
@@ -23,7 +24,6 @@ pub mod accel;
 pub mod config;
 pub mod error;
 pub mod lighting;
-pub mod raster_standin;
 pub mod reference;
 pub mod renderer;
 pub mod rng;

@@ -11,9 +11,10 @@
 use crate::accel::Accel;
 use crate::config::{Ao, Gi, Reflections, Shadows, StageConfig, Translucency};
 use crate::error::{HybridError, Result};
-use crate::{raster_standin as raster, reference, stages};
+use crate::{reference, stages};
 use glam::Vec3;
 use renderlab_core::Camera;
+use renderlab_raster::deferred::{self, PreparedScene, RasterSettings, ShadowMaps, ShadowQuery, Visibility};
 use renderlab_scene::{GBuffer, HybridScene, LightingTerms};
 use serde::Serialize;
 use std::time::Instant;
@@ -61,8 +62,7 @@ pub struct HybridFrame {
     pub height: u32,
     /// Wall-clock milliseconds per pass.
     pub stage_ms: PerStage<f64>,
-    /// Rays traced per pass (primary rays of the geometry pass are counted only while it is
-    /// the ray-cast stand-in).
+    /// Rays traced per pass (zero for the raster passes).
     pub rays: PerStage<u64>,
     /// The G-buffer the stages read.
     pub gbuffer: GBuffer,
@@ -143,28 +143,65 @@ impl NoiseFloor {
     }
 }
 
-/// A scene prepared for rendering: validated, with its BVH built once.
-#[derive(Clone, Debug)]
-pub struct HybridRenderer {
-    scene: HybridScene,
+/// A scene prepared for rendering: validated, its world meshes cached for the rasterizer
+/// and its BVH built once. It borrows the scene.
+pub struct HybridRenderer<'s> {
+    scene: &'s HybridScene,
+    prepared: PreparedScene<'s>,
     accel: Accel,
+    /// Parameters of the raster stages (shadow-map resolution, SSR march, SSAO bias,
+    /// translucent layers, area-light samples); the SSAO samples and radius come from
+    /// [`Ao::ScreenSpace`] instead.
+    pub raster: RasterSettings,
     /// Path-tracer settings of [`HybridRenderer::reference`].
     pub path_tracer: reference::PathTracer,
 }
 
-impl HybridRenderer {
-    /// Validates `scene` and builds its BVH (one bottom level per mesh, one top-level instance
-    /// per scene instance: a hit's instance and primitive are the scene's instance and the
-    /// mesh's triangle).
-    pub fn new(scene: &HybridScene) -> Result<Self> {
+impl std::fmt::Debug for HybridRenderer<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("HybridRenderer")
+            .field("scene", &self.scene.name)
+            .field("raster", &self.raster)
+            .field("path_tracer", &self.path_tracer)
+            .finish_non_exhaustive()
+    }
+}
+
+/// The ray-traced visibility of a light sample, for the raster passes that take a
+/// [`Visibility`] (the forward translucent pass, when shadows are ray traced).
+struct RayTracedVisibility<'a>(&'a Accel);
+
+impl Visibility for RayTracedVisibility<'_> {
+    fn visibility(&self, q: &ShadowQuery) -> f32 {
+        let s = q.light_sample;
+        let blocked = self.0.occluded(q.point.offset_origin(s.to_light), s.to_light, s.distance);
+        if blocked {
+            0.0
+        } else {
+            1.0
+        }
+    }
+}
+
+impl<'s> HybridRenderer<'s> {
+    /// Validates `scene`, caches its world meshes for the raster passes and builds its BVH
+    /// (one bottom level per mesh, one top-level instance per scene instance: a hit's
+    /// instance and primitive are the scene's instance and the mesh's triangle).
+    pub fn new(scene: &'s HybridScene) -> Result<Self> {
         scene.validate()?;
         let accel = Accel::build(scene)?;
-        Ok(Self { scene: scene.clone(), accel, path_tracer: reference::PathTracer::default() })
+        Ok(Self {
+            scene,
+            prepared: PreparedScene::new(scene),
+            accel,
+            raster: RasterSettings::default(),
+            path_tracer: reference::PathTracer::default(),
+        })
     }
 
     /// The scene.
-    pub fn scene(&self) -> &HybridScene {
-        &self.scene
+    pub fn scene(&self) -> &'s HybridScene {
+        self.scene
     }
 
     /// The acceleration structure.
@@ -173,95 +210,111 @@ impl HybridRenderer {
     }
 
     /// Renders one frame of `camera` with the stages `config` chooses; `seed` seeds every
-    /// stage's random numbers (same seed, same image, for any number of threads).
+    /// ray-traced stage's random numbers (same seed, same image, for any number of threads).
+    ///
+    /// A ray-traced reflection stage first runs SSR (its fallback for rougher pixels) and a
+    /// ray-traced translucency stage runs the forward pass where some translucent pixel is
+    /// rougher than its limit; both costs are part of the stage's time. With ray-traced
+    /// shadows the forward translucent pass also takes its visibility from shadow rays.
     pub fn render(&self, camera: &Camera, config: &StageConfig, seed: u64) -> Result<HybridFrame> {
         check_camera(camera)?;
         config.validate().map_err(HybridError::Config)?;
-        let (scene, accel) = (&self.scene, &self.accel);
+        let mut raster = self.raster.clone();
+        if let Ao::ScreenSpace { samples, radius } = config.ao {
+            raster.ssao.samples = samples;
+            raster.ssao.radius = radius;
+        }
+        raster.validate().map_err(HybridError::Config)?;
+        let (scene, accel) = (self.scene, &self.accel);
         let mut ms = PerStage::<f64>::default();
         let mut rays = PerStage::<u64>::default();
-        let clock = Instant::now();
-        let (gbuffer, primary) = raster::geometry_pass(scene, accel, camera);
-        rays.geometry = primary;
-        ms.geometry = lap(clock);
-        let mut terms = LightingTerms::zero(gbuffer.opaque.len());
 
         let clock = Instant::now();
-        rays.shadows = match config.shadows {
-            Shadows::Raster => raster::lighting_pass(scene, &gbuffer, &mut terms.direct),
+        let geometry = deferred::geometry_pass(&self.prepared, camera, raster.translucent_layers);
+        let g = &geometry.gbuffer;
+        ms.geometry = lap(clock);
+        let mut terms = LightingTerms::zero(g.opaque.len());
+
+        let clock = Instant::now();
+        let maps = match config.shadows {
+            Shadows::Raster => {
+                let maps = ShadowMaps::build(&self.prepared, &raster.shadows);
+                terms.direct = deferred::direct_lighting(scene, g, &maps, raster.area_samples);
+                Some(maps)
+            }
             Shadows::RayTraced { samples_per_light } => {
-                stages::shadows::run(scene, accel, &gbuffer, samples_per_light, seed, &mut terms.direct)
+                rays.shadows =
+                    stages::shadows::run(scene, accel, g, samples_per_light, seed, &mut terms.direct);
+                None
             }
         };
         ms.shadows = lap(clock);
 
         let clock = Instant::now();
-        rays.gi = match config.gi {
-            Gi::Off => raster::ambient_pass(scene, &gbuffer, &mut terms.diffuse_indirect),
+        match config.gi {
+            Gi::Off => terms.diffuse_indirect = deferred::ambient_diffuse(g, scene.sky),
             Gi::RayTraced { samples_per_pixel } => {
-                stages::gi::run(scene, accel, &gbuffer, samples_per_pixel, seed, &mut terms.diffuse_indirect)
+                rays.gi =
+                    stages::gi::run(scene, accel, g, samples_per_pixel, seed, &mut terms.diffuse_indirect)
             }
-        };
+        }
         ms.gi = lap(clock);
 
         let clock = Instant::now();
-        rays.ao = match config.ao {
-            Ao::Off => 0,
-            Ao::ScreenSpace { samples, radius } => {
-                raster::ssao_pass(&gbuffer, samples, radius, &mut terms.ambient_occlusion)
+        match config.ao {
+            Ao::Off => {}
+            Ao::ScreenSpace { .. } => terms.ambient_occlusion = deferred::ssao(g, &raster.ssao),
+            Ao::RayTraced { samples_per_pixel, radius } => {
+                rays.ao =
+                    stages::ao::run(accel, g, samples_per_pixel, radius, seed, &mut terms.ambient_occlusion)
             }
-            Ao::RayTraced { samples_per_pixel, radius } => stages::ao::run(
-                accel,
-                &gbuffer,
-                samples_per_pixel,
-                radius,
-                seed,
-                &mut terms.ambient_occlusion,
-            ),
-        };
+        }
         ms.ao = lap(clock);
 
         let clock = Instant::now();
-        let mut specular = vec![Vec3::ZERO; terms.specular_indirect.len()];
-        raster::ssr_pass(scene, &gbuffer, &terms, &mut specular);
-        rays.reflections = match config.reflections {
-            Reflections::ScreenSpace => 0,
-            Reflections::RayTraced { max_bounces, max_roughness } => stages::reflections::run(
+        let lit = deferred::lit_opaque(g, &terms, scene.sky);
+        terms.specular_indirect = deferred::screen_space_reflections(g, &lit, scene.sky, &raster.ssr);
+        if let Reflections::RayTraced { max_bounces, max_roughness } = config.reflections {
+            rays.reflections = stages::reflections::run(
                 scene,
                 accel,
-                &gbuffer,
+                g,
                 max_bounces,
                 max_roughness,
                 seed,
-                &mut specular,
-            ),
-        };
-        terms.specular_indirect = specular;
+                &mut terms.specular_indirect,
+            );
+        }
         ms.reflections = lap(clock);
 
         let clock = Instant::now();
-        let mut hdr = terms.compose(&gbuffer, scene.sky);
+        let opaque = terms.compose(g, scene.sky);
         ms.compose = lap(clock);
 
         let clock = Instant::now();
-        rays.translucency = match config.translucency {
-            Translucency::Raster => raster::translucent_pass(scene, &gbuffer, &mut hdr),
+        let traced_visibility = RayTracedVisibility(accel);
+        let visibility: &dyn Visibility = match &maps {
+            Some(maps) => maps,
+            None => &traced_visibility,
+        };
+        let forward = |opaque: &[Vec3]| {
+            deferred::forward_translucent(scene, &geometry, opaque, visibility, raster.area_samples)
+        };
+        let hdr = match config.translucency {
+            Translucency::Raster => forward(&opaque),
             Translucency::RayTraced { max_refraction_rays, max_roughness } => {
-                let mut fallback = hdr.clone();
-                raster::translucent_pass(scene, &gbuffer, &mut fallback);
-                stages::translucency::run(
-                    scene,
-                    accel,
-                    &gbuffer,
-                    stages::translucency::Params { max_refraction_rays, max_roughness },
-                    seed,
-                    &fallback,
-                    &mut hdr,
-                )
+                let rough = g.translucent.iter().flatten().any(|sp| sp.roughness > max_roughness);
+                let fallback = if rough { forward(&opaque) } else { Vec::new() };
+                let mut hdr = opaque;
+                let params = stages::translucency::Params { max_refraction_rays, max_roughness };
+                rays.translucency =
+                    stages::translucency::run(scene, accel, g, params, seed, &fallback, &mut hdr);
+                hdr
             }
         };
         ms.translucency = lap(clock);
 
+        let gbuffer = geometry.gbuffer;
         Ok(HybridFrame {
             hdr,
             width: camera.width,
@@ -280,7 +333,7 @@ impl HybridRenderer {
         if spp == 0 || spp > 1 << 20 {
             return Err(HybridError::Config(format!("reference spp must lie in 1..=1048576, got {spp}")));
         }
-        Ok(self.path_tracer.render(&self.scene, &self.accel, camera, spp, seed))
+        Ok(self.path_tracer.render(self.scene, &self.accel, camera, spp, seed))
     }
 }
 

@@ -24,8 +24,6 @@ pub enum Stream {
     ReferenceA = 6,
     /// The path tracer's second half.
     ReferenceB = 7,
-    /// The raster stand-ins' fixed sample rotations.
-    Raster = 8,
 }
 
 /// SplitMix64's finaliser: a bijective avalanche of 64 bits.

@@ -40,6 +40,7 @@
 
 mod bin;
 mod clip;
+pub mod deferred;
 mod frame;
 mod gbuffer;
 mod resolve;
@@ -283,10 +284,11 @@ impl Prepared {
             *p = snap(x.clamp(-g, width + g), y.clamp(-g, height + g));
         }
         let index = self.setups.len() as u32;
+        let depth = setup.depth_plane();
         let before = self.tris.len();
         for k in 1..polygon.len() - 1 {
             let fan = [points[0], points[k], points[k + 1]];
-            if let Some(t) = RasterTriangle::new(fan, index, &setup, vp.width, vp.height) {
+            if let Some(t) = RasterTriangle::new(fan, index, &depth, vp.width, vp.height) {
                 self.tris.push(t);
             }
         }

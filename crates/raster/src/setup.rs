@@ -106,8 +106,13 @@ impl TriangleSetup {
         Some(setup)
     }
 
+    /// The `1/w` plane, the depth-test key of the G-buffer rasterizer.
+    pub fn depth_plane(&self) -> crate::triangle::DepthPlane {
+        crate::triangle::DepthPlane { dx: self.dx[INV_W], dy: self.dy[INV_W], c: self.c[INV_W] }
+    }
+
     /// `1/w` at pixel position `(x, y)`.
-    #[inline]
+    #[cfg(test)]
     pub fn inv_w(&self, x: f64, y: f64) -> f64 {
         self.dx[INV_W] * x + self.dy[INV_W] * y + self.c[INV_W]
     }

@@ -6,7 +6,25 @@
 //! two snapped vertices) see exactly opposite values there and the top-left rule gives every
 //! pixel on the edge to exactly one of them: no gaps, no double coverage.
 
-use crate::setup::TriangleSetup;
+/// A quantity that is affine in screen space (`c + dx·x + dy·y` at pixel position
+/// `(x, y)`): the depth-test key of a triangle, whose largest value is the nearest surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct DepthPlane {
+    /// Change per pixel to the right.
+    pub dx: f64,
+    /// Change per pixel downward.
+    pub dy: f64,
+    /// Value at pixel position (0, 0).
+    pub c: f64,
+}
+
+impl DepthPlane {
+    /// The value at pixel position `(x, y)`.
+    #[inline]
+    pub fn at(&self, x: f64, y: f64) -> f64 {
+        self.dx * x + self.dy * y + self.c
+    }
+}
 
 /// Sub-pixel precision: 8 bits.
 pub(crate) const SUBPIXEL_BITS: u32 = 8;
@@ -36,10 +54,10 @@ pub(crate) struct RasterTriangle {
     pub x1: u32,
     pub y0: u32,
     pub y1: u32,
-    /// Index of the [`TriangleSetup`] that supplies the attributes.
+    /// Index of the triangle setup that supplies the attributes.
     pub setup: u32,
-    /// `1/w` at the centre of pixel `(x0, y0)` and its per-pixel steps (the depth test keeps
-    /// the largest `1/w`, i.e. the nearest surface).
+    /// The depth key (`1/w` for the G-buffer rasterizer) at the centre of pixel `(x0, y0)`
+    /// and its per-pixel steps (the depth test keeps the largest key, the nearest surface).
     z0: f32,
     zx: f32,
     zy: f32,
@@ -54,11 +72,12 @@ fn ceil_div(a: i64, b: i64) -> i64 {
 impl RasterTriangle {
     /// Builds the raster triangle for three snapped vertices of a front face (negative signed
     /// area on the y-down screen). `None` when it has zero (or, after snapping, reversed)
-    /// area or covers no pixel centre of the `width × height` viewport.
+    /// area or covers no pixel centre of the `width × height` viewport. `depth` is the
+    /// depth-test key's screen plane.
     pub fn new(
         v: [FixedPoint; 3],
         setup_index: u32,
-        setup: &TriangleSetup,
+        depth: &DepthPlane,
         width: u32,
         height: u32,
     ) -> Option<Self> {
@@ -107,9 +126,9 @@ impl RasterTriangle {
             return None;
         }
         (tri.x0, tri.x1, tri.y0, tri.y1) = (x0 as u32, x1 as u32, y0 as u32, y1 as u32);
-        tri.z0 = setup.inv_w(x0 as f64 + 0.5, y0 as f64 + 0.5) as f32;
-        tri.zx = setup.dx[crate::setup::INV_W] as f32;
-        tri.zy = setup.dy[crate::setup::INV_W] as f32;
+        tri.z0 = depth.at(x0 as f64 + 0.5, y0 as f64 + 0.5) as f32;
+        tri.zx = depth.dx as f32;
+        tri.zy = depth.dy as f32;
         Some(tri)
     }
 
@@ -162,18 +181,19 @@ impl RasterTriangle {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::setup::TriangleSetup;
     use glam::{DVec4, Vec2, Vec3, Vec4};
     use proptest::prelude::*;
     use renderlab_core::Vertex;
 
-    fn dummy_setup() -> TriangleSetup {
+    fn dummy_setup() -> DepthPlane {
         let v = Vertex { position: Vec3::ZERO, normal: Vec3::Z, uv: Vec2::ZERO, tangent: Vec4::X };
         let h = [
             DVec4::new(0.0, 0.0, 0.5, 1.0),
             DVec4::new(0.0, 10.0, 0.5, 1.0),
             DVec4::new(10.0, 0.0, 0.5, 1.0),
         ];
-        TriangleSetup::new(h, [&v; 3], 0, 0).unwrap()
+        TriangleSetup::new(h, [&v; 3], 0, 0).unwrap().depth_plane()
     }
 
     /// Orders three points so that the signed area is negative (a front face).

@@ -57,6 +57,13 @@ impl Viewport {
             camera.near as f64,
             camera.far as f64,
         );
+        Self::from_view_projection(proj * view, camera.width, camera.height)
+    }
+
+    /// The viewport of a world → clip transform (`proj · view`, depth in [0, 1], perspective
+    /// or orthographic) drawn at `width × height` pixels.
+    pub fn from_view_projection(view_projection: DMat4, width: u32, height: u32) -> Self {
+        let (w, h) = (width as f64, height as f64);
         // X = (x + w)·W/2, Y = (w − y)·H/2: NDC [-1, 1] → pixels, y flipped to point down.
         let screen = DMat4::from_cols(
             DVec4::new(w * 0.5, 0.0, 0.0, 0.0),
@@ -64,12 +71,20 @@ impl Viewport {
             DVec4::new(0.0, 0.0, 1.0, 0.0),
             DVec4::new(w * 0.5, h * 0.5, 0.0, 1.0),
         );
+        Self::from_matrix(screen * view_projection, width, height)
+    }
+
+    /// The viewport of any world → pixel-homogeneous transform (`(X/W, Y/W)` in pixels, `Z`
+    /// from 0 at the near plane to `W` at the far plane): perspective or orthographic views
+    /// of lights for shadow maps.
+    pub fn from_matrix(to_pixel: DMat4, width: u32, height: u32) -> Self {
+        let (w, h) = (width as f64, height as f64);
         let g = GUARD_BAND_PX;
         let plane = |x, y, z, ww, offset| ClipPlane { n: DVec4::new(x, y, z, ww), offset };
         Self {
-            to_pixel: screen * proj * view,
-            width: camera.width,
-            height: camera.height,
+            to_pixel,
+            width,
+            height,
             planes: [
                 plane(0.0, 0.0, 1.0, 0.0, 0.0),    // near: Z >= 0
                 plane(0.0, 0.0, -1.0, 1.0, 0.0),   // far: Z <= W

@@ -1,0 +1,182 @@
+//! The rasterized deferred pipeline of the hybrid lab, over a [`HybridScene`], writing the
+//! scene crate's stage contract ([`GBuffer`], [`LightingTerms`]).
+//!
+//! # Stages, each callable alone
+//!
+//! | stage | function | writes |
+//! |---|---|---|
+//! | geometry | [`geometry_pass`] (world meshes cached in [`PreparedScene`]) | [`GeometryPass`]: G-buffer, visibility buffer, translucent layers |
+//! | shadows | [`ShadowMaps::build`] (a [`Visibility`]) | per-light depth maps |
+//! | lighting | [`direct_lighting`] with any [`Visibility`] | `terms.direct` |
+//! | ambient | [`ambient_diffuse`], [`ssao`] | `terms.diffuse_indirect`, `terms.ambient_occlusion` |
+//! | reflections | [`screen_space_reflections`] of [`lit_opaque`] | `terms.specular_indirect` |
+//! | translucency | [`forward_translucent`] over `terms.compose(..)` | the final linear image |
+//! | display | [`tonemap`] | 8-bit sRGB |
+//!
+//! [`render`] runs them in that order and times each. A ray-traced stage replaces one row:
+//! a shadow stage implements [`Visibility`] (it is asked, per light sample, whether the
+//! light is visible, with the sample's direction and distance in the [`ShadowQuery`]) and
+//! is passed to [`direct_lighting`] and [`forward_translucent`]; a reflection, GI or AO
+//! stage writes its slot of [`LightingTerms`] instead of the raster function.
+//!
+//! # Conventions
+//!
+//! Linear radiance until tone mapping. Area lights are sampled at the centres of
+//! `area_samples × area_samples` strata (default 4×4 = 16), punctual lights exactly. Every
+//! stage works per pixel (or per shadow-map band) with no shared mutable state and no
+//! random numbers, so a frame is bit-identical for any thread count.
+
+mod ambient;
+mod forward;
+mod geometry;
+mod lighting;
+mod settings;
+mod shadows;
+mod ssr;
+mod tonemap;
+mod visibility;
+
+pub use ambient::{ambient_diffuse, diffuse_albedo, ssao};
+pub use forward::{forward_translucent, layer_radiance};
+pub use geometry::{geometry_pass, view_depth, GeometryPass, PreparedScene, VisibilitySample};
+pub use lighting::{
+    direct_lighting, light_sample_u, samples_per_side, shade_direct, ShadowQuery, Unshadowed, Visibility,
+};
+pub use settings::{RasterSettings, ShadowSettings, SsaoSettings, SsrSettings, ToneMap};
+pub use shadows::{DepthMap, LightShadow, ShadowMaps, MAX_SPOT_HALF_ANGLE_DEG};
+pub use ssr::{screen_space_reflections, specular_weight};
+pub use tonemap::{tone_curve, tonemap};
+
+use glam::Vec3;
+use renderlab_core::image::check_dimensions;
+use renderlab_core::{Camera, Image};
+use renderlab_scene::{GBuffer, HybridScene, LightingTerms};
+use std::time::Instant;
+
+/// Wall-clock time of each stage of one frame, milliseconds.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StageTimings {
+    /// Geometry pass (visibility buffer, resolve, translucent layers).
+    pub geometry_ms: f64,
+    /// Shadow maps of every light.
+    pub shadows_ms: f64,
+    /// Direct lighting with the shadow maps.
+    pub lighting_ms: f64,
+    /// Ambient diffuse term and SSAO.
+    pub ambient_ms: f64,
+    /// Screen-space reflections.
+    pub reflections_ms: f64,
+    /// Composition and the forward translucent pass.
+    pub translucent_ms: f64,
+}
+
+impl StageTimings {
+    /// The sum of the stages.
+    pub fn total_ms(&self) -> f64 {
+        self.geometry_ms
+            + self.shadows_ms
+            + self.lighting_ms
+            + self.ambient_ms
+            + self.reflections_ms
+            + self.translucent_ms
+    }
+}
+
+/// One all-raster frame.
+#[derive(Clone, Debug)]
+pub struct RasterFrame {
+    /// The final image in linear radiance, row-major.
+    pub hdr: Vec<Vec3>,
+    /// The geometry pass's output (its `gbuffer` is the stage contract's).
+    pub geometry: GeometryPass,
+    /// The lighting stages' terms.
+    pub terms: LightingTerms,
+    /// Per-stage wall-clock times.
+    pub timings: StageTimings,
+}
+
+impl RasterFrame {
+    /// The frame tone-mapped and encoded as `settings` say.
+    pub fn to_srgb8(&self, settings: &RasterSettings) -> Image<[u8; 3]> {
+        let g = &self.geometry.gbuffer;
+        tonemap(&self.hdr, g.width(), g.height(), settings.exposure, settings.tone_map)
+    }
+}
+
+/// Why a frame was refused.
+#[derive(Clone, Debug, PartialEq)]
+pub enum DeferredError {
+    /// The camera's size is zero or beyond renderlab's image limits.
+    Size(String),
+    /// A parameter is out of range.
+    Settings(String),
+}
+
+impl std::fmt::Display for DeferredError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Size(e) => write!(f, "deferred pipeline: {e}"),
+            Self::Settings(e) => write!(f, "deferred pipeline settings: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for DeferredError {}
+
+/// The lit opaque image the reflections reflect: `emitted + direct + diffuse_indirect · AO`
+/// where a surface is, the sky elsewhere (`specular_indirect` is left out, so reflections
+/// do not reflect reflections).
+pub fn lit_opaque(gbuffer: &GBuffer, terms: &LightingTerms, sky: Vec3) -> Vec<Vec3> {
+    gbuffer
+        .opaque
+        .iter()
+        .enumerate()
+        .map(|(i, sp)| match sp {
+            None => sky,
+            Some(sp) => sp.emissive + terms.direct[i] + terms.diffuse_indirect[i] * terms.ambient_occlusion[i],
+        })
+        .collect()
+}
+
+/// Renders the all-raster frame of `prepared` seen by `camera`: geometry, shadow maps,
+/// direct lighting, ambient and SSAO, screen-space reflections, composition and the sorted
+/// forward translucent pass.
+pub fn render(prepared: &PreparedScene, camera: &Camera, settings: &RasterSettings) -> Result<RasterFrame, DeferredError> {
+    check_dimensions("camera", camera.width as u64, camera.height as u64)
+        .map_err(|e| DeferredError::Size(e.to_string()))?;
+    settings.validate().map_err(DeferredError::Settings)?;
+    let scene: &HybridScene = prepared.scene;
+    let mut timings = StageTimings::default();
+    let time = |slot: &mut f64, start: Instant| *slot = start.elapsed().as_secs_f64() * 1e3;
+
+    let t = Instant::now();
+    let geometry = geometry_pass(prepared, camera, settings.translucent_layers);
+    time(&mut timings.geometry_ms, t);
+    let g = &geometry.gbuffer;
+
+    let t = Instant::now();
+    let shadows = ShadowMaps::build(prepared, &settings.shadows);
+    time(&mut timings.shadows_ms, t);
+
+    let t = Instant::now();
+    let direct = direct_lighting(scene, g, &shadows, settings.area_samples);
+    time(&mut timings.lighting_ms, t);
+
+    let t = Instant::now();
+    let diffuse_indirect = ambient_diffuse(g, scene.sky);
+    let ambient_occlusion = ssao(g, &settings.ssao);
+    time(&mut timings.ambient_ms, t);
+
+    let t = Instant::now();
+    let mut terms = LightingTerms { direct, diffuse_indirect, ambient_occlusion, specular_indirect: Vec::new() };
+    let lit = lit_opaque(g, &terms, scene.sky);
+    terms.specular_indirect = screen_space_reflections(g, &lit, scene.sky, &settings.ssr);
+    time(&mut timings.reflections_ms, t);
+
+    let t = Instant::now();
+    let opaque = terms.compose(g, scene.sky);
+    let hdr = forward_translucent(scene, &geometry, &opaque, &shadows, settings.area_samples);
+    time(&mut timings.translucent_ms, t);
+
+    Ok(RasterFrame { hdr, geometry, terms, timings })
+}
