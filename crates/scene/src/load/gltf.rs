@@ -1,0 +1,514 @@
+//! glTF 2.0 (`.gltf` and `.glb`) into a [`HybridScene`].
+//!
+//! What is read: the default scene's node tree (flattened: every mesh primitive under a
+//! node becomes one [`Instance`] with the node's world transform), triangle primitives
+//! (positions, normals — flat ones computed when missing, as the specification asks —,
+//! the first UV set, tangents — computed when missing —, indexed or not, sparse accessors
+//! included), metal–roughness materials with their base-colour (decoded from sRGB),
+//! metal–roughness and normal textures, emissive colour, `KHR_materials_transmission` and
+//! `KHR_materials_ior`, `KHR_lights_punctual` lights (pointing down their node's −Z) and
+//! perspective cameras (aspect from the file, else 16:9, at 1920 pixels wide).
+//!
+//! Units: light intensities are carried over as numbers (candela → the lab's radiant
+//! intensity, lux → irradiance), so a file's relative lighting is kept; the lab's
+//! renderers expose the image, not absolute photometry.
+//!
+//! Buffers and images are resolved here rather than by the `gltf` crate's importer, so that
+//! data URIs are decoded with `base64`, images with the workspace's `image` codecs, and
+//! every size is checked before anything is allocated. Each accessor is checked against its
+//! buffer before it is read.
+
+use super::geometry::{clean, NormalRule, RawMesh};
+use super::{finish, read_limited, resolve, LoadLimits, LoadedScene, Problem};
+use crate::light::{Light, LightKind};
+use crate::material::{PbrMaterial, Texture};
+use crate::scene::{HybridScene, Instance, SceneCamera};
+use ::gltf::accessor::{DataType, Dimensions};
+use ::gltf::khr_lights_punctual::Kind;
+use ::gltf::{buffer, camera::Projection, Accessor, Document, Gltf, Semantic};
+use base64::Engine;
+use glam::{Affine3A, Mat4, Vec2, Vec3, Vec4};
+use renderlab_core::color::srgb8_to_linear_table;
+use renderlab_core::{Camera, Image};
+use std::collections::HashMap;
+use std::path::Path;
+
+/// Deepest node nesting followed; deeper trees (or cycles) are refused.
+const MAX_DEPTH: usize = 256;
+
+/// Loads a glTF document from memory. `base` is the folder that relative URIs are
+/// resolved against (`None`: only embedded data is allowed).
+pub fn from_slice(bytes: &[u8], name: &str, base: Option<&Path>, limits: &LoadLimits) -> Result<LoadedScene, Problem> {
+    let Gltf { document, blob } = Gltf::from_slice(bytes).map_err(|e| Problem::Gltf(e.to_string()))?;
+    let buffers = load_buffers(&document, blob, base, limits)?;
+    let mut loader = Loader {
+        document: &document,
+        buffers: &buffers,
+        base,
+        limits,
+        scene: HybridScene {
+            name: name.into(),
+            meshes: Vec::new(),
+            instances: Vec::new(),
+            materials: Vec::new(),
+            textures: Vec::new(),
+            lights: Vec::new(),
+            cameras: Vec::new(),
+            sky: Vec3::ZERO,
+        },
+        warnings: Vec::new(),
+        textures: HashMap::new(),
+        materials: HashMap::new(),
+        primitives: HashMap::new(),
+        triangles: 0,
+        dropped: 0,
+    };
+    let root = document.default_scene().or_else(|| document.scenes().next());
+    match root {
+        Some(scene) => {
+            // Depth first in document order (children pushed reversed onto the stack).
+            let mut stack: Vec<(::gltf::Node, Affine3A, usize)> =
+                scene.nodes().map(|n| (n, Affine3A::IDENTITY, 0)).collect();
+            stack.reverse();
+            let mut visits = 0usize;
+            while let Some((node, parent, depth)) = stack.pop() {
+                visits += 1;
+                if depth > MAX_DEPTH || visits > document.nodes().len().saturating_mul(64).max(1024) {
+                    return Err(Problem::Invalid("the node hierarchy is too deep or has a cycle".into()));
+                }
+                let local = Affine3A::from_mat4(Mat4::from_cols_array_2d(&node.transform().matrix()));
+                let world = parent * local;
+                loader.node(&node, world)?;
+                let first = stack.len();
+                stack.extend(node.children().map(|c| (c, world, depth + 1)));
+                stack[first..].reverse();
+            }
+        }
+        None => loader.warnings.push("the file has no scene: nothing to draw".into()),
+    }
+    let mut warnings = loader.warnings;
+    if loader.dropped > 0 {
+        warnings.push(format!("dropped {} degenerate triangles", loader.dropped));
+    }
+    let scene = finish(loader.scene, &mut warnings)?;
+    Ok(LoadedScene { scene, warnings })
+}
+
+/// Every buffer's bytes: the GLB binary chunk, a data URI or an external file.
+fn load_buffers(document: &Document, blob: Option<Vec<u8>>, base: Option<&Path>, limits: &LoadLimits) -> Result<Vec<Vec<u8>>, Problem> {
+    let mut blob = blob;
+    let mut out = Vec::new();
+    for b in document.buffers() {
+        let data = match b.source() {
+            buffer::Source::Bin => blob
+                .take()
+                .ok_or_else(|| Problem::Invalid(format!("buffer {} refers to a missing GLB binary chunk", b.index())))?,
+            buffer::Source::Uri(uri) => uri_bytes(uri, base, limits)?,
+        };
+        if data.len() < b.length() {
+            return Err(Problem::Invalid(format!(
+                "buffer {} has {} bytes, but the file declares {}",
+                b.index(),
+                data.len(),
+                b.length()
+            )));
+        }
+        out.push(data);
+    }
+    Ok(out)
+}
+
+/// The bytes a URI names: `data:…;base64,…` or a file relative to `base`.
+fn uri_bytes(uri: &str, base: Option<&Path>, limits: &LoadLimits) -> Result<Vec<u8>, Problem> {
+    if let Some(rest) = uri.strip_prefix("data:") {
+        let (_, payload) = rest
+            .split_once(";base64,")
+            .ok_or_else(|| Problem::Invalid("a data URI is not base64-encoded".into()))?;
+        if payload.len() as u64 / 4 * 3 > limits.max_file_bytes {
+            return Err(Problem::TooLarge { size: payload.len() as u64 / 4 * 3, limit: limits.max_file_bytes });
+        }
+        return base64::engine::general_purpose::STANDARD
+            .decode(payload.trim_end())
+            .map_err(|e| Problem::Invalid(format!("a data URI does not decode: {e}")));
+    }
+    let path = resolve(base, &percent_decode(uri))?;
+    read_limited(&path, limits)
+}
+
+/// Undoes URI percent-encoding (`%20` → space); malformed escapes are kept as written.
+fn percent_decode(s: &str) -> String {
+    let b = s.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        let hex = |c: u8| (c as char).to_digit(16);
+        if b[i] == b'%' && i + 2 < b.len() {
+            if let (Some(h), Some(l)) = (hex(b[i + 1]), hex(b[i + 2])) {
+                out.push((h * 16 + l) as u8);
+                i += 3;
+                continue;
+            }
+        }
+        out.push(b[i]);
+        i += 1;
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+/// The state of one load: the document, its buffers, what has been converted so far.
+struct Loader<'a> {
+    document: &'a Document,
+    buffers: &'a [Vec<u8>],
+    base: Option<&'a Path>,
+    limits: &'a LoadLimits,
+    scene: HybridScene,
+    warnings: Vec<String>,
+    /// (image index, sRGB) → scene texture.
+    textures: HashMap<(usize, bool), u32>,
+    /// glTF material index (`None`: the default material) → scene material.
+    materials: HashMap<Option<usize>, u32>,
+    /// (mesh, primitive) → (scene mesh, scene material), `None` when it has no triangles.
+    primitives: HashMap<(usize, usize), Option<(u32, u32)>>,
+    triangles: usize,
+    dropped: usize,
+}
+
+impl Loader<'_> {
+    /// Converts what a node carries (mesh, light, camera) under its world transform.
+    fn node(&mut self, node: &::gltf::Node, world: Affine3A) -> Result<(), Problem> {
+        let name = node.name().map_or_else(|| format!("node {}", node.index()), str::to_string);
+        if let Some(mesh) = node.mesh() {
+            if !world.is_finite() || world.matrix3.determinant().abs() < 1e-30 {
+                self.warnings.push(format!("{name}: singular or non-finite transform, mesh skipped"));
+            } else {
+                for prim in mesh.primitives() {
+                    if let Some((m, mat)) = self.primitive(&mesh, &prim)? {
+                        self.scene.instances.push(Instance { name: name.clone(), mesh: m, material: mat, transform: world });
+                    }
+                }
+            }
+        }
+        let position = world.translation.into();
+        let axis = |v: Vec3| world.transform_vector3(v).try_normalize();
+        if let Some(light) = node.light() {
+            let Some(direction) = axis(Vec3::NEG_Z) else {
+                self.warnings.push(format!("{name}: light with a degenerate transform skipped"));
+                return Ok(());
+            };
+            let kind = match light.kind() {
+                Kind::Directional => LightKind::Directional,
+                Kind::Point => LightKind::Point,
+                Kind::Spot { inner_cone_angle, outer_cone_angle } => {
+                    let outer = finite_or(outer_cone_angle, std::f32::consts::FRAC_PI_4).clamp(1e-3, std::f32::consts::FRAC_PI_2);
+                    let inner = finite_or(inner_cone_angle, 0.0).clamp(0.0, outer - 1e-3 * outer);
+                    LightKind::Spot { inner_cone: inner, outer_cone: outer }
+                }
+            };
+            let color = Vec3::from(light.color());
+            let intensity = light.intensity();
+            if !(color.is_finite() && intensity.is_finite() && intensity >= 0.0) {
+                return Err(Problem::Invalid(format!("{name}: light colour or intensity is not a finite, non-negative number")));
+            }
+            self.scene.lights.push(Light {
+                name: light.name().map_or_else(|| name.clone(), str::to_string),
+                kind,
+                position,
+                direction,
+                color,
+                intensity,
+                range: light.range().filter(|r| r.is_finite() && *r > 0.0),
+            });
+        }
+        if let Some(camera) = node.camera() {
+            match camera.projection() {
+                Projection::Perspective(p) => {
+                    let (Some(forward), Some(up)) = (axis(Vec3::NEG_Z), axis(Vec3::Y)) else {
+                        self.warnings.push(format!("{name}: camera with a degenerate transform skipped"));
+                        return Ok(());
+                    };
+                    let aspect = p.aspect_ratio().filter(|a| a.is_finite() && (0.1..=10.0).contains(a)).unwrap_or(16.0 / 9.0);
+                    let fov = p.yfov().to_degrees();
+                    let near = p.znear();
+                    let far = p.zfar().unwrap_or(near * 1e5);
+                    if !(fov.is_finite() && fov > 0.0 && fov < 180.0 && near.is_finite() && near > 0.0 && far.is_finite() && far > near) {
+                        return Err(Problem::Invalid(format!("{name}: camera field of view or clipping distances out of range")));
+                    }
+                    let width = 1920u32;
+                    let height = ((width as f32 / aspect).round() as u32).max(1);
+                    let camera = Camera { position, forward, up, fov_y_deg: fov, width, height, near, far };
+                    let cam_name = node.camera().and_then(|c| c.name().map(str::to_string)).unwrap_or(name);
+                    self.scene.cameras.push(SceneCamera { name: cam_name, camera });
+                }
+                Projection::Orthographic(_) => self.warnings.push(format!("{name}: orthographic camera ignored")),
+            }
+        }
+        Ok(())
+    }
+
+    /// The scene mesh and material of a primitive, converted once however many nodes use it.
+    fn primitive(&mut self, mesh: &::gltf::Mesh, prim: &::gltf::Primitive) -> Result<Option<(u32, u32)>, Problem> {
+        let key = (mesh.index(), prim.index());
+        if let Some(&done) = self.primitives.get(&key) {
+            return Ok(done);
+        }
+        let result = self.convert_primitive(mesh, prim)?;
+        self.primitives.insert(key, result);
+        Ok(result)
+    }
+
+    fn convert_primitive(&mut self, mesh: &::gltf::Mesh, prim: &::gltf::Primitive) -> Result<Option<(u32, u32)>, Problem> {
+        let label = format!("{} primitive {}", mesh.name().map_or_else(|| format!("mesh {}", mesh.index()), str::to_string), prim.index());
+        if prim.mode() != ::gltf::mesh::Mode::Triangles {
+            self.warnings.push(format!("{label}: mode {:?} is not triangles, skipped", prim.mode()));
+            return Ok(None);
+        }
+        let Some(pos_acc) = prim.get(&Semantic::Positions) else {
+            self.warnings.push(format!("{label}: no positions, skipped"));
+            return Ok(None);
+        };
+        check(&pos_acc, &[DataType::F32], Dimensions::Vec3, self.buffers, &label)?;
+        let buffers = self.buffers;
+        let reader = prim.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
+        let unreadable = |what: &str| Problem::Invalid(format!("{label}: the {what} accessor does not fit its buffer"));
+        let positions: Vec<Vec3> = reader.read_positions().ok_or_else(|| unreadable("position"))?.map(Vec3::from).collect();
+        let normals = match prim.get(&Semantic::Normals) {
+            Some(a) => {
+                check(&a, &[DataType::F32], Dimensions::Vec3, buffers, &label)?;
+                Some(reader.read_normals().ok_or_else(|| unreadable("normal"))?.map(Vec3::from).collect())
+            }
+            None => None,
+        };
+        let tangents = match prim.get(&Semantic::Tangents) {
+            Some(a) => {
+                check(&a, &[DataType::F32], Dimensions::Vec4, buffers, &label)?;
+                Some(reader.read_tangents().ok_or_else(|| unreadable("tangent"))?.map(Vec4::from).collect())
+            }
+            None => None,
+        };
+        let uvs = match prim.get(&Semantic::TexCoords(0)) {
+            Some(a) => {
+                check(&a, &[DataType::F32, DataType::U8, DataType::U16], Dimensions::Vec2, buffers, &label)?;
+                Some(reader.read_tex_coords(0).ok_or_else(|| unreadable("texture coordinate"))?.into_f32().map(Vec2::from).collect())
+            }
+            None => None,
+        };
+        let triangles = match prim.indices() {
+            Some(a) => {
+                check(&a, &[DataType::U8, DataType::U16, DataType::U32], Dimensions::Scalar, buffers, &label)?;
+                let idx: Vec<u32> = reader.read_indices().ok_or_else(|| unreadable("index"))?.into_u32().collect();
+                idx.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect::<Vec<_>>()
+            }
+            None => {
+                let n = positions.len() as u32;
+                (0..n / 3).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect()
+            }
+        };
+        let raw = RawMesh { name: label.clone(), positions, normals, uvs, tangents, triangles };
+        let cleaned = clean(raw, NormalRule::Flat)?;
+        self.dropped += cleaned.dropped;
+        self.warnings.extend(cleaned.notes);
+        if cleaned.mesh.triangles.is_empty() {
+            self.warnings.push(format!("{label}: no drawable triangles, skipped"));
+            return Ok(None);
+        }
+        self.triangles += cleaned.mesh.triangles.len();
+        if self.triangles > self.limits.max_triangles {
+            return Err(Problem::Invalid(format!("more than {} triangles", self.limits.max_triangles)));
+        }
+        let material = self.material(prim.material())?;
+        self.scene.meshes.push(cleaned.mesh);
+        Ok(Some(((self.scene.meshes.len() - 1) as u32, material)))
+    }
+
+    /// The scene material for a glTF material (converted once).
+    fn material(&mut self, m: ::gltf::Material) -> Result<u32, Problem> {
+        if let Some(&done) = self.materials.get(&m.index()) {
+            return Ok(done);
+        }
+        let pbr = m.pbr_metallic_roughness();
+        let base = Vec4::from(pbr.base_color_factor());
+        let mut out = PbrMaterial {
+            name: m.name().map_or_else(|| format!("material {}", m.index().map_or(-1, |i| i as i64)), str::to_string),
+            base_color: clamp01(base.truncate()),
+            roughness: unit(pbr.roughness_factor()),
+            metallic: unit(pbr.metallic_factor()),
+            emissive: Vec3::from(m.emissive_factor()).max(Vec3::ZERO),
+            transmission: m.transmission().map_or(0.0, |t| unit(t.transmission_factor())),
+            ior: m.ior().map_or(1.5, |i| if i.is_finite() && i >= 1.0 { i } else { 1.5 }),
+            ..PbrMaterial::default()
+        };
+        if !out.emissive.is_finite() {
+            out.emissive = Vec3::ZERO;
+        }
+        let label = out.name.clone();
+        if base.w < 1.0 && m.alpha_mode() == ::gltf::material::AlphaMode::Blend {
+            self.warnings.push(format!("{label}: alpha blending is drawn opaque (use KHR_materials_transmission)"));
+        }
+        if let Some(info) = pbr.base_color_texture() {
+            self.uv_set(&label, info.tex_coord());
+            out.base_color_texture = Some(self.texture(&info.texture(), true)?);
+        }
+        if let Some(info) = pbr.metallic_roughness_texture() {
+            self.uv_set(&label, info.tex_coord());
+            out.metallic_roughness_texture = Some(self.texture(&info.texture(), false)?);
+        }
+        if let Some(info) = m.normal_texture() {
+            self.uv_set(&label, info.tex_coord());
+            out.normal_texture = Some(self.texture(&info.texture(), false)?);
+        }
+        if let Some(info) = m.emissive_texture() {
+            // The scene's material has a constant emission: fold the map in as its mean.
+            let t = self.texture(&info.texture(), true)?;
+            let img = &self.scene.textures[t as usize].image;
+            let mean = img.pixels().iter().map(|p| p.truncate()).sum::<Vec3>() / img.pixels().len().max(1) as f32;
+            out.emissive *= mean;
+            self.warnings.push(format!("{label}: emissive texture folded into a constant (its mean)"));
+        }
+        if m.transmission().and_then(|t| t.transmission_texture()).is_some() {
+            self.warnings.push(format!("{label}: transmission texture ignored (factor used)"));
+        }
+        self.scene.materials.push(out);
+        let index = (self.scene.materials.len() - 1) as u32;
+        self.materials.insert(m.index(), index);
+        Ok(index)
+    }
+
+    fn uv_set(&mut self, label: &str, set: u32) {
+        if set != 0 {
+            self.warnings.push(format!("{label}: texture uses UV set {set}; read with set 0"));
+        }
+    }
+
+    /// The scene texture of a glTF texture, decoded from sRGB when `srgb` (colour data).
+    fn texture(&mut self, texture: &::gltf::Texture, srgb: bool) -> Result<u32, Problem> {
+        let source = texture.source();
+        let key = (source.index(), srgb);
+        if let Some(&done) = self.textures.get(&key) {
+            return Ok(done);
+        }
+        let what = format!("image {}", source.index());
+        // Read the image's JSON directly: `image::Image::source` panics on an image with a
+        // buffer view but no MIME type, or with neither a view nor a URI.
+        let json = self.document.as_json().images.get(source.index());
+        let view = json.and_then(|j| j.buffer_view.as_ref()).map(|v| self.document.views().nth(v.value()));
+        let uri = json.and_then(|j| j.uri.as_deref());
+        let bytes = match (view, uri) {
+            (Some(Some(view)), _) => {
+                let data = self.buffers.get(view.buffer().index()).map(Vec::as_slice).unwrap_or(&[]);
+                let end = view.offset().checked_add(view.length());
+                end.and_then(|e| data.get(view.offset()..e))
+                    .ok_or_else(|| Problem::Image(format!("{what}: its buffer view lies outside the buffer")))?
+                    .to_vec()
+            }
+            (None, Some(uri)) => uri_bytes(uri, self.base, self.limits).map_err(|e| Problem::Image(format!("{what}: {e}")))?,
+            _ => return Err(Problem::Image(format!("{what}: neither a buffer view nor a URI"))),
+        };
+        let image = decode_image(&bytes, srgb, self.limits).map_err(|e| Problem::Image(format!("{what}: {e}")))?;
+        self.scene.textures.push(Texture::new(image));
+        let index = (self.scene.textures.len() - 1) as u32;
+        self.textures.insert(key, index);
+        Ok(index)
+    }
+}
+
+/// Decodes a PNG or JPEG into linear RGBA, from sRGB when `srgb`.
+pub(crate) fn decode_image(bytes: &[u8], srgb: bool, limits: &LoadLimits) -> Result<Image<Vec4>, String> {
+    let reader = ::image::ImageReader::new(std::io::Cursor::new(bytes)).with_guessed_format().map_err(|e| e.to_string())?;
+    let mut decode_limits = ::image::Limits::default();
+    decode_limits.max_alloc = Some(limits.max_texture_texels.saturating_mul(16));
+    let mut reader = reader;
+    reader.limits(decode_limits.clone());
+    let (w, h) = reader.into_dimensions().map_err(|e| e.to_string())?;
+    if u64::from(w) * u64::from(h) > limits.max_texture_texels {
+        return Err(format!("{w}×{h} is more than the limit of {} texels", limits.max_texture_texels));
+    }
+    let mut reader = ::image::ImageReader::new(std::io::Cursor::new(bytes)).with_guessed_format().map_err(|e| e.to_string())?;
+    reader.limits(decode_limits);
+    let rgba = reader.decode().map_err(|e| e.to_string())?.to_rgba8();
+    let table = srgb8_to_linear_table();
+    let texels = rgba
+        .pixels()
+        .map(|p| {
+            let c = |v: u8| if srgb { table[v as usize] } else { v as f32 / 255.0 };
+            Vec4::new(c(p[0]), c(p[1]), c(p[2]), p[3] as f32 / 255.0)
+        })
+        .collect();
+    Image::from_vec(w, h, texels).map_err(|e| e.to_string())
+}
+
+/// Checks an accessor before the `gltf` crate's reader touches it: the component type and
+/// shape the attribute needs, a stride no smaller than an element, and every element
+/// (including a sparse accessor's indices and values) inside its buffer.
+fn check(a: &Accessor, types: &[DataType], dims: Dimensions, buffers: &[Vec<u8>], label: &str) -> Result<(), Problem> {
+    let bad = |why: String| Err(Problem::Invalid(format!("{label}: accessor {}: {why}", a.index())));
+    if !types.contains(&a.data_type()) || a.dimensions() != dims {
+        return bad(format!("{:?} {:?} where {dims:?} of {types:?} is needed", a.dimensions(), a.data_type()));
+    }
+    if a.count() == 0 {
+        return bad("it has no elements".into());
+    }
+    let elem = a.size();
+    let fits = |view: &::gltf::buffer::View, offset: usize, count: usize, size: usize| -> bool {
+        let stride = view.stride().unwrap_or(size);
+        let Some(data) = buffers.get(view.buffer().index()) else { return false };
+        let span = stride.checked_mul(count - 1).and_then(|s| s.checked_add(size)).and_then(|s| s.checked_add(offset));
+        let view_end = view.offset().checked_add(view.length());
+        stride >= size && span.is_some_and(|s| s <= view.length()) && view_end.is_some_and(|e| e <= data.len())
+    };
+    match a.view() {
+        Some(view) if !fits(&view, a.offset(), a.count(), elem) => return bad("its elements lie outside the buffer".into()),
+        None if a.sparse().is_none() => return bad("it has neither a buffer view nor sparse data".into()),
+        _ => {}
+    }
+    if let Some(sparse) = a.sparse() {
+        let n = sparse.count();
+        let idx = sparse.indices();
+        let vals = sparse.values();
+        if n == 0
+            || n > a.count()
+            || !fits(&idx.view(), idx.offset(), n, idx.index_type().size())
+            || !fits(&vals.view(), vals.offset(), n, elem)
+        {
+            return bad("its sparse indices or values lie outside the buffer".into());
+        }
+        // Every sparse index must address an element; the reader assumes they increase.
+        let data = &buffers[idx.view().buffer().index()];
+        let stride = idx.view().stride().unwrap_or(idx.index_type().size());
+        let mut last: Option<u64> = None;
+        for k in 0..n {
+            let at = idx.view().offset() + idx.offset() + k * stride;
+            let v = match idx.index_type() {
+                ::gltf::accessor::sparse::IndexType::U8 => u64::from(data[at]),
+                ::gltf::accessor::sparse::IndexType::U16 => u64::from(u16::from_le_bytes([data[at], data[at + 1]])),
+                ::gltf::accessor::sparse::IndexType::U32 => {
+                    u64::from(u32::from_le_bytes([data[at], data[at + 1], data[at + 2], data[at + 3]]))
+                }
+            };
+            if v >= a.count() as u64 || last.is_some_and(|l| v <= l) {
+                return bad("its sparse indices are out of range or not increasing".into());
+            }
+            last = Some(v);
+        }
+    }
+    Ok(())
+}
+
+fn unit(x: f32) -> f32 {
+    if x.is_finite() {
+        x.clamp(0.0, 1.0)
+    } else {
+        0.0
+    }
+}
+
+fn clamp01(v: Vec3) -> Vec3 {
+    Vec3::new(unit(v.x), unit(v.y), unit(v.z))
+}
+
+fn finite_or(x: f32, default: f32) -> f32 {
+    if x.is_finite() {
+        x
+    } else {
+        default
+    }
+}

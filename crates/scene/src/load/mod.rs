@@ -1,0 +1,200 @@
+//! Loading hybrid scenes from files: glTF 2.0 (`.gltf` with external or data-URI buffers,
+//! `.glb`) and Wavefront OBJ with its MTL materials.
+//!
+//! Every loader reads the whole file into memory after checking its size against
+//! [`LoadLimits`], turns it into a [`HybridScene`], repairs what has a well-defined repair
+//! (missing normals, tangents or UVs, degenerate triangles, no lights, no camera) and says
+//! so in [`LoadedScene::warnings`], and refuses everything else with one [`LoadError`]
+//! naming the file and the problem. Malformed input never panics: the fuzz tests in
+//! `tests/load_fuzz.rs` feed the loaders mutated files.
+
+pub mod geometry;
+pub mod gltf;
+pub mod obj;
+
+use crate::error::SceneError;
+use crate::light::{Light, LightKind};
+use crate::scene::{HybridScene, SceneCamera};
+use glam::Vec3;
+use renderlab_core::Camera;
+use std::fmt;
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// A loaded scene and the repairs made while loading it.
+#[derive(Clone, Debug)]
+pub struct LoadedScene {
+    /// The scene; it passes [`HybridScene::validate`].
+    pub scene: HybridScene,
+    /// One line per repair or ignored feature (dropped degenerate triangles, a default
+    /// light added, an unsupported extension skipped …).
+    pub warnings: Vec<String>,
+}
+
+/// Bounds on what a file may ask the loader to allocate.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LoadLimits {
+    /// Largest scene file (and each external buffer, MTL or image file), in bytes.
+    pub max_file_bytes: u64,
+    /// Most triangles in the whole scene (counted per mesh, before instancing).
+    pub max_triangles: usize,
+    /// Largest texture, in texels.
+    pub max_texture_texels: u64,
+}
+
+impl Default for LoadLimits {
+    /// 1 GiB files, 50 million triangles, 64 megatexel textures: beyond what the lab's
+    /// renderers can use on one machine, far below what would exhaust its memory.
+    fn default() -> Self {
+        Self { max_file_bytes: 1 << 30, max_triangles: 50_000_000, max_texture_texels: 1 << 26 }
+    }
+}
+
+/// What is wrong with a file.
+#[derive(Debug, Error)]
+pub enum Problem {
+    /// It (or a file it refers to) cannot be read.
+    #[error("{0}")]
+    Io(#[from] std::io::Error),
+    /// It is larger than [`LoadLimits::max_file_bytes`].
+    #[error("{size} bytes is more than the limit of {limit} bytes")]
+    TooLarge {
+        /// Size found.
+        size: u64,
+        /// The limit.
+        limit: u64,
+    },
+    /// The extension names no known format.
+    #[error("unknown scene format {0:?} (expected .gltf, .glb or .obj)")]
+    UnknownFormat(String),
+    /// The glTF parser refused it.
+    #[error("not valid glTF: {0}")]
+    Gltf(String),
+    /// The OBJ or MTL parser refused it.
+    #[error("not valid OBJ: {0}")]
+    Obj(String),
+    /// A texture image cannot be read or decoded.
+    #[error("texture {0}")]
+    Image(String),
+    /// The content parses but cannot make a scene (bad accessor, index out of range,
+    /// NaN vertex, too many triangles …).
+    #[error("{0}")]
+    Invalid(String),
+    /// The assembled scene fails validation.
+    #[error("{0}")]
+    Scene(#[from] SceneError),
+}
+
+/// A file that cannot be loaded: which file, and why, in one line.
+#[derive(Debug)]
+pub struct LoadError {
+    /// The file given to [`load`].
+    pub path: PathBuf,
+    /// The reason.
+    pub problem: Problem,
+}
+
+impl fmt::Display for LoadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.path.display(), self.problem)
+    }
+}
+
+impl std::error::Error for LoadError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&self.problem)
+    }
+}
+
+/// Loads a scene file with the default [`LoadLimits`], choosing the format by extension
+/// (`.gltf`, `.glb`, `.obj`, case-insensitive).
+pub fn load(path: impl AsRef<Path>) -> Result<LoadedScene, LoadError> {
+    load_with(path, &LoadLimits::default())
+}
+
+/// Loads a scene file within `limits`.
+pub fn load_with(path: impl AsRef<Path>, limits: &LoadLimits) -> Result<LoadedScene, LoadError> {
+    let path = path.as_ref();
+    let fail = |problem| LoadError { path: path.to_path_buf(), problem };
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("scene");
+    let loaded = match ext.as_str() {
+        "gltf" | "glb" => read_limited(path, limits).and_then(|b| gltf::from_slice(&b, name, Some(&base), limits)),
+        "obj" => read_limited(path, limits).and_then(|b| obj::from_slice(&b, name, Some(&base), limits)),
+        _ => Err(Problem::UnknownFormat(ext)),
+    };
+    loaded.map_err(fail)
+}
+
+/// Reads a whole file after checking its size against the limit.
+pub(crate) fn read_limited(path: &Path, limits: &LoadLimits) -> Result<Vec<u8>, Problem> {
+    let size = std::fs::metadata(path)
+        .map_err(|e| std::io::Error::new(e.kind(), format!("{}: {e}", path.display())))?
+        .len();
+    if size > limits.max_file_bytes {
+        return Err(Problem::TooLarge { size, limit: limits.max_file_bytes });
+    }
+    std::fs::read(path).map_err(|e| Problem::Io(std::io::Error::new(e.kind(), format!("{}: {e}", path.display()))))
+}
+
+/// Resolves a file named inside a scene file relative to the scene's folder. Names that
+/// climb out of it or are absolute are allowed (asset packs share texture folders); a scene
+/// given as bytes without a folder cannot refer to files at all.
+pub(crate) fn resolve(base: Option<&Path>, name: &str) -> Result<PathBuf, Problem> {
+    match base {
+        Some(b) => Ok(b.join(name)),
+        None => Err(Problem::Invalid(format!("refers to the file {name:?} but was given without a folder"))),
+    }
+}
+
+/// The finishing steps shared by the loaders: a default light and camera when the file has
+/// none (each with a warning), then validation.
+pub(crate) fn finish(mut scene: HybridScene, warnings: &mut Vec<String>) -> Result<HybridScene, Problem> {
+    if scene.lights.is_empty() {
+        warnings.push("the file has no lights: added a default sun (directional, from above) and sky".into());
+        scene.lights.push(Light {
+            name: "default sun".into(),
+            kind: LightKind::Directional,
+            position: Vec3::ZERO,
+            direction: Vec3::new(-0.3, -1.0, -0.4).normalize(),
+            color: Vec3::ONE,
+            intensity: 3.0,
+            range: None,
+        });
+        if scene.sky == Vec3::ZERO {
+            scene.sky = Vec3::splat(0.3);
+        }
+    }
+    if scene.cameras.is_empty() {
+        warnings.push("the file has no camera: added one framing the whole scene".into());
+        scene.cameras.push(framing_camera(&scene));
+    }
+    scene.validate()?;
+    Ok(scene)
+}
+
+/// A 16:9 camera looking at the centre of the scene's bounds from the front, above.
+fn framing_camera(scene: &HybridScene) -> SceneCamera {
+    let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+    for inst in &scene.instances {
+        if let Some(mesh) = scene.meshes.get(inst.mesh as usize) {
+            for v in &mesh.vertices {
+                let p = inst.transform.transform_point3(v.position);
+                lo = lo.min(p);
+                hi = hi.max(p);
+            }
+        }
+    }
+    if !(lo.is_finite() && hi.is_finite()) {
+        (lo, hi) = (Vec3::splat(-1.0), Vec3::ONE);
+    }
+    let centre = (lo + hi) * 0.5;
+    let radius = ((hi - lo).length() * 0.5).max(1e-3);
+    let distance = radius / (22.5f32.to_radians()).sin();
+    let position = centre + Vec3::new(0.0, 0.35, 1.0).normalize() * distance;
+    let mut camera = Camera::look_at(position, centre, 1920, 1080);
+    camera.near = (distance * 1e-3).max(1e-4);
+    camera.far = distance + 4.0 * radius;
+    SceneCamera { name: "default".into(), camera }
+}

@@ -1,0 +1,202 @@
+//! Wavefront OBJ with MTL materials into a [`HybridScene`] (through the `tobj` parser).
+//!
+//! Faces of any size are fan-triangulated, negative (relative) indices resolve as the
+//! format defines them, missing normals are computed smooth (area-weighted over shared
+//! vertices, what OBJ exporters assume), missing UVs are zero, tangents always come from
+//! the UVs. V is flipped (OBJ counts it upward, the lab's textures downward).
+//!
+//! MTL → [`PbrMaterial`]:
+//! - `Kd` → base colour; `map_Kd` → base-colour texture (decoded from sRGB); `norm` /
+//!   `map_Bump` → normal texture (read as a tangent-space normal map);
+//! - `Ns` (Blinn–Phong exponent n) → roughness through the usual equivalence of a
+//!   Blinn–Phong lobe and a microfacet one, α = √(2 / (n + 2)), perceptual roughness √α
+//!   (n = 0 gives 1, n = 1000 gives 0.21); a `Pr` entry (the PBR extension) overrides it;
+//! - `Pm` → metalness (0 without it);
+//! - `Ni` → ior (values below 1, such as the common 1.0 placeholder's neighbours, give 1);
+//! - `d` → transmission 1 − d, or `Tr` → transmission Tr;
+//! - `Ke` → emitted radiance.
+//!
+//! OBJ has no lights or cameras: the shared finishing step adds a default sun and a
+//! framing camera, with warnings. A missing MTL file gives the default material and a
+//! warning; a missing texture is an error.
+
+use super::geometry::{clean, NormalRule, RawMesh};
+use super::gltf::decode_image;
+use super::{finish, read_limited, resolve, LoadLimits, LoadedScene, Problem};
+use crate::material::{PbrMaterial, Texture};
+use crate::scene::{HybridScene, Instance};
+use glam::{Affine3A, Vec2, Vec3};
+use std::collections::HashMap;
+use std::path::Path;
+
+/// Loads an OBJ document from memory; `base` is the folder MTL files and textures are
+/// resolved against (`None`: none can be loaded).
+pub fn from_slice(bytes: &[u8], name: &str, base: Option<&Path>, limits: &LoadLimits) -> Result<LoadedScene, Problem> {
+    let mut warnings = Vec::new();
+    let options = tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
+    let mtl_notes = std::cell::RefCell::new(Vec::new());
+    let (models, materials) = tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &options, |p| {
+        let loaded = p
+            .to_str()
+            .ok_or_else(|| Problem::Invalid("an MTL file name is not UTF-8".into()))
+            .and_then(|n| resolve(base, n))
+            .and_then(|path| read_limited(&path, limits));
+        match loaded {
+            Ok(text) => tobj::load_mtl_buf(&mut std::io::Cursor::new(text)).inspect_err(|e| {
+                mtl_notes.borrow_mut().push(format!("MTL file {}: {e}; default material used", p.display()));
+            }),
+            Err(e) => {
+                mtl_notes.borrow_mut().push(format!("MTL file {} not loaded ({e}); default material used", p.display()));
+                Err(tobj::LoadError::OpenFileFailed)
+            }
+        }
+    })
+    .map_err(|e| Problem::Obj(e.to_string()))?;
+    warnings.append(&mut mtl_notes.into_inner());
+    let materials = materials.unwrap_or_default();
+
+    let mut scene = HybridScene {
+        name: name.into(),
+        meshes: Vec::new(),
+        instances: Vec::new(),
+        materials: Vec::new(),
+        textures: Vec::new(),
+        lights: Vec::new(),
+        cameras: Vec::new(),
+        sky: Vec3::ZERO,
+    };
+    let mut converted: HashMap<Option<usize>, u32> = HashMap::new();
+    let mut textures: HashMap<(String, bool), u32> = HashMap::new();
+    let (mut triangles, mut dropped) = (0usize, 0usize);
+    for model in models {
+        let m = &model.mesh;
+        let n = m.positions.len() / 3;
+        let positions: Vec<Vec3> = m.positions.chunks_exact(3).map(|c| Vec3::new(c[0], c[1], c[2])).collect();
+        let normals = (m.normals.len() == 3 * n && n > 0)
+            .then(|| m.normals.chunks_exact(3).map(|c| Vec3::new(c[0], c[1], c[2])).collect());
+        let uvs = (m.texcoords.len() == 2 * n && n > 0)
+            .then(|| m.texcoords.chunks_exact(2).map(|c| Vec2::new(c[0], 1.0 - c[1])).collect());
+        let tris = m.indices.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        let raw = RawMesh { name: model.name.clone(), positions, normals, uvs, tangents: None, triangles: tris };
+        let cleaned = clean(raw, NormalRule::Smooth)?;
+        dropped += cleaned.dropped;
+        warnings.extend(cleaned.notes);
+        if cleaned.mesh.triangles.is_empty() {
+            continue;
+        }
+        triangles += cleaned.mesh.triangles.len();
+        if triangles > limits.max_triangles {
+            return Err(Problem::Invalid(format!("more than {} triangles", limits.max_triangles)));
+        }
+        let key = m.material_id.filter(|&i| i < materials.len());
+        if m.material_id.is_some() && key.is_none() && !materials.is_empty() {
+            warnings.push(format!("{}: unknown material, default used", model.name));
+        }
+        let material = match converted.get(&key) {
+            Some(&done) => done,
+            None => {
+                let mat = match key {
+                    Some(i) => convert(&materials[i], &mut scene, &mut textures, base, limits)?,
+                    None => PbrMaterial::default(),
+                };
+                scene.materials.push(mat);
+                let index = (scene.materials.len() - 1) as u32;
+                converted.insert(key, index);
+                index
+            }
+        };
+        scene.meshes.push(cleaned.mesh);
+        scene.instances.push(Instance {
+            name: model.name,
+            mesh: (scene.meshes.len() - 1) as u32,
+            material,
+            transform: Affine3A::IDENTITY,
+        });
+    }
+    if dropped > 0 {
+        warnings.push(format!("dropped {dropped} degenerate triangles"));
+    }
+    let scene = finish(scene, &mut warnings)?;
+    Ok(LoadedScene { scene, warnings })
+}
+
+/// The PBR material of an MTL material (the mapping in the module documentation).
+fn convert(
+    m: &tobj::Material,
+    scene: &mut HybridScene,
+    textures: &mut HashMap<(String, bool), u32>,
+    base: Option<&Path>,
+    limits: &LoadLimits,
+) -> Result<PbrMaterial, Problem> {
+    let unit = |x: f32| if x.is_finite() { x.clamp(0.0, 1.0) } else { 0.0 };
+    let param = |key: &str| m.unknown_param.get(key).and_then(|v| v.trim().parse::<f32>().ok()).filter(|v| v.is_finite());
+    let mut out = PbrMaterial { name: m.name.clone(), ..PbrMaterial::default() };
+    if let Some(kd) = m.diffuse {
+        out.base_color = Vec3::from(kd.map(unit));
+    }
+    if let Some(ns) = m.shininess.filter(|n| n.is_finite()) {
+        out.roughness = roughness_from_shininess(ns);
+    }
+    if let Some(pr) = param("Pr") {
+        out.roughness = unit(pr);
+    }
+    out.metallic = param("Pm").map_or(0.0, unit);
+    if let Some(ni) = m.optical_density.filter(|n| n.is_finite()) {
+        out.ior = ni.max(1.0);
+    }
+    if let Some(d) = m.dissolve {
+        out.transmission = unit(1.0 - d);
+    } else if let Some(tr) = param("Tr") {
+        out.transmission = unit(tr);
+    }
+    if let Some(ke) = m.emissive {
+        let e = Vec3::from(ke);
+        out.emissive = if e.is_finite() { e.max(Vec3::ZERO) } else { Vec3::ZERO };
+    }
+    let mut texture = |file: &str, srgb: bool| -> Result<u32, Problem> {
+        if let Some(&done) = textures.get(&(file.to_string(), srgb)) {
+            return Ok(done);
+        }
+        // Options such as `-bm 1.0` may precede the file name: take the last word.
+        let file_name = file.split_whitespace().last().unwrap_or(file);
+        let bytes = resolve(base, file_name)
+            .and_then(|p| read_limited(&p, limits))
+            .map_err(|e| Problem::Image(format!("{file_name:?}: {e}")))?;
+        let image = decode_image(&bytes, srgb, limits).map_err(|e| Problem::Image(format!("{file_name:?}: {e}")))?;
+        scene.textures.push(Texture::new(image));
+        let index = (scene.textures.len() - 1) as u32;
+        textures.insert((file.to_string(), srgb), index);
+        Ok(index)
+    };
+    if let Some(f) = &m.diffuse_texture {
+        out.base_color_texture = Some(texture(f, true)?);
+    }
+    if let Some(f) = m.normal_texture.as_ref().or_else(|| m.unknown_param.get("norm")) {
+        out.normal_texture = Some(texture(f, false)?);
+    }
+    Ok(out)
+}
+
+/// Perceptual GGX roughness equivalent to a Blinn–Phong exponent: α = √(2 / (n + 2)),
+/// roughness = √α (clamped to [0, 1]; negative exponents count as 0).
+pub fn roughness_from_shininess(ns: f32) -> f32 {
+    let alpha = (2.0 / (ns.max(0.0) + 2.0)).sqrt();
+    alpha.sqrt().clamp(0.0, 1.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shininess_maps_to_roughness_monotonically() {
+        assert!((roughness_from_shininess(0.0) - 1.0).abs() < 1e-6);
+        let mut last = 1.0;
+        for ns in [1.0, 10.0, 100.0, 1000.0] {
+            let r = roughness_from_shininess(ns);
+            assert!(r < last && r > 0.0, "Ns {ns} → {r}");
+            last = r;
+        }
+        assert!((roughness_from_shininess(1000.0) - 0.2113).abs() < 1e-3);
+    }
+}

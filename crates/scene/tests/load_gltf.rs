@@ -1,0 +1,216 @@
+//! The glTF loader on hand-written files: embedded and external buffers, GLB, node
+//! hierarchies, sparse and non-indexed accessors, materials, lights, cameras, textures,
+//! and the malformed cases that must be refused with one error.
+
+mod common;
+
+use common::*;
+use glam::{Vec2, Vec3};
+use renderlab_scene::load::{gltf::from_slice, load, load_with, LoadLimits, Problem};
+use renderlab_scene::LightKind;
+use serde_json::json;
+
+fn limits() -> LoadLimits {
+    LoadLimits::default()
+}
+
+#[test]
+fn a_minimal_embedded_triangle_loads_with_flat_normals_and_defaults() {
+    let loaded = from_slice(&triangle().gltf_embedded(), "t", None, &limits()).unwrap();
+    let s = &loaded.scene;
+    assert_eq!(s.triangle_count(), 1);
+    for v in &s.meshes[0].vertices {
+        assert!((v.normal - Vec3::Z).length() < 1e-6);
+        assert!(v.tangent.truncate().dot(v.normal).abs() < 1e-6);
+    }
+    assert_eq!(s.lights.len(), 1, "a default light");
+    assert_eq!(s.cameras.len(), 1, "a default camera");
+    assert!(loaded.warnings.iter().any(|w| w.contains("no lights")), "{:?}", loaded.warnings);
+    assert!(loaded.warnings.iter().any(|w| w.contains("no camera")), "{:?}", loaded.warnings);
+}
+
+#[test]
+fn a_glb_with_materials_lights_and_camera() {
+    let mut d = triangle();
+    d.materials.push(json!({
+        "name": "glass",
+        "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.8, 0.7, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.1},
+        "emissiveFactor": [0.5, 0.0, 0.0],
+        "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0}, "KHR_materials_ior": {"ior": 1.33}}
+    }));
+    d.meshes[0]["primitives"][0]["material"] = json!(0);
+    d.lights.push(json!({"type": "spot", "color": [1.0, 0.5, 0.25], "intensity": 20.0, "range": 10.0,
+        "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.5}}));
+    d.lights.push(json!({"type": "directional", "intensity": 3.0}));
+    // Rotated −90° about X, the node's −Z points down (−Y).
+    let q = (-std::f32::consts::FRAC_PI_4).sin_cos();
+    let spot = d.node(json!({"translation": [0.0, 5.0, 0.0], "rotation": [q.0, 0.0, 0.0, q.1],
+        "extensions": {"KHR_lights_punctual": {"light": 0}}}));
+    let sun = d.node(json!({"extensions": {"KHR_lights_punctual": {"light": 1}}}));
+    d.cameras.push(json!({"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.05, "zfar": 100.0, "aspectRatio": 2.0}}));
+    let cam = d.node(json!({"camera": 0, "translation": [0.0, 1.0, 4.0]}));
+    d.roots.extend([spot, sun, cam]);
+    let loaded = from_slice(&d.glb(), "g", None, &limits()).unwrap();
+    let s = &loaded.scene;
+    let m = &s.materials[s.instances[0].material as usize];
+    assert_eq!((m.transmission, m.ior, m.roughness), (1.0, 1.33, 0.1));
+    assert!((m.base_color - Vec3::new(0.9, 0.8, 0.7)).length() < 1e-6);
+    assert_eq!(m.emissive, Vec3::new(0.5, 0.0, 0.0));
+    assert_eq!(s.lights.len(), 2);
+    let l = &s.lights[0];
+    assert!(matches!(l.kind, LightKind::Spot { inner_cone, outer_cone } if inner_cone == 0.2 && outer_cone == 0.5));
+    assert!((l.direction - Vec3::NEG_Y).length() < 1e-5, "{}", l.direction);
+    assert!((l.position - Vec3::new(0.0, 5.0, 0.0)).length() < 1e-6);
+    assert_eq!(l.range, Some(10.0));
+    assert_eq!(s.lights[1].kind, LightKind::Directional);
+    assert!((s.lights[1].direction - Vec3::NEG_Z).length() < 1e-6);
+    let c = &s.cameras[0].camera;
+    assert_eq!((c.width, c.height), (1920, 960));
+    assert!((c.fov_y_deg - 0.8f32.to_degrees()).abs() < 1e-4);
+    assert!((c.forward - Vec3::NEG_Z).length() < 1e-6 && (c.position - Vec3::new(0.0, 1.0, 4.0)).length() < 1e-6);
+    assert!(!loaded.warnings.iter().any(|w| w.contains("no lights")));
+}
+
+#[test]
+fn a_node_hierarchy_composes_translation_scale_and_rotation() {
+    let mut d = triangle();
+    d.roots.clear();
+    let q = std::f32::consts::FRAC_PI_4.sin_cos(); // 90° about Y
+    let child = d.node(json!({"mesh": 0, "rotation": [0.0, q.0, 0.0, q.1]}));
+    let parent = d.node(json!({"translation": [1.0, 0.0, 0.0], "scale": [2.0, 2.0, 2.0], "children": [child]}));
+    d.roots.push(parent);
+    let s = from_slice(&d.gltf_embedded(), "h", None, &limits()).unwrap().scene;
+    assert_eq!(s.instances.len(), 1);
+    let world = s.world_mesh(&s.instances[0]);
+    // Vertex (1, 0, 0): rotated to (0, 0, −1), scaled to (0, 0, −2), moved to (1, 0, −2).
+    let p = world.vertices.iter().map(|v| v.position).collect::<Vec<_>>();
+    assert!(p.iter().any(|q| (*q - Vec3::new(1.0, 0.0, -2.0)).length() < 1e-5), "{p:?}");
+    assert!(p.iter().any(|q| (*q - Vec3::new(1.0, 2.0, 0.0)).length() < 1e-5), "{p:?}");
+    // The mesh's front (+Z) turned to +X.
+    assert!((world.vertices[0].normal - Vec3::X).length() < 1e-5);
+}
+
+#[test]
+fn a_sparse_accessor_overrides_its_base() {
+    let mut d = triangle();
+    let idx = d.view(&1u32.to_le_bytes());
+    let val: Vec<u8> = [5.0f32, 0.0, 0.0].iter().flat_map(|x| x.to_le_bytes()).collect();
+    let val = d.view(&val);
+    d.accessors[0]["sparse"] = json!({"count": 1, "indices": {"bufferView": idx, "componentType": U32}, "values": {"bufferView": val}});
+    d.accessors[0]["max"] = json!([5.0, 1.0, 0.0]);
+    let s = from_slice(&d.gltf_embedded(), "s", None, &limits()).unwrap().scene;
+    assert!(s.meshes[0].vertices.iter().any(|v| v.position == Vec3::new(5.0, 0.0, 0.0)));
+}
+
+#[test]
+fn a_non_indexed_mesh_with_uvs_and_a_degenerate_triangle() {
+    let mut d = Doc::default();
+    let pos = d.vec3(&[
+        [0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0],
+        [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0],
+        [0.0, 0.0, 0.0], [1.0, 1.0, 1.0], [2.0, 2.0, 2.0], // collinear
+    ]);
+    let uv = d.vec2(&[[0.0, 1.0], [1.0, 1.0], [0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0], [0.0; 2], [0.0; 2], [0.0; 2]]);
+    let mesh = d.mesh(json!({"POSITION": pos, "TEXCOORD_0": uv}), None, None);
+    let node = d.node(json!({"mesh": mesh}));
+    d.roots.push(node);
+    let loaded = from_slice(&d.gltf_embedded(), "n", None, &limits()).unwrap();
+    assert_eq!(loaded.scene.triangle_count(), 2);
+    assert!(loaded.warnings.iter().any(|w| w == "dropped 1 degenerate triangles"), "{:?}", loaded.warnings);
+    // u grows along +X: tangents follow it.
+    for v in &loaded.scene.meshes[0].vertices {
+        assert!((v.tangent.truncate() - Vec3::X).length() < 1e-5);
+        assert!(v.uv.x >= 0.0 && v.uv.y >= 0.0);
+    }
+}
+
+#[test]
+fn an_embedded_png_base_colour_is_decoded_from_srgb() {
+    let mut d = triangle();
+    let png = png([[128, 0, 255, 255], [0, 0, 0, 255], [255, 255, 255, 255], [64, 64, 64, 255]]);
+    let view = d.view(&png);
+    d.images.push(json!({"bufferView": view, "mimeType": "image/png"}));
+    d.textures.push(json!({"source": 0}));
+    d.materials.push(json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicRoughnessTexture": {"index": 0}}}));
+    d.meshes[0]["primitives"][0]["material"] = json!(0);
+    let s = from_slice(&d.glb(), "p", None, &limits()).unwrap().scene;
+    assert_eq!(s.textures.len(), 2, "one image, decoded once as colour and once as data");
+    let m = &s.materials[0];
+    let colour = &s.textures[m.base_color_texture.unwrap() as usize].image;
+    let data = &s.textures[m.metallic_roughness_texture.unwrap() as usize].image;
+    assert!((colour.get(0, 0).x - 0.2158605).abs() < 1e-4, "{}", colour.get(0, 0));
+    assert!((data.get(0, 0).x - 128.0 / 255.0).abs() < 1e-6);
+    assert_eq!(colour.get(0, 0).z, 1.0);
+}
+
+#[test]
+fn external_buffers_load_from_beside_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = triangle();
+    std::fs::write(dir.path().join("tri data.bin"), &d.bin).unwrap();
+    let json = d.json(Some("tri%20data.bin".into())).to_string();
+    let path = dir.path().join("scene.GLTF");
+    std::fs::write(&path, json).unwrap();
+    let loaded = load(&path).unwrap();
+    assert_eq!(loaded.scene.triangle_count(), 1);
+    assert_eq!(loaded.scene.name, "scene");
+
+    std::fs::remove_file(dir.path().join("tri data.bin")).unwrap();
+    let err = load(&path).unwrap_err().to_string();
+    assert!(err.contains("scene.GLTF") && err.contains("tri data.bin"), "{err}");
+}
+
+#[test]
+fn malformed_files_are_refused_with_one_line() {
+    let bad = |d: &Doc| {
+        let e = from_slice(&d.gltf_embedded(), "b", None, &limits()).unwrap_err();
+        let text = e.to_string();
+        assert!(!text.contains('\n') && !text.is_empty());
+        e
+    };
+    let mut d = triangle();
+    d.bin[12 * 3..12 * 3 + 4].copy_from_slice(&7u32.to_le_bytes()); // index 7 of 3 vertices
+    assert!(bad(&d).to_string().contains("vertex 7"));
+
+    let mut d = triangle();
+    d.bin[4..8].copy_from_slice(&f32::NAN.to_le_bytes());
+    assert!(bad(&d).to_string().contains("non-finite"));
+
+    let mut d = triangle();
+    d.accessors[0]["byteOffset"] = json!(64); // past the view
+    assert!(matches!(bad(&d), Problem::Invalid(_)));
+
+    let mut d = triangle();
+    d.accessors[0]["type"] = json!("VEC2");
+    assert!(matches!(bad(&d), Problem::Invalid(_)));
+
+    let mut d = triangle();
+    d.images.push(json!({"uri": "missing.png"}));
+    d.textures.push(json!({"source": 0}));
+    d.materials.push(json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}));
+    d.meshes[0]["primitives"][0]["material"] = json!(0);
+    assert!(matches!(bad(&d), Problem::Image(_)));
+
+    let mut d = triangle();
+    d.views[0]["byteLength"] = json!(4096); // the buffer is shorter
+    assert!(from_slice(&d.gltf_embedded(), "b", None, &limits()).is_err());
+
+    assert!(matches!(from_slice(b"{not json", "b", None, &limits()), Err(Problem::Gltf(_))));
+}
+
+#[test]
+fn size_limits_and_unknown_formats_are_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("big.glb");
+    std::fs::write(&path, triangle().glb()).unwrap();
+    let small = LoadLimits { max_file_bytes: 64, ..LoadLimits::default() };
+    let e = load_with(&path, &small).unwrap_err();
+    assert!(matches!(e.problem, Problem::TooLarge { limit: 64, .. }), "{e}");
+    let few = LoadLimits { max_triangles: 0, ..LoadLimits::default() };
+    assert!(load_with(&path, &few).is_err());
+    assert!(load(&path).is_ok());
+    let e = load(dir.path().join("scene.fbx")).unwrap_err();
+    assert!(matches!(e.problem, Problem::UnknownFormat(_)));
+    assert!(load(dir.path().join("absent.obj")).is_err());
+    let _ = Vec2::ZERO;
+}

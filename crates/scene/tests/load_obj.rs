@@ -1,0 +1,89 @@
+//! The OBJ loader on hand-written files: quads and n-gons, negative indices, the MTL
+//! mapping, textures, missing normals and a missing MTL file.
+
+mod common;
+
+use common::*;
+use glam::Vec3;
+use renderlab_scene::load::{load, obj::from_slice, LoadLimits};
+
+#[test]
+fn quads_ngons_negative_indices_and_the_mtl_mapping() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("cube.obj"), CUBE_OBJ).unwrap();
+    std::fs::write(dir.path().join("cube.mtl"), CUBE_MTL).unwrap();
+    std::fs::write(dir.path().join("red.png"), png([[255, 128, 0, 255]; 4])).unwrap();
+    let loaded = load(dir.path().join("cube.obj")).unwrap();
+    let s = &loaded.scene;
+    // Six quads → 12 triangles; a pentagon → 3.
+    assert_eq!(s.instances.len(), 2);
+    let count = |name: &str| {
+        let i = s.instances.iter().find(|i| i.name == name).unwrap();
+        (s.meshes[i.mesh as usize].triangles.len(), &s.materials[i.material as usize])
+    };
+    let (cube, red) = count("cube");
+    let (pentagon, glass) = count("pentagon");
+    assert_eq!((cube, pentagon), (12, 3));
+    // The cube is closed and wound outward: its signed volume is +1.
+    let i = s.instances.iter().find(|i| i.name == "cube").unwrap();
+    let m = &s.meshes[i.mesh as usize];
+    let vol: f32 = m.triangles.iter().map(|t| {
+        let [a, b, c] = t.map(|k| m.vertices[k as usize].position);
+        a.dot(b.cross(c)) / 6.0
+    }).sum();
+    assert!((vol - 1.0).abs() < 1e-5, "volume {vol}");
+    assert_eq!(red.base_color, Vec3::new(0.8, 0.1, 0.1));
+    assert!((red.roughness - renderlab_scene::load::obj::roughness_from_shininess(100.0)).abs() < 1e-6);
+    assert_eq!(red.emissive, Vec3::new(0.5, 0.25, 0.0));
+    let tex = &s.textures[red.base_color_texture.unwrap() as usize].image;
+    assert!((tex.get(1, 1).y - 0.2158605).abs() < 1e-4, "sRGB 128 decodes to 0.216");
+    assert_eq!((glass.ior, glass.metallic), (1.45, 0.0));
+    assert!((glass.transmission - 0.9).abs() < 1e-6);
+    // OBJ has no lights or cameras: defaults, said aloud.
+    assert!(loaded.warnings.iter().any(|w| w.contains("no lights")));
+    assert!(loaded.warnings.iter().any(|w| w.contains("no camera")));
+}
+
+#[test]
+fn a_missing_mtl_gives_the_default_material_and_a_warning() {
+    let loaded = from_slice(CUBE_OBJ.as_bytes(), "c", None, &LoadLimits::default()).unwrap();
+    assert!(loaded.warnings.iter().any(|w| w.contains("cube.mtl")), "{:?}", loaded.warnings);
+    assert!(loaded.scene.materials.iter().all(|m| m.name == "default"));
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("cube.obj"), CUBE_OBJ).unwrap();
+    let loaded = load(dir.path().join("cube.obj")).unwrap();
+    assert!(loaded.warnings.iter().any(|w| w.contains("cube.mtl")));
+}
+
+#[test]
+fn missing_normals_are_computed_smooth_and_given_ones_are_kept() {
+    let flat = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+    let s = from_slice(flat.as_bytes(), "q", None, &LoadLimits::default()).unwrap().scene;
+    assert_eq!(s.triangle_count(), 2);
+    for v in &s.meshes[0].vertices {
+        assert!((v.normal - Vec3::Z).length() < 1e-6);
+    }
+    let tilted = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 1 1\nf 1//1 2//1 3//1\n";
+    let s = from_slice(tilted.as_bytes(), "t", None, &LoadLimits::default()).unwrap().scene;
+    let n = Vec3::new(0.0, 1.0, 1.0).normalize();
+    assert!(s.meshes[0].vertices.iter().all(|v| (v.normal - n).length() < 1e-6));
+}
+
+#[test]
+fn bad_obj_input_is_an_error_or_a_repair() {
+    let l = LoadLimits::default();
+    // An index past the end.
+    assert!(from_slice(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "x", None, &l).is_err());
+    // A NaN vertex.
+    assert!(from_slice(b"v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", "x", None, &l).is_err());
+    // A texture the MTL names but that is missing is an error.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("cube.obj"), CUBE_OBJ).unwrap();
+    std::fs::write(dir.path().join("cube.mtl"), CUBE_MTL).unwrap();
+    let e = load(dir.path().join("cube.obj")).unwrap_err().to_string();
+    assert!(e.contains("red.png"), "{e}");
+    // Only degenerate faces: nothing to draw, but a valid (empty) scene.
+    let loaded = from_slice(b"v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", "x", None, &l).unwrap();
+    assert_eq!(loaded.scene.triangle_count(), 0);
+    assert!(loaded.warnings.iter().any(|w| w.contains("degenerate")));
+}
