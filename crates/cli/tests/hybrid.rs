@@ -44,11 +44,38 @@ fn renders_a_configuration_and_a_reference() {
     let out = dir.path().join("rt.png");
     let o = out.to_str().unwrap();
     let text = succeeds(&[
-        "hybrid", "render", "--scene", "showcase", "--resolution", "32x18", "--shadows", "rt:2",
-        "--reflections", "rt:2:0.5", "--translucency", "rt:3", "--gi", "rt:1", "--ao", "rt:1:0.5", "--out", o,
+        "hybrid",
+        "render",
+        "--scene",
+        "showcase",
+        "--resolution",
+        "32x18",
+        "--shadows",
+        "rt:2",
+        "--reflections",
+        "rt:2:0.5",
+        "--translucency",
+        "rt:3",
+        "--gi",
+        "rt:1",
+        "--ao",
+        "rt:1:0.5",
+        "--out",
+        o,
     ]);
     assert!(text.contains("rt-shadows s2") && out.is_file(), "{text}");
-    let text = succeeds(&["hybrid", "render", "--scene", "showcase", "--resolution", "32x18", "--reference", "4", "--out", o]);
+    let text = succeeds(&[
+        "hybrid",
+        "render",
+        "--scene",
+        "showcase",
+        "--resolution",
+        "32x18",
+        "--reference",
+        "4",
+        "--out",
+        o,
+    ]);
     assert!(text.contains("noise floor"), "{text}");
 }
 
@@ -82,7 +109,7 @@ fn bad_input_is_one_line_and_writes_nothing() {
     let run = dir.path().join("run");
     let ro = run.to_str().unwrap();
     fails_with(&["hybrid", "bench", "--out", ro, "--scenes", "atlantis"], "atlantis");
-    fails_with(&["hybrid", "bench", "--out", ro, "--cameras", "cam9"], "cam9");
+    fails_with(&["hybrid", "bench", "--out", ro, "--scenes", "showcase", "--cameras", "cam9"], "cam9");
     fails_with(&["hybrid", "bench", "--out", ro, "--resolution", "12"], "--resolution");
     fails_with(&["hybrid", "bench", "--out", ro, "--shard", "3/2"], "--shard");
     fails_with(&["hybrid", "bench", "--out", ro, "--reference-spp", "0"], "reference spp");
@@ -94,7 +121,20 @@ fn bad_input_is_one_line_and_writes_nothing() {
 fn sharded_bench_merges_and_resumes() {
     let dir = tempfile::tempdir().unwrap();
     let part = |k: u32| dir.path().join(format!("part{k}"));
-    let flags = ["--sweep", "report", "--resolution", "16x9", "--reference-spp", "2", "--reps", "1", "--warmup", "0"];
+    let flags = [
+        "--scenes",
+        "showcase",
+        "--sweep",
+        "report",
+        "--resolution",
+        "16x9",
+        "--reference-spp",
+        "2",
+        "--reps",
+        "1",
+        "--warmup",
+        "0",
+    ];
     for k in 1..=2 {
         let p = part(k);
         let shard = format!("{k}/2");
@@ -108,12 +148,21 @@ fn sharded_bench_merges_and_resumes() {
         succeeds(&a);
     }
     let merged = dir.path().join("merged");
-    let text = succeeds(&["merge", part(1).to_str().unwrap(), part(2).to_str().unwrap(), "--out", merged.to_str().unwrap()]);
+    let text = succeeds(&[
+        "merge",
+        part(1).to_str().unwrap(),
+        part(2).to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+    ]);
     assert!(text.contains("9 rows"), "{text}");
     for f in ["results.json", "results.csv", "index.html"] {
         assert!(merged.join(f).is_file(), "{f}");
     }
-    fails_with(&["merge", part(1).to_str().unwrap(), "--out", dir.path().join("m2").to_str().unwrap()], "missing shards");
+    fails_with(
+        &["merge", part(1).to_str().unwrap(), "--out", dir.path().join("m2").to_str().unwrap()],
+        "missing shards",
+    );
 }
 
 #[test]

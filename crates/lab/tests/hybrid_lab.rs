@@ -1,7 +1,9 @@
 //! The hybrid lab's run directory: N shards merged equal one run, an interrupted run resumed
 //! equals an uninterrupted one, and bad merges are refused before anything is written.
 
-use renderlab_lab::hybrid_lab::{merge_runs, run_hybrid_bench, Existing, HybridBenchConfig, Shard, SweepKind};
+use renderlab_lab::hybrid_lab::{
+    merge_runs, run_hybrid_bench, Existing, HybridBenchConfig, Shard, SweepKind,
+};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
@@ -19,18 +21,28 @@ fn tiny() -> HybridBenchConfig {
     }
 }
 
-const TIMING_FIELDS: [&str; 8] =
-    ["frame_ms", "frame_min_ms", "frame_max_ms", "stage_ms", "baseline_ms", "delta_ms", "delta_ratio", "seconds"];
+const TIMING_FIELDS: [&str; 8] = [
+    "frame_ms",
+    "frame_min_ms",
+    "frame_max_ms",
+    "stage_ms",
+    "baseline_ms",
+    "delta_ms",
+    "delta_ratio",
+    "seconds",
+];
 
 /// `results.json` with every timing field checked to be a positive number, then removed.
 fn results_without_timings(dir: &Path) -> Value {
-    let mut v: Value = serde_json::from_str(&std::fs::read_to_string(dir.join("results.json")).unwrap()).unwrap();
+    let mut v: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("results.json")).unwrap()).unwrap();
     fn strip(v: &mut Value) {
         match v {
             Value::Object(map) => {
                 for f in TIMING_FIELDS {
                     if let Some(t) = map.remove(f) {
-                        let ok = t.as_f64().is_some_and(|x| x.is_finite() && x > 0.0 || f.starts_with("delta"));
+                        let ok =
+                            t.as_f64().is_some_and(|x| x.is_finite() && x > 0.0 || f.starts_with("delta"));
                         assert!(ok, "{f} = {t}");
                     }
                 }
@@ -80,7 +92,8 @@ fn shards_merged_equal_one_run_and_resume_completes_a_run() {
     let resumed = tmp.path().join("resumed");
     std::fs::create_dir(&resumed).unwrap();
     copy_dir(&whole, &resumed);
-    let mut rows: Vec<PathBuf> = std::fs::read_dir(resumed.join("rows")).unwrap().map(|e| e.unwrap().path()).collect();
+    let mut rows: Vec<PathBuf> =
+        std::fs::read_dir(resumed.join("rows")).unwrap().map(|e| e.unwrap().path()).collect();
     rows.sort();
     let kept = std::fs::read(&rows[0]).unwrap();
     for r in &rows[5..] {
@@ -90,15 +103,20 @@ fn shards_merged_equal_one_run_and_resume_completes_a_run() {
     // Without --resume the directory is refused.
     let e = run_hybrid_bench(&tiny(), &resumed, &quiet).unwrap_err().to_string();
     assert!(e.contains("--resume"), "{e}");
-    let s = run_hybrid_bench(&HybridBenchConfig { existing: Existing::Resume, ..tiny() }, &resumed, &quiet).unwrap();
+    let s = run_hybrid_bench(&HybridBenchConfig { existing: Existing::Resume, ..tiny() }, &resumed, &quiet)
+        .unwrap();
     assert_eq!(s.missing, 0);
     assert_eq!(results_without_timings(&resumed), reference);
     assert_eq!(std::fs::read(&rows[0]).unwrap(), kept, "a finished row is not rendered again");
 
     // Resuming with other settings is refused.
-    let e = run_hybrid_bench(&HybridBenchConfig { existing: Existing::Resume, seed: 9, ..tiny() }, &resumed, &quiet)
-        .unwrap_err()
-        .to_string();
+    let e = run_hybrid_bench(
+        &HybridBenchConfig { existing: Existing::Resume, seed: 9, ..tiny() },
+        &resumed,
+        &quiet,
+    )
+    .unwrap_err()
+    .to_string();
     assert!(e.contains("other settings") && e.contains("seed"), "{e}");
 
     bad_merges(tmp.path(), &parts);
@@ -122,7 +140,9 @@ fn bad_merges(tmp: &Path, parts: &[PathBuf]) {
     let old = tmp.join("old");
     std::fs::create_dir(&old).unwrap();
     copy_dir(&parts[2], &old);
-    let manifest = std::fs::read_to_string(old.join("run.json")).unwrap().replace("\"version\": \"", "\"version\": \"0.0.0-");
+    let manifest = std::fs::read_to_string(old.join("run.json"))
+        .unwrap()
+        .replace("\"version\": \"", "\"version\": \"0.0.0-");
     std::fs::write(old.join("run.json"), manifest).unwrap();
     expect(vec![parts[0].clone(), parts[1].clone(), old], "different versions");
     // A shard that did not finish: its rows are missing.

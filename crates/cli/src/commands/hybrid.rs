@@ -6,7 +6,8 @@ use anyhow::{anyhow, bail, Context, Result};
 use renderlab_core::{io, Image};
 use renderlab_hybrid::HybridRenderer;
 use renderlab_lab::hybrid_lab::{
-    merge_runs, run_hybrid_bench, scenes, stages, Existing, HybridBenchConfig, HybridSummary, Shard, SweepKind,
+    merge_runs, run_hybrid_bench, scenes, stages, Existing, HybridBenchConfig, HybridSummary, Shard,
+    SweepKind,
 };
 
 /// The largest side `--resolution` accepts.
@@ -14,7 +15,8 @@ const MAX_SIDE: u32 = 16384;
 
 /// Reads `--resolution WIDTHxHEIGHT`.
 fn resolution(s: &str) -> Result<(u32, u32)> {
-    let bad = || anyhow!("--resolution {s:?}: expected WIDTHxHEIGHT, each side in 1..={MAX_SIDE} (e.g. 1920x1080)");
+    let bad =
+        || anyhow!("--resolution {s:?}: expected WIDTHxHEIGHT, each side in 1..={MAX_SIDE} (e.g. 1920x1080)");
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
     let (w, h) = (w.trim().parse::<u32>().map_err(|_| bad())?, h.trim().parse::<u32>().map_err(|_| bad())?);
     if w == 0 || h == 0 || w > MAX_SIDE || h > MAX_SIDE {

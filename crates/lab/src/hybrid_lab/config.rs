@@ -46,7 +46,8 @@ impl FromStr for Shard {
     fn from_str(s: &str) -> std::result::Result<Self, String> {
         let bad = || format!("shard {s:?} must read K/N with 1 <= K <= N <= 100000 (e.g. 2/8)");
         let (k, n) = s.split_once('/').ok_or_else(bad)?;
-        let (index, count) = (k.trim().parse::<u32>().map_err(|_| bad())?, n.trim().parse::<u32>().map_err(|_| bad())?);
+        let (index, count) =
+            (k.trim().parse::<u32>().map_err(|_| bad())?, n.trim().parse::<u32>().map_err(|_| bad())?);
         if index == 0 || index > count || count > 100_000 {
             return Err(bad());
         }

@@ -96,7 +96,8 @@ pub fn merge_runs(parts: &[PathBuf], out: &Path) -> Result<HybridSummary> {
             }
         }
     }
-    let missing: Vec<&str> = all.iter().map(|(id, _, _)| id.as_str()).filter(|id| !owner.contains_key(id)).collect();
+    let missing: Vec<&str> =
+        all.iter().map(|(id, _, _)| id.as_str()).filter(|id| !owner.contains_key(id)).collect();
     if let Some(first_missing) = missing.first() {
         return fail(format!(
             "{} rows of the run are missing (e.g. {first_missing}): finish every shard (run it again with --resume) before merging",
@@ -115,7 +116,9 @@ pub fn merge_runs(parts: &[PathBuf], out: &Path) -> Result<HybridSummary> {
     target.create()?;
     for (id, view, _) in &all {
         let src = owner[id.as_str()];
-        let row = src.row(id)?.ok_or_else(|| LabError::Hybrid(format!("{}: row {id} vanished", src.root.display())))?;
+        let row = src
+            .row(id)?
+            .ok_or_else(|| LabError::Hybrid(format!("{}: row {id} vanished", src.root.display())))?;
         for rel in [&row.image, &row.error_image] {
             if !rel.is_empty() {
                 copy(&src.root.join(rel), &target.root.join(rel))?;

@@ -10,7 +10,8 @@ use crate::report::{format_number, write_page as render, Template};
 use serde::Serialize;
 use std::path::Path;
 
-const TEMPLATE: Template = Template { name: "hybrid.html", source: include_str!("../../templates/hybrid.html") };
+const TEMPLATE: Template =
+    Template { name: "hybrid.html", source: include_str!("../../templates/hybrid.html") };
 
 /// One image and its caption.
 #[derive(Serialize)]
@@ -98,14 +99,19 @@ pub(super) fn write_page(
     let s = &manifest.settings;
     let mut views = Vec::new();
     for (view, info) in refs {
-        let pairs: Vec<(&RowResult, &HybridRecord)> =
-            rows.iter().zip(records).filter(|(r, _)| r.scene == view.scene && r.camera == view.camera).collect();
+        let pairs: Vec<(&RowResult, &HybridRecord)> = rows
+            .iter()
+            .zip(records)
+            .filter(|(r, _)| r.scene == view.scene && r.camera == view.camera)
+            .collect();
         let recs: Vec<&HybridRecord> = pairs.iter().map(|(_, r)| *r).collect();
-        let mut figures = vec![Figure { path: info.image.clone(), caption: format!("reference, {} spp", info.spp) }];
+        let mut figures =
+            vec![Figure { path: info.image.clone(), caption: format!("reference, {} spp", info.spp) }];
         for (row, rec) in &pairs {
             if !row.image.is_empty() {
                 figures.push(Figure { path: row.image.clone(), caption: rec.label.clone() });
-                figures.push(Figure { path: row.error_image.clone(), caption: format!("{}: FLIP", rec.label) });
+                figures
+                    .push(Figure { path: row.error_image.clone(), caption: format!("{}: FLIP", rec.label) });
             }
         }
         let title = format!("{} {}", view.scene, view.camera);

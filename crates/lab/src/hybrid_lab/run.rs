@@ -126,7 +126,9 @@ fn load_scenes(specs: &[String]) -> Result<Vec<(String, HybridScene)>> {
     let mut out: Vec<(String, HybridScene)> = Vec::new();
     for spec in specs {
         if out.iter().any(|(s, _)| scenes::slug_of(s) == scenes::slug_of(spec)) {
-            return Err(LabError::Hybrid(format!("scene {spec} is given twice (or shares its name with another)")));
+            return Err(LabError::Hybrid(format!(
+                "scene {spec} is given twice (or shares its name with another)"
+            )));
         }
         let (scene, _warnings) = scenes::resolve(spec)?;
         out.push((spec.clone(), scene));
@@ -154,7 +156,13 @@ fn views(scenes: &[(String, HybridScene)], cameras: &[String]) -> Result<Vec<Vie
 }
 
 /// A view's reference: read back if persisted, else path-traced and persisted.
-fn reference(dir: &RunDir, view: &View, r: &HybridRenderer, camera: &Camera, s: &Settings) -> Result<Image<Vec3>> {
+fn reference(
+    dir: &RunDir,
+    view: &View,
+    r: &HybridRenderer,
+    camera: &Camera,
+    s: &Settings,
+) -> Result<Image<Vec3>> {
     let (exr, json) = (dir.ref_exr(view), dir.ref_json(view));
     if json.is_file() && exr.is_file() {
         let img = load_color(&exr)?;

@@ -10,18 +10,25 @@ use renderlab_hybrid::renderer::MAX_PIXELS;
 use renderlab_scene::HybridScene;
 use std::path::Path;
 
-/// The built-in scenes, in the order a run without `--scenes` renders them.
-pub const BUILTIN: [&str; 1] = ["showcase"];
+/// The built-in scenes, in the order a run without `--scenes` renders them: the thesis's
+/// three (`renderlab_scene::procedural`).
+pub const BUILTIN: [&str; 3] = renderlab_scene::procedural::NAMES;
 
-/// The built-in scene called `name`.
+/// The small scene of the hybrid crate's tests (a few thousand triangles, camera `cam1`):
+/// accepted by name for quick runs and tests, not part of a default run.
+pub const SHOWCASE: &str = "showcase";
+
+/// The built-in scene called `name` ([`BUILTIN`] or [`SHOWCASE`]).
 pub fn by_name(name: &str) -> Result<HybridScene> {
-    match name {
-        "showcase" => Ok(renderlab_hybrid::shapes::showcase()),
-        _ => Err(LabError::Hybrid(format!(
-            "unknown scene {name:?} (built-in: {}; or a .gltf, .glb or .obj file)",
-            BUILTIN.join(", ")
-        ))),
+    if name == SHOWCASE {
+        return Ok(renderlab_hybrid::shapes::showcase());
     }
+    renderlab_scene::procedural::builtin(name).ok_or_else(|| {
+        LabError::Hybrid(format!(
+            "unknown scene {name:?} (built-in: {}, {SHOWCASE}; or a .gltf, .glb or .obj file)",
+            BUILTIN.join(", ")
+        ))
+    })
 }
 
 /// Whether `spec` names a file rather than a built-in scene (it has a scene file's
@@ -34,7 +41,8 @@ pub fn is_file(spec: &str) -> bool {
 /// The scene `spec` names (a built-in name, or a scene file), checked: it must have at least
 /// one light and one camera. Returns the scene and the loader's warnings (repairs made).
 pub fn resolve(spec: &str) -> Result<(HybridScene, Vec<String>)> {
-    let (scene, warnings) = if is_file(spec) { load_file(Path::new(spec))? } else { (by_name(spec)?, Vec::new()) };
+    let (scene, warnings) =
+        if is_file(spec) { load_file(Path::new(spec))? } else { (by_name(spec)?, Vec::new()) };
     check_scene(spec, &scene)?;
     Ok((scene, warnings))
 }
@@ -54,12 +62,10 @@ pub fn check_scene(spec: &str, scene: &HybridScene) -> Result<()> {
     Ok(())
 }
 
-/// Loads a glTF or OBJ scene file.
+/// Loads a glTF or OBJ scene file (the loader's error names the file and the problem).
 fn load_file(path: &Path) -> Result<(HybridScene, Vec<String>)> {
-    Err(LabError::Hybrid(format!(
-        "{}: loading scene files needs the glTF/OBJ loaders of renderlab-scene, not in this build",
-        path.display()
-    )))
+    let loaded = renderlab_scene::load(path).map_err(|e| LabError::Hybrid(e.to_string()))?;
+    Ok((loaded.scene, loaded.warnings))
 }
 
 /// A short, file-name-safe name of a scene spec: the built-in name, or the file's stem.
@@ -121,7 +127,7 @@ mod tests {
 
     #[test]
     fn builtin_scenes_resolve_and_unknown_names_are_refused() {
-        for name in BUILTIN {
+        for name in [SHOWCASE] {
             let (scene, _) = resolve(name).unwrap();
             assert!(!scene.cameras.is_empty() && !scene.lights.is_empty());
             let cam = camera(&scene, &scene.cameras[0].name, 16, 9).unwrap();

@@ -121,7 +121,15 @@ fn count(flag: &str, what: &str, params: &[&str], i: usize, default: u32) -> Res
 }
 
 /// Parameter `i` as a number in `[lo, hi]` (`hi` excluded from nothing; finite), or `default`.
-fn number(flag: &str, what: &str, params: &[&str], i: usize, lo: f32, hi: f32, default: f32) -> Result<f32, String> {
+fn number(
+    flag: &str,
+    what: &str,
+    params: &[&str],
+    i: usize,
+    lo: f32,
+    hi: f32,
+    default: f32,
+) -> Result<f32, String> {
     let Some(text) = params.get(i) else { return Ok(default) };
     match text.parse::<f32>() {
         Ok(v) if v.is_finite() && v >= lo && v <= hi => Ok(v),

@@ -211,7 +211,9 @@ mod tests {
         let report = report_rows();
         assert_eq!(report.len(), 9);
         assert!(report.iter().all(|r| thesis.contains(r)));
-        for s in [Stage::Baseline, Stage::Shadows, Stage::Translucency, Stage::Reflections, Stage::Gi, Stage::Ao] {
+        for s in
+            [Stage::Baseline, Stage::Shadows, Stage::Translucency, Stage::Reflections, Stage::Gi, Stage::Ao]
+        {
             assert!(report.iter().any(|r| r.stage == s), "{s:?}");
         }
     }

@@ -46,7 +46,8 @@ impl Lab for HybridLab {
     /// The same rows at 160×90 with an 8-spp reference and one frame per row.
     fn quick_preset() -> Result<Self> {
         let mut lab = Self::report_preset()?;
-        lab.config = HybridBenchConfig { width: 160, height: 90, reference_spp: 8, warmup: 0, reps: 1, ..lab.config };
+        lab.config =
+            HybridBenchConfig { width: 160, height: 90, reference_spp: 8, warmup: 0, reps: 1, ..lab.config };
         Ok(lab)
     }
 
