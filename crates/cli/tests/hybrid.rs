@@ -25,6 +25,11 @@ fn fails_with(args: &[&str], needle: &str) {
     assert!(err.contains(needle), "{args:?}: '{needle}' not in: {err}");
 }
 
+fn fails_with_owned(args: &[String], needle: &str) {
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    fails_with(&args, needle);
+}
+
 #[test]
 fn help_explains_every_stage_and_parameter() {
     let text = succeeds(&["hybrid", "render", "--help"]);
@@ -84,20 +89,23 @@ fn bad_input_is_one_line_and_writes_nothing() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("x.png");
     let o = out.to_str().unwrap();
-    let r = |extra: &[&str]| {
-        let mut a = vec!["hybrid", "render", "--scene", "showcase", "--resolution", "16x9", "--out", o];
-        a.extend_from_slice(extra);
+    let r = |extra: &[&'static str]| -> Vec<String> {
+        let mut a: Vec<String> =
+            ["hybrid", "render", "--scene", "showcase", "--resolution", "16x9", "--out", o]
+                .map(String::from)
+                .to_vec();
+        a.extend(extra.iter().map(|s| s.to_string()));
         a
     };
     fails_with(&["hybrid", "render", "--scene", "atlantis", "--out", o], "atlantis");
-    fails_with(&r(&["--camera", "cam9"]), "cam9");
-    fails_with(&r(&["--reflections", "rt:2:7"]), "--reflections");
-    fails_with(&r(&["--shadows", "maps"]), "--shadows");
-    fails_with(&r(&["--ao", "rt:0"]), "--ao");
-    fails_with(&r(&["--gi", "rt:4:9"]), "--gi");
-    fails_with(&r(&["--resolution", "0x9"]), "--resolution");
-    fails_with(&r(&["--resolution", "100000x100000"]), "--resolution");
-    fails_with(&r(&["--reference", "0"]), "--reference");
+    fails_with_owned(&r(&["--camera", "cam9"]), "cam9");
+    fails_with_owned(&r(&["--reflections", "rt:2:7"]), "--reflections");
+    fails_with_owned(&r(&["--shadows", "maps"]), "--shadows");
+    fails_with_owned(&r(&["--ao", "rt:0"]), "--ao");
+    fails_with_owned(&r(&["--gi", "rt:4:9"]), "--gi");
+    fails_with_owned(&r(&["--resolution", "0x9"]), "--resolution");
+    fails_with_owned(&r(&["--resolution", "100000x100000"]), "--resolution");
+    fails_with_owned(&r(&["--reference", "0"]), "--reference");
     let bad = dir.path().join("broken.gltf");
     std::fs::write(&bad, b"{ not json").unwrap();
     fails_with(&["hybrid", "render", "--scene", bad.to_str().unwrap(), "--out", o], "broken.gltf");

@@ -30,7 +30,8 @@ const REFERENCE_SEED_OFFSET: u64 = 0x5EED_0000_0000_0001;
 /// row persisted there. Loads each scene once and builds its BVH once (not timed).
 pub fn run_hybrid_bench(cfg: &HybridBenchConfig, out: &Path, progress: Progress) -> Result<HybridSummary> {
     cfg.validate()?;
-    progress(0, 1, "loading scenes");
+    // No progress report before the settings, scenes and directory are checked: a refused run
+    // prints its one error line and nothing else.
     let scenes = load_scenes(&cfg.scenes)?;
     let views = views(&scenes, &cfg.cameras)?;
     let settings = Settings {
