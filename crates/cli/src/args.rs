@@ -6,6 +6,9 @@ use renderlab_texture::filter::FilterSpec;
 use renderlab_texture::reference::PixelFilter;
 use std::path::PathBuf;
 
+mod hybrid;
+pub use hybrid::*;
+
 /// Reads one technique name for clap (the error names the problem; clap adds the flag).
 fn parse_technique(s: &str) -> Result<Technique, String> {
     Technique::parse(s).map_err(|e| e.to_string())
@@ -91,6 +94,14 @@ pub enum Command {
     /// Shaders for other engines: export the GPU renderer's shaders, translated by naga.
     #[command(subcommand)]
     Shaders(ShadersCommand),
+    /// Hybrid lab (ray tracing against rasterization): render a scene with any mix of
+    /// raster and ray-traced stages, or run the thesis's sweeps against path-traced
+    /// references.
+    #[command(subcommand)]
+    Hybrid(HybridCommand),
+    /// Combine the shards of a `hybrid bench --shard K/N` run (one directory each) into one
+    /// run directory with results.json, results.csv and index.html.
+    Merge(MergeArgs),
 }
 
 /// `renderlab report`.

@@ -32,6 +32,13 @@ pub enum LabError {
     /// larger than the device's textures, a device error).
     #[error(transparent)]
     Gpu(#[from] renderlab_gpu::GpuError),
+    /// The hybrid renderer refused a scene, camera or configuration.
+    #[error(transparent)]
+    Renderer(#[from] renderlab_hybrid::HybridError),
+    /// A hybrid-lab setting, scene, run directory or merge was refused (the message says
+    /// which and why).
+    #[error("{0}")]
+    Hybrid(String),
     /// A value could not be turned into JSON or CSV (for CSV: a field that is not a scalar,
     /// or rows whose columns differ).
     #[error("{path}: cannot serialise results: {reason}")]

@@ -25,6 +25,7 @@ pub mod fixtures;
 pub mod frames;
 mod glyphs;
 pub mod heatmap;
+pub mod hybrid_lab;
 pub mod lab;
 pub mod metrics;
 pub mod noise_lab;

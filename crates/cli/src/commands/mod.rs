@@ -1,6 +1,7 @@
 //! The subcommands: each checks its flags (every error one line naming the flag), calls the
 //! libraries with a progress bar, and prints what it wrote. One file per family of commands.
 
+mod hybrid;
 mod noise;
 mod relief;
 mod shaders;
@@ -27,6 +28,9 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Water(a) => noise::water(a),
         Command::Smoke(a) => noise::smoke(a),
         Command::Shaders(ShadersCommand::Export(a)) => shaders::export(a),
+        Command::Hybrid(HybridCommand::Render(a)) => hybrid::render(a),
+        Command::Hybrid(HybridCommand::Bench(a)) => hybrid::bench(a),
+        Command::Merge(a) => hybrid::merge(a),
     }
 }
 

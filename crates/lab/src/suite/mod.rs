@@ -4,6 +4,7 @@
 //!
 //! A lab joins the report by implementing [`Lab`] and adding one line to [`run_report`].
 
+pub mod hybrid;
 mod index;
 pub mod noise;
 pub mod relief;
@@ -14,6 +15,7 @@ use crate::lab::{create_dir, Lab, LabSummary};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+pub use hybrid::HybridLab;
 pub use index::{write_index, IndexCard};
 pub use noise::NoiseLab;
 pub use relief::ReliefLab;
@@ -71,7 +73,7 @@ fn relative_link(root: &Path, path: &Path) -> Option<String> {
     Some(parts.join("/"))
 }
 
-/// Runs every lab (relief, noise, texture) with `preset` into `out/<lab>/` and writes
+/// Runs every lab (relief, noise, texture, hybrid) with `preset` into `out/<lab>/` and writes
 /// `out/index.html`, one card per lab with its headline image and headline. `out` is created
 /// if missing.
 pub fn run_report(out: &Path, preset: Preset, progress: SuiteProgress) -> Result<SuiteSummary> {
@@ -81,6 +83,7 @@ pub fn run_report(out: &Path, preset: Preset, progress: SuiteProgress) -> Result
         run_lab::<ReliefLab>(out, preset, progress)?,
         run_lab::<NoiseLab>(out, preset, progress)?,
         run_lab::<TextureLab>(out, preset, progress)?,
+        run_lab::<HybridLab>(out, preset, progress)?,
     ];
     let cards: Vec<IndexCard> = labs
         .iter()

@@ -1,0 +1,146 @@
+//! `hybrid render`, `hybrid bench` and `merge`.
+
+use crate::args::*;
+use crate::progress::Progress;
+use anyhow::{anyhow, bail, Context, Result};
+use renderlab_core::{io, Image};
+use renderlab_hybrid::HybridRenderer;
+use renderlab_lab::hybrid_lab::{
+    merge_runs, run_hybrid_bench, scenes, stages, Existing, HybridBenchConfig, HybridSummary, Shard,
+    SweepKind,
+};
+
+/// The largest side `--resolution` accepts.
+const MAX_SIDE: u32 = 16384;
+
+/// Reads `--resolution WIDTHxHEIGHT`.
+fn resolution(s: &str) -> Result<(u32, u32)> {
+    let bad =
+        || anyhow!("--resolution {s:?}: expected WIDTHxHEIGHT, each side in 1..={MAX_SIDE} (e.g. 1920x1080)");
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let (w, h) = (w.trim().parse::<u32>().map_err(|_| bad())?, h.trim().parse::<u32>().map_err(|_| bad())?);
+    if w == 0 || h == 0 || w > MAX_SIDE || h > MAX_SIDE {
+        return Err(bad());
+    }
+    scenes::check_resolution(w, h).map_err(|e| anyhow!("--resolution: {e}"))?;
+    Ok((w, h))
+}
+
+/// `renderlab hybrid render`: one image.
+pub(super) fn render(a: HybridRenderArgs) -> Result<()> {
+    io::check_output(&a.out)?;
+    let size = a.resolution.as_deref().map(resolution).transpose()?;
+    let config = stages::stage_config(
+        a.shadows.as_deref(),
+        a.reflections.as_deref(),
+        a.translucency.as_deref(),
+        a.gi.as_deref(),
+        a.ao.as_deref(),
+    )
+    .map_err(|e| anyhow!(e))?;
+    if let Some(spp) = a.reference {
+        if !(1..=1 << 20).contains(&spp) {
+            bail!("--reference: {spp} must lie in 1..=1048576");
+        }
+    }
+    let (scene, warnings) = scenes::resolve(&a.scene)?;
+    for w in &warnings {
+        eprintln!("renderlab: warning: {}: {w}", a.scene);
+    }
+    let name = match &a.camera {
+        Some(n) => n.clone(),
+        None => scene.cameras[0].name.clone(),
+    };
+    let own = scene.cameras.iter().find(|c| c.name == name).map(|c| (c.camera.width, c.camera.height));
+    let (w, h) = size.or(own).unwrap_or((1, 1));
+    let camera = scenes::camera(&scene, &name, w, h)?;
+    let renderer = HybridRenderer::new(&scene)?;
+    let started = std::time::Instant::now();
+    let (hdr, what) = match a.reference {
+        Some(spp) => {
+            let r = renderer.reference(&camera, spp, a.seed)?;
+            let what = format!(
+                "path-traced reference, {} spp, {} rays; noise floor: PSNR between halves {:.2} dB (linear, peak 1), full reference about {:.2} dB",
+                r.spp, r.rays, r.noise.psnr_halves, r.noise.psnr_full
+            );
+            (r.hdr, what)
+        }
+        None => {
+            let f = renderer.render(&camera, &config, a.seed)?;
+            let ms = &f.stage_ms;
+            let what = format!(
+                "{}: {} rays; ms: geometry {:.1}, shadows {:.1}, gi {:.1}, ao {:.1}, reflections {:.1}, compose {:.1}, translucency {:.1}",
+                config.label(),
+                f.rays.total(),
+                ms.geometry,
+                ms.shadows,
+                ms.gi,
+                ms.ao,
+                ms.reflections,
+                ms.compose,
+                ms.translucency
+            );
+            (f.hdr, what)
+        }
+    };
+    let seconds = started.elapsed().as_secs_f64();
+    let image = Image::from_vec(w, h, hdr)?;
+    io::save_color(&a.out, &image)?;
+    println!("{} {} at {w}x{h}, {what}; {seconds:.2} s", scene.name, name);
+    println!("wrote {}", a.out.display());
+    Ok(())
+}
+
+/// `renderlab hybrid bench`: the sweeps.
+pub(super) fn bench(a: HybridBenchArgs) -> Result<()> {
+    let (width, height) = resolution(&a.resolution)?;
+    let cfg = HybridBenchConfig {
+        scenes: if a.scenes.is_empty() {
+            scenes::BUILTIN.iter().map(|s| s.to_string()).collect()
+        } else {
+            a.scenes.clone()
+        },
+        cameras: a.cameras.clone(),
+        width,
+        height,
+        sweep: match a.sweep {
+            SweepChoice::Thesis => SweepKind::Thesis,
+            SweepChoice::Report => SweepKind::Report,
+        },
+        reference_spp: a.reference_spp,
+        warmup: a.warmup,
+        reps: a.reps,
+        seed: a.seed,
+        shard: a.shard.unwrap_or(Shard::WHOLE),
+        existing: if a.resume { Existing::Resume } else { Existing::Refuse },
+        write_images: !a.no_images,
+    };
+    // Settings are checked (and scenes loaded) before anything is written.
+    cfg.validate().context("hybrid bench")?;
+    let p = Progress::new("hybrid");
+    let summary = run_hybrid_bench(&cfg, &a.out, &|d, t, m| p.update(d, t, m));
+    p.finish();
+    print_summary(&summary?, "run");
+    Ok(())
+}
+
+/// `renderlab merge`: the shards of one run into one report.
+pub(super) fn merge(a: MergeArgs) -> Result<()> {
+    let summary = merge_runs(&a.parts, &a.out)?;
+    print_summary(&summary, &format!("merge of {} parts", a.parts.len()));
+    Ok(())
+}
+
+fn print_summary(s: &HybridSummary, what: &str) {
+    for f in &s.findings {
+        println!("{f}");
+    }
+    println!("{}", s.headline);
+    if s.manifest.shard != Shard::WHOLE {
+        println!(
+            "this is shard {}: combine all {} with `renderlab merge DIR1 … DIR{} --out DIR`",
+            s.manifest.shard, s.manifest.shard.count, s.manifest.shard.count
+        );
+    }
+    println!("wrote {} ({what}, {} rows)", s.index.display(), s.records.len());
+}

@@ -1,0 +1,181 @@
+//! `renderlab hybrid render|bench` and `renderlab merge` as a user meets them: the help
+//! explains every stage, good input writes its outputs, sharded runs merge, and bad input
+//! gets one clear line, exit code 1 and nothing written.
+
+use std::process::{Command, Output};
+
+fn renderlab(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_renderlab")).args(args).output().expect("binary runs")
+}
+
+fn succeeds(args: &[&str]) -> String {
+    let out = renderlab(args);
+    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// Asserts a clean failure: exit code 1, exactly one stderr line that mentions `needle`.
+fn fails_with(args: &[&str], needle: &str) {
+    let out = renderlab(args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{args:?} should fail with 1; stderr: {err}");
+    assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
+    let lines: Vec<&str> = err.lines().filter(|l| !l.trim().is_empty()).collect();
+    assert_eq!(lines.len(), 1, "{args:?}: expected one line, got {err}");
+    assert!(err.contains(needle), "{args:?}: '{needle}' not in: {err}");
+}
+
+fn fails_with_owned(args: &[String], needle: &str) {
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    fails_with(&args, needle);
+}
+
+#[test]
+fn help_explains_every_stage_and_parameter() {
+    let text = succeeds(&["hybrid", "render", "--help"]);
+    for needle in ["--shadows", "SAMPLES", "BOUNCES", "MAXROUGH", "RAYS", "SPP", "RADIUS", "--reference"] {
+        assert!(text.contains(needle), "{needle} missing from help");
+    }
+    let text = succeeds(&["hybrid", "bench", "--help"]);
+    for needle in ["--shard", "--resume", "--reference-spp", "--resolution"] {
+        assert!(text.contains(needle), "{needle} missing from help");
+    }
+    succeeds(&["merge", "--help"]);
+}
+
+#[test]
+fn renders_a_configuration_and_a_reference() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("rt.png");
+    let o = out.to_str().unwrap();
+    let text = succeeds(&[
+        "hybrid",
+        "render",
+        "--scene",
+        "showcase",
+        "--resolution",
+        "32x18",
+        "--shadows",
+        "rt:2",
+        "--reflections",
+        "rt:2:0.5",
+        "--translucency",
+        "rt:3",
+        "--gi",
+        "rt:1",
+        "--ao",
+        "rt:1:0.5",
+        "--out",
+        o,
+    ]);
+    assert!(text.contains("rt-shadows s2") && out.is_file(), "{text}");
+    let text = succeeds(&[
+        "hybrid",
+        "render",
+        "--scene",
+        "showcase",
+        "--resolution",
+        "32x18",
+        "--reference",
+        "4",
+        "--out",
+        o,
+    ]);
+    assert!(text.contains("noise floor"), "{text}");
+}
+
+#[test]
+fn bad_input_is_one_line_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.png");
+    let o = out.to_str().unwrap();
+    let r = |extra: &[&'static str]| -> Vec<String> {
+        let mut a: Vec<String> =
+            ["hybrid", "render", "--scene", "showcase", "--resolution", "16x9", "--out", o]
+                .map(String::from)
+                .to_vec();
+        a.extend(extra.iter().map(|s| s.to_string()));
+        a
+    };
+    fails_with(&["hybrid", "render", "--scene", "atlantis", "--out", o], "atlantis");
+    fails_with_owned(&r(&["--camera", "cam9"]), "cam9");
+    fails_with_owned(&r(&["--reflections", "rt:2:7"]), "--reflections");
+    fails_with_owned(&r(&["--shadows", "maps"]), "--shadows");
+    fails_with_owned(&r(&["--ao", "rt:0"]), "--ao");
+    fails_with_owned(&r(&["--gi", "rt:4:9"]), "--gi");
+    fails_with_owned(&r(&["--resolution", "0x9"]), "--resolution");
+    fails_with_owned(&r(&["--resolution", "100000x100000"]), "--resolution");
+    fails_with_owned(&r(&["--reference", "0"]), "--reference");
+    let bad = dir.path().join("broken.gltf");
+    std::fs::write(&bad, b"{ not json").unwrap();
+    fails_with(&["hybrid", "render", "--scene", bad.to_str().unwrap(), "--out", o], "broken.gltf");
+    let bad = dir.path().join("broken.obj");
+    std::fs::write(&bad, b"v 1 2\nf 1 2 9\n").unwrap();
+    fails_with(&["hybrid", "render", "--scene", bad.to_str().unwrap(), "--out", o], "broken.obj");
+    assert!(!out.exists(), "nothing written");
+
+    let run = dir.path().join("run");
+    let ro = run.to_str().unwrap();
+    fails_with(&["hybrid", "bench", "--out", ro, "--scenes", "atlantis"], "atlantis");
+    fails_with(&["hybrid", "bench", "--out", ro, "--scenes", "showcase", "--cameras", "cam9"], "cam9");
+    fails_with(&["hybrid", "bench", "--out", ro, "--resolution", "12"], "--resolution");
+    fails_with(&["hybrid", "bench", "--out", ro, "--shard", "3/2"], "--shard");
+    fails_with(&["hybrid", "bench", "--out", ro, "--reference-spp", "0"], "reference spp");
+    assert!(!run.exists(), "no directory for a refused run");
+    fails_with(&["merge", ro, "--out", dir.path().join("m").to_str().unwrap()], "run.json");
+}
+
+#[test]
+fn sharded_bench_merges_and_resumes() {
+    let dir = tempfile::tempdir().unwrap();
+    let part = |k: u32| dir.path().join(format!("part{k}"));
+    let flags = [
+        "--scenes",
+        "showcase",
+        "--sweep",
+        "report",
+        "--resolution",
+        "16x9",
+        "--reference-spp",
+        "2",
+        "--reps",
+        "1",
+        "--warmup",
+        "0",
+    ];
+    for k in 1..=2 {
+        let p = part(k);
+        let shard = format!("{k}/2");
+        let mut a = vec!["hybrid", "bench", "--out", p.to_str().unwrap(), "--shard", &shard];
+        a.extend_from_slice(&flags);
+        let text = succeeds(&a);
+        assert!(text.contains("renderlab merge"), "{text}");
+        // Run again without --resume: refused; with it: nothing left to do.
+        fails_with(&a, "--resume");
+        a.push("--resume");
+        succeeds(&a);
+    }
+    let merged = dir.path().join("merged");
+    let text = succeeds(&[
+        "merge",
+        part(1).to_str().unwrap(),
+        part(2).to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+    ]);
+    assert!(text.contains("9 rows"), "{text}");
+    for f in ["results.json", "results.csv", "index.html"] {
+        assert!(merged.join(f).is_file(), "{f}");
+    }
+    fails_with(
+        &["merge", part(1).to_str().unwrap(), "--out", dir.path().join("m2").to_str().unwrap()],
+        "missing shards",
+    );
+}
+
+#[test]
+fn outputs_are_checked_before_the_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("missing").join("x.png");
+    fails_with(&["hybrid", "render", "--scene", "showcase", "--out", out.to_str().unwrap()], "missing");
+}

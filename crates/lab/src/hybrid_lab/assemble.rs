@@ -1,0 +1,156 @@
+//! The results of a run directory, made from its persisted rows alone: `results.json`,
+//! `results.csv` and `index.html`. A finished run, a resumed one and a merge of shards call
+//! the same function on the same rows, so they give the same results.
+
+use super::page::write_page;
+use super::record::{HybridRecord, RowResult};
+use super::store::{read_json, Manifest, RefInfo, RunDir, View};
+use super::sweep::Stage;
+use crate::error::{LabError, Result};
+use crate::report::format_number;
+use crate::results::{write_csv, write_json};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+
+/// What an assembled run hands back.
+#[derive(Clone, Debug)]
+pub struct HybridSummary {
+    /// The run's manifest (settings and shard).
+    pub manifest: Manifest,
+    /// One record per finished row, in the run's canonical order.
+    pub records: Vec<HybridRecord>,
+    /// Rows of this directory's shard not finished (0 for a complete run).
+    pub missing: usize,
+    /// Human-readable conclusions.
+    pub findings: Vec<String>,
+    /// One sentence for an index page.
+    pub headline: String,
+    /// The HTML page.
+    pub index: PathBuf,
+    /// The first view's reference image, if written.
+    pub headline_image: Option<PathBuf>,
+}
+
+/// A view's reference as `results.json` lists it.
+#[derive(Clone, Debug, Serialize)]
+pub struct ReferenceEntry<'a> {
+    /// The view.
+    #[serde(flatten)]
+    pub view: &'a View,
+    /// Its reference.
+    #[serde(flatten)]
+    pub info: &'a RefInfo,
+}
+
+/// `results.json`.
+#[derive(Serialize)]
+struct Results<'a> {
+    manifest: &'a Manifest,
+    /// How errors are measured.
+    error_space: &'static str,
+    references: Vec<ReferenceEntry<'a>>,
+    records: &'a [HybridRecord],
+}
+
+/// How the errors are measured, as `results.json` and the page say it.
+pub const ERROR_SPACE: &str =
+    "display images: linear radiance clamped to [0, 1] and sRGB-encoded, the reference likewise";
+
+/// Reads every finished row of `out`'s shard, writes `results.json`, `results.csv` and
+/// `index.html`, and summarises.
+pub fn assemble(out: &Path) -> Result<HybridSummary> {
+    let dir = RunDir::new(out);
+    let manifest = dir
+        .manifest()?
+        .ok_or_else(|| LabError::Hybrid(format!("{}: no run.json: not a hybrid run", out.display())))?;
+    let s = &manifest.settings;
+    let all = s.rows();
+    let mut rows: Vec<RowResult> = Vec::new();
+    let mut missing = 0;
+    for (i, (id, _, _)) in all.iter().enumerate() {
+        if !manifest.shard.owns(i) {
+            continue;
+        }
+        match dir.row(id)? {
+            Some(r) => rows.push(r),
+            None => missing += 1,
+        }
+    }
+    let mut refs: Vec<(&View, RefInfo)> = Vec::new();
+    for v in &s.views {
+        let p = dir.ref_json(v);
+        if p.is_file() {
+            refs.push((v, read_json(&p)?));
+        }
+    }
+    let mut records = Vec::with_capacity(rows.len());
+    for r in &rows {
+        let info = refs.iter().find(|(v, _)| v.scene == r.scene && v.camera == r.camera).map(|(_, i)| i);
+        let info = info.ok_or_else(|| {
+            LabError::Hybrid(format!("{}: row {} has no reference in refs/", out.display(), r.id))
+        })?;
+        let baseline = rows
+            .iter()
+            .find(|b| b.scene == r.scene && b.camera == r.camera && b.row.stage == Stage::Baseline);
+        records.push(HybridRecord::new(r, baseline, s.width, s.height, info));
+    }
+    let results = Results {
+        manifest: &manifest,
+        error_space: ERROR_SPACE,
+        references: refs.iter().map(|(view, info)| ReferenceEntry { view, info }).collect(),
+        records: &records,
+    };
+    write_json(out.join("results.json"), &results)?;
+    write_csv(out.join("results.csv"), &records)?;
+    let findings = findings(&records);
+    let headline = headline(&records, &manifest);
+    let index = out.join("index.html");
+    write_page(&index, &manifest, &refs, &rows, &records, &findings, missing)?;
+    let headline_image = refs.first().map(|(_, i)| out.join(&i.image)).filter(|p| p.is_file());
+    Ok(HybridSummary { manifest, records, missing, findings, headline, index, headline_image })
+}
+
+/// Per stage, over every view: the most expensive and the most accurate setting.
+fn findings(records: &[HybridRecord]) -> Vec<String> {
+    let mut out = Vec::new();
+    for stage in [Stage::Shadows, Stage::Translucency, Stage::Reflections, Stage::Gi, Stage::Ao] {
+        let rs: Vec<&HybridRecord> = records.iter().filter(|r| r.stage == stage.name()).collect();
+        if rs.is_empty() {
+            continue;
+        }
+        let mean = |f: &dyn Fn(&HybridRecord) -> f64| rs.iter().map(|r| f(r)).sum::<f64>() / rs.len() as f64;
+        let best = rs.iter().copied().max_by(|a, b| a.psnr_db.total_cmp(&b.psnr_db)).expect("non-empty");
+        let floor = rs.iter().filter(|r| r.at_noise_floor).count();
+        out.push(format!(
+            "Ray-traced {}: {} rows, frame time {}× the baseline on average (mean delta {} ms); best PSNR {} dB ({}, {} {}){}.",
+            stage.name(),
+            rs.len(),
+            format_number(mean(&|r| r.delta_ratio), 2),
+            format_number(mean(&|r| r.delta_ms), 1),
+            format_number(best.psnr_db, 2),
+            best.label,
+            best.scene,
+            best.camera,
+            if floor > 0 { format!("; {floor} rows reach the reference's noise floor (no lower error claimed)") } else { String::new() },
+        ));
+    }
+    out
+}
+
+/// One sentence: rows, views, and the baseline's error.
+fn headline(records: &[HybridRecord], m: &Manifest) -> String {
+    let base: Vec<&HybridRecord> = records.iter().filter(|r| r.is_baseline()).collect();
+    let psnr = if base.is_empty() {
+        "–".into()
+    } else {
+        format_number(base.iter().map(|r| r.psnr_db).sum::<f64>() / base.len() as f64, 2)
+    };
+    format!(
+        "{} rows over {} views at {}×{} against {}-spp path-traced references; the all-raster baseline's mean PSNR is {psnr} dB.",
+        records.len(),
+        m.settings.views.len(),
+        m.settings.width,
+        m.settings.height,
+        m.settings.reference_spp,
+    )
+}

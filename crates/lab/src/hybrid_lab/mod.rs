@@ -1,0 +1,32 @@
+//! The hybrid lab: the thesis's (seed 003) sweeps of ray-traced stages against the
+//! all-raster frame, each row timed and measured against a path-traced reference whose own
+//! noise floor is reported beside it.
+//!
+//! A run is a list of rows, one per (scene, camera, stage configuration) ([`sweep`]). Each
+//! finished row is persisted on its own (`DIR/rows/*.json`, written atomically), so that an
+//! interrupted run resumes where it stopped and a run split into shards on several machines
+//! ([`Shard`]) merges into one report ([`merge_runs`]). The results files, the images and
+//! `index.html` are always assembled from the persisted rows ([`assemble`]), so a resumed,
+//! a sharded-and-merged and an uninterrupted run give the same results.
+//!
+//! Errors are measured on the display image: linear radiance clamped to [0, 1] and
+//! sRGB-encoded, as [`crate::metrics`] does and as the PNGs show it.
+
+mod assemble;
+mod config;
+mod merge;
+mod page;
+mod record;
+mod run;
+pub mod scenes;
+pub mod stages;
+mod store;
+pub mod sweep;
+
+pub use assemble::{assemble, HybridSummary};
+pub use config::{Existing, HybridBenchConfig, Shard};
+pub use merge::merge_runs;
+pub use record::{HybridRecord, RowResult};
+pub use run::run_hybrid_bench;
+pub use store::{Manifest, Settings, FORMAT};
+pub use sweep::{Stage, SweepKind, SweepRow};

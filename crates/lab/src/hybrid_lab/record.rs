@@ -1,0 +1,218 @@
+//! A row as it is persisted when it finishes ([`RowResult`]) and as the results files show
+//! it ([`HybridRecord`], with the deltas against its view's baseline and the reference's
+//! noise floor beside its error).
+
+use super::sweep::{Stage, SweepRow};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+/// One finished row: what was rendered and what was measured, nothing derived from other
+/// rows. Written to `DIR/rows/ID.json` the moment the row is done.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RowResult {
+    /// The row's identifier (its file name without `.json`).
+    pub id: String,
+    /// The scene spec (built-in name or file).
+    pub scene: String,
+    /// The camera's name.
+    pub camera: String,
+    /// The row of the sweep.
+    pub row: SweepRow,
+    /// Timed frames.
+    pub reps: u32,
+    /// Median wall-clock time of the whole frame, ms.
+    pub frame_ms: f64,
+    /// Fastest frame, ms.
+    pub frame_min_ms: f64,
+    /// Slowest frame, ms.
+    pub frame_max_ms: f64,
+    /// Median time of the swept stage's own pass, ms (the baseline: the whole frame).
+    pub stage_ms: f64,
+    /// Rays traced in the whole frame (every pass).
+    pub rays: u64,
+    /// Rays traced by the swept stage's pass.
+    pub stage_rays: u64,
+    /// PSNR against the reference, dB (display images).
+    #[serde(with = "any_f64")]
+    pub psnr_db: f64,
+    /// Mean SSIM against the reference.
+    #[serde(with = "any_f64")]
+    pub ssim: f64,
+    /// Mean FLIP error against the reference.
+    #[serde(with = "any_f64")]
+    pub flip: f64,
+    /// The frame's image, relative to the run's directory (empty when images are off).
+    pub image: String,
+    /// Its FLIP heat map, relative to the run's directory (empty when images are off).
+    pub error_image: String,
+}
+
+/// What the results files hold per row: the [`RowResult`] flattened, with the deltas against
+/// its view's baseline and the reference's noise floor.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct HybridRecord {
+    /// Scene spec.
+    pub scene: String,
+    /// Camera name.
+    pub camera: String,
+    /// Swept stage (`baseline`, `shadows`, `translucency`, `reflections`, `gi`, `ao`).
+    pub stage: &'static str,
+    /// Configuration label, e.g. `rt-reflections b4 r0.5`.
+    pub label: String,
+    /// The swept count (shadow samples, refraction rays, bounces, spp); empty for the baseline.
+    pub count: Option<u32>,
+    /// The swept max roughness (reflections, translucency).
+    pub max_roughness: Option<f32>,
+    /// Frame width, pixels.
+    pub width: u32,
+    /// Frame height, pixels.
+    pub height: u32,
+    /// Timed frames (the median is reported).
+    pub reps: u32,
+    /// Median frame time, ms.
+    pub frame_ms: f64,
+    /// Fastest frame, ms.
+    pub frame_min_ms: f64,
+    /// Slowest frame, ms.
+    pub frame_max_ms: f64,
+    /// Median time of the swept stage's pass, ms.
+    pub stage_ms: f64,
+    /// The view's baseline frame time, ms.
+    pub baseline_ms: f64,
+    /// `frame_ms − baseline_ms`: what ray tracing the stage costs (the thesis's delta).
+    pub delta_ms: f64,
+    /// `frame_ms / baseline_ms`.
+    pub delta_ratio: f64,
+    /// Rays traced per frame.
+    pub rays: u64,
+    /// Rays traced per frame by the swept stage.
+    pub stage_rays: u64,
+    /// Rays per pixel of the swept stage.
+    pub stage_rays_per_pixel: f64,
+    /// PSNR against the reference, dB.
+    pub psnr_db: f64,
+    /// Mean SSIM against the reference.
+    pub ssim: f64,
+    /// Mean FLIP against the reference.
+    pub flip: f64,
+    /// Paths per pixel of the reference.
+    pub reference_spp: u32,
+    /// The highest PSNR against this reference that means anything: the PSNR between its
+    /// two halves plus 10·log10 4 (the full reference's expected error, see
+    /// `renderlab_hybrid::Reference`), dB.
+    pub noise_floor_psnr_db: f64,
+    /// Mean FLIP between the reference's two halves (FLIP of reference noise at half the
+    /// samples: an upper bound of the full reference's).
+    pub noise_floor_flip: f64,
+    /// True when the row's PSNR reaches the noise floor: its error is not distinguishable
+    /// from the reference's own, and no lower error is claimed.
+    pub at_noise_floor: bool,
+}
+
+impl HybridRecord {
+    /// `row` measured against its view's `baseline` (its deltas are NaN without one: a
+    /// shard whose baseline row another shard renders) and its reference's noise floor.
+    pub fn new(
+        row: &RowResult,
+        baseline: Option<&RowResult>,
+        width: u32,
+        height: u32,
+        floor: &super::store::RefInfo,
+    ) -> Self {
+        let r: &SweepRow = &row.row;
+        let baseline_ms = baseline.map_or(f64::NAN, |b| b.frame_ms);
+        let pixels = (width as u64 * height as u64).max(1) as f64;
+        HybridRecord {
+            scene: row.scene.clone(),
+            camera: row.camera.clone(),
+            stage: r.stage.name(),
+            label: r.label(),
+            count: r.count(),
+            max_roughness: r.max_roughness(),
+            width,
+            height,
+            reps: row.reps,
+            frame_ms: row.frame_ms,
+            frame_min_ms: row.frame_min_ms,
+            frame_max_ms: row.frame_max_ms,
+            stage_ms: row.stage_ms,
+            baseline_ms,
+            delta_ms: row.frame_ms - baseline_ms,
+            delta_ratio: row.frame_ms / baseline_ms,
+            rays: row.rays,
+            stage_rays: row.stage_rays,
+            stage_rays_per_pixel: row.stage_rays as f64 / pixels,
+            psnr_db: row.psnr_db,
+            ssim: row.ssim,
+            flip: row.flip,
+            reference_spp: floor.spp,
+            noise_floor_psnr_db: floor.noise_floor_psnr_db,
+            noise_floor_flip: floor.halves_flip,
+            at_noise_floor: row.psnr_db >= floor.noise_floor_psnr_db,
+        }
+    }
+
+    /// Whether the row is the view's baseline.
+    pub fn is_baseline(&self) -> bool {
+        self.stage == Stage::Baseline.name()
+    }
+}
+
+/// Serde for an `f64` that may be non-finite: finite values as JSON numbers, the others as
+/// the strings `"inf"`, `"-inf"` and `"NaN"` (JSON has no literal for them), read back
+/// exactly.
+pub(super) mod any_f64 {
+    use super::*;
+
+    /// Writes `v`.
+    pub fn serialize<S: Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
+        if v.is_finite() {
+            s.serialize_f64(*v)
+        } else if v.is_nan() {
+            s.serialize_str("NaN")
+        } else if *v > 0.0 {
+            s.serialize_str("inf")
+        } else {
+            s.serialize_str("-inf")
+        }
+    }
+
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum Either {
+        Number(f64),
+        Text(String),
+    }
+
+    /// Reads a value [`serialize`] wrote.
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        match Either::deserialize(d)? {
+            Either::Number(v) => Ok(v),
+            Either::Text(t) => match t.as_str() {
+                "inf" => Ok(f64::INFINITY),
+                "-inf" => Ok(f64::NEG_INFINITY),
+                "NaN" => Ok(f64::NAN),
+                _ => Err(serde::de::Error::custom(format!("not a number: {t:?}"))),
+            },
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[derive(Serialize, Deserialize, Debug)]
+    struct Wrap(#[serde(with = "any_f64")] f64);
+
+    #[test]
+    fn non_finite_values_round_trip() {
+        for v in [1.5, -0.0, 1e-300, f64::INFINITY, f64::NEG_INFINITY] {
+            let text = serde_json::to_string(&Wrap(v)).unwrap();
+            let back: Wrap = serde_json::from_str(&text).unwrap();
+            assert_eq!(back.0.to_bits(), v.to_bits(), "{text}");
+        }
+        let back: Wrap = serde_json::from_str(&serde_json::to_string(&Wrap(f64::NAN)).unwrap()).unwrap();
+        assert!(back.0.is_nan());
+        assert!(serde_json::from_str::<Wrap>("\"lots\"").is_err());
+    }
+}

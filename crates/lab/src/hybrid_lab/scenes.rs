@@ -1,0 +1,161 @@
+//! The scenes the hybrid lab renders: a built-in scene by name, or a glTF/OBJ file; and
+//! their cameras at the resolution a run asks for.
+//!
+//! Every lookup of a built-in scene goes through [`by_name`], so that adding the procedural
+//! scenes is one edit here.
+
+use crate::error::{LabError, Result};
+use renderlab_core::Camera;
+use renderlab_hybrid::renderer::MAX_PIXELS;
+use renderlab_scene::HybridScene;
+use std::path::Path;
+
+/// The built-in scenes, in the order a run without `--scenes` renders them: the thesis's
+/// three (`renderlab_scene::procedural`).
+pub const BUILTIN: [&str; 3] = renderlab_scene::procedural::NAMES;
+
+/// The small scene of the hybrid crate's tests (a few thousand triangles, camera `cam1`):
+/// accepted by name for quick runs and tests, not part of a default run.
+pub const SHOWCASE: &str = "showcase";
+
+/// The built-in scene called `name` ([`BUILTIN`] or [`SHOWCASE`]).
+pub fn by_name(name: &str) -> Result<HybridScene> {
+    if name == SHOWCASE {
+        return Ok(renderlab_hybrid::shapes::showcase());
+    }
+    renderlab_scene::procedural::builtin(name).ok_or_else(|| {
+        LabError::Hybrid(format!(
+            "unknown scene {name:?} (built-in: {}, {SHOWCASE}; or a .gltf, .glb or .obj file)",
+            BUILTIN.join(", ")
+        ))
+    })
+}
+
+/// Whether `spec` names a file rather than a built-in scene (it has a scene file's
+/// extension).
+pub fn is_file(spec: &str) -> bool {
+    let ext = Path::new(spec).extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
+    matches!(ext.as_deref(), Some("gltf" | "glb" | "obj"))
+}
+
+/// The scene `spec` names (a built-in name, or a scene file), checked: it must have at least
+/// one light and one camera. Returns the scene and the loader's warnings (repairs made).
+pub fn resolve(spec: &str) -> Result<(HybridScene, Vec<String>)> {
+    let (scene, warnings) =
+        if is_file(spec) { load_file(Path::new(spec))? } else { (by_name(spec)?, Vec::new()) };
+    check_scene(spec, &scene)?;
+    Ok((scene, warnings))
+}
+
+/// Checks that `scene` (named `spec` in messages) can be rendered by the lab: valid, with at
+/// least one light and one camera.
+pub fn check_scene(spec: &str, scene: &HybridScene) -> Result<()> {
+    scene.validate().map_err(|e| LabError::Hybrid(format!("scene {spec}: {e}")))?;
+    if scene.lights.is_empty() {
+        return Err(LabError::Hybrid(format!(
+            "scene {spec} has no lights: every stage of the hybrid frame shades light sources"
+        )));
+    }
+    if scene.cameras.is_empty() {
+        return Err(LabError::Hybrid(format!("scene {spec} has no camera")));
+    }
+    Ok(())
+}
+
+/// Loads a glTF or OBJ scene file (the loader's error names the file and the problem).
+fn load_file(path: &Path) -> Result<(HybridScene, Vec<String>)> {
+    let loaded = renderlab_scene::load(path).map_err(|e| LabError::Hybrid(e.to_string()))?;
+    Ok((loaded.scene, loaded.warnings))
+}
+
+/// A short, file-name-safe name of a scene spec: the built-in name, or the file's stem.
+pub fn slug_of(spec: &str) -> String {
+    let base = if is_file(spec) {
+        Path::new(spec).file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default()
+    } else {
+        spec.to_string()
+    };
+    slug(&base)
+}
+
+/// `s` lower-cased with every character other than `a-z`, `0-9`, `.` and `-` replaced by `_`.
+pub fn slug(s: &str) -> String {
+    s.chars()
+        .map(|c| {
+            let c = c.to_ascii_lowercase();
+            if c.is_ascii_alphanumeric() || c == '.' || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+/// The names of `scene`'s cameras.
+pub fn camera_names(scene: &HybridScene) -> Vec<String> {
+    scene.cameras.iter().map(|c| c.name.clone()).collect()
+}
+
+/// Camera `name` of `scene` at `width`×`height` pixels (its field of view kept).
+pub fn camera(scene: &HybridScene, name: &str, width: u32, height: u32) -> Result<Camera> {
+    let found = scene.cameras.iter().find(|c| c.name == name).ok_or_else(|| {
+        LabError::Hybrid(format!(
+            "scene {} has no camera {name:?} (it has: {})",
+            scene.name,
+            camera_names(scene).join(", ")
+        ))
+    })?;
+    check_resolution(width, height)?;
+    Ok(Camera { width, height, ..found.camera })
+}
+
+/// Refuses an empty frame or one larger than the renderer accepts.
+pub fn check_resolution(width: u32, height: u32) -> Result<()> {
+    let pixels = width as u64 * height as u64;
+    if pixels == 0 || pixels > MAX_PIXELS {
+        return Err(LabError::Hybrid(format!(
+            "resolution {width}x{height} must have 1 to {MAX_PIXELS} pixels"
+        )));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn builtin_scenes_resolve_and_unknown_names_are_refused() {
+        for name in [SHOWCASE] {
+            let (scene, _) = resolve(name).unwrap();
+            assert!(!scene.cameras.is_empty() && !scene.lights.is_empty());
+            let cam = camera(&scene, &scene.cameras[0].name, 16, 9).unwrap();
+            assert_eq!((cam.width, cam.height), (16, 9));
+        }
+        let e = resolve("atlantis").unwrap_err().to_string();
+        assert!(e.contains("atlantis") && e.contains("showcase"), "{e}");
+        let (scene, _) = resolve("showcase").unwrap();
+        assert!(camera(&scene, "nope", 16, 9).unwrap_err().to_string().contains("cam1"));
+        assert!(camera(&scene, "cam1", 0, 9).is_err());
+        assert!(camera(&scene, "cam1", 100_000, 100_000).is_err());
+    }
+
+    #[test]
+    fn a_scene_without_lights_is_refused() {
+        let mut scene = by_name("showcase").unwrap();
+        scene.lights.clear();
+        let e = check_scene("dark", &scene).unwrap_err().to_string();
+        assert!(e.contains("dark") && e.contains("no lights"), "{e}");
+        scene.cameras.clear();
+        scene.lights = by_name("showcase").unwrap().lights;
+        assert!(check_scene("blind", &scene).unwrap_err().to_string().contains("no camera"));
+    }
+
+    #[test]
+    fn slugs_are_file_name_safe() {
+        assert_eq!(slug("rt-reflections b4 r0.5"), "rt-reflections_b4_r0.5");
+        assert_eq!(slug_of("dir/My Scene.gltf"), "my_scene");
+        assert!(is_file("x.OBJ") && !is_file("showcase"));
+    }
+}
