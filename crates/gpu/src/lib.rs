@@ -44,5 +44,5 @@ mod upload;
 pub use context::{AdapterReport, GpuContext};
 pub use error::{GpuError, Result};
 pub use filter::{FilterRenderer, GpuFilter};
-pub use relief::{GpuFrame, ReliefRenderer};
+pub use relief::{read_rgba8, GpuFrame, ReliefRenderer};
 pub use timing::GpuTiming;
