@@ -21,9 +21,9 @@ pub const KEY_HELP: &[(&str, &str)] = &[
     ("W S A D", "walk"),
     ("Space", "jump"),
     ("drag", "look around"),
-    ("1–6", "basic, normal, parallax, steep, POM, adaptive POM"),
-    ("← →", "every technique of the registry"),
-    ("↑ ↓", "layers (1–50)"),
+    ("1-6", "basic, normal, parallax, steep, POM, adaptive POM"),
+    ("Left Right", "every technique of the registry"),
+    ("Up Down", "layers (1-50)"),
     ("B", "layer-count heat map"),
     ("H", "hide the interface"),
     ("X", "FPS readout"),
@@ -157,7 +157,7 @@ fn info_panel(ctx: &egui::Context, s: &HudState<'_>) {
                 None => ui.label("Layers: none (no march)"),
             };
             if s.heat_map {
-                ui.label("Heat map: planned layers per pixel, blue 1 → red 50");
+                ui.label("Heat map: planned layers per pixel, blue 1 to red 50");
             }
             let p = s.player.eye();
             ui.small(format!("eye ({:.2}, {:.2}, {:.2}), {}×{}", p.x, p.y, p.z, s.frame_size.0, s.frame_size.1));

@@ -32,14 +32,25 @@ fn adapter() -> Option<GpuContext> {
 }
 
 fn harness() -> Harness<'static, ViewerApp> {
-    let launch = Launch { camera: Some("bench0".into()), texture_size: TEXTURE_SIZE, ..Default::default() };
+    let launch = Launch { camera: Some("bench60".into()), texture_size: TEXTURE_SIZE, ..Default::default() };
     Harness::builder()
         .with_size([480.0, 300.0])
         .wgpu_setup(wgpu_setup())
         .build_eframe(move |_cc| ViewerApp::new(Settings::default(), None, None, launch, Arc::default()))
 }
 
-/// The central crop of an RGBA image (where no panel is drawn) as RGB triples.
+/// The picture without the interface (H hides it, then shows it again), its central crop as
+/// RGB triples.
+fn picture(h: &mut Harness<'static, ViewerApp>) -> Vec<[u8; 3]> {
+    h.key_press(Key::H);
+    h.run_steps(2);
+    let img = h.render().expect("render");
+    h.key_press(Key::H);
+    h.run_steps(2);
+    centre(&img)
+}
+
+/// The central crop of an RGBA image as RGB triples.
 fn centre(img: &image::RgbaImage) -> Vec<[u8; 3]> {
     let (w, h) = img.dimensions();
     let mut out = vec![];
@@ -93,7 +104,7 @@ fn start_switch_layers_heat_map() {
     h.run_steps(2);
     h.get_by_label("Technique: parallax");
     h.get_by_label("Layers: none (no march)");
-    let parallax = centre(&h.render().expect("render"));
+    let parallax = picture(&mut h);
     assert_room(&parallax, "parallax");
     // Key 5: POM at the thesis's 32 layers; ↑ twice gives 34.
     h.key_press(Key::Num5);
@@ -104,7 +115,7 @@ fn start_switch_layers_heat_map() {
     h.run_steps(2);
     h.get_by_label("Technique: pom:34");
     h.get_by_label("Layers: 34");
-    let pom = centre(&h.render().expect("render"));
+    let pom = picture(&mut h);
     assert_room(&pom, "pom:34");
     // The technique changes the picture (the relief moves the texture), within a tolerance
     // rather than byte for byte: at least 1 level of 255 on average in the centre.
@@ -115,8 +126,8 @@ fn start_switch_layers_heat_map() {
     h.run_steps(2);
     assert!(h.state().room().unwrap().heat_map());
     h.get_by_label_contains("Heat map");
+    let heat = picture(&mut h);
     let heat_img = h.render().expect("render");
-    let heat = centre(&heat_img);
     let d = mean_diff(&pom, &heat);
     assert!(d > 10.0, "the heat map looks like the shaded frame (mean difference {d:.2})");
     let dir = std::env::temp_dir().join("renderlab-viewer-test");
