@@ -88,6 +88,10 @@ pub enum Command {
     /// Writes --frames PNG frames (frame_0000.png, …) and the same frames as one looping
     /// animation (animation.png, APNG) to --out.
     Smoke(SmokeArgs),
+    /// The interactive viewer: walk through the thesis's room and switch techniques live
+    /// (keys 1–6, arrows, B, H, X, C, F12, Esc). With --screenshot, render --frames frames in
+    /// the window, write the last one and print the frame times.
+    View(crate::commands::view::ViewArgs),
 }
 
 /// `renderlab report`.

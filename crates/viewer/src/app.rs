@@ -45,7 +45,16 @@ impl ViewerApp {
         outcome: Arc<Mutex<Option<ScriptOutcome>>>,
     ) -> Self {
         let screen = if launch.script.is_some() { Screen::Room } else { Screen::Menu };
-        Self { screen, draft: settings.clone(), settings, settings_path, message, launch, room: None, outcome }
+        Self {
+            screen,
+            draft: settings.clone(),
+            settings,
+            settings_path,
+            message,
+            launch,
+            room: None,
+            outcome,
+        }
     }
 
     /// The screen shown.
@@ -75,7 +84,8 @@ impl ViewerApp {
                 ui.heading("renderlab viewer");
                 ui.label("relief surfaces in the thesis's room");
                 ui.add_space(24.0);
-                let button = |ui: &mut egui::Ui, text| ui.add_sized([200.0, 36.0], egui::Button::new(text)).clicked();
+                let button =
+                    |ui: &mut egui::Ui, text| ui.add_sized([200.0, 36.0], egui::Button::new(text)).clicked();
                 if button(ui, "Start") {
                     self.screen = Screen::Room;
                 }
@@ -118,7 +128,10 @@ impl ViewerApp {
                 ui.checkbox(&mut self.draft.fullscreen, "");
                 ui.end_row();
                 ui.label("Mouse sensitivity");
-                ui.add(egui::Slider::new(&mut self.draft.mouse_sensitivity, SENSITIVITY_RANGE.0..=SENSITIVITY_RANGE.1));
+                ui.add(egui::Slider::new(
+                    &mut self.draft.mouse_sensitivity,
+                    SENSITIVITY_RANGE.0..=SENSITIVITY_RANGE.1,
+                ));
                 ui.end_row();
                 ui.label("V-sync");
                 ui.checkbox(&mut self.draft.vsync, "(applies at the next start)");
@@ -149,7 +162,10 @@ impl ViewerApp {
             return;
         }
         if (new.width, new.height) != (self.settings.width, self.settings.height) {
-            ctx.send_viewport_cmd(egui::ViewportCommand::InnerSize(egui::vec2(new.width as f32, new.height as f32)));
+            ctx.send_viewport_cmd(egui::ViewportCommand::InnerSize(egui::vec2(
+                new.width as f32,
+                new.height as f32,
+            )));
         }
         if new.fullscreen != self.settings.fullscreen {
             ctx.send_viewport_cmd(egui::ViewportCommand::Fullscreen(new.fullscreen));

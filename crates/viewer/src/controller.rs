@@ -78,7 +78,8 @@ impl Room {
     /// without a floor gets the walls' bounds and the lowest vertex as its floor.
     pub fn from_scene(scene: &Scene) -> Self {
         let mut walls = Vec::new();
-        let (mut floor_y, mut min, mut max) = (f32::NEG_INFINITY, Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
+        let (mut floor_y, mut min, mut max) =
+            (f32::NEG_INFINITY, Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
         let (mut all_min, mut all_max, mut lowest) =
             (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY), f32::INFINITY);
         for object in &scene.objects {
@@ -86,7 +87,8 @@ impl Room {
             if points.is_empty() {
                 continue;
             }
-            let (lo_y, hi_y) = points.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(l, h), p| (l.min(p.y), h.max(p.y)));
+            let (lo_y, hi_y) =
+                points.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(l, h), p| (l.min(p.y), h.max(p.y)));
             lowest = lowest.min(lo_y);
             for p in &points {
                 all_min = all_min.min(p.xz());
@@ -224,7 +226,8 @@ impl Player {
         let yaw = self.yaw_deg.to_radians();
         let ahead = Vec2::new(-yaw.sin(), -yaw.cos());
         let right = Vec2::new(yaw.cos(), -yaw.sin());
-        let wish = ahead * finite(input.forward).clamp(-1.0, 1.0) + right * finite(input.right).clamp(-1.0, 1.0);
+        let wish =
+            ahead * finite(input.forward).clamp(-1.0, 1.0) + right * finite(input.right).clamp(-1.0, 1.0);
         let velocity = wish.normalize_or_zero() * WALK_SPEED;
         let xz = room.slide(self.feet.xz(), self.feet.xz() + velocity * dt);
         if input.jump && self.on_ground(room) {

@@ -68,7 +68,9 @@ impl Controls {
 
     /// Takes the min/max sliders' values from `technique` when it has a range.
     pub fn follow(&mut self, technique: Technique) {
-        if let (Some(lo), Some(hi)) = (techniques::param(technique, "MIN"), techniques::param(technique, "MAX")) {
+        if let (Some(lo), Some(hi)) =
+            (techniques::param(technique, "MIN"), techniques::param(technique, "MAX"))
+        {
             (self.min_layers, self.max_layers) = (lo, hi);
         }
     }
@@ -123,21 +125,24 @@ pub fn show(ctx: &egui::Context, s: HudState<'_>) -> Changes {
     if s.show_fps {
         fps_panel(ctx, &s);
     }
-    egui::Area::new(egui::Id::unique("keys")).anchor(egui::Align2::LEFT_BOTTOM, [8.0, -8.0]).show(ctx, |ui| {
-        egui::Frame::popup(ui.style()).show(ui, |ui| {
-            egui::Grid::new("key grid").num_columns(2).show(ui, |ui| {
-                for (k, what) in KEY_HELP {
-                    ui.strong(*k);
-                    ui.label(*what);
-                    ui.end_row();
-                }
-            });
-        });
-    });
-    egui::Window::new("Controls").anchor(egui::Align2::RIGHT_BOTTOM, [-8.0, -8.0]).default_open(false).show(
+    egui::Area::new(egui::Id::unique("keys")).anchor(egui::Align2::LEFT_BOTTOM, [8.0, -8.0]).show(
         ctx,
-        |ui| controls(ui, technique, s.controls, &mut changes),
+        |ui| {
+            egui::Frame::popup(ui.style()).show(ui, |ui| {
+                egui::Grid::new("key grid").num_columns(2).show(ui, |ui| {
+                    for (k, what) in KEY_HELP {
+                        ui.strong(*k);
+                        ui.label(*what);
+                        ui.end_row();
+                    }
+                });
+            });
+        },
     );
+    egui::Window::new("Controls")
+        .anchor(egui::Align2::RIGHT_BOTTOM, [-8.0, -8.0])
+        .default_open(false)
+        .show(ctx, |ui| controls(ui, technique, s.controls, &mut changes));
     dropped_files(ctx, s.controls);
     changes
 }
@@ -160,7 +165,10 @@ fn info_panel(ctx: &egui::Context, s: &HudState<'_>) {
                 ui.label("Heat map: planned layers per pixel, blue 1 to red 50");
             }
             let p = s.player.eye();
-            ui.small(format!("eye ({:.2}, {:.2}, {:.2}), {}×{}", p.x, p.y, p.z, s.frame_size.0, s.frame_size.1));
+            ui.small(format!(
+                "eye ({:.2}, {:.2}, {:.2}), {}×{}",
+                p.x, p.y, p.z, s.frame_size.0, s.frame_size.1
+            ));
         });
     });
 }
@@ -190,7 +198,8 @@ fn controls(ui: &mut egui::Ui, technique: Technique, c: &mut Controls, changes: 
         changes.height_scale = Some(c.height_scale);
     }
     ui.separator();
-    let adaptive = techniques::param(technique, "MIN").is_some() && techniques::param(technique, "MAX").is_some();
+    let adaptive =
+        techniques::param(technique, "MIN").is_some() && techniques::param(technique, "MAX").is_some();
     ui.add_enabled_ui(adaptive, |ui| {
         let a = ui.add(egui::Slider::new(&mut c.min_layers, MIN_LAYERS..=MAX_LAYERS).text("min layers"));
         let b = ui.add(egui::Slider::new(&mut c.max_layers, MIN_LAYERS..=MAX_LAYERS).text("max layers"));
@@ -253,14 +262,24 @@ fn load_maps(c: &Controls) -> Result<Material, String> {
         "" => None,
         n => Some(io::load_normal_map(n).map_err(|e| e.to_string())?),
     };
-    let name = std::path::Path::new(albedo).file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let name = std::path::Path::new(albedo)
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
     Material::from_maps(name, albedo_img, height_img, normal, c.user_scale).map_err(|e| e.to_string())
 }
 
 /// Files dropped on the window fill the path fields: a name with "height", "disp" or "depth"
 /// is the height map, one with "normal" the normal map, anything else the albedo.
 fn dropped_files(ctx: &egui::Context, c: &mut Controls) {
-    let dropped: Vec<std::path::PathBuf> = ctx.input(|i| i.raw.dropped_files.iter().map(|f| f.path().to_path_buf()).filter(|p| !p.as_os_str().is_empty()).collect());
+    let dropped: Vec<std::path::PathBuf> = ctx.input(|i| {
+        i.raw
+            .dropped_files
+            .iter()
+            .map(|f| f.path().to_path_buf())
+            .filter(|p| !p.as_os_str().is_empty())
+            .collect()
+    });
     for path in dropped {
         let name = path.file_name().map(|n| n.to_string_lossy().to_lowercase()).unwrap_or_default();
         let field = if ["height", "disp", "depth"].iter().any(|k| name.contains(k)) {

@@ -93,13 +93,14 @@ pub fn finish(slot: &Mutex<Option<ScriptOutcome>>, ctx: &egui::Context, outcome:
 pub fn wgpu_setup() -> egui_wgpu::WgpuSetup {
     let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
     setup.instance_descriptor.backends = wgpu::Backends::VULKAN;
-    setup.native_adapter_selector = Some(Arc::new(|adapters: &[wgpu::Adapter], _surface: Option<&wgpu::Surface<'_>>| {
-        adapters
-            .iter()
-            .min_by_key(|a| renderlab_gpu::context::rank(a.get_info().device_type))
-            .cloned()
-            .ok_or_else(|| "Vulkan lists no adapter".to_string())
-    }));
+    setup.native_adapter_selector =
+        Some(Arc::new(|adapters: &[wgpu::Adapter], _surface: Option<&wgpu::Surface<'_>>| {
+            adapters
+                .iter()
+                .min_by_key(|a| renderlab_gpu::context::rank(a.get_info().device_type))
+                .cloned()
+                .ok_or_else(|| "Vulkan lists no adapter".to_string())
+        }));
     setup.device_descriptor = Arc::new(|adapter: &wgpu::Adapter| wgpu::DeviceDescriptor {
         label: Some("renderlab viewer"),
         // An adapter without the features is refused later, in one line, by

@@ -60,7 +60,9 @@ pub fn run(launch: Launch) -> Result<Option<ScriptReport>, ViewerError> {
     let result = eframe::run_native(
         "renderlab-viewer",
         options,
-        Box::new(move |_cc| Ok(Box::new(ViewerApp::new(loaded.settings, path, loaded.message, launch, slot)))),
+        Box::new(move |_cc| {
+            Ok(Box::new(ViewerApp::new(loaded.settings, path, loaded.message, launch, slot)))
+        }),
     );
     result.map_err(|e| ViewerError::Window(one_line(&e.to_string())))?;
     if !scripted {

@@ -73,11 +73,16 @@ impl RoomScreen {
         }
         let walk = Room::from_scene(view.scene());
         let name = launch.camera.as_deref().unwrap_or("room");
-        let camera = bookmark(name, 64, 64)
-            .ok_or_else(|| ViewerError::Message(format!("no camera bookmark '{name}' (have: {})", launch::BOOKMARKS.join(", "))))?;
-        let technique = launch.technique.or_else(|| techniques::thesis(6)).ok_or_else(|| {
-            ViewerError::Message("the registry has no adaptive POM".into())
+        let camera = bookmark(name, 64, 64).ok_or_else(|| {
+            ViewerError::Message(format!(
+                "no camera bookmark '{name}' (have: {})",
+                launch::BOOKMARKS.join(", ")
+            ))
         })?;
+        let technique = launch
+            .technique
+            .or_else(|| techniques::thesis(6))
+            .ok_or_else(|| ViewerError::Message("the registry has no adaptive POM".into()))?;
         let controls = Controls::new(&view, technique);
         Ok(Self {
             player: Player::from_camera(&walk, &camera),
@@ -234,7 +239,8 @@ impl RoomScreen {
             let drag = response.drag_delta();
             self.movement(&ctx, drag, sensitivity, dt.unwrap_or(0.0) as f32);
             let ppp = ctx.pixels_per_point();
-            let (w, h) = (((rect.width() * ppp).round() as u32).max(1), ((rect.height() * ppp).round() as u32).max(1));
+            let (w, h) =
+                (((rect.width() * ppp).round() as u32).max(1), ((rect.height() * ppp).round() as u32).max(1));
             self.frame_size = (w, h);
             let camera = self.player.camera(w, h);
             match self.picture(&ctx, frame, &camera) {
@@ -255,12 +261,11 @@ impl RoomScreen {
             self.apply(changes);
         }
         if let Some(m) = &self.message {
-            egui::Area::new(egui::Id::unique("room message")).anchor(egui::Align2::CENTER_BOTTOM, [0.0, -8.0]).show(
-                &ctx,
-                |ui| {
+            egui::Area::new(egui::Id::unique("room message"))
+                .anchor(egui::Align2::CENTER_BOTTOM, [0.0, -8.0])
+                .show(&ctx, |ui| {
                     ui.colored_label(ui.visuals().warn_fg_color, m);
-                },
-            );
+                });
         }
         self.script_step(&ctx, dt, gpu_ms);
         ctx.request_repaint();
@@ -274,7 +279,9 @@ impl RoomScreen {
         frame: &eframe::Frame,
         camera: &renderlab_core::Camera,
     ) -> Result<(egui::TextureId, Option<f64>), ViewerError> {
-        let rs = frame.wgpu_render_state().ok_or_else(|| ViewerError::Window("the window has no wgpu renderer".into()))?;
+        let rs = frame
+            .wgpu_render_state()
+            .ok_or_else(|| ViewerError::Window("the window has no wgpu renderer".into()))?;
         if self.heat_map {
             let image = self.view.heat_map(camera, self.technique)?;
             let options = egui::TextureOptions::LINEAR;
@@ -282,7 +289,11 @@ impl RoomScreen {
                 Some(t) => t.set(image, options),
                 None => self.heat_texture = Some(ctx.load_texture("heat map", image, options)),
             }
-            let id = self.heat_texture.as_ref().map(|t| t.id()).ok_or_else(|| ViewerError::Message("no heat map".into()))?;
+            let id = self
+                .heat_texture
+                .as_ref()
+                .map(|t| t.id())
+                .ok_or_else(|| ViewerError::Message("no heat map".into()))?;
             return Ok((id, None));
         }
         self.view.draw(rs, camera, self.technique)
@@ -300,20 +311,21 @@ impl RoomScreen {
         if run.done < run.script.frames {
             return;
         }
-        let outcome = self.view.read_frame().and_then(|img| Ok(io::save_rgb8(&run.script.out, &img)?)).map(|()| {
-            let (w, h) = self.frame_size;
-            ScriptReport {
-                out: run.script.out.clone(),
-                width: w,
-                height: h,
-                technique: self.technique.name(),
-                frames: run.done,
-                gpu_ms: (!run.gpu_ms.is_empty()).then(|| median(&mut run.gpu_ms)),
-                frame_ms: median(&mut run.frame_ms),
-                camera: self.player.camera(w, h),
-                adapter: self.view.context().report.to_string(),
-            }
-        });
+        let outcome =
+            self.view.read_frame().and_then(|img| Ok(io::save_rgb8(&run.script.out, &img)?)).map(|()| {
+                let (w, h) = self.frame_size;
+                ScriptReport {
+                    out: run.script.out.clone(),
+                    width: w,
+                    height: h,
+                    technique: self.technique.name(),
+                    frames: run.done,
+                    gpu_ms: (!run.gpu_ms.is_empty()).then(|| median(&mut run.gpu_ms)),
+                    frame_ms: median(&mut run.frame_ms),
+                    camera: self.player.camera(w, h),
+                    adapter: self.view.context().report.to_string(),
+                }
+            });
         launch::finish(&run.outcome, ctx, outcome.map_err(|e| e.to_string()));
         self.script = None;
     }

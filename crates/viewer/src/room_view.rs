@@ -39,7 +39,11 @@ impl RoomView {
     /// Prepares `scene` for the device of `render_state`. The context over that device lives
     /// as long as the process (the renderer borrows it; a viewer opens one).
     pub fn new(render_state: &egui_wgpu::RenderState, scene: Scene) -> Result<Self, ViewerError> {
-        let ctx = GpuContext::from_parts(&render_state.adapter, render_state.device.clone(), render_state.queue.clone())?;
+        let ctx = GpuContext::from_parts(
+            &render_state.adapter,
+            render_state.device.clone(),
+            render_state.queue.clone(),
+        )?;
         let ctx: &'static GpuContext = Box::leak(Box::new(ctx));
         let complexity = ComplexityParams::default();
         let materials = prepare(&scene.materials, &complexity, false);
@@ -115,7 +119,9 @@ impl RoomView {
                     );
                     old.id
                 }
-                None => egui_renderer.register_native_texture(&self.ctx.device, &view, wgpu::FilterMode::Linear),
+                None => {
+                    egui_renderer.register_native_texture(&self.ctx.device, &view, wgpu::FilterMode::Linear)
+                }
             };
             self.target = Some(Target { texture, view, id });
         }
@@ -126,7 +132,11 @@ impl RoomView {
 
     /// The planned layer count per pixel of `technique` from `camera`, coloured from blue (one
     /// layer) through green and yellow to red ([`MAX_LAYERS`] or more); the background dark.
-    pub fn heat_map(&mut self, camera: &Camera, technique: Technique) -> Result<egui::ColorImage, ViewerError> {
+    pub fn heat_map(
+        &mut self,
+        camera: &Camera,
+        technique: Technique,
+    ) -> Result<egui::ColorImage, ViewerError> {
         self.ensure_maps(technique)?;
         let frame = self.renderer.render(camera, technique)?;
         let mut rgba = Vec::with_capacity(frame.layers.pixels().len() * 4);

@@ -38,7 +38,14 @@ pub struct Settings {
 
 impl Default for Settings {
     fn default() -> Self {
-        Self { version: SETTINGS_VERSION, width: 1280, height: 800, fullscreen: false, mouse_sensitivity: 0.15, vsync: false }
+        Self {
+            version: SETTINGS_VERSION,
+            width: 1280,
+            height: 800,
+            fullscreen: false,
+            mouse_sensitivity: 0.15,
+            vsync: false,
+        }
     }
 }
 
@@ -65,7 +72,8 @@ impl Settings {
 /// which follows `$XDG_CONFIG_HOME` on Linux), else `$HOME/.config`; `None` when neither is
 /// known (the viewer then runs on defaults and saves nothing).
 pub fn default_path() -> Option<PathBuf> {
-    let base = dirs::config_dir().or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".config")))?;
+    let base =
+        dirs::config_dir().or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".config")))?;
     Some(base.join("renderlab").join("settings.json"))
 }
 
@@ -83,7 +91,9 @@ pub struct Loaded {
 pub fn load(path: &Path) -> Loaded {
     let text = match std::fs::read_to_string(path) {
         Ok(t) => t,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Loaded { settings: Settings::default(), message: None },
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return Loaded { settings: Settings::default(), message: None }
+        }
         Err(e) => {
             return Loaded {
                 settings: Settings::default(),
@@ -137,7 +147,13 @@ mod tests {
     fn saved_settings_load_back() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("sub").join("settings.json");
-        let s = Settings { width: 1920, height: 1080, fullscreen: true, mouse_sensitivity: 0.3, ..Default::default() };
+        let s = Settings {
+            width: 1920,
+            height: 1080,
+            fullscreen: true,
+            mouse_sensitivity: 0.3,
+            ..Default::default()
+        };
         save(&path, &s).unwrap();
         assert_eq!(load(&path), Loaded { settings: s, message: None });
     }
@@ -145,16 +161,21 @@ mod tests {
     #[test]
     fn a_missing_file_gives_the_defaults_without_a_message() {
         let dir = tempfile::tempdir().unwrap();
-        assert_eq!(load(&dir.path().join("settings.json")), Loaded { settings: Settings::default(), message: None });
+        assert_eq!(
+            load(&dir.path().join("settings.json")),
+            Loaded { settings: Settings::default(), message: None }
+        );
     }
 
     #[test]
     fn corrupt_or_foreign_files_are_set_aside() {
         let other_version = serde_json::to_string(&Settings { version: 99, ..Default::default() }).unwrap();
         let out_of_range = serde_json::to_string(&Settings { width: 5, ..Default::default() }).unwrap();
-        for (text, says) in
-            [("{ not json", "not valid settings JSON"), (other_version.as_str(), "version 99"), (out_of_range.as_str(), "width 5")]
-        {
+        for (text, says) in [
+            ("{ not json", "not valid settings JSON"),
+            (other_version.as_str(), "version 99"),
+            (out_of_range.as_str(), "width 5"),
+        ] {
             let dir = tempfile::tempdir().unwrap();
             let path = dir.path().join("settings.json");
             std::fs::write(&path, text).unwrap();

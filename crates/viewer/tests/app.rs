@@ -23,7 +23,9 @@ const TEXTURE_SIZE: u32 = 64;
 fn adapter() -> Option<GpuContext> {
     match GpuContext::new() {
         Ok(c) => Some(c),
-        Err(e) if std::env::var_os("CI").is_some() => panic!("CI is set but the viewer tests cannot run: {e}"),
+        Err(e) if std::env::var_os("CI").is_some() => {
+            panic!("CI is set but the viewer tests cannot run: {e}")
+        }
         Err(e) => {
             eprintln!("SKIPPED (no GPU adapter, and CI is not set): {e}");
             None
@@ -72,9 +74,11 @@ fn mean_diff(a: &[[u8; 3]], b: &[[u8; 3]]) -> f64 {
 /// Asserts `px` shows a lit textured surface: not one flat colour, not the background, not
 /// magenta (wgpu's missing-texture colour) or black.
 fn assert_room(px: &[[u8; 3]], what: &str) {
-    let mean: [f64; 3] = std::array::from_fn(|k| px.iter().map(|p| p[k] as f64).sum::<f64>() / px.len() as f64);
-    let var: f64 = px.iter().map(|p| (0..3).map(|k| (p[k] as f64 - mean[k]).powi(2)).sum::<f64>()).sum::<f64>()
-        / px.len() as f64;
+    let mean: [f64; 3] =
+        std::array::from_fn(|k| px.iter().map(|p| p[k] as f64).sum::<f64>() / px.len() as f64);
+    let var: f64 =
+        px.iter().map(|p| (0..3).map(|k| (p[k] as f64 - mean[k]).powi(2)).sum::<f64>()).sum::<f64>()
+            / px.len() as f64;
     let magenta = px.iter().filter(|p| p[0] > 200 && p[1] < 50 && p[2] > 200).count();
     assert!(var.sqrt() > 8.0, "{what}: flat image (std {:.1}, mean {mean:?})", var.sqrt());
     assert!(mean.iter().sum::<f64>() / 3.0 > 25.0, "{what}: too dark (mean {mean:?})");
@@ -160,7 +164,12 @@ fn the_window_shows_the_headless_renderers_frame() {
     let headless: Vec<[u8; 3]> = frame.image.pixels().iter().map(|&c| linear_to_srgb8(c)).collect();
     // The same pass into an sRGB target: the hardware's sRGB encoding against the CPU's,
     // at most 1 level apart, and nothing else.
-    let worst = shown.pixels().iter().zip(&headless).flat_map(|(p, q)| (0..3).map(move |k| p[k].abs_diff(q[k]))).max();
+    let worst = shown
+        .pixels()
+        .iter()
+        .zip(&headless)
+        .flat_map(|(p, q)| (0..3).map(move |k| p[k].abs_diff(q[k])))
+        .max();
     assert!(worst <= Some(1), "the window's frame differs from the headless one by {worst:?} levels");
     assert_room(shown.pixels(), "the window's frame");
 }

@@ -4,6 +4,7 @@
 mod noise;
 mod relief;
 mod texture;
+pub(crate) mod view;
 
 use crate::args::*;
 use crate::progress::LabBars;
@@ -25,6 +26,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Noise(a) => noise::noise(a),
         Command::Water(a) => noise::water(a),
         Command::Smoke(a) => noise::smoke(a),
+        Command::View(a) => view::view(a),
     }
 }
 

@@ -35,7 +35,12 @@ fn walking_into_the_bricks_wall_stops_a_radius_short() {
 fn bookmarks_give_back_the_thesis_cameras() {
     let r = room();
     let cameras = BENCH_ANGLES_DEG.map(|a| benchmark_camera(a, 64, 40));
-    for (angle, c) in BENCH_ANGLES_DEG.iter().map(|a| a.to_string()).chain(["room".into()]).zip(cameras.into_iter().chain([renderlab_lab::fixtures::room_camera(64, 40)])) {
+    for (angle, c) in BENCH_ANGLES_DEG
+        .iter()
+        .map(|a| a.to_string())
+        .chain(["room".into()])
+        .zip(cameras.into_iter().chain([renderlab_lab::fixtures::room_camera(64, 40)]))
+    {
         let back = Player::from_camera(&r, &c).camera(64, 40);
         assert!(back.position.distance(c.position) < 1e-4, "{angle}: {} vs {}", back.position, c.position);
         assert!(back.forward.distance(c.forward) < 1e-4, "{angle}: {} vs {}", back.forward, c.forward);
@@ -60,7 +65,9 @@ fn a_jump_rises_and_lands_back_on_the_floor() {
 
 fn input() -> impl Strategy<Value = (Input, f32)> {
     (-1.5f32..1.5, -1.5f32..1.5, any::<bool>(), -40f32..40.0, -40f32..40.0, 0f32..0.2).prop_map(
-        |(forward, right, jump, yaw_deg, pitch_deg, dt)| (Input { forward, right, jump, yaw_deg, pitch_deg }, dt),
+        |(forward, right, jump, yaw_deg, pitch_deg, dt)| {
+            (Input { forward, right, jump, yaw_deg, pitch_deg }, dt)
+        },
     )
 }
 
