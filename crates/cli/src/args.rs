@@ -102,6 +102,10 @@ pub enum Command {
     /// Combine the shards of a `hybrid bench --shard K/N` run (one directory each) into one
     /// run directory with results.json, results.csv and index.html.
     Merge(MergeArgs),
+    /// The interactive viewer: walk through the thesis's room and switch techniques live
+    /// (keys 1–6, arrows, B, H, X, C, F12, Esc). With --screenshot, render --frames frames in
+    /// the window, write the last one and print the frame times.
+    View(crate::commands::view::ViewArgs),
 }
 
 /// `renderlab report`.

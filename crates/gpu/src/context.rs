@@ -55,8 +55,8 @@ pub struct GpuContext {
     lost: Arc<Mutex<Option<String>>>,
 }
 
-/// Preference order of device types: hardware first, software last.
-fn rank(t: wgpu::DeviceType) -> u8 {
+/// Preference order of device types: hardware first, software last (lower is preferred).
+pub fn rank(t: wgpu::DeviceType) -> u8 {
     match t {
         wgpu::DeviceType::DiscreteGpu => 0,
         wgpu::DeviceType::IntegratedGpu => 1,
@@ -79,28 +79,57 @@ impl GpuContext {
         let Some(adapter) = adapters.into_iter().min_by_key(|a| rank(a.get_info().device_type)) else {
             return Err(GpuError::NoAdapter("Vulkan lists no adapter".into()));
         };
-        let info = adapter.get_info();
-        let have = adapter.features();
-        if !have.contains(wgpu::Features::FLOAT32_FILTERABLE) {
-            return Err(GpuError::MissingFeature {
-                adapter: info.name,
-                feature: "FLOAT32_FILTERABLE",
-                why: "the relief maps need (32-bit float textures filtered as on the CPU)",
-            });
-        }
-        let timestamps = have.contains(wgpu::Features::TIMESTAMP_QUERY);
-        let mut features = wgpu::Features::FLOAT32_FILTERABLE;
-        if timestamps {
-            features |= wgpu::Features::TIMESTAMP_QUERY;
-        }
+        let features = Self::features_for(&adapter)?;
         let device_desc = wgpu::DeviceDescriptor {
             label: Some("renderlab"),
             required_features: features,
             required_limits: adapter.limits(),
             ..Default::default()
         };
+        let name = adapter.get_info().name;
         let (device, queue) = pollster::block_on(adapter.request_device(&device_desc))
-            .map_err(|e| GpuError::Device { adapter: info.name.clone(), reason: e.to_string() })?;
+            .map_err(|e| GpuError::Device { adapter: name, reason: e.to_string() })?;
+        Self::from_parts(&adapter, device, queue)
+    }
+
+    /// The features the renderer asks of `adapter`: `FLOAT32_FILTERABLE`, which it needs (its
+    /// maps are 32-bit float textures, filtered by the sampler as the CPU filters them), and
+    /// timestamp queries where the adapter has them. An adapter without the first is refused.
+    /// A program that opens the device itself (the viewer, through its window library)
+    /// requests these so that [`GpuContext::from_parts`] accepts its device.
+    pub fn features_for(adapter: &wgpu::Adapter) -> Result<wgpu::Features> {
+        let have = adapter.features();
+        if !have.contains(wgpu::Features::FLOAT32_FILTERABLE) {
+            return Err(GpuError::MissingFeature {
+                adapter: adapter.get_info().name,
+                feature: "FLOAT32_FILTERABLE",
+                why: "the relief maps need (32-bit float textures filtered as on the CPU)",
+            });
+        }
+        let mut features = wgpu::Features::FLOAT32_FILTERABLE;
+        if have.contains(wgpu::Features::TIMESTAMP_QUERY) {
+            features |= wgpu::Features::TIMESTAMP_QUERY;
+        }
+        Ok(features)
+    }
+
+    /// A context over a device that someone else opened on `adapter` (the viewer's window
+    /// library opens the device that draws the window, and the renderer must draw on that
+    /// same device to hand its frames to the window without a copy through the CPU). The
+    /// device must have `FLOAT32_FILTERABLE` (see [`GpuContext::features_for`]); timestamps
+    /// are used where the device was opened with them. Installs the error handler that
+    /// [`GpuContext::check`] reads, in place of wgpu's default panic.
+    pub fn from_parts(adapter: &wgpu::Adapter, device: wgpu::Device, queue: wgpu::Queue) -> Result<Self> {
+        let info = adapter.get_info();
+        let features = device.features();
+        if !features.contains(wgpu::Features::FLOAT32_FILTERABLE) {
+            return Err(GpuError::MissingFeature {
+                adapter: info.name,
+                feature: "FLOAT32_FILTERABLE",
+                why: "the relief maps need (the device was opened without it)",
+            });
+        }
+        let timestamps = features.contains(wgpu::Features::TIMESTAMP_QUERY);
         let errors = Arc::new(Mutex::new(None::<String>));
         let sink = Arc::clone(&errors);
         device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {

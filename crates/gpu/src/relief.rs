@@ -22,6 +22,9 @@ use renderlab_relief::{Kernel, Map, ReliefMaterial, Shading, Technique};
 use std::collections::HashMap;
 use std::time::Instant;
 
+mod display;
+pub use display::read_rgba8;
+
 /// The colour target: linear light in 32-bit floats, as the CPU's `Image<Vec3>`, so that the
 /// comparison sees no quantisation; alpha marks covered pixels.
 const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
@@ -68,6 +71,8 @@ enum Output {
     Color,
     /// `fs_debug`: colour, UV and layers.
     Debug,
+    /// `fs_color` into a caller's texture of this format (see [`ReliefRenderer::render_to_view`]).
+    Display(wgpu::TextureFormat),
 }
 
 /// The render targets of one frame size.
@@ -231,6 +236,7 @@ impl<'a> ReliefRenderer<'a> {
         let (entry, targets) = match output {
             Output::Color => ("fs_color", vec![color(COLOR_FORMAT)]),
             Output::Debug => ("fs_debug", vec![color(COLOR_FORMAT), color(UV_FORMAT), color(LAYERS_FORMAT)]),
+            Output::Display(format) => ("fs_color", vec![color(format)]),
         };
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some(&technique.name()),

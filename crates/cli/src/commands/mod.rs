@@ -6,6 +6,7 @@ mod noise;
 mod relief;
 mod shaders;
 mod texture;
+pub(crate) mod view;
 
 use crate::args::*;
 use crate::progress::LabBars;
@@ -31,6 +32,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Hybrid(HybridCommand::Render(a)) => hybrid::render(a),
         Command::Hybrid(HybridCommand::Bench(a)) => hybrid::bench(a),
         Command::Merge(a) => hybrid::merge(a),
+        Command::View(a) => view::view(a),
     }
 }
 

@@ -1,0 +1,385 @@
+//! The room screen: the frame drawn by the GPU renderer filling the window, first-person
+//! movement, the thesis's keys, and the HUD ([`crate::hud`]).
+//!
+//! Keys: 1–6 the thesis's techniques, ←/→ every technique of the registry, ↑/↓ layers
+//! (1–50), B the layer-count heat map, H hides the interface, X the FPS readout, C resets its
+//! statistics, F12 writes a screenshot, Esc goes back to the menu. W/S/A/D walk, Space jumps,
+//! dragging over the view with a mouse button held turns the head.
+
+use crate::controller::{Input, Player, Room};
+use crate::error::ViewerError;
+use crate::hud::{self, Controls};
+use crate::launch::{self, bookmark, Launch, Script, ScriptOutcome, ScriptReport};
+use crate::room_view::RoomView;
+use crate::stats::FrameStats;
+use crate::techniques;
+use egui::Key;
+use renderlab_core::io;
+use renderlab_lab::fixtures::thesis_room;
+use renderlab_relief::Technique;
+use std::sync::{Arc, Mutex};
+use std::time::Instant;
+
+/// What the room asks of the app after a frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RoomExit {
+    /// Stay in the room.
+    Stay,
+    /// Esc: back to the menu.
+    ToMenu,
+}
+
+/// What the scripted run has collected so far.
+struct ScriptRun {
+    script: Script,
+    done: u32,
+    gpu_ms: Vec<f64>,
+    frame_ms: Vec<f64>,
+    outcome: Arc<Mutex<Option<ScriptOutcome>>>,
+}
+
+/// The room screen's state.
+pub struct RoomScreen {
+    view: RoomView,
+    walk: Room,
+    player: Player,
+    technique: Technique,
+    heat_map: bool,
+    heat_texture: Option<egui::TextureHandle>,
+    hide_ui: bool,
+    show_fps: bool,
+    stats: FrameStats,
+    last_frame: Option<Instant>,
+    frame_size: (u32, u32),
+    message: Option<String>,
+    screenshots: u32,
+    controls: Controls,
+    script: Option<ScriptRun>,
+}
+
+impl RoomScreen {
+    /// Builds the room on the window's device (`frame`'s wgpu render state) as `launch` says.
+    pub fn new(
+        frame: &eframe::Frame,
+        launch: &Launch,
+        outcome: Arc<Mutex<Option<ScriptOutcome>>>,
+    ) -> Result<Self, ViewerError> {
+        let render_state = frame
+            .wgpu_render_state()
+            .ok_or_else(|| ViewerError::Window("the window has no wgpu renderer".into()))?;
+        let mut view = RoomView::new(render_state, thesis_room(launch.texture_size)?)?;
+        if let Some(m) = &launch.material {
+            view.set_material(m.clone())?;
+        }
+        let walk = Room::from_scene(view.scene());
+        let name = launch.camera.as_deref().unwrap_or("room");
+        let camera = bookmark(name, 64, 64).ok_or_else(|| {
+            ViewerError::Message(format!(
+                "no camera bookmark '{name}' (have: {})",
+                launch::BOOKMARKS.join(", ")
+            ))
+        })?;
+        let technique = launch
+            .technique
+            .or_else(|| techniques::thesis(6))
+            .ok_or_else(|| ViewerError::Message("the registry has no adaptive POM".into()))?;
+        let controls = Controls::new(&view, technique);
+        Ok(Self {
+            player: Player::from_camera(&walk, &camera),
+            walk,
+            view,
+            technique,
+            heat_map: false,
+            heat_texture: None,
+            hide_ui: launch.script.is_some(),
+            show_fps: true,
+            stats: FrameStats::default(),
+            last_frame: None,
+            frame_size: (0, 0),
+            message: None,
+            screenshots: 0,
+            controls,
+            script: launch.script.clone().map(|script| ScriptRun {
+                script,
+                done: 0,
+                gpu_ms: vec![],
+                frame_ms: vec![],
+                outcome,
+            }),
+        })
+    }
+
+    /// The technique shown.
+    pub fn technique(&self) -> Technique {
+        self.technique
+    }
+
+    /// Whether the heat map is shown.
+    pub fn heat_map(&self) -> bool {
+        self.heat_map
+    }
+
+    /// The player.
+    pub fn player(&self) -> &Player {
+        &self.player
+    }
+
+    /// The frame statistics.
+    pub fn stats(&self) -> &FrameStats {
+        &self.stats
+    }
+
+    /// The camera of the last frame (the window's size in pixels).
+    pub fn camera(&self) -> renderlab_core::Camera {
+        self.player.camera(self.frame_size.0.max(1), self.frame_size.1.max(1))
+    }
+
+    /// The last frame drawn into the window's texture, read back (8-bit sRGB).
+    pub fn frame_image(&self) -> Result<renderlab_core::Image<[u8; 3]>, ViewerError> {
+        self.view.read_frame()
+    }
+
+    /// The last error or notice shown in the room.
+    pub fn message(&self) -> Option<&str> {
+        self.message.as_deref()
+    }
+
+    /// Sets the technique (keeping the heat map and the controls in step).
+    pub fn set_technique(&mut self, t: Technique) {
+        self.technique = t;
+        self.controls.follow(t);
+    }
+
+    /// The keys that act once per press.
+    fn keys(&mut self, ctx: &egui::Context) -> RoomExit {
+        if ctx.egui_wants_keyboard_input() {
+            return RoomExit::Stay;
+        }
+        let pressed = |k| ctx.input(|i| i.key_pressed(k));
+        let numbers = [Key::Num1, Key::Num2, Key::Num3, Key::Num4, Key::Num5, Key::Num6];
+        for (i, k) in numbers.into_iter().enumerate() {
+            if pressed(k) {
+                if let Some(t) = techniques::thesis(i + 1) {
+                    self.set_technique(t);
+                }
+            }
+        }
+        if pressed(Key::ArrowRight) {
+            self.set_technique(techniques::step(self.technique, 1));
+        }
+        if pressed(Key::ArrowLeft) {
+            self.set_technique(techniques::step(self.technique, -1));
+        }
+        if pressed(Key::ArrowUp) {
+            self.set_technique(techniques::add_layers(self.technique, 1));
+        }
+        if pressed(Key::ArrowDown) {
+            self.set_technique(techniques::add_layers(self.technique, -1));
+        }
+        if pressed(Key::B) {
+            self.heat_map = !self.heat_map;
+        }
+        if pressed(Key::H) {
+            self.hide_ui = !self.hide_ui;
+        }
+        if pressed(Key::X) {
+            self.show_fps = !self.show_fps;
+        }
+        if pressed(Key::C) {
+            self.stats.reset();
+        }
+        if pressed(Key::F12) {
+            self.screenshot();
+        }
+        if pressed(Key::Escape) {
+            return RoomExit::ToMenu;
+        }
+        RoomExit::Stay
+    }
+
+    /// F12: the last frame into `renderlab-screenshot-N.png` in the working directory.
+    fn screenshot(&mut self) {
+        self.screenshots += 1;
+        let path = std::path::PathBuf::from(format!("renderlab-screenshot-{}.png", self.screenshots));
+        self.message = Some(match self.view.read_frame().and_then(|img| Ok(io::save_rgb8(&path, &img)?)) {
+            Ok(()) => format!("wrote {}", path.display()),
+            Err(e) => format!("screenshot failed: {e}"),
+        });
+    }
+
+    /// Walking and looking: held keys and the drag over the view.
+    fn movement(&mut self, ctx: &egui::Context, drag: egui::Vec2, sensitivity: f32, dt: f32) {
+        let typing = ctx.egui_wants_keyboard_input();
+        let down = |k| !typing && ctx.input(|i| i.key_down(k));
+        let axis = |plus, minus| f32::from(u8::from(down(plus))) - f32::from(u8::from(down(minus)));
+        let input = Input {
+            forward: axis(Key::W, Key::S),
+            right: axis(Key::D, Key::A),
+            jump: down(Key::Space),
+            yaw_deg: -drag.x * sensitivity,
+            pitch_deg: -drag.y * sensitivity,
+        };
+        self.player.step(&self.walk, input, dt);
+    }
+
+    /// One frame of the room; `sensitivity` is the mouse's, in degrees per point.
+    pub fn ui(&mut self, ui: &mut egui::Ui, frame: &eframe::Frame, sensitivity: f32) -> RoomExit {
+        let ctx = ui.ctx().clone();
+        let now = Instant::now();
+        let dt = self.last_frame.map(|t| (now - t).as_secs_f64());
+        self.last_frame = Some(now);
+        if self.keys(&ctx) == RoomExit::ToMenu {
+            self.last_frame = None;
+            return RoomExit::ToMenu;
+        }
+        let mut gpu_ms = None;
+        egui::CentralPanel::no_frame().show(ui, |ui| {
+            let rect = ui.max_rect();
+            let response = ui.allocate_rect(rect, egui::Sense::drag());
+            let drag = response.drag_delta();
+            self.movement(&ctx, drag, sensitivity, dt.unwrap_or(0.0) as f32);
+            let ppp = ctx.pixels_per_point();
+            let (w, h) =
+                (((rect.width() * ppp).round() as u32).max(1), ((rect.height() * ppp).round() as u32).max(1));
+            self.frame_size = (w, h);
+            let camera = self.player.camera(w, h);
+            match self.picture(&ctx, frame, &camera) {
+                Ok((id, ms)) => {
+                    gpu_ms = ms;
+                    let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
+                    ui.painter().image(id, rect, uv, egui::Color32::WHITE);
+                }
+                Err(e) => {
+                    self.message = Some(e.to_string());
+                    ui.painter().rect_filled(rect, 0.0, egui::Color32::from_gray(20));
+                }
+            }
+        });
+        self.stats.record(dt.unwrap_or(f64::NAN), gpu_ms);
+        if !self.hide_ui {
+            let changes = hud::show(&ctx, self.hud_state());
+            self.apply(changes);
+        }
+        if let Some(m) = &self.message {
+            egui::Area::new(egui::Id::unique("room message"))
+                .anchor(egui::Align2::CENTER_BOTTOM, [0.0, -8.0])
+                .show(&ctx, |ui| {
+                    ui.colored_label(ui.visuals().warn_fg_color, m);
+                });
+        }
+        self.script_step(&ctx, dt, gpu_ms);
+        ctx.request_repaint();
+        RoomExit::Stay
+    }
+
+    /// The frame to show: the renderer's frame in the display texture, or the heat map.
+    fn picture(
+        &mut self,
+        ctx: &egui::Context,
+        frame: &eframe::Frame,
+        camera: &renderlab_core::Camera,
+    ) -> Result<(egui::TextureId, Option<f64>), ViewerError> {
+        let rs = frame
+            .wgpu_render_state()
+            .ok_or_else(|| ViewerError::Window("the window has no wgpu renderer".into()))?;
+        if self.heat_map {
+            let image = self.view.heat_map(camera, self.technique)?;
+            let options = egui::TextureOptions::LINEAR;
+            match &mut self.heat_texture {
+                Some(t) => t.set(image, options),
+                None => self.heat_texture = Some(ctx.load_texture("heat map", image, options)),
+            }
+            let id = self
+                .heat_texture
+                .as_ref()
+                .map(|t| t.id())
+                .ok_or_else(|| ViewerError::Message("no heat map".into()))?;
+            return Ok((id, None));
+        }
+        self.view.draw(rs, camera, self.technique)
+    }
+
+    /// The scripted run: counts frames, and after the last writes it and reports.
+    fn script_step(&mut self, ctx: &egui::Context, dt: Option<f64>, gpu_ms: Option<f64>) {
+        let Some(run) = &mut self.script else { return };
+        run.done += 1;
+        if run.done > 1 {
+            // The first frame builds the pipeline; it is not measured.
+            run.gpu_ms.extend(gpu_ms);
+            run.frame_ms.extend(dt.map(|s| s * 1e3));
+        }
+        if run.done < run.script.frames {
+            return;
+        }
+        let outcome =
+            self.view.read_frame().and_then(|img| Ok(io::save_rgb8(&run.script.out, &img)?)).map(|()| {
+                let (w, h) = self.frame_size;
+                ScriptReport {
+                    out: run.script.out.clone(),
+                    width: w,
+                    height: h,
+                    technique: self.technique.name(),
+                    frames: run.done,
+                    gpu_ms: (!run.gpu_ms.is_empty()).then(|| median(&mut run.gpu_ms)),
+                    frame_ms: median(&mut run.frame_ms),
+                    camera: self.player.camera(w, h),
+                    adapter: self.view.context().report.to_string(),
+                }
+            });
+        launch::finish(&run.outcome, ctx, outcome.map_err(|e| e.to_string()));
+        self.script = None;
+    }
+
+    fn hud_state(&mut self) -> hud::HudState<'_> {
+        hud::HudState {
+            technique: self.technique,
+            layers: techniques::layers(self.technique),
+            heat_map: self.heat_map,
+            show_fps: self.show_fps,
+            stats: &self.stats,
+            adapter: &self.view.context().report,
+            frame_size: self.frame_size,
+            player: &self.player,
+            controls: &mut self.controls,
+        }
+    }
+
+    /// Carries out what the HUD's controls asked for.
+    fn apply(&mut self, changes: hud::Changes) {
+        let result = (|| -> Result<(), ViewerError> {
+            if let Some(s) = changes.height_scale {
+                self.view.set_height_scale(s)?;
+            }
+            if let Some(dir) = changes.light {
+                self.view.set_light(dir)?;
+            }
+            if let Some(p) = changes.complexity {
+                self.view.set_complexity(p)?;
+            }
+            if let Some((min, max)) = changes.range {
+                self.technique = techniques::with_range(self.technique, min, max);
+            }
+            if let Some(name) = changes.bookmark {
+                if let Some(c) = bookmark(&name, 64, 64) {
+                    self.player = Player::from_camera(&self.walk, &c);
+                }
+            }
+            if let Some(m) = changes.material {
+                self.view.set_material(m)?;
+                self.walk = Room::from_scene(self.view.scene());
+            }
+            Ok(())
+        })();
+        if let Some(m) = changes.message {
+            self.message = Some(m);
+        }
+        if let Err(e) = result {
+            self.message = Some(e.to_string());
+        }
+    }
+}
+
+/// The median of `v` (NaN when empty).
+fn median(v: &mut [f64]) -> f64 {
+    renderlab_gpu::timing::median(v)
+}

@@ -1,0 +1,225 @@
+//! The room on the window's device: the GPU renderer draws each frame straight into a texture
+//! that egui shows as an image (registered with `egui_wgpu::Renderer::register_native_texture`),
+//! so a frame never crosses the CPU. The layer-count heat map (key B) is the renderer's debug
+//! target, read back and coloured on the CPU (a debug view, not a timed one).
+
+use crate::error::ViewerError;
+use crate::techniques::MAX_LAYERS;
+use glam::Vec3;
+use renderlab_core::{Camera, Image, Material, Scene};
+use renderlab_gpu::{GpuContext, ReliefRenderer};
+use renderlab_relief::maps::complexity::ComplexityParams;
+use renderlab_relief::{Map, ReliefMaterial, Technique};
+
+/// The format of the texture the room is drawn into: 8-bit sRGB, so that the hardware encodes
+/// the shader's linear colour as the CPU's `linear_to_srgb8` does, and egui samples it back
+/// to linear as it does its own textures.
+pub const DISPLAY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+
+/// The texture the room is drawn into, registered with egui.
+struct Target {
+    texture: wgpu::Texture,
+    view: wgpu::TextureView,
+    id: egui::TextureId,
+}
+
+/// The room's scene, its prepared materials and the renderer drawing them on the window's
+/// device.
+pub struct RoomView {
+    ctx: &'static GpuContext,
+    scene: Scene,
+    complexity: ComplexityParams,
+    materials: Vec<ReliefMaterial>,
+    with_cone: bool,
+    renderer: ReliefRenderer<'static>,
+    target: Option<Target>,
+}
+
+impl RoomView {
+    /// Prepares `scene` for the device of `render_state`. The context over that device lives
+    /// as long as the process (the renderer borrows it; a viewer opens one).
+    pub fn new(render_state: &egui_wgpu::RenderState, scene: Scene) -> Result<Self, ViewerError> {
+        let ctx = GpuContext::from_parts(
+            &render_state.adapter,
+            render_state.device.clone(),
+            render_state.queue.clone(),
+        )?;
+        let ctx: &'static GpuContext = Box::leak(Box::new(ctx));
+        let complexity = ComplexityParams::default();
+        let materials = prepare(&scene.materials, &complexity, false);
+        let renderer = ReliefRenderer::new(ctx, &scene, &materials)?;
+        Ok(Self { ctx, scene, complexity, materials, with_cone: false, renderer, target: None })
+    }
+
+    /// What the device is (for the HUD).
+    pub fn context(&self) -> &'static GpuContext {
+        self.ctx
+    }
+
+    /// The scene shown.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// Makes sure the materials have the maps `technique` reads (the cone map is computed on
+    /// the first use of a cone technique, which takes a moment).
+    fn ensure_maps(&mut self, technique: Technique) -> Result<(), ViewerError> {
+        if technique.needs_map(Map::Cone) && !self.with_cone {
+            let scales: Vec<f32> = self.materials.iter().map(|m| m.height_scale).collect();
+            self.materials = prepare(&self.scene.materials, &self.complexity, true);
+            for (m, s) in self.materials.iter_mut().zip(scales) {
+                m.height_scale = s;
+            }
+            self.with_cone = true;
+            self.rebuild()?;
+        }
+        Ok(())
+    }
+
+    /// Uploads the scene and materials again (after a change of light, height or maps).
+    fn rebuild(&mut self) -> Result<(), ViewerError> {
+        self.renderer = ReliefRenderer::new(self.ctx, &self.scene, &self.materials)?;
+        Ok(())
+    }
+
+    /// Draws `technique` from `camera` into the display texture (resized to the camera) and
+    /// returns its egui id and the pass's GPU time where the device has timestamps.
+    pub fn draw(
+        &mut self,
+        render_state: &egui_wgpu::RenderState,
+        camera: &Camera,
+        technique: Technique,
+    ) -> Result<(egui::TextureId, Option<f64>), ViewerError> {
+        self.ensure_maps(technique)?;
+        let (w, h) = (camera.width, camera.height);
+        self.ctx.check_size("the window", w, h)?;
+        let resized = self.target.as_ref().is_none_or(|t| (t.texture.width(), t.texture.height()) != (w, h));
+        if resized {
+            let texture = self.ctx.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("room display"),
+                size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: DISPLAY_FORMAT,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                    | wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
+            });
+            let view = texture.create_view(&Default::default());
+            let mut egui_renderer = render_state.renderer.write();
+            let id = match self.target.take() {
+                Some(old) => {
+                    egui_renderer.update_egui_texture_from_wgpu_texture(
+                        &self.ctx.device,
+                        &view,
+                        wgpu::FilterMode::Linear,
+                        old.id,
+                    );
+                    old.id
+                }
+                None => {
+                    egui_renderer.register_native_texture(&self.ctx.device, &view, wgpu::FilterMode::Linear)
+                }
+            };
+            self.target = Some(Target { texture, view, id });
+        }
+        let target = self.target.as_ref().ok_or_else(|| ViewerError::Message("no display target".into()))?;
+        let gpu_ms = self.renderer.render_to_view(&target.view, DISPLAY_FORMAT, camera, technique)?;
+        Ok((target.id, gpu_ms))
+    }
+
+    /// The planned layer count per pixel of `technique` from `camera`, coloured from blue (one
+    /// layer) through green and yellow to red ([`MAX_LAYERS`] or more); the background dark.
+    pub fn heat_map(
+        &mut self,
+        camera: &Camera,
+        technique: Technique,
+    ) -> Result<egui::ColorImage, ViewerError> {
+        self.ensure_maps(technique)?;
+        let frame = self.renderer.render(camera, technique)?;
+        let mut rgba = Vec::with_capacity(frame.layers.pixels().len() * 4);
+        for (&l, &covered) in frame.layers.pixels().iter().zip(frame.mask.pixels()) {
+            let c = if covered { heat(l as u32) } else { [20, 20, 20] };
+            rgba.extend_from_slice(&[c[0], c[1], c[2], 255]);
+        }
+        Ok(egui::ColorImage::from_rgba_unmultiplied([camera.width as usize, camera.height as usize], &rgba))
+    }
+
+    /// The last frame drawn into the display texture, as 8-bit sRGB.
+    pub fn read_frame(&self) -> Result<Image<[u8; 3]>, ViewerError> {
+        let target = self.target.as_ref().ok_or_else(|| ViewerError::Message("no frame drawn yet".into()))?;
+        let bytes = renderlab_gpu::read_rgba8(self.ctx, &target.texture)?;
+        let rgb = bytes.chunks_exact(4).map(|p| [p[0], p[1], p[2]]).collect();
+        Image::from_vec(target.texture.width(), target.texture.height(), rgb)
+            .map_err(|e| ViewerError::Message(e.to_string()))
+    }
+
+    /// Sets every material's height scale (the relief's depth in units of a texture repeat).
+    pub fn set_height_scale(&mut self, scale: f32) -> Result<(), ViewerError> {
+        if !scale.is_finite() || !(0.0..=1.0).contains(&scale) {
+            return Err(ViewerError::Message(format!("height scale {scale} is outside 0..=1")));
+        }
+        for m in &mut self.materials {
+            m.height_scale = scale;
+        }
+        self.rebuild()
+    }
+
+    /// The mean height scale of the materials (the slider's starting value).
+    pub fn height_scale(&self) -> f32 {
+        self.materials.iter().map(|m| m.height_scale).sum::<f32>() / self.materials.len().max(1) as f32
+    }
+
+    /// Points the light along `to_light` (toward the light; normalised here).
+    pub fn set_light(&mut self, to_light: Vec3) -> Result<(), ViewerError> {
+        let dir = to_light.normalize_or_zero();
+        if dir == Vec3::ZERO || !dir.is_finite() {
+            return Err(ViewerError::Message("the light direction must be a non-zero vector".into()));
+        }
+        self.scene.light.to_light = dir;
+        self.rebuild()
+    }
+
+    /// Recomputes the complexity maps with `params` (the adaptive techniques' input).
+    pub fn set_complexity(&mut self, params: ComplexityParams) -> Result<(), ViewerError> {
+        let scales: Vec<f32> = self.materials.iter().map(|m| m.height_scale).collect();
+        self.complexity = params;
+        self.materials = prepare(&self.scene.materials, &self.complexity, self.with_cone);
+        for (m, s) in self.materials.iter_mut().zip(scales) {
+            m.height_scale = s;
+        }
+        self.rebuild()
+    }
+
+    /// Puts `material` on every surface of the room (a user's own maps).
+    pub fn set_material(&mut self, material: Material) -> Result<(), ViewerError> {
+        let mut scene = self.scene.clone();
+        for m in &mut scene.materials {
+            *m = material.clone();
+        }
+        let materials = prepare(&scene.materials, &self.complexity, self.with_cone);
+        let renderer = ReliefRenderer::new(self.ctx, &scene, &materials)?;
+        (self.scene, self.materials, self.renderer) = (scene, materials, renderer);
+        Ok(())
+    }
+}
+
+/// The relief inputs of each material.
+fn prepare(materials: &[Material], params: &ComplexityParams, with_cone: bool) -> Vec<ReliefMaterial> {
+    materials.iter().map(|m| ReliefMaterial::new(m, params, with_cone)).collect()
+}
+
+/// The heat-map colour of `layers`: blue → cyan → green → yellow → red over 1..=MAX_LAYERS.
+pub fn heat(layers: u32) -> [u8; 3] {
+    if layers == 0 {
+        return [0, 0, 0];
+    }
+    let t = ((layers - 1) as f32 / (MAX_LAYERS - 1) as f32).clamp(0.0, 1.0) * 4.0;
+    let stops = [[0.0, 0.0, 1.0], [0.0, 1.0, 1.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0], [1.0, 0.0, 0.0]];
+    let i = (t.floor() as usize).min(3);
+    let f = t - i as f32;
+    let c: [f32; 3] = std::array::from_fn(|k| stops[i][k] * (1.0 - f) + stops[i + 1][k] * f);
+    c.map(|v| (v * 255.0).round() as u8)
+}
