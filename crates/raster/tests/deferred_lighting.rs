@@ -121,7 +121,11 @@ fn a_point_light_casts_shadows_through_all_six_cube_faces() {
         let side = a.any_orthonormal_vector();
         assert_eq!(shadows.lookup(&s.lights[0], 0, wall, normal), 0.0, "behind the occluder on {a}");
         assert_eq!(shadows.lookup(&s.lights[0], 0, wall + side * 0.5, normal), 0.0, "in the shadow on {a}");
-        assert_eq!(shadows.lookup(&s.lights[0], 0, wall + side * 1.5, normal), 1.0, "beside the shadow on {a}");
+        assert_eq!(
+            shadows.lookup(&s.lights[0], 0, wall + side * 1.5, normal),
+            1.0,
+            "beside the shadow on {a}"
+        );
         let corner = wall + side * 2.0 + a.cross(side) * 2.0;
         assert_eq!(shadows.lookup(&s.lights[0], 0, corner, normal), 1.0, "near the corner on {a}");
     }

@@ -111,7 +111,8 @@ pub fn geometry_pass(prepared: &PreparedScene, camera: &Camera, layers: usize) -
             })
         })
         .collect();
-    let resolve = |i: usize, v: &VisibilitySample| scene.shading_point(v.instance, v.triangle, v.bary, view(i));
+    let resolve =
+        |i: usize, v: &VisibilitySample| scene.shading_point(v.instance, v.triangle, v.bary, view(i));
     let opaque_points: Vec<Option<ShadingPoint>> =
         visibility.par_iter().enumerate().map(|(i, v)| v.as_ref().map(|v| resolve(i, v))).collect();
 

@@ -104,8 +104,13 @@ pub fn shade_direct(
             if f == Vec3::ZERO {
                 continue;
             }
-            let q = ShadowQuery { light, light_index, pixel, sample: s as usize, point: sp, light_sample: &ls };
-            let vis = if per_sample { visibility.visibility(&q) } else { *shared.get_or_insert_with(|| visibility.visibility(&q)) };
+            let q =
+                ShadowQuery { light, light_index, pixel, sample: s as usize, point: sp, light_sample: &ls };
+            let vis = if per_sample {
+                visibility.visibility(&q)
+            } else {
+                *shared.get_or_insert_with(|| visibility.visibility(&q))
+            };
             light_sum += f * ls.radiance * vis;
         }
         sum += light_sum / count as f32;

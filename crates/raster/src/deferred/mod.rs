@@ -133,7 +133,9 @@ pub fn lit_opaque(gbuffer: &GBuffer, terms: &LightingTerms, sky: Vec3) -> Vec<Ve
         .enumerate()
         .map(|(i, sp)| match sp {
             None => sky,
-            Some(sp) => sp.emissive + terms.direct[i] + terms.diffuse_indirect[i] * terms.ambient_occlusion[i],
+            Some(sp) => {
+                sp.emissive + terms.direct[i] + terms.diffuse_indirect[i] * terms.ambient_occlusion[i]
+            }
         })
         .collect()
 }
@@ -141,7 +143,11 @@ pub fn lit_opaque(gbuffer: &GBuffer, terms: &LightingTerms, sky: Vec3) -> Vec<Ve
 /// Renders the all-raster frame of `prepared` seen by `camera`: geometry, shadow maps,
 /// direct lighting, ambient and SSAO, screen-space reflections, composition and the sorted
 /// forward translucent pass.
-pub fn render(prepared: &PreparedScene, camera: &Camera, settings: &RasterSettings) -> Result<RasterFrame, DeferredError> {
+pub fn render(
+    prepared: &PreparedScene,
+    camera: &Camera,
+    settings: &RasterSettings,
+) -> Result<RasterFrame, DeferredError> {
     check_dimensions("camera", camera.width as u64, camera.height as u64)
         .map_err(|e| DeferredError::Size(e.to_string()))?;
     settings.validate().map_err(DeferredError::Settings)?;
@@ -168,7 +174,8 @@ pub fn render(prepared: &PreparedScene, camera: &Camera, settings: &RasterSettin
     time(&mut timings.ambient_ms, t);
 
     let t = Instant::now();
-    let mut terms = LightingTerms { direct, diffuse_indirect, ambient_occlusion, specular_indirect: Vec::new() };
+    let mut terms =
+        LightingTerms { direct, diffuse_indirect, ambient_occlusion, specular_indirect: Vec::new() };
     let lit = lit_opaque(g, &terms, scene.sky);
     terms.specular_indirect = screen_space_reflections(g, &lit, scene.sky, &settings.ssr);
     time(&mut timings.reflections_ms, t);

@@ -96,7 +96,17 @@ impl ShadowMaps {
                     let far = (eye - centre).length() + radius * 1.01 + 1e-3;
                     let near = (far * 1e-5).max(1e-4);
                     CUBE_FACES.map(|(f, up)| {
-                        DepthMap::perspective(prepared, &sources, eye, f, up, 90f32.to_radians(), near, far, res)
+                        DepthMap::perspective(
+                            prepared,
+                            &sources,
+                            eye,
+                            f,
+                            up,
+                            90f32.to_radians(),
+                            near,
+                            far,
+                            res,
+                        )
                     })
                 };
                 match light.kind {
@@ -108,7 +118,9 @@ impl ShadowMaps {
                         radius,
                         settings.directional_resolution,
                     )),
-                    LightKind::Spot { outer_cone, .. } if outer_cone.to_degrees() <= MAX_SPOT_HALF_ANGLE_DEG => {
+                    LightKind::Spot { outer_cone, .. }
+                        if outer_cone.to_degrees() <= MAX_SPOT_HALF_ANGLE_DEG =>
+                    {
                         let far = (light.position - centre).length() + radius * 1.01 + 1e-3;
                         let near = (far * 1e-5).max(1e-4);
                         let up = light.direction.any_orthonormal_vector();
@@ -131,7 +143,9 @@ impl ShadowMaps {
                     LightKind::Area { half_u, half_v } => LightShadow::Cubes(
                         [(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)]
                             .into_iter()
-                            .map(|(a, b)| cube(light.position + half_u * a + half_v * b, settings.area_resolution))
+                            .map(|(a, b)| {
+                                cube(light.position + half_u * a + half_v * b, settings.area_resolution)
+                            })
                             .collect(),
                     ),
                 }
@@ -264,7 +278,8 @@ impl DepthMap {
                 let t = frame.tris[id as usize];
                 let b = t.barycentrics(i as u32 % resolution, i as u32 / resolution);
                 let mesh = &prepared.world[t.instance as usize];
-                let [a, bb, c] = mesh.triangles[t.triangle as usize].map(|k| mesh.vertices[k as usize].position);
+                let [a, bb, c] =
+                    mesh.triangles[t.triangle as usize].map(|k| mesh.vertices[k as usize].position);
                 let p = a * (1.0 - b.x - b.y) + bb * b.x + c * b.y;
                 (p - eye).dot(forward)
             })

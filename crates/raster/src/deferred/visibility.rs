@@ -245,7 +245,11 @@ impl Part {
         let setup = self.tris.len() as u32;
         let before = self.raster.len();
         for k in 1..polygon.len() - 1 {
-            let fan = if back { [points[0], points[k + 1], points[k]] } else { [points[0], points[k], points[k + 1]] };
+            let fan = if back {
+                [points[0], points[k + 1], points[k]]
+            } else {
+                [points[0], points[k], points[k + 1]]
+            };
             if let Some(t) = RasterTriangle::new(fan, setup, &depth, vp.width, vp.height) {
                 self.raster.push(t);
             }

@@ -132,12 +132,18 @@ pub fn showcase(detail: u32) -> HybridScene {
     let floor = square(Vec3::ZERO, Vec3::Y, Vec2::splat(8.0));
     let mut columns = Mesh::default();
     for (x, z) in [(-3.0, -3.0), (3.0, -3.0), (-3.0, 1.5), (3.0, 1.5)] {
-        merge(&mut columns, box_mesh(Vec3::new(x - 0.3, 0.0, z - 0.3), Vec3::new(x + 0.3, 3.0, z + 0.3), false));
+        merge(
+            &mut columns,
+            box_mesh(Vec3::new(x - 0.3, 0.0, z - 0.3), Vec3::new(x + 0.3, 3.0, z + 0.3), false),
+        );
     }
     let back_wall = square(Vec3::new(0.0, 3.0, -5.0), Vec3::Z, Vec2::new(8.0, 3.0));
     let lights = vec![
-        light(LightKind::Directional, Vec3::ZERO, Vec3::new(-0.4, -1.0, -0.5), 2.0),
-        Light { color: Vec3::new(1.0, 0.7, 0.4), ..light(LightKind::Point, Vec3::new(2.0, 2.2, 2.0), Vec3::ZERO, 6.0) },
+        light(LightKind::Directional, Vec3::ZERO, Vec3::new(-0.4, -1.0, -0.5), 3.0),
+        Light {
+            color: Vec3::new(1.0, 0.7, 0.4),
+            ..light(LightKind::Point, Vec3::new(2.0, 2.2, 2.0), Vec3::ZERO, 6.0)
+        },
         light(
             LightKind::Area { half_u: Vec3::new(0.6, 0.0, 0.0), half_v: Vec3::new(0.0, 0.0, 0.6) },
             Vec3::new(-1.5, 4.0, -1.0),
@@ -147,16 +153,19 @@ pub fn showcase(detail: u32) -> HybridScene {
     ];
     scene(
         vec![
-            (floor, PbrMaterial::dielectric("floor", Vec3::new(0.6, 0.6, 0.55), 0.25)),
+            (floor, PbrMaterial::dielectric("floor", Vec3::new(0.45, 0.45, 0.42), 0.35)),
             (columns, PbrMaterial::dielectric("stone", Vec3::new(0.7, 0.65, 0.6), 0.7)),
             (back_wall, PbrMaterial::dielectric("wall", Vec3::new(0.3, 0.4, 0.6), 0.9)),
             (
                 sphere(Vec3::new(-1.2, 1.0, -1.0), 1.0, 8 * detail, 4 * detail),
                 PbrMaterial::metal("gold", Vec3::new(1.0, 0.78, 0.34), 0.15),
             ),
-            (sphere(Vec3::new(1.4, 0.8, 0.2), 0.8, 8 * detail, 4 * detail), PbrMaterial::glass("glass", 1.5, 0.05)),
+            (
+                sphere(Vec3::new(1.4, 0.8, 0.2), 0.8, 8 * detail, 4 * detail),
+                PbrMaterial::glass("glass", 1.5, 0.05),
+            ),
         ],
         lights,
-        Vec3::new(0.25, 0.3, 0.4),
+        Vec3::new(0.08, 0.1, 0.14),
     )
 }
