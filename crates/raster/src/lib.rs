@@ -3,6 +3,10 @@
 //! perspective-correct UV, its exact screen-space Jacobian (Heckbert's footprint), the
 //! tangent frame, world position, distance and object/material ids.
 //!
+//! The [`deferred`] module reuses its clipping, fixed-point scan conversion and binning for
+//! the hybrid lab's rasterized deferred pipeline over a `renderlab_scene::HybridScene`
+//! (visibility-buffer G-buffer, shadow maps, lighting, SSR, SSAO, translucency, tone mapping).
+//!
 //! # Pipeline
 //!
 //! 1. **Setup**: every triangle of every scene object is transformed by

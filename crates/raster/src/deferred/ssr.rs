@@ -2,10 +2,10 @@
 //!
 //! For each opaque pixel no rougher than `max_roughness`, the view direction is mirrored
 //! about the shading normal and the reflected ray (from the surface, up to `max_distance`,
-//! cut at the near plane) is projected to the screen. It is marched linearly in steps of
+//! cut at the near plane and at the screen's edges) is projected to the screen. It is marched linearly in steps of
 //! `stride_px` pixels, its depth along the view axis interpolated perspective-correctly (its
 //! reciprocal is affine on the screen). The first step at which the ray lies behind the
-//! depth buffer by less than `thickness` is refined by `refine_steps` bisections; the hit
+//! depth buffer by less than `thickness` (and meets a surface facing it) is refined by `refine_steps` bisections; the hit
 //! pixel's radiance in the lit opaque image (emitted + direct + ambient·AO) is the
 //! reflection. Rays that leave the screen or find nothing, and pixels rougher than
 //! `max_roughness`, see the sky: the environment fallback.
@@ -95,6 +95,21 @@ impl<'a> Marcher<'a> {
             .then(|| s.y as usize * cam.width as usize + s.x as usize)
     }
 
+    /// The largest `t` in [0, 1] for which `s0 + delta·t` is still inside `[0, size]`
+    /// (`s0` inside).
+    fn screen_exit(s0: Vec2, delta: Vec2, size: Vec2) -> f32 {
+        let mut t = 1.0f32;
+        for axis in 0..2 {
+            let d = delta[axis];
+            if d > 0.0 {
+                t = t.min((size[axis] - s0[axis]) / d);
+            } else if d < 0.0 {
+                t = t.min(-s0[axis] / d);
+            }
+        }
+        t.max(0.0)
+    }
+
     /// The pixel the ray from `o` along unit `r` meets first in the depth buffer.
     fn march(&self, o: Vec3, r: Vec3) -> Option<usize> {
         let cam = &self.gbuffer.camera;
@@ -114,7 +129,11 @@ impl<'a> Marcher<'a> {
         if !(s0.is_finite() && s1.is_finite() && k0.is_finite() && k1.is_finite()) {
             return None;
         }
-        let delta = s1 - s0;
+        // March only the on-screen part, so that no step is spent (and no stride is
+        // stretched) off screen.
+        let exit = Self::screen_exit(s0, s1 - s0, Vec2::new(cam.width as f32, cam.height as f32));
+        let delta = (s1 - s0) * exit;
+        let k1 = k0 + (k1 - k0) * exit;
         let steps = ((delta.abs().max_element() / st.stride_px).ceil() as u32).clamp(1, st.max_steps.max(1));
         // Depth of the ray and of the buffer at parameter t along the screen segment.
         let at = |t: f32| -> Option<(usize, f32)> {
@@ -137,10 +156,14 @@ impl<'a> Marcher<'a> {
                     }
                 }
                 let (kb, zb) = at(b)?;
-                if zb - self.depth[kb] < st.thickness {
+                // A hit needs the ray within the thickness behind the surface and arriving
+                // at its front (this rejects the depth buffer's own staircase on the
+                // surface the ray leaves, sampled at pixel centres).
+                let front = self.gbuffer.opaque[kb].is_some_and(|sp| sp.normal.dot(r) < 0.0);
+                if front && zb - self.depth[kb] < st.thickness {
                     return Some(kb);
                 }
-                // Passed behind a thin surface: keep marching.
+                // Passed behind a thin surface or along one: keep marching.
             }
             prev = t;
         }

@@ -139,7 +139,7 @@ pub fn showcase(detail: u32) -> HybridScene {
     }
     let back_wall = square(Vec3::new(0.0, 3.0, -5.0), Vec3::Z, Vec2::new(8.0, 3.0));
     let lights = vec![
-        light(LightKind::Directional, Vec3::ZERO, Vec3::new(-0.4, -1.0, -0.5), 2.0),
+        light(LightKind::Directional, Vec3::ZERO, Vec3::new(-0.4, -1.0, -0.5), 3.0),
         Light {
             color: Vec3::new(1.0, 0.7, 0.4),
             ..light(LightKind::Point, Vec3::new(2.0, 2.2, 2.0), Vec3::ZERO, 6.0)
@@ -153,7 +153,7 @@ pub fn showcase(detail: u32) -> HybridScene {
     ];
     scene(
         vec![
-            (floor, PbrMaterial::dielectric("floor", Vec3::new(0.6, 0.6, 0.55), 0.25)),
+            (floor, PbrMaterial::dielectric("floor", Vec3::new(0.45, 0.45, 0.42), 0.35)),
             (columns, PbrMaterial::dielectric("stone", Vec3::new(0.7, 0.65, 0.6), 0.7)),
             (back_wall, PbrMaterial::dielectric("wall", Vec3::new(0.3, 0.4, 0.6), 0.9)),
             (
@@ -166,6 +166,6 @@ pub fn showcase(detail: u32) -> HybridScene {
             ),
         ],
         lights,
-        Vec3::new(0.25, 0.3, 0.4),
+        Vec3::new(0.08, 0.1, 0.14),
     )
 }
