@@ -33,5 +33,5 @@ pub mod stages;
 pub use accel::Accel;
 pub use config::{Ao, Gi, Reflections, Shadows, StageConfig, Translucency};
 pub use error::{HybridError, Result};
-pub use reference::PathTracer;
-pub use renderer::{HybridFrame, HybridRenderer, NoiseFloor, PerStage, Reference};
+pub use reference::{NoiseFloor, PathTracer, Reference};
+pub use renderer::{HybridFrame, HybridRenderer, PerStage};

@@ -45,7 +45,6 @@
 
 use crate::accel::{resolve, Accel};
 use crate::lighting::direct_light_from;
-use crate::renderer::{NoiseFloor, Reference};
 use crate::rng::{Rng, Stream};
 use crate::stages::par_pixels;
 use glam::Vec3;
@@ -53,6 +52,7 @@ use renderlab_core::Camera;
 use renderlab_scene::brdf::{alpha, d_ggx, eval, f0, fresnel_schlick};
 use renderlab_scene::sampling::{cosine_hemisphere, ggx_g1, ggx_visible_normal, reflect, refract, Frame};
 use renderlab_scene::{GBuffer, HybridScene, LightKind, ShadingPoint};
+use serde::Serialize;
 use std::f32::consts::PI;
 
 /// The default roughness from which path regularisation applies (see the module's notes):
@@ -258,4 +258,77 @@ pub fn sample_bsdf(sp: &ShadingPoint, v: Vec3, rng: &mut Rng) -> Option<(Vec3, V
         return None;
     }
     Some((l, eval(sp, v, l) / ((1.0 - p_t) * pdf)))
+}
+
+/// The path-traced reference of a view, in two independent halves.
+///
+/// Each half averages `spp / 2` paths per pixel from its own random streams; `hdr` is their
+/// mean. The halves' difference estimates the reference's own error: if each half has
+/// per-pixel variance σ², `E[(a − b)²] = 2σ²`, and the full mean has variance `σ²/2`, so
+///
+/// * the full image's expected MSE to the converged image is `MSE(half_a, half_b) / 4`
+///   ([`NoiseFloor::mse_full`]), and
+/// * per pixel, `(a − b)² / 4` (mean over RGB) estimates the variance of `hdr`
+///   ([`NoiseFloor::variance`]).
+///
+/// An image compared with this reference cannot be shown to be closer to the truth than
+/// `mse_full`: an error at or below that floor is reference noise, not the method's.
+#[derive(Clone, Debug)]
+pub struct Reference {
+    /// The mean of both halves (`spp` paths per pixel), linear radiance.
+    pub hdr: Vec<Vec3>,
+    /// The first half.
+    pub half_a: Vec<Vec3>,
+    /// The second half.
+    pub half_b: Vec<Vec3>,
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Paths per pixel in `hdr` (even: both halves get `spp / 2`).
+    pub spp: u32,
+    /// The noise estimate.
+    pub noise: NoiseFloor,
+    /// Rays traced (path segments and shadow rays).
+    pub rays: u64,
+}
+
+/// The estimated error floor of a [`Reference`].
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct NoiseFloor {
+    /// Mean over pixels and channels of `(half_a − half_b)²`.
+    pub mse_halves: f64,
+    /// `10·log10(1 / mse_halves)`: PSNR between the halves with peak 1 on linear radiance.
+    pub psnr_halves: f64,
+    /// `mse_halves / 4`: the expected MSE of `hdr` to the converged image.
+    pub mse_full: f64,
+    /// `10·log10(1 / mse_full)`: the highest PSNR against this reference that means anything.
+    pub psnr_full: f64,
+    /// Per pixel, the estimated variance of `hdr` (`(a − b)²/4`, mean over RGB).
+    #[serde(skip)]
+    pub variance: Vec<f32>,
+}
+
+impl NoiseFloor {
+    /// The floor from two independent halves of equal sample counts.
+    pub fn from_halves(a: &[Vec3], b: &[Vec3]) -> Self {
+        let variance: Vec<f32> = a
+            .iter()
+            .zip(b)
+            .map(|(x, y)| {
+                let d = *x - *y;
+                d.dot(d) / 3.0 / 4.0
+            })
+            .collect();
+        let n = a.len().max(1) as f64;
+        let mse_halves = variance.iter().map(|&v| v as f64 * 4.0).sum::<f64>() / n;
+        let psnr = |m: f64| if m > 0.0 { 10.0 * (1.0 / m).log10() } else { f64::INFINITY };
+        Self {
+            mse_halves,
+            psnr_halves: psnr(mse_halves),
+            mse_full: mse_halves / 4.0,
+            psnr_full: psnr(mse_halves / 4.0),
+            variance,
+        }
+    }
 }

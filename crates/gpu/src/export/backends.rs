@@ -30,7 +30,7 @@
 //!   negated in the vertex stage), so a Vulkan engine with an ordinary (positive-height)
 //!   viewport draws the frame upright, as WebGPU does.
 
-use super::{ExportShader, Lang, Parsed};
+use super::source::{ExportShader, Lang, Parsed};
 use crate::error::{GpuError, Result};
 use naga::{AddressSpace, ResourceBinding, ShaderStage, TypeInner};
 use std::collections::BTreeMap;
@@ -146,7 +146,11 @@ pub fn binding_layout(module: &naga::Module) -> Vec<BindingRow> {
 /// Translates `shader` (parsed as `parsed`) into `lang`: the files it becomes.
 pub fn translate(shader: &ExportShader, parsed: &Parsed, lang: Lang) -> Result<Vec<OutputFile>> {
     let fail = |e: &dyn std::error::Error| {
-        GpuError::Export(format!("{}: naga cannot write {lang}: {}", shader.name, super::one_line_error(e)))
+        GpuError::Export(format!(
+            "{}: naga cannot write {lang}: {}",
+            shader.name,
+            super::source::one_line_error(e)
+        ))
     };
     let module = &parsed.module;
     let rows = binding_layout(module);

@@ -6,10 +6,11 @@
 //! frame) share one set of tables, so that the README stays readable; each shader's own
 //! section then says which textures its fragment shader actually reads.
 
+use super::backends::OutputFile;
 use super::backends::{binding_layout, BindingRow};
 use super::descriptions::describe;
 use super::reflect::{items, Item, ItemKind};
-use super::{ExportShader, Lang, OutputFile, Parsed, ShaderKind};
+use super::source::{ExportShader, Lang, Parsed, ShaderKind};
 use renderlab_relief::Shading;
 use std::fmt::Write;
 

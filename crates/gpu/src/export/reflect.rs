@@ -8,7 +8,7 @@
 //! `VertexIn.uv`, `DebugOut.layers`), `entry.argument` for an entry point's plain argument
 //! (`fs_main.position`) and `entry.result` for its plain result.
 
-use super::Parsed;
+use super::source::Parsed;
 use naga::common::wgsl::TypeContext;
 use naga::{AddressSpace, Binding, ShaderStage, TypeInner};
 

@@ -3,8 +3,9 @@
 //! the same function on the same rows, so they give the same results.
 
 use super::page::write_page;
-use super::record::{HybridRecord, RowResult};
-use super::store::{read_json, Manifest, RefInfo, RunDir, View};
+use super::record::RefInfo;
+use super::record::{HybridRecord, RowResult, ERROR_SPACE};
+use super::store::{read_json, Manifest, RunDir, View};
 use super::sweep::Stage;
 use crate::error::{LabError, Result};
 use crate::report::format_number;
@@ -51,10 +52,6 @@ struct Results<'a> {
     references: Vec<ReferenceEntry<'a>>,
     records: &'a [HybridRecord],
 }
-
-/// How the errors are measured, as `results.json` and the page say it.
-pub const ERROR_SPACE: &str =
-    "display images: linear radiance clamped to [0, 1] and sRGB-encoded, the reference likewise";
 
 /// Reads every finished row of `out`'s shard, writes `results.json`, `results.csv` and
 /// `index.html`, and summarises.

@@ -126,7 +126,7 @@ pub fn merge_runs(parts: &[PathBuf], out: &Path) -> Result<HybridSummary> {
         }
         target.write_row(&row)?;
         if !target.ref_json(view).is_file() {
-            let info: super::store::RefInfo = super::store::read_json(&src.ref_json(view))?;
+            let info: super::record::RefInfo = super::store::read_json(&src.ref_json(view))?;
             copy(&src.ref_exr(view), &target.ref_exr(view))?;
             copy(&src.root.join(&info.image), &target.root.join(&info.image))?;
             copy(&src.ref_json(view), &target.ref_json(view))?;

@@ -12,6 +12,7 @@
 //! Errors are measured on the display image: linear radiance clamped to [0, 1] and
 //! sRGB-encoded, as [`crate::metrics`] does and as the PNGs show it.
 
+mod any_f64;
 mod assemble;
 mod config;
 mod merge;

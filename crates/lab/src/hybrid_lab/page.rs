@@ -2,9 +2,9 @@
 //! noise floor, the rows' table (time, delta against the baseline as the thesis tabulates
 //! it, rays, error), the cost-versus-error plot, and the images with their FLIP maps.
 
-use super::assemble::ERROR_SPACE;
-use super::record::{HybridRecord, RowResult};
-use super::store::{Manifest, RefInfo, View};
+use super::record::RefInfo;
+use super::record::{HybridRecord, RowResult, ERROR_SPACE};
+use super::store::{Manifest, View};
 use crate::plot::{scatter_svg, Series};
 use crate::report::{format_number, write_page as render, Template};
 use serde::Serialize;

@@ -2,8 +2,9 @@
 //! it ([`HybridRecord`], with the deltas against its view's baseline and the reference's
 //! noise floor beside its error).
 
+use super::any_f64;
 use super::sweep::{Stage, SweepRow};
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use serde::{Deserialize, Serialize};
 
 /// One finished row: what was rendered and what was measured, nothing derived from other
 /// rows. Written to `DIR/rows/ID.json` the moment the row is done.
@@ -116,7 +117,7 @@ impl HybridRecord {
         baseline: Option<&RowResult>,
         width: u32,
         height: u32,
-        floor: &super::store::RefInfo,
+        floor: &RefInfo,
     ) -> Self {
         let r: &SweepRow = &row.row;
         let baseline_ms = baseline.map_or(f64::NAN, |b| b.frame_ms);
@@ -157,45 +158,34 @@ impl HybridRecord {
     }
 }
 
-/// Serde for an `f64` that may be non-finite: finite values as JSON numbers, the others as
-/// the strings `"inf"`, `"-inf"` and `"NaN"` (JSON has no literal for them), read back
-/// exactly.
-pub(super) mod any_f64 {
-    use super::*;
-
-    /// Writes `v`.
-    pub fn serialize<S: Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
-        if v.is_finite() {
-            s.serialize_f64(*v)
-        } else if v.is_nan() {
-            s.serialize_str("NaN")
-        } else if *v > 0.0 {
-            s.serialize_str("inf")
-        } else {
-            s.serialize_str("-inf")
-        }
-    }
-
-    #[derive(Deserialize)]
-    #[serde(untagged)]
-    enum Either {
-        Number(f64),
-        Text(String),
-    }
-
-    /// Reads a value [`serialize`] wrote.
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-        match Either::deserialize(d)? {
-            Either::Number(v) => Ok(v),
-            Either::Text(t) => match t.as_str() {
-                "inf" => Ok(f64::INFINITY),
-                "-inf" => Ok(f64::NEG_INFINITY),
-                "NaN" => Ok(f64::NAN),
-                _ => Err(serde::de::Error::custom(format!("not a number: {t:?}"))),
-            },
-        }
-    }
+/// A view's reference as the rows are measured against it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RefInfo {
+    /// Paths per pixel.
+    pub spp: u32,
+    /// Rays the path tracer traced.
+    pub rays: u64,
+    /// Wall-clock seconds the reference took (not compared between runs).
+    pub seconds: f64,
+    /// PSNR between the two halves' display images, dB.
+    #[serde(with = "any_f64")]
+    pub halves_psnr_db: f64,
+    /// `halves_psnr_db + 10·log10 4`: the full reference's own expected PSNR, dB.
+    #[serde(with = "any_f64")]
+    pub noise_floor_psnr_db: f64,
+    /// Mean FLIP between the halves.
+    #[serde(with = "any_f64")]
+    pub halves_flip: f64,
+    /// Mean SSIM between the halves.
+    #[serde(with = "any_f64")]
+    pub halves_ssim: f64,
+    /// The reference image, relative to the run's directory.
+    pub image: String,
 }
+
+/// How the errors are measured, as `results.json` and the page say it.
+pub const ERROR_SPACE: &str =
+    "display images: linear radiance clamped to [0, 1] and sRGB-encoded, the reference likewise";
 
 #[cfg(test)]
 mod tests {

@@ -4,9 +4,10 @@
 
 use super::assemble::{assemble, HybridSummary};
 use super::config::{Existing, HybridBenchConfig};
+use super::record::RefInfo;
 use super::record::RowResult;
 use super::scenes::{self, camera_names};
-use super::store::{view_id, Manifest, RefInfo, RunDir, Settings, View, FORMAT};
+use super::store::{view_id, Manifest, RunDir, Settings, View, FORMAT};
 use super::sweep::{Stage, SweepRow};
 use crate::error::{LabError, Result};
 use crate::heatmap::{heat_image, with_legend};

@@ -4,8 +4,9 @@
 //! atomically, so that an interrupted run leaves only whole files; a row or reference counts
 //! as done once its JSON file exists.
 
+use super::any_f64;
 use super::config::Shard;
-use super::record::{any_f64, RowResult};
+use super::record::{RefInfo, RowResult};
 use super::scenes::slug;
 use super::sweep::{SweepKind, SweepRow};
 use crate::error::{LabError, Result};
@@ -87,31 +88,6 @@ pub struct Manifest {
     pub settings: Settings,
     /// The part of the rows this directory holds.
     pub shard: Shard,
-}
-
-/// A view's reference as the rows are measured against it.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct RefInfo {
-    /// Paths per pixel.
-    pub spp: u32,
-    /// Rays the path tracer traced.
-    pub rays: u64,
-    /// Wall-clock seconds the reference took (not compared between runs).
-    pub seconds: f64,
-    /// PSNR between the two halves' display images, dB.
-    #[serde(with = "any_f64")]
-    pub halves_psnr_db: f64,
-    /// `halves_psnr_db + 10·log10 4`: the full reference's own expected PSNR, dB.
-    #[serde(with = "any_f64")]
-    pub noise_floor_psnr_db: f64,
-    /// Mean FLIP between the halves.
-    #[serde(with = "any_f64")]
-    pub halves_flip: f64,
-    /// Mean SSIM between the halves.
-    #[serde(with = "any_f64")]
-    pub halves_ssim: f64,
-    /// The reference image, relative to the run's directory.
-    pub image: String,
 }
 
 /// `SCENE__CAMERA`, slugged.
