@@ -4,9 +4,8 @@
 //! atomically, so that an interrupted run leaves only whole files; a row or reference counts
 //! as done once its JSON file exists.
 
-use super::any_f64;
 use super::config::Shard;
-use super::record::{RefInfo, RowResult};
+use super::record::RowResult;
 use super::scenes::slug;
 use super::sweep::{SweepKind, SweepRow};
 use crate::error::{LabError, Result};
