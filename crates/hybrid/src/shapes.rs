@@ -94,18 +94,7 @@ pub struct SceneBuilder {
 impl SceneBuilder {
     /// An empty scene with the given sky radiance.
     pub fn new(name: &str, sky: Vec3) -> Self {
-        Self {
-            scene: HybridScene {
-                name: name.into(),
-                meshes: Vec::new(),
-                instances: Vec::new(),
-                materials: Vec::new(),
-                textures: Vec::new(),
-                lights: Vec::new(),
-                cameras: Vec::new(),
-                sky,
-            },
-        }
+        Self { scene: HybridScene::empty(name, sky) }
     }
 
     /// Adds `mesh` with `material`; returns the instance's index.

@@ -54,6 +54,20 @@ pub struct HybridScene {
 }
 
 impl HybridScene {
+    /// A scene with nothing in it yet but its name and sky radiance, for builders to fill.
+    pub fn empty(name: &str, sky: Vec3) -> Self {
+        Self {
+            name: name.into(),
+            meshes: Vec::new(),
+            instances: Vec::new(),
+            materials: Vec::new(),
+            textures: Vec::new(),
+            lights: Vec::new(),
+            cameras: Vec::new(),
+            sky,
+        }
+    }
+
     /// Triangles drawn (each instance counts its mesh's triangles), the thesis's Table 2.1
     /// measure of a scene's size.
     pub fn triangle_count(&self) -> usize {
