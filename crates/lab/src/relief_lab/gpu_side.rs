@@ -12,12 +12,10 @@ use super::config::ReliefBenchConfig;
 use super::device::device_label;
 use super::page::ImageSet;
 use super::record::{label, slug, RecordBackend, ReliefRecord};
-use super::uv_error::{mean_and_p95, uv_error_map};
-use crate::heatmap::{heat_image, with_legend};
+use super::uv_error::{mean_and_p95, uv_error_map, write_frame_images, FrameImages};
 use crate::metrics::{compare, psnr};
 use crate::timing::Timing;
 use glam::{Vec2, Vec3};
-use renderlab_core::io::{save_color, save_rgb8};
 use renderlab_core::{Camera, Image, Material};
 use renderlab_gpu::{AdapterReport, FrameTime, GpuContext, GpuError, ReliefRenderer};
 use renderlab_relief::{Frame, Kernel, Technique};
@@ -209,17 +207,14 @@ impl GpuAnalysis<'_> {
         }
         let dir = self.img_dir;
         let base = format!("gpu_{}_{angle}", slug(technique, Kernel::Scalar));
-        save_color(dir.join(format!("{base}.png")), &frame.image)?;
-        let heat = with_legend(&heat_image(&uv_map, 4.0, Some(&frame.mask)), 4.0, "UV error (texels)");
-        save_rgb8(dir.join(format!("{base}_uverr.png")), &heat)?;
-        let flip = with_legend(&heat_image(&cmp.flip_map, 1.0, Some(&frame.mask)), 1.0, "FLIP");
-        save_rgb8(dir.join(format!("{base}_flip.png")), &flip)?;
-        if technique.layers() > 0 {
-            let max = technique.layers() as f32;
-            let l = frame.layers.map(|v| v as f32);
-            let heat = with_legend(&heat_image(&l, max, Some(&frame.mask)), max, "layers");
-            save_rgb8(dir.join(format!("{base}_layers.png")), &heat)?;
-        }
+        write_frame_images(
+            dir,
+            &base,
+            FrameImages { image: &frame.image, layers: &frame.layers, mask: &frame.mask },
+            &uv_map,
+            &cmp.flip_map,
+            technique.layers(),
+        )?;
         let set = ImageSet {
             angle,
             label: format!("{} (GPU)", label(technique, Kernel::Scalar)),

@@ -5,17 +5,16 @@ use super::gpu_side::{self, time_gpu, time_interleaved, GpuAnalysis, GpuTimes};
 use super::gpu_tables::gpu_findings;
 use super::page::{write_report, GpuPart, ImageSet};
 use super::record::{label, slug, RecordBackend, ReliefRecord, ReliefSummary};
-use super::uv_error::{mean_and_p95, uv_error_map};
+use super::uv_error::{mean_and_p95, uv_error_map, write_frame_images, FrameImages};
 use super::verdicts::{findings, headline};
 use crate::fixtures::{benchmark_camera, benchmark_scene};
-use crate::heatmap::{heat_image, with_legend};
 use crate::lab::Progress;
 use crate::metrics::compare;
 use crate::results::{write_csv, write_json};
 use crate::timing::{measure, Timing};
 use glam::Vec2;
 use rayon::prelude::*;
-use renderlab_core::io::{save_color, save_rgb8};
+use renderlab_core::io::save_color;
 use renderlab_core::{Camera, CoreError, Material, Scene};
 use renderlab_gpu::ReliefRenderer;
 use renderlab_raster::{rasterize, GBuffer};
@@ -295,17 +294,14 @@ impl Analysis<'_> {
         }
         let dir = self.img_dir;
         let base = format!("{}_{}", slug(t, kernel), angle);
-        save_color(dir.join(format!("{base}.png")), &frame.image)?;
-        let heat = with_legend(&heat_image(&uv_map, 4.0, Some(&frame.mask)), 4.0, "UV error (texels)");
-        save_rgb8(dir.join(format!("{base}_uverr.png")), &heat)?;
-        let flip = with_legend(&heat_image(&cmp.flip_map, 1.0, Some(&frame.mask)), 1.0, "FLIP");
-        save_rgb8(dir.join(format!("{base}_flip.png")), &flip)?;
-        if t.layers() > 0 {
-            let max = t.layers() as f32;
-            let l = frame.layers.map(|v| v as f32);
-            let heat = with_legend(&heat_image(&l, max, Some(&frame.mask)), max, "layers");
-            save_rgb8(dir.join(format!("{base}_layers.png")), &heat)?;
-        }
+        write_frame_images(
+            dir,
+            &base,
+            FrameImages { image: &frame.image, layers: &frame.layers, mask: &frame.mask },
+            &uv_map,
+            &cmp.flip_map,
+            t.layers(),
+        )?;
         let set = ImageSet { angle, label: label(t, kernel), base, has_layers: t.layers() > 0 };
         Ok((rec, Some(set), keep.then_some(frame)))
     }

@@ -37,3 +37,42 @@ pub fn mean_and_p95(errors: &Image<f32>, mask: &Image<bool>) -> (f64, f64) {
     let (_, p95, _) = v.select_nth_unstable_by(k, |a, b| a.total_cmp(b));
     (mean, *p95 as f64)
 }
+
+/// The parts of a rendered frame (CPU [`renderlab_relief::Frame`] or GPU
+/// [`renderlab_gpu::GpuFrame`]) that [`write_frame_images`] draws.
+pub(super) struct FrameImages<'a> {
+    /// Shaded image, linear.
+    pub image: &'a Image<glam::Vec3>,
+    /// Layers marched per pixel.
+    pub layers: &'a Image<u16>,
+    /// Covered pixels.
+    pub mask: &'a Image<bool>,
+}
+
+/// Writes one measured frame's images under `dir` as `BASE.png` (the frame), `BASE_uverr.png`
+/// (its UV error in texels), `BASE_flip.png` (its FLIP map) and, for a technique that marches
+/// `layers > 0` layers, `BASE_layers.png` (its per-pixel layer count). The CPU and the GPU
+/// records write the same set, so the page shows them alike.
+pub(super) fn write_frame_images(
+    dir: &std::path::Path,
+    base: &str,
+    frame: FrameImages<'_>,
+    uv_map: &Image<f32>,
+    flip_map: &Image<f32>,
+    layers: u32,
+) -> crate::error::Result<()> {
+    use crate::heatmap::{heat_image, with_legend};
+    use renderlab_core::io::{save_color, save_rgb8};
+    save_color(dir.join(format!("{base}.png")), frame.image)?;
+    let heat = with_legend(&heat_image(uv_map, 4.0, Some(frame.mask)), 4.0, "UV error (texels)");
+    save_rgb8(dir.join(format!("{base}_uverr.png")), &heat)?;
+    let flip = with_legend(&heat_image(flip_map, 1.0, Some(frame.mask)), 1.0, "FLIP");
+    save_rgb8(dir.join(format!("{base}_flip.png")), &flip)?;
+    if layers > 0 {
+        let max = layers as f32;
+        let l = frame.layers.map(|v| v as f32);
+        let heat = with_legend(&heat_image(&l, max, Some(frame.mask)), max, "layers");
+        save_rgb8(dir.join(format!("{base}_layers.png")), &heat)?;
+    }
+    Ok(())
+}
