@@ -143,6 +143,85 @@ pub fn rasterize_into(scene: &Scene, camera: &Camera, gbuffer: &mut GBuffer) -> 
     RasterStats { fragments: counts.fragments, covered: counts.covered, ..prepared.stats }
 }
 
+/// A frame set up (triangle setup, clipping, binning) for rasterizing one band of
+/// [`BAND_HEIGHT`] rows at a time, each row handed to the caller as soon as it is resolved:
+/// the streaming form of [`rasterize_into`] for a renderer that consumes a row while it is in
+/// cache instead of reading a whole G-buffer back from memory (the relief crate's fused frame).
+/// Bands are independent; a caller may run them in any order and on any threads.
+pub struct RowRaster {
+    prepared: Option<(Prepared, bin::Bins)>,
+    width: u32,
+    height: u32,
+    constants: FrameConstants,
+}
+
+/// One worker's buffers for [`RowRaster::band`] (a band's visibility buffer and one row of
+/// surface points), reused from band to band and frame to frame.
+#[derive(Default)]
+pub struct RowScratch {
+    vis: tile::Scratch,
+    row: Vec<Option<renderlab_core::SurfacePoint>>,
+}
+
+impl RowRaster {
+    /// Sets up `scene` as seen by `camera`.
+    ///
+    /// # Panics
+    ///
+    /// As [`rasterize`], if the camera's size exceeds renderlab's image limits.
+    pub fn new(scene: &Scene, camera: &Camera) -> Self {
+        let (width, height) = check_size(camera);
+        Self {
+            prepared: prepare_frame(scene, camera),
+            width,
+            height,
+            constants: FrameConstants {
+                eye: camera.position.as_dvec3(),
+                to_light: scene.light.to_light.normalize_or_zero(),
+            },
+        }
+    }
+
+    /// Frame width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Frame height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Number of bands: band `b` holds rows `b·BAND_HEIGHT ..` (at most [`BAND_HEIGHT`]).
+    pub fn band_count(&self) -> usize {
+        self.height.div_ceil(BAND_HEIGHT) as usize
+    }
+
+    /// Rasterizes band `band`, calling `f(y, row)` for each of its rows in order with the
+    /// row's surface points (`None` where no surface shows), exactly the pixels
+    /// [`rasterize`] gives. Returns the band's `fragments` and `covered` counts.
+    pub fn band(
+        &self,
+        band: usize,
+        scratch: &mut RowScratch,
+        mut f: impl FnMut(u32, &[Option<renderlab_core::SurfacePoint>]),
+    ) -> RasterStats {
+        let Some((prepared, bins)) = &self.prepared else {
+            // Nothing to draw (an empty viewport has no rows either).
+            let (y0, y1) = (band as u32 * BAND_HEIGHT, ((band as u32 + 1) * BAND_HEIGHT).min(self.height));
+            scratch.row.clear();
+            scratch.row.resize(self.width as usize, None);
+            for y in y0..y1 {
+                f(y, &scratch.row);
+            }
+            return RasterStats::default();
+        };
+        let frame = Frame { setups: &prepared.setups, tris: &prepared.tris, width: self.width, height: self.height };
+        let c = frame.render_rows(band, bins.band(band), &mut scratch.vis, &mut scratch.row, &self.constants, f);
+        RasterStats { fragments: c.fragments, covered: c.covered, ..RasterStats::default() }
+    }
+}
+
 /// The number of front-facing triangle fragments that cover each pixel before the depth
 /// test, row-major (`camera.width × camera.height` entries). It measures overdraw, and it
 /// checks the fill rule: a closed surface seen once gives exactly 1 everywhere it covers.

@@ -9,6 +9,12 @@ use crate::setup::TriangleSetup;
 use crate::triangle::RasterTriangle;
 use renderlab_core::SurfacePoint;
 
+/// Pixels in band `band` of `frame`.
+fn scratch_len(frame: &Frame, band: usize) -> usize {
+    let (y0, y1) = frame.rows(band);
+    (y1 - y0) as usize * frame.width as usize
+}
+
 /// Marks a pixel no triangle has reached.
 const NO_TRIANGLE: u32 = u32::MAX;
 
@@ -71,18 +77,12 @@ impl Frame<'_> {
         }
     }
 
-    /// Rasterizes band `band` into `out` (its rows of the G-buffer, every pixel written).
-    pub fn render(
-        &self,
-        band: usize,
-        bin: &[u32],
-        out: &mut [Option<SurfacePoint>],
-        scratch: &mut Scratch,
-        constants: &FrameConstants,
-    ) -> BandCounts {
+    /// Scan-converts band `band` into the scratch's visibility buffer; returns the fragment
+    /// count.
+    fn visibility(&self, band: usize, bin: &[u32], scratch: &mut Scratch) -> u64 {
         let w = self.width as usize;
-        let (y_start, _) = self.rows(band);
-        let n = out.len();
+        let (y_start, y_end) = self.rows(band);
+        let n = (y_end - y_start) as usize * w;
         scratch.depth.clear();
         scratch.depth.resize(n, 0.0);
         scratch.id.clear();
@@ -103,8 +103,58 @@ impl Frame<'_> {
                 }
             }
         });
+        fragments
+    }
+
+    /// Rasterizes band `band` one row at a time: after the band's visibility pass, each row
+    /// is resolved into `row` (one entry per pixel) and handed to `f(y, row)` while it is
+    /// still in cache. The same pixels as [`Frame::render`], without a whole G-buffer.
+    pub fn render_rows(
+        &self,
+        band: usize,
+        bin: &[u32],
+        scratch: &mut Scratch,
+        row: &mut Vec<Option<SurfacePoint>>,
+        constants: &FrameConstants,
+        mut f: impl FnMut(u32, &[Option<SurfacePoint>]),
+    ) -> BandCounts {
+        let w = self.width as usize;
+        let (y_start, _) = self.rows(band);
+        let fragments = self.visibility(band, bin, scratch);
+        row.clear();
+        row.resize(w, None);
         let mut covered = 0u64;
-        for (r, (out_row, id_row)) in out.chunks_exact_mut(w).zip(id.chunks_exact(w)).enumerate() {
+        for (r, id_row) in scratch.id.chunks_exact(w).enumerate() {
+            let y = y_start + r as u32;
+            for (x, (px, &i)) in row.iter_mut().zip(id_row).enumerate() {
+                *px = if i == NO_TRIANGLE {
+                    None
+                } else {
+                    let t = &self.tris[i as usize];
+                    resolve(&self.setups[t.setup as usize], x as u32, y, constants)
+                };
+                covered += px.is_some() as u64;
+            }
+            f(y, row);
+        }
+        BandCounts { fragments, covered }
+    }
+
+    /// Rasterizes band `band` into `out` (its rows of the G-buffer, every pixel written).
+    pub fn render(
+        &self,
+        band: usize,
+        bin: &[u32],
+        out: &mut [Option<SurfacePoint>],
+        scratch: &mut Scratch,
+        constants: &FrameConstants,
+    ) -> BandCounts {
+        let w = self.width as usize;
+        let (y_start, _) = self.rows(band);
+        debug_assert_eq!(out.len(), scratch_len(self, band));
+        let fragments = self.visibility(band, bin, scratch);
+        let mut covered = 0u64;
+        for (r, (out_row, id_row)) in out.chunks_exact_mut(w).zip(scratch.id.chunks_exact(w)).enumerate() {
             let y = y_start + r as u32;
             for (x, (px, &i)) in out_row.iter_mut().zip(id_row).enumerate() {
                 *px = if i == NO_TRIANGLE {

@@ -8,8 +8,12 @@ use renderlab_raster::{overdraw, rasterize_into, GBuffer, RasterStats};
 
 /// Every bit of a G-buffer, so that −0.0 vs 0.0 or NaN payloads would count as differences.
 fn bits(g: &GBuffer) -> Vec<u32> {
+    bits_of(g.pixels())
+}
+
+fn bits_of(pixels: &[Option<SurfacePoint>]) -> Vec<u32> {
     let mut out = Vec::new();
-    for p in g.pixels() {
+    for p in pixels {
         match p {
             None => out.push(u32::MAX),
             Some(SurfacePoint {
@@ -96,4 +100,37 @@ fn thesis_room_frame_is_consistent() {
         seen[p.object as usize] += 1;
     }
     assert!(seen.iter().all(|&n| n > 100), "{seen:?}");
+}
+
+/// Row by row through [`RowRaster`], bands in reverse order on one reused scratch: the same
+/// bits, rows and counts as the whole G-buffer.
+fn streamed(scene: &Scene, cam: &Camera) -> (Vec<u32>, u64) {
+    let r = renderlab_raster::RowRaster::new(scene, cam);
+    let (w, h) = (cam.width as usize, cam.height as usize);
+    let mut g = vec![None; w * h];
+    let mut scratch = renderlab_raster::RowScratch::default();
+    let mut covered = 0;
+    let mut seen = vec![false; h];
+    for band in (0..r.band_count()).rev() {
+        covered += r
+            .band(band, &mut scratch, |y, row| {
+                assert_eq!(row.len(), w);
+                assert!(!seen[y as usize], "row {y} twice");
+                seen[y as usize] = true;
+                g[y as usize * w..(y as usize + 1) * w].copy_from_slice(row);
+            })
+            .covered;
+    }
+    assert!(seen.iter().all(|&s| s), "every row once");
+    (bits_of(&g), covered)
+}
+
+#[test]
+fn streamed_rows_equal_the_whole_gbuffer() {
+    for (scene, cam) in [(room(), room_camera(301, 187)), (wall_scene(), wall_camera(70.0, 257, 161))] {
+        let whole = run_with_threads(1, &scene, &cam);
+        let (rows, covered) = streamed(&scene, &cam);
+        assert_eq!(rows, whole.0);
+        assert_eq!(covered, whole.1.covered);
+    }
 }
