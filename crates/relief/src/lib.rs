@@ -16,6 +16,7 @@
 
 pub mod cpu;
 pub mod error;
+pub mod fused;
 pub mod kernel;
 pub mod maps;
 pub mod march;

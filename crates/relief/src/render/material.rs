@@ -5,6 +5,7 @@ use crate::maps::complexity::{complexity_map, ComplexityParams};
 use crate::maps::cone::{ConeKind, ConeMap};
 use crate::maps::height::HeightField;
 use crate::maps::packed::PackedRelief;
+use crate::fused::Textures8;
 use crate::trace::ReliefInputs;
 use renderlab_core::{Image, Material};
 use renderlab_texture::{Texture, Wrap};
@@ -31,6 +32,8 @@ pub struct ReliefMaterial {
     pub cone: Option<ConeMap>,
     /// The depth field packed with the cone ratios (ratios 0 without a cone map).
     pub packed: PackedRelief,
+    /// Albedo and normals in the fused frame's 8-bit formats, rounded from the pyramids above.
+    pub textures8: Textures8,
 }
 
 impl ReliefMaterial {
@@ -46,10 +49,13 @@ impl ReliefMaterial {
         let height = HeightField::from_height(&m.height);
         let cone = cone_size.map(|size| ConeMap::build(&height, ConeKind::Relaxed, size));
         let packed = PackedRelief::build(&height, cone.as_ref());
+        let albedo = Texture::from_rgb(&m.albedo, Wrap::Repeat);
+        let normal = Texture::from_rgb(&m.normal, Wrap::Repeat);
         Self {
             name: m.name.clone(),
-            albedo: Texture::from_rgb(&m.albedo, Wrap::Repeat),
-            normal: Texture::from_rgb(&m.normal, Wrap::Repeat),
+            textures8: Textures8::new(&albedo, &normal),
+            albedo,
+            normal,
             complexity: complexity_map(&m.height, params),
             height,
             height_scale: m.height_scale,

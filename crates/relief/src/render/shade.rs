@@ -153,18 +153,19 @@ fn shade_point<C: Counter>(
 
 /// Reusable per-thread buffers for tracing one row.
 #[derive(Default)]
-struct RowScratch {
+pub(crate) struct RowScratch {
     rays: Vec<(Vec2, Vec3)>,
     bases: Vec<Vec2>,
     materials: Vec<usize>,
-    hits: Vec<ReliefHit>,
+    /// The row's hits, one per covered pixel in pixel order.
+    pub(crate) hits: Vec<ReliefHit>,
 }
 
 /// Traces every covered pixel of `row`, leaving one hit per covered pixel (in pixel order) in
 /// `scratch.hits`. Each ray starts from its UV moved into the first tile (the height field
 /// repeats, so the hit is the same and texel addressing stays in its fast range); runs of
 /// pixels with one material go to [`ReliefTechnique::trace_row`] together.
-fn trace_points<T: ReliefTechnique, C: Counter>(
+pub(crate) fn trace_points<T: ReliefTechnique, C: Counter>(
     t: &T,
     materials: &[ReliefMaterial],
     row: &[Option<SurfacePoint>],

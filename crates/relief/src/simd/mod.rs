@@ -92,3 +92,22 @@ pub fn pom_twin_row<C: Counter>(
     }
     pom.scalar_row(inp, map, rays, out, counter)
 }
+
+/// Shades eight pixels with the fused frame's vector kernel; `false` (and nothing written)
+/// where the CPU lacks AVX2, so the caller runs [`crate::fused::lanes::shade_scalar`] (the
+/// pixels are bit-identical).
+#[inline]
+pub fn shade_lanes(
+    p: &crate::fused::lanes::ShadeLanes,
+    k: &crate::fused::lanes::ShadeConsts,
+    out: &mut [u32; crate::fused::lanes::LANES],
+) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if crate::cpu::has_avx2() {
+        // SAFETY: the CPU supports AVX2; the textures come from `Texture8::from_texture`.
+        unsafe { avx2::shade::shade(p, k, out) };
+        return true;
+    }
+    let _ = (p, k, out);
+    false
+}

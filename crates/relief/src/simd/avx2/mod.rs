@@ -5,6 +5,7 @@
 pub(crate) mod cone_newton;
 pub(crate) mod gather;
 pub(crate) mod pom;
+pub(crate) mod shade;
 
 /// Rays in one vector.
 pub const LANES: usize = 8;

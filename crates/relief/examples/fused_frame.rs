@@ -1,0 +1,71 @@
+//! Times the fused frame against the float renderer's pass on the relief benchmark's frame
+//! (1280×800, bricks 1024², 6 units from the wall, as the lab), median of 15 frames each:
+//! `cargo run --release -p renderlab-relief --example fused_frame -- [technique…]`.
+
+use renderlab_core::scene::{bricks_wall, BRICKS_WALL_CENTRE};
+use renderlab_core::{Camera, Scene, SceneObject};
+use renderlab_relief::fused::{render_fused, FusedFrame};
+use renderlab_relief::maps::complexity::ComplexityParams;
+use renderlab_relief::render::render_into;
+use renderlab_relief::{Frame, FrameInput, KernelChoice, ReliefMaterial, Technique};
+use std::time::Instant;
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn time(mut f: impl FnMut()) -> f64 {
+    f();
+    median(
+        (0..15)
+            .map(|_| {
+                let t = Instant::now();
+                f();
+                t.elapsed().as_secs_f64() * 1e3
+            })
+            .collect(),
+    )
+}
+
+fn main() {
+    let names: Vec<String> = std::env::args().skip(1).collect();
+    let names = if names.is_empty() { vec!["basic".into(), "pom:32".into(), "cone-newton".into()] } else { names };
+    let m = renderlab_texture::materials::material("bricks", 1024).expect("built-in material");
+    let cones = names.iter().any(|n| n.contains("cone"));
+    let mats = [ReliefMaterial::new(&m, &ComplexityParams::default(), cones)];
+    let scene = Scene::new(vec![SceneObject { name: "wall2".into(), mesh: bricks_wall(), material: 0 }], vec![m]);
+    if let Ok(n) = std::env::var("FUSED_ONLY") {
+        // For profilers: only the fused frame, `n` times.
+        let cam = Camera::orbit(BRICKS_WALL_CENTRE, 6.0, 0.0, 1280, 800);
+        let t = Technique::parse(&names[0]).expect("technique");
+        let k = t.kernel(KernelChoice::Auto).expect("kernel");
+        let mut fused = FusedFrame::default();
+        for _ in 0..n.parse::<u32>().unwrap_or(50) {
+            render_fused(&scene, &cam, &mats, t, k, true, &mut fused).expect("renders");
+        }
+        return;
+    }
+    for angle in [0.0, 60.0] {
+        let cam = Camera::orbit(BRICKS_WALL_CENTRE, 6.0, angle, 1280, 800);
+        let g = renderlab_raster::rasterize(&scene, &cam);
+        let input = FrameInput { width: 1280, height: 800, points: g.pixels() };
+        let raster = time(|| {
+            std::hint::black_box(renderlab_raster::rasterize(&scene, &cam));
+        });
+        for name in &names {
+            let t = Technique::parse(name).expect("technique");
+            let k = t.kernel(KernelChoice::Auto).expect("kernel");
+            let mut frame = Frame::blank(1280, 800, scene.background);
+            let float = time(|| {
+                render_into(input, &mats, t, k, scene.lighting, scene.background, false, &mut frame).expect("renders")
+            });
+            let mut fused = FusedFrame::default();
+            let vector = time(|| render_fused(&scene, &cam, &mats, t, k, true, &mut fused).expect("renders"));
+            let scalar = time(|| render_fused(&scene, &cam, &mats, t, k, false, &mut fused).expect("renders"));
+            println!(
+                "{angle:>3}° {name:<14} raster {raster:6.1} ms | float pass (G-buffer given) {float:6.1} ms | fused whole frame: vector {vector:6.1} ms, scalar shading {scalar:6.1} ms"
+            );
+        }
+    }
+}

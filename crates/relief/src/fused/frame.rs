@@ -1,0 +1,376 @@
+//! The fused frame's driver: bands of rows in parallel, each row rasterized, traced, shaded
+//! and encoded while it is in cache ([`render_fused`]); the same pass with per-pixel records
+//! for the lab ([`render_fused_records`]).
+
+use super::lanes::{shade_scalar, ShadeConsts, ShadeLanes, LANES};
+use super::texture8::{Encoding, Texture8};
+use crate::error::ReliefError;
+use crate::kernel::Kernel;
+use crate::march::exact::exact_shadowed;
+use crate::render::material::ReliefMaterial;
+use crate::render::shade::{trace_points, RowScratch as TraceScratch, ShadeOptions, ShadowMode};
+use crate::render::shadow::soft_shadow;
+use crate::render::{check, options};
+use crate::techniques::descriptor::WithTracer;
+use crate::techniques::Technique;
+use crate::trace::{ReliefHit, ReliefTechnique, Shading};
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+use renderlab_core::color::{encode_srgb8, srgb8_encode_table, srgb8_to_linear_table};
+use renderlab_core::counter::{Counter, NoCount, Tally};
+use renderlab_core::{Camera, Image, Scene, SurfacePoint};
+use renderlab_raster::{RowRaster, RowScratch, BAND_HEIGHT};
+
+/// A material's textures in the fused frame's 8-bit formats.
+#[derive(Clone, Debug)]
+pub struct Textures8 {
+    /// Albedo, sRGB-encoded (`rgba8unorm-srgb`).
+    pub albedo: Texture8,
+    /// Tangent-space normals, unorm-encoded (`rgba8unorm`).
+    pub normal: Texture8,
+}
+
+impl Textures8 {
+    /// Rounds `albedo` (linear colour) and `normal` (signed) pyramids to 8 bits.
+    pub fn new(albedo: &renderlab_texture::Texture, normal: &renderlab_texture::Texture) -> Self {
+        Self {
+            albedo: Texture8::from_texture(albedo, Encoding::Srgb),
+            normal: Texture8::from_texture(normal, Encoding::SignedUnorm),
+        }
+    }
+}
+
+/// A frame as a user sees it: 8-bit sRGB RGBA pixels, red in the low byte, row-major.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct FusedFrame {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// `width × height` pixels.
+    pub pixels: Vec<u32>,
+}
+
+impl FusedFrame {
+    /// A black frame of `width × height`.
+    pub fn new(width: u32, height: u32) -> Self {
+        Self { width, height, pixels: vec![0xff00_0000; width as usize * height as usize] }
+    }
+
+    /// The frame in linear light (each code decoded exactly), for the lab's metrics.
+    pub fn to_linear(&self) -> Image<Vec3> {
+        let t = srgb8_to_linear_table();
+        let px = |p: u32| Vec3::new(t[(p & 0xff) as usize], t[(p >> 8 & 0xff) as usize], t[(p >> 16 & 0xff) as usize]);
+        Image::from_fn(self.width, self.height, |x, y| px(self.pixels[(y * self.width + x) as usize]))
+    }
+}
+
+/// What the lab reads besides the image, per pixel (filled only by
+/// [`render_fused_records`], never on the timed path).
+#[derive(Clone, Debug, Default)]
+pub struct FusedRecords {
+    /// Displaced UV (zero on background).
+    pub uv: Vec<Vec2>,
+    /// Depth of the hit.
+    pub depth: Vec<f32>,
+    /// Planned layer count.
+    pub layers: Vec<u16>,
+    /// Pixels showing a surface.
+    pub mask: Vec<bool>,
+    /// Height fetches of the whole frame (trace and shadows).
+    pub fetches: u64,
+}
+
+impl FusedRecords {
+    fn with_len(n: usize) -> Self {
+        Self { uv: vec![Vec2::ZERO; n], depth: vec![0.0; n], layers: vec![0; n], mask: vec![false; n], fetches: 0 }
+    }
+}
+
+/// One band's slices of the records.
+struct BandRecords<'a> {
+    uv: &'a mut [Vec2],
+    depth: &'a mut [f32],
+    layers: &'a mut [u16],
+    mask: &'a mut [bool],
+}
+
+/// One worker's buffers, reused from band to band.
+#[derive(Default)]
+struct Worker {
+    raster: RowScratch,
+    trace: TraceScratch,
+    lanes: ShadeLanes,
+    xs: [usize; LANES],
+}
+
+/// What every band of a frame shares.
+struct Pass<'a, T> {
+    raster: &'a RowRaster,
+    materials: &'a [ReliefMaterial],
+    consts: Vec<ShadeConsts<'a>>,
+    t: &'a T,
+    opt: ShadeOptions,
+    vector: bool,
+    background: u32,
+}
+
+/// `opt.background` as the frame's pixel.
+fn background_pixel(c: Vec3) -> u32 {
+    let t = srgb8_encode_table();
+    let [r, g, b] = [c.x, c.y, c.z].map(|v| encode_srgb8(v, t) as u32);
+    r | g << 8 | b << 16 | 0xff00_0000
+}
+
+impl<'a, T: ReliefTechnique> Pass<'a, T> {
+    fn new(raster: &'a RowRaster, scene: &Scene, materials: &'a [ReliefMaterial], t: &'a T, opt: ShadeOptions, vector: bool) -> Self {
+        let (decode, encode) = (srgb8_to_linear_table(), srgb8_encode_table());
+        let consts = materials
+            .iter()
+            .map(|m| ShadeConsts {
+                albedo: &m.textures8.albedo,
+                normal: &m.textures8.normal,
+                shading: opt.shading,
+                ambient: scene.lighting.ambient,
+                exponent: scene.lighting.specular_exponent,
+                strength: scene.lighting.specular_strength,
+                decode,
+                encode,
+            })
+            .collect();
+        let vector = vector && crate::cpu::has_avx2();
+        Self { raster, materials, consts, t, opt, vector, background: background_pixel(opt.background) }
+    }
+
+    /// Shades lanes `0..n` of `w.lanes` with material `m` into `row` at `w.xs`.
+    #[inline]
+    fn flush(&self, w: &mut Worker, n: usize, m: usize, row: &mut [u32]) {
+        w.lanes.pad(n);
+        let mut px = [0u32; LANES];
+        if !(self.vector && crate::simd::shade_lanes(&w.lanes, &self.consts[m], &mut px)) {
+            shade_scalar(&w.lanes, &self.consts[m], &mut px);
+        }
+        for (&x, &p) in w.xs[..n].iter().zip(&px) {
+            row[x] = p;
+        }
+    }
+
+    /// The light reaching the hit (1 unless the technique self-shadows).
+    #[inline]
+    fn shadow<C: Counter>(&self, hit: &ReliefHit, sp: &SurfacePoint, mat: &ReliefMaterial, counter: &mut C) -> f32 {
+        match (self.opt.shading, self.opt.shadow) {
+            (Shading::LitShadowed, ShadowMode::Soft(samples)) => {
+                soft_shadow(&mat.height, mat.height_scale, hit.uv, hit.depth, sp.light_ts, samples, counter)
+            }
+            (Shading::LitShadowed, ShadowMode::Exact) => {
+                if exact_shadowed(&mat.height, mat.height_scale, hit.uv, hit.depth, sp.light_ts) {
+                    0.0
+                } else {
+                    1.0
+                }
+            }
+            _ => 1.0,
+        }
+    }
+
+    /// Rasterizes, traces, shades and encodes band `band` into `out` (its rows), filling
+    /// `records` when given.
+    fn band<C: Counter>(
+        &self,
+        band: usize,
+        out: &mut [u32],
+        mut records: Option<BandRecords>,
+        worker: &mut Worker,
+        counter: &mut C,
+    ) {
+        let w = self.raster.width() as usize;
+        let y0 = band * BAND_HEIGHT as usize;
+        let mut raster = std::mem::take(&mut worker.raster);
+        let last = self.materials.len() - 1;
+        self.raster.band(band, &mut raster, |y, row| {
+            let r = (y as usize - y0) * w;
+            let out_row = &mut out[r..r + w];
+            out_row.fill(self.background);
+            trace_points(self.t, self.materials, row, &mut worker.trace, counter);
+            let hits = std::mem::take(&mut worker.trace.hits);
+            let (mut n, mut cur) = (0, 0);
+            let covered = row.iter().enumerate().filter_map(|(x, p)| p.as_ref().map(|sp| (x, sp)));
+            for ((x, sp), hit) in covered.zip(&hits) {
+                let m = (sp.material as usize).min(last);
+                if n == LANES || (n > 0 && m != cur) {
+                    self.flush(worker, n, cur, out_row);
+                    n = 0;
+                }
+                cur = m;
+                let shadow = self.shadow(hit, sp, &self.materials[m], counter);
+                worker.lanes.set(n, hit, sp, shadow);
+                worker.xs[n] = x;
+                n += 1;
+                if let Some(rec) = records.as_mut() {
+                    rec.uv[r + x] = hit.uv;
+                    rec.depth[r + x] = hit.depth;
+                    rec.layers[r + x] = hit.layers.min(u16::MAX as u32) as u16;
+                    rec.mask[r + x] = true;
+                }
+            }
+            if n > 0 {
+                self.flush(worker, n, cur, out_row);
+            }
+            worker.trace.hits = hits;
+        });
+        worker.raster = raster;
+    }
+}
+
+impl ShadeLanes {
+    /// Lane `i` from a traced pixel.
+    #[inline]
+    fn set(&mut self, i: usize, hit: &ReliefHit, sp: &SurfacePoint, shadow: f32) {
+        self.u[i] = hit.uv.x;
+        self.v[i] = hit.uv.y;
+        self.dudx[i] = sp.duv_dx.x;
+        self.dvdx[i] = sp.duv_dx.y;
+        self.dudy[i] = sp.duv_dy.x;
+        self.dvdy[i] = sp.duv_dy.y;
+        self.lx[i] = sp.light_ts.x;
+        self.ly[i] = sp.light_ts.y;
+        self.lz[i] = sp.light_ts.z;
+        self.vx[i] = sp.view_ts.x;
+        self.vy[i] = sp.view_ts.y;
+        self.vz[i] = sp.view_ts.z;
+        self.shadow[i] = shadow;
+    }
+
+    /// Fills lanes `n..` with lane `n − 1` (a partial group computes valid values there,
+    /// which are not written out).
+    #[inline]
+    fn pad(&mut self, n: usize) {
+        for a in [
+            &mut self.u,
+            &mut self.v,
+            &mut self.dudx,
+            &mut self.dvdx,
+            &mut self.dudy,
+            &mut self.dvdy,
+            &mut self.lx,
+            &mut self.ly,
+            &mut self.lz,
+            &mut self.vx,
+            &mut self.vy,
+            &mut self.vz,
+            &mut self.shadow,
+        ] {
+            let last = a[n - 1];
+            a[n..].fill(last);
+        }
+    }
+}
+
+/// Runs `f` with `technique`'s tracer on `kernel` (checked against the materials first).
+fn with_technique<R>(
+    technique: Technique,
+    kernel: Kernel,
+    materials: &[ReliefMaterial],
+    f: impl WithTracer<Output = R>,
+) -> Result<R, ReliefError> {
+    check(technique, kernel, materials)?;
+    Ok(technique.with_tracer(kernel, f))
+}
+
+/// Renders the whole frame of `technique` (its trace on `kernel`) for `scene` seen by
+/// `camera` into `frame` (resized when its size differs): rasterization, trace, shading and
+/// encoding in one pass, bands in parallel. `vector` picks the AVX2 shading kernel where the
+/// CPU has it (the pixels are the same without it). The result does not depend on the
+/// thread count. `scene.materials[i]` is drawn with `materials[i]`.
+///
+/// # Panics
+///
+/// If `materials` is empty or the camera's size exceeds renderlab's image limits.
+pub fn render_fused(
+    scene: &Scene,
+    camera: &Camera,
+    materials: &[ReliefMaterial],
+    technique: Technique,
+    kernel: Kernel,
+    vector: bool,
+    frame: &mut FusedFrame,
+) -> Result<(), ReliefError> {
+    struct Run<'a> {
+        scene: &'a Scene,
+        camera: &'a Camera,
+        materials: &'a [ReliefMaterial],
+        opt: ShadeOptions,
+        vector: bool,
+        frame: &'a mut FusedFrame,
+    }
+    impl WithTracer for Run<'_> {
+        type Output = ();
+        fn run<T: ReliefTechnique>(self, t: &T) {
+            let raster = RowRaster::new(self.scene, self.camera);
+            let (w, h) = (raster.width(), raster.height());
+            if (self.frame.width, self.frame.height) != (w, h) {
+                *self.frame = FusedFrame::new(w, h);
+            }
+            let pass = Pass::new(&raster, self.scene, self.materials, t, self.opt, self.vector);
+            let band_len = (w * BAND_HEIGHT) as usize;
+            if band_len == 0 {
+                return;
+            }
+            self.frame.pixels.par_chunks_mut(band_len).enumerate().for_each_init(Worker::default, |worker, (b, out)| {
+                pass.band(b, out, None, worker, &mut NoCount)
+            });
+        }
+    }
+    let opt = options(technique, scene.lighting, scene.background);
+    with_technique(technique, kernel, materials, Run { scene, camera, materials, opt, vector, frame })
+}
+
+/// [`render_fused`] with the lab's per-pixel records and fetch count (a separate, untimed
+/// run): the same pixels.
+pub fn render_fused_records(
+    scene: &Scene,
+    camera: &Camera,
+    materials: &[ReliefMaterial],
+    technique: Technique,
+    kernel: Kernel,
+    vector: bool,
+) -> Result<(FusedFrame, FusedRecords), ReliefError> {
+    struct Run<'a> {
+        scene: &'a Scene,
+        camera: &'a Camera,
+        materials: &'a [ReliefMaterial],
+        opt: ShadeOptions,
+        vector: bool,
+    }
+    impl WithTracer for Run<'_> {
+        type Output = (FusedFrame, FusedRecords);
+        fn run<T: ReliefTechnique>(self, t: &T) -> Self::Output {
+            let raster = RowRaster::new(self.scene, self.camera);
+            let (w, h) = (raster.width(), raster.height());
+            let mut frame = FusedFrame::new(w, h);
+            let mut rec = FusedRecords::with_len(frame.pixels.len());
+            let pass = Pass::new(&raster, self.scene, self.materials, t, self.opt, self.vector);
+            let band_len = (w * BAND_HEIGHT) as usize;
+            if band_len == 0 {
+                return (frame, rec);
+            }
+            rec.fetches = frame
+                .pixels
+                .par_chunks_mut(band_len)
+                .zip(rec.uv.par_chunks_mut(band_len))
+                .zip(rec.depth.par_chunks_mut(band_len))
+                .zip(rec.layers.par_chunks_mut(band_len))
+                .zip(rec.mask.par_chunks_mut(band_len))
+                .enumerate()
+                .map_init(Worker::default, |worker, (b, ((((out, uv), depth), layers), mask))| {
+                    let mut tally = Tally::default();
+                    pass.band(b, out, Some(BandRecords { uv, depth, layers, mask }), worker, &mut tally);
+                    tally.0
+                })
+                .sum();
+            (frame, rec)
+        }
+    }
+    let opt = options(technique, scene.lighting, scene.background);
+    with_technique(technique, kernel, materials, Run { scene, camera, materials, opt, vector })
+}

@@ -1,0 +1,153 @@
+//! Textures as a GPU stores them: 8 bits per channel, RGBA in one `u32` (red in the low
+//! byte), every mip level in one allocation, with the per-level sizes and offsets in small
+//! tables that a vector kernel indexes per lane. Albedo is stored sRGB-encoded and decoded
+//! per texel before filtering (an `rgba8unorm-srgb` texture); normals are stored as
+//! `(n + 1) / 2` in unorm (an `rgba8unorm` texture) and filtered as stored.
+//!
+//! The levels are the float pyramid's own levels, rounded: the 8-bit path differs from the
+//! float one only by that rounding (and the per-texel decode), which the relief lab
+//! measures as the PSNR between the two frames.
+
+use glam::Vec4;
+use renderlab_core::color::linear_to_srgb;
+use renderlab_texture::Texture;
+
+/// Most levels a [`Texture8`] holds: a 16,384-texel side (renderlab's image limit) has 15.
+pub const MAX_LEVELS: usize = 16;
+
+/// How a texture's channels are encoded in their 8 bits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Encoding {
+    /// sRGB-encoded colour, decoded to linear light per texel before filtering.
+    Srgb,
+    /// Signed values in [−1, 1] stored as `(v + 1) / 2` in unorm, filtered as stored.
+    SignedUnorm,
+}
+
+/// An 8-bit RGBA texture with its mip pyramid (repeat wrap).
+#[derive(Clone, Debug)]
+pub struct Texture8 {
+    texels: Vec<u32>,
+    encoding: Encoding,
+    levels: usize,
+    /// Start of each level in `texels` (the last real level repeated to [`MAX_LEVELS`]).
+    pub(crate) offsets: [i32; MAX_LEVELS],
+    /// Width of each level, as an integer and as a float.
+    pub(crate) widths: [i32; MAX_LEVELS],
+    /// Height of each level.
+    pub(crate) heights: [i32; MAX_LEVELS],
+    /// Width of each level as `f32`.
+    pub(crate) widths_f: [f32; MAX_LEVELS],
+    /// Height of each level as `f32`.
+    pub(crate) heights_f: [f32; MAX_LEVELS],
+}
+
+/// One channel value in [0, 1] (sRGB-encoded or unorm) rounded to its 8-bit code.
+#[inline]
+fn code(v: f32) -> u32 {
+    let v = if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
+    (v * 255.0 + 0.5) as u32
+}
+
+impl Texture8 {
+    /// Rounds every level of `tex` to 8 bits with `encoding`. The float texture's levels hold
+    /// linear colour ([`Encoding::Srgb`]) or signed values ([`Encoding::SignedUnorm`]);
+    /// alpha is stored as 255. At most [`MAX_LEVELS`] levels are kept (the image limits
+    /// allow no more).
+    pub fn from_texture(tex: &Texture, encoding: Encoding) -> Self {
+        let levels = tex.level_count().min(MAX_LEVELS);
+        let enc = |v: f32| match encoding {
+            Encoding::Srgb => code(linear_to_srgb(v)),
+            Encoding::SignedUnorm => code(v * 0.5 + 0.5),
+        };
+        let pack = |c: Vec4| enc(c.x) | enc(c.y) << 8 | enc(c.z) << 16 | 0xff00_0000;
+        let mut out = Self {
+            texels: Vec::new(),
+            encoding,
+            levels,
+            offsets: [0; MAX_LEVELS],
+            widths: [1; MAX_LEVELS],
+            heights: [1; MAX_LEVELS],
+            widths_f: [1.0; MAX_LEVELS],
+            heights_f: [1.0; MAX_LEVELS],
+        };
+        for k in 0..MAX_LEVELS {
+            let level = k.min(levels - 1);
+            let img = tex.level(level);
+            let (w, h) = img.size();
+            if k == level {
+                out.offsets[k] = out.texels.len() as i32;
+                out.texels.extend(img.pixels().iter().map(|&c| pack(c)));
+            } else {
+                out.offsets[k] = out.offsets[level];
+            }
+            out.widths[k] = w as i32;
+            out.heights[k] = h as i32;
+            out.widths_f[k] = w as f32;
+            out.heights_f[k] = h as f32;
+        }
+        out
+    }
+
+    /// Every level's texels, level 0 first.
+    pub fn texels(&self) -> &[u32] {
+        &self.texels
+    }
+
+    /// Number of mip levels.
+    pub fn level_count(&self) -> usize {
+        self.levels
+    }
+
+    /// Level 0's size in texels.
+    pub fn size(&self) -> (u32, u32) {
+        (self.widths[0] as u32, self.heights[0] as u32)
+    }
+
+    /// How the channels are encoded.
+    pub fn encoding(&self) -> Encoding {
+        self.encoding
+    }
+
+    /// Bytes of texel storage (a quarter of the float pyramid's).
+    pub fn bytes(&self) -> usize {
+        self.texels.len() * 4
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use renderlab_core::Image;
+    use renderlab_texture::Wrap;
+
+    #[test]
+    fn levels_and_tables_follow_the_float_pyramid() {
+        let img = Image::from_fn(37, 10, |x, y| glam::Vec3::new(x as f32 / 36.0, y as f32 / 9.0, 0.5));
+        let tex = Texture::from_rgb(&img, Wrap::Repeat);
+        let t8 = Texture8::from_texture(&tex, Encoding::Srgb);
+        assert_eq!(t8.level_count(), tex.level_count());
+        let mut offset = 0;
+        for k in 0..t8.level_count() {
+            let (w, h) = tex.level(k).size();
+            assert_eq!((t8.widths[k], t8.heights[k]), (w as i32, h as i32));
+            assert_eq!(t8.offsets[k], offset);
+            offset += (w * h) as i32;
+        }
+        assert_eq!(t8.texels().len(), offset as usize);
+        // Levels past the last repeat it, so a lane's clamped level index stays valid.
+        let last = t8.level_count() - 1;
+        assert_eq!(t8.offsets[MAX_LEVELS - 1], t8.offsets[last]);
+        // Codes: linear 0.5 is sRGB 0.7354 → 188; alpha 255.
+        assert_eq!(t8.texels()[0] >> 16 & 0xff, 188);
+        assert_eq!(t8.texels()[0] >> 24, 255);
+    }
+
+    #[test]
+    fn signed_values_map_to_unorm() {
+        let img = Image::from_fn(2, 1, |x, _| if x == 0 { glam::Vec3::new(-1.0, 0.0, 1.0) } else { glam::Vec3::NAN });
+        let t8 = Texture8::from_texture(&Texture::from_rgb(&img, Wrap::Repeat), Encoding::SignedUnorm);
+        assert_eq!(t8.texels()[0] & 0xff_ffff, 128 << 8 | 255 << 16);
+        assert_eq!(t8.texels()[1] & 0xff_ffff, 0, "NaN stores as 0, not garbage");
+    }
+}

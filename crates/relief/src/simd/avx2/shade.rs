@@ -1,0 +1,240 @@
+//! The vector twin of the fused frame's shading kernel ([`crate::fused::lanes`]): eight
+//! pixels per call in AVX2 lanes, texels fetched by gathers, every arithmetic step in the
+//! scalar twin's order (no fused multiply-add), so that the pixels are bit-identical to
+//! [`crate::fused::lanes::shade_scalar`]'s.
+
+use crate::fused::lanes::{ShadeConsts, ShadeLanes, LANES};
+use crate::fused::texture8::{Encoding, Texture8};
+use crate::trace::Shading;
+use renderlab_core::color::{ENCODE_MAX_BITS, ENCODE_MIN_BITS};
+use std::arch::x86_64::*;
+
+type V = __m256;
+type I = __m256i;
+
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn splat(x: f32) -> V {
+    _mm256_set1_ps(x)
+}
+
+/// Non-finite → 0, else clamped to ±10⁷.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn sanitize(v: V) -> V {
+    let finite = _mm256_cmp_ps::<_CMP_EQ_OQ>(_mm256_sub_ps(v, v), _mm256_setzero_ps());
+    let c = _mm256_min_ps(_mm256_max_ps(v, splat(-1.0e7)), splat(1.0e7));
+    _mm256_and_ps(c, finite)
+}
+
+/// `x - x == 0`: the lanes holding finite values.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn finite(x: V) -> V {
+    _mm256_cmp_ps::<_CMP_EQ_OQ>(_mm256_sub_ps(x, x), _mm256_setzero_ps())
+}
+
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn log2(x: V) -> V {
+    let bits = _mm256_castps_si256(x);
+    let e = _mm256_sub_epi32(
+        _mm256_and_si256(_mm256_srli_epi32::<23>(bits), _mm256_set1_epi32(0xff)),
+        _mm256_set1_epi32(127),
+    );
+    let m = _mm256_castsi256_ps(_mm256_or_si256(
+        _mm256_and_si256(bits, _mm256_set1_epi32(0x007f_ffff)),
+        _mm256_set1_epi32(0x3f80_0000),
+    ));
+    let big = _mm256_cmp_ps::<_CMP_GT_OQ>(m, splat(std::f32::consts::SQRT_2));
+    let m = _mm256_blendv_ps(m, _mm256_mul_ps(m, splat(0.5)), big);
+    let e = _mm256_sub_epi32(e, _mm256_castps_si256(big));
+    let one = splat(1.0);
+    let t = _mm256_div_ps(_mm256_sub_ps(m, one), _mm256_add_ps(m, one));
+    let t2 = _mm256_mul_ps(t, t);
+    let p = _mm256_add_ps(_mm256_mul_ps(t2, splat(1.0 / 7.0)), splat(1.0 / 5.0));
+    let p = _mm256_add_ps(_mm256_mul_ps(p, t2), splat(1.0 / 3.0));
+    let p = _mm256_add_ps(_mm256_mul_ps(p, t2), one);
+    let two_over_ln2 = std::f32::consts::LOG2_E * 2.0;
+    _mm256_add_ps(_mm256_cvtepi32_ps(e), _mm256_mul_ps(_mm256_mul_ps(p, t), splat(two_over_ln2)))
+}
+
+/// Level of detail in `tex` of the footprints `d` (∂u/∂x, ∂v/∂x, ∂u/∂y, ∂v/∂y).
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn lod(d: &[V; 4], tex: &Texture8) -> V {
+    let top = splat((tex.level_count() - 1) as f32);
+    let (w, h) = (splat(tex.widths_f[0]), splat(tex.heights_f[0]));
+    let (ax, ay) = (_mm256_mul_ps(d[0], w), _mm256_mul_ps(d[1], h));
+    let (bx, by) = (_mm256_mul_ps(d[2], w), _mm256_mul_ps(d[3], h));
+    let a = _mm256_add_ps(_mm256_mul_ps(ax, ax), _mm256_mul_ps(ay, ay));
+    let b = _mm256_add_ps(_mm256_mul_ps(bx, bx), _mm256_mul_ps(by, by));
+    let ok = _mm256_and_ps(finite(a), finite(b));
+    let rho2 = _mm256_max_ps(_mm256_max_ps(a, b), splat(1e-30));
+    let l = _mm256_min_ps(_mm256_max_ps(_mm256_mul_ps(splat(0.5), log2(rho2)), _mm256_setzero_ps()), top);
+    _mm256_blendv_ps(top, l, ok)
+}
+
+/// Bilinear RGB of level `k` (per lane) at `(u, v)`.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn bilinear(tex: &Texture8, k: I, u: V, v: V, decode: &[f32; 256]) -> [V; 3] {
+    let w = _mm256_i32gather_epi32::<4>(tex.widths.as_ptr(), k);
+    let h = _mm256_i32gather_epi32::<4>(tex.heights.as_ptr(), k);
+    let wf = _mm256_i32gather_ps::<4>(tex.widths_f.as_ptr(), k);
+    let hf = _mm256_i32gather_ps::<4>(tex.heights_f.as_ptr(), k);
+    let off = _mm256_i32gather_epi32::<4>(tex.offsets.as_ptr(), k);
+    let half = splat(0.5);
+    let x = _mm256_sub_ps(_mm256_mul_ps(_mm256_sub_ps(u, _mm256_floor_ps(u)), wf), half);
+    let y = _mm256_sub_ps(_mm256_mul_ps(_mm256_sub_ps(v, _mm256_floor_ps(v)), hf), half);
+    let (xf, yf) = (_mm256_floor_ps(x), _mm256_floor_ps(y));
+    let (xi, yi) = (_mm256_cvttps_epi32(xf), _mm256_cvttps_epi32(yf));
+    let zero = _mm256_setzero_si256();
+    let one = _mm256_set1_epi32(1);
+    let (wm1, hm1) = (_mm256_sub_epi32(w, one), _mm256_sub_epi32(h, one));
+    let x0 = _mm256_blendv_epi8(xi, wm1, _mm256_cmpgt_epi32(zero, xi));
+    let y0 = _mm256_blendv_epi8(yi, hm1, _mm256_cmpgt_epi32(zero, yi));
+    let (x1, y1) = (_mm256_add_epi32(xi, one), _mm256_add_epi32(yi, one));
+    let x1 = _mm256_andnot_si256(_mm256_cmpgt_epi32(x1, wm1), x1);
+    let y1 = _mm256_andnot_si256(_mm256_cmpgt_epi32(y1, hm1), y1);
+    let (r0, r1) = (_mm256_add_epi32(off, _mm256_mullo_epi32(y0, w)), _mm256_add_epi32(off, _mm256_mullo_epi32(y1, w)));
+    let base = tex.texels().as_ptr() as *const i32;
+    let px = [
+        _mm256_i32gather_epi32::<4>(base, _mm256_add_epi32(r0, x0)),
+        _mm256_i32gather_epi32::<4>(base, _mm256_add_epi32(r0, x1)),
+        _mm256_i32gather_epi32::<4>(base, _mm256_add_epi32(r1, x0)),
+        _mm256_i32gather_epi32::<4>(base, _mm256_add_epi32(r1, x1)),
+    ];
+    let (fx, fy) = (_mm256_sub_ps(x, xf), _mm256_sub_ps(y, yf));
+    let mask = _mm256_set1_epi32(0xff);
+    let enc = tex.encoding();
+    let channel = |p: I, shift: i32| -> V {
+        let code = _mm256_and_si256(_mm256_srlv_epi32(p, _mm256_set1_epi32(shift)), mask);
+        match enc {
+            Encoding::Srgb => _mm256_i32gather_ps::<4>(decode.as_ptr(), code),
+            Encoding::SignedUnorm => _mm256_cvtepi32_ps(code),
+        }
+    };
+    let mut out = [_mm256_setzero_ps(); 3];
+    for (c, o) in out.iter_mut().enumerate() {
+        let s = 8 * c as i32;
+        let (a, b, cc, d) = (channel(px[0], s), channel(px[1], s), channel(px[2], s), channel(px[3], s));
+        let top = _mm256_add_ps(a, _mm256_mul_ps(_mm256_sub_ps(b, a), fx));
+        let bottom = _mm256_add_ps(cc, _mm256_mul_ps(_mm256_sub_ps(d, cc), fx));
+        *o = _mm256_add_ps(top, _mm256_mul_ps(_mm256_sub_ps(bottom, top), fy));
+    }
+    out
+}
+
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn trilinear(tex: &Texture8, u: V, v: V, l: V, decode: &[f32; 256]) -> [V; 3] {
+    let lf = _mm256_floor_ps(l);
+    let t = _mm256_sub_ps(l, lf);
+    let k0 = _mm256_cvttps_epi32(lf);
+    let k1 = _mm256_min_epi32(
+        _mm256_add_epi32(k0, _mm256_set1_epi32(1)),
+        _mm256_set1_epi32(tex.level_count() as i32 - 1),
+    );
+    let s0 = bilinear(tex, k0, u, v, decode);
+    let s1 = bilinear(tex, k1, u, v, decode);
+    [0, 1, 2].map(|c| _mm256_add_ps(s0[c], _mm256_mul_ps(_mm256_sub_ps(s1[c], s0[c]), t)))
+}
+
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn dot(a: &[V; 3], b: &[V; 3]) -> V {
+    _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a[0], b[0]), _mm256_mul_ps(a[1], b[1])), _mm256_mul_ps(a[2], b[2]))
+}
+
+/// `v · (1/|v|)` where that factor is finite and positive, `fallback` elsewhere.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn normalized(v: [V; 3], fallback: [V; 3]) -> [V; 3] {
+    let r = _mm256_div_ps(splat(1.0), _mm256_sqrt_ps(dot(&v, &v)));
+    let ok = _mm256_and_ps(finite(r), _mm256_cmp_ps::<_CMP_GT_OQ>(r, _mm256_setzero_ps()));
+    [0, 1, 2].map(|c| _mm256_blendv_ps(fallback[c], _mm256_mul_ps(v[c], r), ok))
+}
+
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn encode(x: V, table: &[u32]) -> I {
+    let x = _mm256_min_ps(_mm256_max_ps(x, splat(f32::from_bits(ENCODE_MIN_BITS))), splat(f32::from_bits(ENCODE_MAX_BITS)));
+    let bits = _mm256_castps_si256(x);
+    let idx = _mm256_srli_epi32::<20>(_mm256_sub_epi32(bits, _mm256_set1_epi32(ENCODE_MIN_BITS as i32)));
+    let entry = _mm256_i32gather_epi32::<4>(table.as_ptr() as *const i32, idx);
+    let t = _mm256_and_si256(_mm256_srli_epi32::<12>(bits), _mm256_set1_epi32(0xff));
+    let bias = _mm256_slli_epi32::<9>(_mm256_srli_epi32::<16>(entry));
+    let slope = _mm256_and_si256(entry, _mm256_set1_epi32(0xffff));
+    _mm256_srli_epi32::<16>(_mm256_add_epi32(bias, _mm256_mullo_epi32(slope, t)))
+}
+
+/// Shades the eight lanes of `p` into `out` (RGBA8, alpha 255).
+///
+/// # Safety
+///
+/// The CPU must support AVX2; `k`'s textures must be well formed (as
+/// [`Texture8::from_texture`] builds them).
+#[target_feature(enable = "avx2")]
+pub(crate) unsafe fn shade(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANES]) {
+    let ld = |a: &[f32; LANES]| _mm256_load_ps(a.as_ptr());
+    let (u, v) = (sanitize(ld(&p.u)), sanitize(ld(&p.v)));
+    let d = [ld(&p.dudx), ld(&p.dvdx), ld(&p.dudy), ld(&p.dvdy)];
+    let albedo = trilinear(k.albedo, u, v, lod(&d, k.albedo), k.decode);
+    let color = match k.shading {
+        Shading::Unlit => albedo,
+        Shading::Lit | Shading::LitShadowed => {
+            let zero = _mm256_setzero_ps();
+            let nu = trilinear(k.normal, u, v, lod(&d, k.normal), k.decode);
+            let n = nu.map(|c| _mm256_sub_ps(_mm256_mul_ps(c, splat(2.0 / 255.0)), splat(1.0)));
+            let n = normalized(n, [zero, zero, splat(1.0)]);
+            let l = [ld(&p.lx), ld(&p.ly), ld(&p.lz)];
+            let diff = _mm256_max_ps(dot(&n, &l), zero);
+            let h = [
+                _mm256_add_ps(l[0], ld(&p.vx)),
+                _mm256_add_ps(l[1], ld(&p.vy)),
+                _mm256_add_ps(l[2], ld(&p.vz)),
+            ];
+            let h = normalized(h, [zero; 3]);
+            let nh = _mm256_max_ps(dot(&n, &h), zero);
+            let powed = match k.whole_exponent() {
+                Some(mut e) => {
+                    let (mut result, mut base) = (splat(1.0), nh);
+                    while e > 0 {
+                        if e & 1 == 1 {
+                            result = _mm256_mul_ps(result, base);
+                        }
+                        base = _mm256_mul_ps(base, base);
+                        e >>= 1;
+                    }
+                    result
+                }
+                None => {
+                    let mut lanes = [0.0f32; LANES];
+                    _mm256_storeu_ps(lanes.as_mut_ptr(), nh);
+                    for x in &mut lanes {
+                        *x = x.powf(k.exponent);
+                    }
+                    _mm256_loadu_ps(lanes.as_ptr())
+                }
+            };
+            let spec = _mm256_mul_ps(powed, splat(k.strength));
+            let facing = _mm256_and_ps(_mm256_cmp_ps::<_CMP_GT_OQ>(l[2], zero), ld(&p.shadow));
+            let ambient = splat(k.ambient);
+            albedo.map(|c| {
+                _mm256_add_ps(
+                    _mm256_mul_ps(c, ambient),
+                    _mm256_mul_ps(_mm256_add_ps(_mm256_mul_ps(c, diff), spec), facing),
+                )
+            })
+        }
+    };
+    let r = encode(color[0], k.encode);
+    let g = encode(color[1], k.encode);
+    let b = encode(color[2], k.encode);
+    let rgba = _mm256_or_si256(
+        _mm256_or_si256(r, _mm256_slli_epi32::<8>(g)),
+        _mm256_or_si256(_mm256_slli_epi32::<16>(b), _mm256_set1_epi32(0xff00_0000u32 as i32)),
+    );
+    _mm256_storeu_si256(out.as_mut_ptr() as *mut I, rgba);
+}
