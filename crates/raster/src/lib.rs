@@ -216,8 +216,10 @@ impl RowRaster {
             }
             return RasterStats::default();
         };
-        let frame = Frame { setups: &prepared.setups, tris: &prepared.tris, width: self.width, height: self.height };
-        let c = frame.render_rows(band, bins.band(band), &mut scratch.vis, &mut scratch.row, &self.constants, f);
+        let frame =
+            Frame { setups: &prepared.setups, tris: &prepared.tris, width: self.width, height: self.height };
+        let c =
+            frame.render_rows(band, bins.band(band), &mut scratch.vis, &mut scratch.row, &self.constants, f);
         RasterStats { fragments: c.fragments, covered: c.covered, ..RasterStats::default() }
     }
 }

@@ -15,9 +15,21 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-fn time(mut f: impl FnMut()) -> f64 {
+/// The process's user + system CPU time so far, in ms (from `/proc/self/stat`, 10 ms ticks;
+/// 0 where that file does not exist).
+fn cpu_ms() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    let fields: Vec<&str> = stat.rsplit(')').next().unwrap_or("").split_whitespace().collect();
+    let tick = |i: usize| fields.get(i).and_then(|v| v.parse::<f64>().ok()).unwrap_or(0.0);
+    (tick(11) + tick(12)) * 10.0
+}
+
+/// Median wall time of 15 runs of `f` after one warm-up, and the mean CPU time per run
+/// (all threads; less disturbed than wall time when other work shares the machine).
+fn time(mut f: impl FnMut()) -> (f64, f64) {
     f();
-    median(
+    let cpu0 = cpu_ms();
+    let wall = median(
         (0..15)
             .map(|_| {
                 let t = Instant::now();
@@ -25,16 +37,19 @@ fn time(mut f: impl FnMut()) -> f64 {
                 t.elapsed().as_secs_f64() * 1e3
             })
             .collect(),
-    )
+    );
+    (wall, (cpu_ms() - cpu0) / 15.0)
 }
 
 fn main() {
     let names: Vec<String> = std::env::args().skip(1).collect();
-    let names = if names.is_empty() { vec!["basic".into(), "pom:32".into(), "cone-newton".into()] } else { names };
+    let names =
+        if names.is_empty() { vec!["basic".into(), "pom:32".into(), "cone-newton".into()] } else { names };
     let m = renderlab_texture::materials::material("bricks", 1024).expect("built-in material");
     let cones = names.iter().any(|n| n.contains("cone"));
     let mats = [ReliefMaterial::new(&m, &ComplexityParams::default(), cones)];
-    let scene = Scene::new(vec![SceneObject { name: "wall2".into(), mesh: bricks_wall(), material: 0 }], vec![m]);
+    let scene =
+        Scene::new(vec![SceneObject { name: "wall2".into(), mesh: bricks_wall(), material: 0 }], vec![m]);
     if let Ok(n) = std::env::var("FUSED_ONLY") {
         // For profilers: only the fused frame, `n` times.
         let cam = Camera::orbit(BRICKS_WALL_CENTRE, 6.0, 0.0, 1280, 800);
@@ -58,13 +73,16 @@ fn main() {
             let k = t.kernel(KernelChoice::Auto).expect("kernel");
             let mut frame = Frame::blank(1280, 800, scene.background);
             let float = time(|| {
-                render_into(input, &mats, t, k, scene.lighting, scene.background, false, &mut frame).expect("renders")
+                render_into(input, &mats, t, k, scene.lighting, scene.background, false, &mut frame)
+                    .expect("renders")
             });
             let mut fused = FusedFrame::default();
             let vector = time(|| render_fused(&scene, &cam, &mats, t, k, true, &mut fused).expect("renders"));
-            let scalar = time(|| render_fused(&scene, &cam, &mats, t, k, false, &mut fused).expect("renders"));
+            let scalar =
+                time(|| render_fused(&scene, &cam, &mats, t, k, false, &mut fused).expect("renders"));
             println!(
-                "{angle:>3}° {name:<14} raster {raster:6.1} ms | float pass (G-buffer given) {float:6.1} ms | fused whole frame: vector {vector:6.1} ms, scalar shading {scalar:6.1} ms"
+                "{angle:>3}° {name:<14} raster {:6.1} ms ({:6.1} CPU) | float pass, G-buffer given {:6.1} ({:6.1}) | fused whole frame: vector {:6.1} ({:6.1}), scalar shading {:6.1} ({:6.1})",
+                raster.0, raster.1, float.0, float.1, vector.0, vector.1, scalar.0, scalar.1
             );
         }
     }

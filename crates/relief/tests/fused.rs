@@ -36,13 +36,16 @@ fn odd_textures() -> Textures8 {
         let h = (x * 7919 + y * 104_729) % 1000;
         Vec3::new(h as f32 / 999.0, ((h * 3) % 1000) as f32 / 999.0, ((x + y) % 5) as f32 / 4.0)
     });
-    let normal = Image::from_fn(37, 23, |x, y| Vec3::new((x as f32 * 0.3).sin() * 0.5, (y as f32 * 0.2).cos() * 0.5, 0.7));
+    let normal = Image::from_fn(37, 23, |x, y| {
+        Vec3::new((x as f32 * 0.3).sin() * 0.5, (y as f32 * 0.2).cos() * 0.5, 0.7)
+    });
     Textures8::new(&Texture::from_rgb(&albedo, Wrap::Repeat), &Texture::from_rgb(&normal, Wrap::Repeat))
 }
 
 fn lanes_strategy() -> impl Strategy<Value = ShadeLanes> {
     let coord = prop_oneof![8 => -3.0f32..3.0, 1 => Just(f32::NAN), 1 => Just(1.0e9f32), 1 => Just(-0.0f32)];
-    let deriv = prop_oneof![8 => -0.05f32..0.05, 1 => Just(f32::INFINITY), 1 => Just(0.0f32), 1 => -5.0f32..5.0];
+    let deriv =
+        prop_oneof![8 => -0.05f32..0.05, 1 => Just(f32::INFINITY), 1 => Just(0.0f32), 1 => -5.0f32..5.0];
     let unit = -1.0f32..1.0;
     (
         prop::array::uniform8(coord.clone()),
@@ -125,8 +128,10 @@ fn records_equal_the_float_renderer_and_the_image_is_within_8_bit_precision() {
         for name in ["basic", "normal", "parallax", "pom:16", "adaptive", "pom-shadow", "cone-newton"] {
             let t = Technique::parse(name).expect("technique");
             for kernel in [Kernel::Scalar, t.kernel(KernelChoice::Auto).expect("kernel")] {
-                let float = render(input, &mats, t, kernel, scene.lighting, scene.background, true).expect("renders");
-                let (frame, rec) = render_fused_records(&scene, &cam, &mats, t, kernel, true).expect("renders");
+                let float =
+                    render(input, &mats, t, kernel, scene.lighting, scene.background, true).expect("renders");
+                let (frame, rec) =
+                    render_fused_records(&scene, &cam, &mats, t, kernel, true).expect("renders");
                 assert_eq!(rec.mask, float.mask.pixels(), "{name}");
                 assert_eq!(rec.uv, float.uv.pixels(), "{name}");
                 assert_eq!(rec.depth, float.depth.pixels(), "{name}");

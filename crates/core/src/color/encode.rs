@@ -124,7 +124,11 @@ mod tests {
             state ^= state << 13;
             state ^= state >> 17;
             state ^= state << 5;
-            let x = if i < 256 { crate::color::srgb_to_linear(i as f32 / 255.0) } else { (state >> 8) as f32 / 16_777_216.0 };
+            let x = if i < 256 {
+                crate::color::srgb_to_linear(i as f32 / 255.0)
+            } else {
+                (state >> 8) as f32 / 16_777_216.0
+            };
             let e = exact(x);
             if (e - e.floor() - 0.5).abs() > 0.1 {
                 assert_eq!(encode_srgb8(x, table) as f64, e.round(), "at {x}");

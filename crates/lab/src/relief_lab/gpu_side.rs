@@ -196,6 +196,7 @@ impl GpuAnalysis<'_> {
             samples_per_pixel: f64::NAN,
             mean_layers,
             psnr_db: cmp.metrics.psnr_db,
+            psnr_vs_float_db: None,
             ssim: cmp.metrics.ssim,
             flip: cmp.metrics.flip,
             uv_error_texels: uv_mean,

@@ -194,6 +194,7 @@ fn measurements(records: &[ReliefRecord]) -> Vec<Vec<String>> {
                 format_number(r.samples_per_pixel, 2),
                 format_number(r.mean_layers, 1),
                 format_number(r.psnr_db, 2),
+                r.psnr_vs_float_db.map_or("–".into(), |v| format_number(v, 2)),
                 format_number(r.ssim, 4),
                 format_number(r.flip, 4),
                 format_number(r.uv_error_texels, 3),

@@ -45,9 +45,10 @@ pub struct ReliefRecord {
     pub layers: u32,
     /// View angle from the wall normal, degrees.
     pub angle_deg: f32,
-    /// Median time of the whole frame, ms. CPU: the shading pass (relief trace + texture
-    /// filtering + lighting) into the framebuffer in memory. GPU: wall clock from submitting
-    /// the frame until its colour image has been read back to memory.
+    /// Median time of the whole frame, ms. CPU: the fused frame, from the scene to 8-bit
+    /// sRGB pixels in memory (rasterization, relief trace, texture filtering, lighting and
+    /// encoding; `renderlab_relief::fused`). GPU: wall clock from submitting the frame until
+    /// its colour image has been read back to memory.
     pub time_ms: f64,
     /// Median time of the relief trace alone over the frame (the technique's own cost), ms;
     /// NaN for GPU records (a shader cannot run its trace alone).
@@ -76,6 +77,10 @@ pub struct ReliefRecord {
     pub mean_layers: f64,
     /// PSNR against the reference, dB (covered pixels).
     pub psnr_db: f64,
+    /// CPU records: PSNR of the fused frame (8-bit textures and output) against the float
+    /// renderer's frame of the same technique (float textures, float output), dB over the
+    /// covered pixels: the precision given up for speed. `None` for GPU records.
+    pub psnr_vs_float_db: Option<f64>,
     /// Mean SSIM against the reference (covered pixels).
     pub ssim: f64,
     /// Mean FLIP error against the reference (covered pixels).

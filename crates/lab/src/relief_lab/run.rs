@@ -18,7 +18,8 @@ use renderlab_core::io::save_color;
 use renderlab_core::{Camera, CoreError, Material, Scene};
 use renderlab_gpu::ReliefRenderer;
 use renderlab_raster::{rasterize, GBuffer};
-use renderlab_relief::render::{check, render, render_into, render_reference, trace_only};
+use renderlab_relief::fused::{render_fused, render_fused_records, FusedFrame};
+use renderlab_relief::render::{check, render, render_reference, trace_only};
 use renderlab_relief::{Frame, FrameInput, Kernel, Map, ReliefMaterial, Shading, Technique};
 use std::path::Path;
 
@@ -105,22 +106,12 @@ pub fn run_relief_bench(
         // Each GPU-timed technique with, when it was timed in turn with a CPU pass, the index
         // of that CPU method and the CPU pass's median.
         let mut gpu_runs: Vec<GpuRun> = Vec::new();
-        // One framebuffer serves every timed pass, as a renderer reuses its own.
-        let mut frame = Frame::blank(cfg.width, cfg.height, scene.background);
+        // One framebuffer serves every timed frame, as a renderer reuses its own.
+        let mut frame = FusedFrame::new(cfg.width, cfg.height);
         for (i, &(t, kernel)) in methods.iter().enumerate().filter(|_| cfg.backend.cpu()) {
             progress(done, total, &format!("{angle}°: {}", label(t, kernel)));
-            let mut cpu_pass = || {
-                render_into(
-                    view.input(),
-                    mats,
-                    t,
-                    kernel,
-                    scene.lighting,
-                    scene.background,
-                    false,
-                    &mut frame,
-                )
-            };
+            // The whole frame a user waits for: scene to 8-bit pixels, rasterization included.
+            let mut cpu_pass = || render_fused(&scene, &camera, mats, t, kernel, true, &mut frame);
             let paired = cfg.backend == Backend::Both
                 && on_gpu.contains(&t)
                 && gpu_runs.iter().all(|(g, _, _)| *g != t);
@@ -166,8 +157,16 @@ pub fn run_relief_bench(
                 refs.push((shading, r));
             }
         }
-        let ctx =
-            Analysis { view: &view, scene: &scene, mats, refs: &refs, material, img_dir: &img_dir, cfg };
+        let ctx = Analysis {
+            view: &view,
+            scene: &scene,
+            camera: &camera,
+            mats,
+            refs: &refs,
+            material,
+            img_dir: &img_dir,
+            cfg,
+        };
         let keep: Vec<bool> = (0..timings.len())
             .map(|i| gpu_runs.iter().any(|(_, _, p)| p.is_some_and(|(j, _)| j == i)))
             .collect();
@@ -221,6 +220,7 @@ type GpuRun = (Technique, GpuTimes, Option<(usize, f64)>);
 struct Analysis<'a> {
     view: &'a View,
     scene: &'a Scene,
+    camera: &'a Camera,
     mats: &'a [ReliefMaterial],
     refs: &'a [(Shading, Frame)],
     material: &'a Material,
@@ -229,10 +229,11 @@ struct Analysis<'a> {
 }
 
 impl Analysis<'_> {
-    /// Renders `t` once more with its counters and debug targets, measures its error against
-    /// the reference of its shading and writes its images; hands the frame back when `keep`
+    /// Renders `t`'s fused frame once more with its per-pixel records and counters,
+    /// measures its error against the reference of its shading and its precision against
+    /// the float renderer's frame, and writes its images; hands the frame back when `keep`
     /// (a GPU frame is to be compared with it). `cpu_over_gpu` is the ratio measured when the
-    /// pass was timed in turn with the GPU's frame.
+    /// frame was timed in turn with the GPU's.
     fn analyse(
         &self,
         t: Technique,
@@ -243,8 +244,10 @@ impl Analysis<'_> {
         keep: bool,
     ) -> crate::Result<(ReliefRecord, Option<ImageSet>, Option<Frame>)> {
         let (view, scene, angle) = (self.view, self.scene, self.view.angle);
-        let frame: Frame =
-            render(view.input(), self.mats, t, kernel, scene.lighting, scene.background, true)?;
+        let (fused, rec) = render_fused_records(scene, self.camera, self.mats, t, kernel, true)?;
+        let frame = fused.with_records(rec);
+        let float = render(view.input(), self.mats, t, kernel, scene.lighting, scene.background, false)?;
+        let psnr_vs_float = crate::metrics::psnr(&frame.image, &float.image, Some(&frame.mask));
         let reference = reference_for(self.refs, t);
         let cmp = compare(&frame.image, &reference.image, Some(&frame.mask));
         // UV error is counted in texels of the height map, where the relief is defined (the
@@ -283,6 +286,7 @@ impl Analysis<'_> {
             samples_per_pixel: frame.fetches_per_pixel(),
             mean_layers,
             psnr_db: cmp.metrics.psnr_db,
+            psnr_vs_float_db: Some(psnr_vs_float),
             ssim: cmp.metrics.ssim,
             flip: cmp.metrics.flip,
             uv_error_texels: uv_mean,

@@ -49,8 +49,9 @@ pub struct VersusPom32 {
     pub kernel: Kernel,
     /// Mean over angles of trace time(candidate) / trace time(POM-32): the techniques' own cost.
     pub time_ratio: f64,
-    /// Mean over angles of the whole shading pass's time ratio (shared filtering and lighting
-    /// included, which dilutes every difference).
+    /// Mean over angles of the whole frame's time ratio (the fused frame: rasterization,
+    /// filtering, lighting and encoding included, which dilutes every difference): what a
+    /// user waits for.
     pub pass_ratio: f64,
     /// Candidate's mean UV error (texels) over angles.
     pub uv_error: f64,
@@ -60,7 +61,7 @@ pub struct VersusPom32 {
     pub psnr_db: f64,
     /// POM-32's mean PSNR over angles.
     pub pom32_psnr_db: f64,
-    /// Whether error ≤ POM-32's (UV error and PSNR) and time ratio ≤ 0.4.
+    /// Whether error ≤ POM-32's (UV error and PSNR) and whole-frame ratio ≤ 0.4.
     pub passes: bool,
 }
 
@@ -91,7 +92,7 @@ pub fn versus_pom32(records: &[ReliefRecord], angles: &[f32]) -> Vec<VersusPom32
                 pom32_uv_error: p_err,
                 psnr_db: psnr,
                 pom32_psnr_db: p_psnr,
-                passes: ratio <= 0.4 && err <= p_err && psnr >= p_psnr,
+                passes: pass_ratio <= 0.4 && err <= p_err && psnr >= p_psnr,
             })
         })
         .collect()
@@ -130,16 +131,16 @@ pub(super) fn findings(records: &[ReliefRecord], angles: &[f32]) -> Vec<String> 
     for v in versus_pom32(records, angles) {
         if compared_with_pom32((v.technique, v.kernel)) {
             out.push(format!(
-                "{} vs POM-32: {:.2}× its trace time ({:.2}× whole pass), UV error {:.3} vs {:.3} texels, PSNR {:.2} vs {:.2} dB: {}.",
+                "{} vs POM-32: {:.2}× its whole frame ({:.2}× its trace time), UV error {:.3} vs {:.3} texels, PSNR {:.2} vs {:.2} dB: {}.",
                 label(v.technique, v.kernel),
-                v.time_ratio,
                 v.pass_ratio,
+                v.time_ratio,
                 v.uv_error,
                 v.pom32_uv_error,
                 v.psnr_db,
                 v.pom32_psnr_db,
                 if v.passes {
-                    "meets the target (≤0.4× time, error no worse)"
+                    "meets the target (≤0.4× the whole frame, error no worse)"
                 } else {
                     "does not meet the target"
                 }
@@ -175,6 +176,22 @@ pub(super) fn headline(records: &[ReliefRecord], angles: &[f32]) -> String {
             "Adaptive POM: {:.2}× POM-32's trace time at {:.1}× its UV error.",
             a.time_ratio,
             a.uv_error / a.pom32_uv_error
+        ));
+    }
+    // The whole frame a user waits for: the fastest method no less accurate than POM-32.
+    let fastest = v
+        .iter()
+        .filter(|x| {
+            x.uv_error <= x.pom32_uv_error && x.psnr_db >= x.pom32_psnr_db && x.pass_ratio.is_finite()
+        })
+        .min_by(|a, b| a.pass_ratio.total_cmp(&b.pass_ratio));
+    if let Some(f) = fastest {
+        parts.push(format!(
+            "Whole frame: {} takes {:.2}× POM-32's whole frame ({:.2}× its trace alone) at {:.2}× its UV error (goal ≤ 0.4×).",
+            label(f.technique, f.kernel),
+            f.pass_ratio,
+            f.time_ratio,
+            f.uv_error / f.pom32_uv_error
         ));
     }
     let best = v

@@ -8,7 +8,7 @@ use crate::error::ReliefError;
 use crate::kernel::Kernel;
 use crate::march::exact::exact_shadowed;
 use crate::render::material::ReliefMaterial;
-use crate::render::shade::{trace_points, RowScratch as TraceScratch, ShadeOptions, ShadowMode};
+use crate::render::shade::{trace_points, Frame, RowScratch as TraceScratch, ShadeOptions, ShadowMode};
 use crate::render::shadow::soft_shadow;
 use crate::render::{check, options};
 use crate::techniques::descriptor::WithTracer;
@@ -60,8 +60,37 @@ impl FusedFrame {
     /// The frame in linear light (each code decoded exactly), for the lab's metrics.
     pub fn to_linear(&self) -> Image<Vec3> {
         let t = srgb8_to_linear_table();
-        let px = |p: u32| Vec3::new(t[(p & 0xff) as usize], t[(p >> 8 & 0xff) as usize], t[(p >> 16 & 0xff) as usize]);
+        let px = |p: u32| {
+            Vec3::new(t[(p & 0xff) as usize], t[(p >> 8 & 0xff) as usize], t[(p >> 16 & 0xff) as usize])
+        };
         Image::from_fn(self.width, self.height, |x, y| px(self.pixels[(y * self.width + x) as usize]))
+    }
+}
+
+impl FusedFrame {
+    /// This frame (decoded to linear light) with its `records`, as the float renderer's
+    /// [`Frame`], so that the lab measures both the same way.
+    ///
+    /// # Panics
+    ///
+    /// If `records` are not this frame's (another pixel count).
+    pub fn with_records(&self, records: FusedRecords) -> Frame {
+        let (w, h) = (self.width, self.height);
+        let n = self.pixels.len();
+        assert!(
+            [records.uv.len(), records.depth.len(), records.layers.len(), records.mask.len()]
+                .iter()
+                .all(|&l| l == n),
+            "records of another frame"
+        );
+        Frame {
+            image: self.to_linear(),
+            uv: Image::from_fn(w, h, |x, y| records.uv[(y * w + x) as usize]),
+            depth: Image::from_fn(w, h, |x, y| records.depth[(y * w + x) as usize]),
+            layers: Image::from_fn(w, h, |x, y| records.layers[(y * w + x) as usize]),
+            mask: Image::from_fn(w, h, |x, y| records.mask[(y * w + x) as usize]),
+            fetches: records.fetches,
+        }
     }
 }
 
@@ -83,7 +112,13 @@ pub struct FusedRecords {
 
 impl FusedRecords {
     fn with_len(n: usize) -> Self {
-        Self { uv: vec![Vec2::ZERO; n], depth: vec![0.0; n], layers: vec![0; n], mask: vec![false; n], fetches: 0 }
+        Self {
+            uv: vec![Vec2::ZERO; n],
+            depth: vec![0.0; n],
+            layers: vec![0; n],
+            mask: vec![false; n],
+            fetches: 0,
+        }
     }
 }
 
@@ -123,7 +158,14 @@ fn background_pixel(c: Vec3) -> u32 {
 }
 
 impl<'a, T: ReliefTechnique> Pass<'a, T> {
-    fn new(raster: &'a RowRaster, scene: &Scene, materials: &'a [ReliefMaterial], t: &'a T, opt: ShadeOptions, vector: bool) -> Self {
+    fn new(
+        raster: &'a RowRaster,
+        scene: &Scene,
+        materials: &'a [ReliefMaterial],
+        t: &'a T,
+        opt: ShadeOptions,
+        vector: bool,
+    ) -> Self {
         let (decode, encode) = (srgb8_to_linear_table(), srgb8_encode_table());
         let consts = materials
             .iter()
@@ -157,17 +199,21 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
 
     /// The light reaching the hit (1 unless the technique self-shadows).
     #[inline]
-    fn shadow<C: Counter>(&self, hit: &ReliefHit, sp: &SurfacePoint, mat: &ReliefMaterial, counter: &mut C) -> f32 {
+    fn shadow<C: Counter>(
+        &self,
+        hit: &ReliefHit,
+        sp: &SurfacePoint,
+        mat: &ReliefMaterial,
+        counter: &mut C,
+    ) -> f32 {
         match (self.opt.shading, self.opt.shadow) {
             (Shading::LitShadowed, ShadowMode::Soft(samples)) => {
                 soft_shadow(&mat.height, mat.height_scale, hit.uv, hit.depth, sp.light_ts, samples, counter)
             }
-            (Shading::LitShadowed, ShadowMode::Exact) => {
-                if exact_shadowed(&mat.height, mat.height_scale, hit.uv, hit.depth, sp.light_ts) {
-                    0.0
-                } else {
-                    1.0
-                }
+            (Shading::LitShadowed, ShadowMode::Exact)
+                if exact_shadowed(&mat.height, mat.height_scale, hit.uv, hit.depth, sp.light_ts) =>
+            {
+                0.0
             }
             _ => 1.0,
         }
@@ -316,9 +362,13 @@ pub fn render_fused(
             if band_len == 0 {
                 return;
             }
-            self.frame.pixels.par_chunks_mut(band_len).enumerate().for_each_init(Worker::default, |worker, (b, out)| {
-                pass.band(b, out, None, worker, &mut NoCount)
-            });
+            self.frame
+                .pixels
+                .par_chunks_mut(band_len)
+                .enumerate()
+                .for_each_init(Worker::default, |worker, (b, out)| {
+                    pass.band(b, out, None, worker, &mut NoCount)
+                });
         }
     }
     let opt = options(technique, scene.lighting, scene.background);

@@ -105,8 +105,8 @@ pub fn log2(x: f32) -> f32 {
 /// A texture coordinate made safe: non-finite → 0, clamped to ±10⁷.
 #[inline]
 pub fn sanitize(v: f32) -> f32 {
-    if v - v == 0.0 {
-        v.max(-1.0e7).min(1.0e7)
+    if v.is_finite() {
+        v.clamp(-1.0e7, 1.0e7)
     } else {
         0.0
     }
@@ -121,7 +121,7 @@ pub fn lod(d: [f32; 4], w: f32, h: f32, levels: usize) -> f32 {
     let (ax, ay, bx, by) = (d[0] * w, d[1] * h, d[2] * w, d[3] * h);
     let a = ax * ax + ay * ay;
     let b = bx * bx + by * by;
-    if !(a - a == 0.0 && b - b == 0.0) {
+    if !(a.is_finite() && b.is_finite()) {
         return top;
     }
     let rho2 = a.max(b).max(1e-30);
@@ -202,7 +202,7 @@ pub fn pow_whole(x: f32, mut e: u32) -> f32 {
 fn normalized(v: [f32; 3]) -> Option<[f32; 3]> {
     let d = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
     let r = 1.0 / d.sqrt();
-    (r - r == 0.0 && r > 0.0).then(|| v.map(|c| c * r))
+    (r.is_finite() && r > 0.0).then(|| v.map(|c| c * r))
 }
 
 /// Shades lane `i` of `p` and returns its RGBA8 pixel (alpha 255): the scalar twin of the
@@ -271,7 +271,10 @@ mod tests {
         for x in [0.0f32, 0.3, 0.77, 0.999, 1.0] {
             for e in [0, 1, 2, 5, 32, 200] {
                 let (a, b) = (pow_whole(x, e), x.powi(e as i32));
-                assert!((a - b).abs() <= 4.0 * f32::EPSILON * b.max(f32::MIN_POSITIVE), "{x}^{e}: {a} vs {b}");
+                assert!(
+                    (a - b).abs() <= 4.0 * f32::EPSILON * b.max(f32::MIN_POSITIVE),
+                    "{x}^{e}: {a} vs {b}"
+                );
             }
         }
     }

@@ -104,6 +104,15 @@ impl Texture8 {
         (self.widths[0] as u32, self.heights[0] as u32)
     }
 
+    /// Whether `other` has the same level sizes and offsets (then one level of detail and
+    /// one set of texel addresses serve both).
+    pub fn same_shape(&self, other: &Texture8) -> bool {
+        self.levels == other.levels
+            && self.offsets == other.offsets
+            && self.widths == other.widths
+            && self.heights == other.heights
+    }
+
     /// How the channels are encoded.
     pub fn encoding(&self) -> Encoding {
         self.encoding
@@ -145,7 +154,12 @@ mod tests {
 
     #[test]
     fn signed_values_map_to_unorm() {
-        let img = Image::from_fn(2, 1, |x, _| if x == 0 { glam::Vec3::new(-1.0, 0.0, 1.0) } else { glam::Vec3::NAN });
+        let img =
+            Image::from_fn(
+                2,
+                1,
+                |x, _| if x == 0 { glam::Vec3::new(-1.0, 0.0, 1.0) } else { glam::Vec3::NAN },
+            );
         let t8 = Texture8::from_texture(&Texture::from_rgb(&img, Wrap::Repeat), Encoding::SignedUnorm);
         assert_eq!(t8.texels()[0] & 0xff_ffff, 128 << 8 | 255 << 16);
         assert_eq!(t8.texels()[1] & 0xff_ffff, 0, "NaN stores as 0, not garbage");

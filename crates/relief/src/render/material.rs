@@ -1,11 +1,11 @@
 //! A material prepared for relief rendering: filtered textures, the depth field, the
 //! complexity map and (on request) the cone map.
 
+use crate::fused::Textures8;
 use crate::maps::complexity::{complexity_map, ComplexityParams};
 use crate::maps::cone::{ConeKind, ConeMap};
 use crate::maps::height::HeightField;
 use crate::maps::packed::PackedRelief;
-use crate::fused::Textures8;
 use crate::trace::ReliefInputs;
 use renderlab_core::{Image, Material};
 use renderlab_texture::{Texture, Wrap};

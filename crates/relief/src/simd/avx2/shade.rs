@@ -75,37 +75,45 @@ unsafe fn lod(d: &[V; 4], tex: &Texture8) -> V {
     _mm256_blendv_ps(top, l, ok)
 }
 
-/// Bilinear RGB of level `k` (per lane) at `(u, v)`.
+/// The bilinear taps of `(u, v)` in level `k` (per lane) of a texture whose level 0 is
+/// `w0 × h0` texels and whose levels start at `offsets`: the four texel indices and the
+/// weights. A level's side is `max(side₀ >> k, 1)`, as the pyramid halves it.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn bilinear(tex: &Texture8, k: I, u: V, v: V, decode: &[f32; 256]) -> [V; 3] {
-    let w = _mm256_i32gather_epi32::<4>(tex.widths.as_ptr(), k);
-    let h = _mm256_i32gather_epi32::<4>(tex.heights.as_ptr(), k);
-    let wf = _mm256_i32gather_ps::<4>(tex.widths_f.as_ptr(), k);
-    let hf = _mm256_i32gather_ps::<4>(tex.heights_f.as_ptr(), k);
+unsafe fn taps(tex: &Texture8, k: I, u: V, v: V) -> ([I; 4], V, V) {
+    let one = _mm256_set1_epi32(1);
+    let w = _mm256_max_epi32(_mm256_srlv_epi32(_mm256_set1_epi32(tex.widths[0]), k), one);
+    let h = _mm256_max_epi32(_mm256_srlv_epi32(_mm256_set1_epi32(tex.heights[0]), k), one);
     let off = _mm256_i32gather_epi32::<4>(tex.offsets.as_ptr(), k);
     let half = splat(0.5);
-    let x = _mm256_sub_ps(_mm256_mul_ps(_mm256_sub_ps(u, _mm256_floor_ps(u)), wf), half);
-    let y = _mm256_sub_ps(_mm256_mul_ps(_mm256_sub_ps(v, _mm256_floor_ps(v)), hf), half);
+    let x = _mm256_sub_ps(_mm256_mul_ps(_mm256_sub_ps(u, _mm256_floor_ps(u)), _mm256_cvtepi32_ps(w)), half);
+    let y = _mm256_sub_ps(_mm256_mul_ps(_mm256_sub_ps(v, _mm256_floor_ps(v)), _mm256_cvtepi32_ps(h)), half);
     let (xf, yf) = (_mm256_floor_ps(x), _mm256_floor_ps(y));
     let (xi, yi) = (_mm256_cvttps_epi32(xf), _mm256_cvttps_epi32(yf));
     let zero = _mm256_setzero_si256();
-    let one = _mm256_set1_epi32(1);
     let (wm1, hm1) = (_mm256_sub_epi32(w, one), _mm256_sub_epi32(h, one));
     let x0 = _mm256_blendv_epi8(xi, wm1, _mm256_cmpgt_epi32(zero, xi));
     let y0 = _mm256_blendv_epi8(yi, hm1, _mm256_cmpgt_epi32(zero, yi));
     let (x1, y1) = (_mm256_add_epi32(xi, one), _mm256_add_epi32(yi, one));
     let x1 = _mm256_andnot_si256(_mm256_cmpgt_epi32(x1, wm1), x1);
     let y1 = _mm256_andnot_si256(_mm256_cmpgt_epi32(y1, hm1), y1);
-    let (r0, r1) = (_mm256_add_epi32(off, _mm256_mullo_epi32(y0, w)), _mm256_add_epi32(off, _mm256_mullo_epi32(y1, w)));
-    let base = tex.texels().as_ptr() as *const i32;
-    let px = [
-        _mm256_i32gather_epi32::<4>(base, _mm256_add_epi32(r0, x0)),
-        _mm256_i32gather_epi32::<4>(base, _mm256_add_epi32(r0, x1)),
-        _mm256_i32gather_epi32::<4>(base, _mm256_add_epi32(r1, x0)),
-        _mm256_i32gather_epi32::<4>(base, _mm256_add_epi32(r1, x1)),
+    let (r0, r1) =
+        (_mm256_add_epi32(off, _mm256_mullo_epi32(y0, w)), _mm256_add_epi32(off, _mm256_mullo_epi32(y1, w)));
+    let idx = [
+        _mm256_add_epi32(r0, x0),
+        _mm256_add_epi32(r0, x1),
+        _mm256_add_epi32(r1, x0),
+        _mm256_add_epi32(r1, x1),
     ];
-    let (fx, fy) = (_mm256_sub_ps(x, xf), _mm256_sub_ps(y, yf));
+    (idx, _mm256_sub_ps(x, xf), _mm256_sub_ps(y, yf))
+}
+
+/// Bilinear RGB from `tex` at the taps `(idx, fx, fy)`.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn bilinear(tex: &Texture8, (idx, fx, fy): &([I; 4], V, V), decode: &[f32; 256]) -> [V; 3] {
+    let base = tex.texels().as_ptr() as *const i32;
+    let px = idx.map(|i| _mm256_i32gather_epi32::<4>(base, i));
     let mask = _mm256_set1_epi32(0xff);
     let enc = tex.encoding();
     let channel = |p: I, shift: i32| -> V {
@@ -119,32 +127,67 @@ unsafe fn bilinear(tex: &Texture8, k: I, u: V, v: V, decode: &[f32; 256]) -> [V;
     for (c, o) in out.iter_mut().enumerate() {
         let s = 8 * c as i32;
         let (a, b, cc, d) = (channel(px[0], s), channel(px[1], s), channel(px[2], s), channel(px[3], s));
-        let top = _mm256_add_ps(a, _mm256_mul_ps(_mm256_sub_ps(b, a), fx));
-        let bottom = _mm256_add_ps(cc, _mm256_mul_ps(_mm256_sub_ps(d, cc), fx));
-        *o = _mm256_add_ps(top, _mm256_mul_ps(_mm256_sub_ps(bottom, top), fy));
+        let top = _mm256_add_ps(a, _mm256_mul_ps(_mm256_sub_ps(b, a), *fx));
+        let bottom = _mm256_add_ps(cc, _mm256_mul_ps(_mm256_sub_ps(d, cc), *fx));
+        *o = _mm256_add_ps(top, _mm256_mul_ps(_mm256_sub_ps(bottom, top), *fy));
     }
     out
 }
 
+/// The two levels around `l` (the upper clamped to the last) and the blend weight.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn trilinear(tex: &Texture8, u: V, v: V, l: V, decode: &[f32; 256]) -> [V; 3] {
+unsafe fn levels(tex: &Texture8, l: V) -> (I, I, V) {
     let lf = _mm256_floor_ps(l);
-    let t = _mm256_sub_ps(l, lf);
     let k0 = _mm256_cvttps_epi32(lf);
     let k1 = _mm256_min_epi32(
         _mm256_add_epi32(k0, _mm256_set1_epi32(1)),
         _mm256_set1_epi32(tex.level_count() as i32 - 1),
     );
-    let s0 = bilinear(tex, k0, u, v, decode);
-    let s1 = bilinear(tex, k1, u, v, decode);
+    (k0, k1, _mm256_sub_ps(l, lf))
+}
+
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn blend(s0: [V; 3], s1: [V; 3], t: V) -> [V; 3] {
     [0, 1, 2].map(|c| _mm256_add_ps(s0[c], _mm256_mul_ps(_mm256_sub_ps(s1[c], s0[c]), t)))
 }
 
 #[inline]
 #[target_feature(enable = "avx2")]
+unsafe fn trilinear(tex: &Texture8, u: V, v: V, l: V, decode: &[f32; 256]) -> [V; 3] {
+    let (k0, k1, t) = levels(tex, l);
+    let s0 = bilinear(tex, &taps(tex, k0, u, v), decode);
+    let s1 = bilinear(tex, &taps(tex, k1, u, v), decode);
+    blend(s0, s1, t)
+}
+
+/// Trilinear lookups of two textures with the same pyramid shape at the same point: the
+/// level of detail and the taps are computed once.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn trilinear_pair(
+    a: &Texture8,
+    b: &Texture8,
+    u: V,
+    v: V,
+    l: V,
+    decode: &[f32; 256],
+) -> ([V; 3], [V; 3]) {
+    let (k0, k1, t) = levels(a, l);
+    let (t0, t1) = (taps(a, k0, u, v), taps(a, k1, u, v));
+    let a_rgb = blend(bilinear(a, &t0, decode), bilinear(a, &t1, decode), t);
+    let b_rgb = blend(bilinear(b, &t0, decode), bilinear(b, &t1, decode), t);
+    (a_rgb, b_rgb)
+}
+
+#[inline]
+#[target_feature(enable = "avx2")]
 unsafe fn dot(a: &[V; 3], b: &[V; 3]) -> V {
-    _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a[0], b[0]), _mm256_mul_ps(a[1], b[1])), _mm256_mul_ps(a[2], b[2]))
+    _mm256_add_ps(
+        _mm256_add_ps(_mm256_mul_ps(a[0], b[0]), _mm256_mul_ps(a[1], b[1])),
+        _mm256_mul_ps(a[2], b[2]),
+    )
 }
 
 /// `v · (1/|v|)` where that factor is finite and positive, `fallback` elsewhere.
@@ -159,7 +202,10 @@ unsafe fn normalized(v: [V; 3], fallback: [V; 3]) -> [V; 3] {
 #[inline]
 #[target_feature(enable = "avx2")]
 unsafe fn encode(x: V, table: &[u32]) -> I {
-    let x = _mm256_min_ps(_mm256_max_ps(x, splat(f32::from_bits(ENCODE_MIN_BITS))), splat(f32::from_bits(ENCODE_MAX_BITS)));
+    let x = _mm256_min_ps(
+        _mm256_max_ps(x, splat(f32::from_bits(ENCODE_MIN_BITS))),
+        splat(f32::from_bits(ENCODE_MAX_BITS)),
+    );
     let bits = _mm256_castps_si256(x);
     let idx = _mm256_srli_epi32::<20>(_mm256_sub_epi32(bits, _mm256_set1_epi32(ENCODE_MIN_BITS as i32)));
     let entry = _mm256_i32gather_epi32::<4>(table.as_ptr() as *const i32, idx);
@@ -180,12 +226,19 @@ pub(crate) unsafe fn shade(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANE
     let ld = |a: &[f32; LANES]| _mm256_load_ps(a.as_ptr());
     let (u, v) = (sanitize(ld(&p.u)), sanitize(ld(&p.v)));
     let d = [ld(&p.dudx), ld(&p.dvdx), ld(&p.dudy), ld(&p.dvdy)];
-    let albedo = trilinear(k.albedo, u, v, lod(&d, k.albedo), k.decode);
+    let la = lod(&d, k.albedo);
     let color = match k.shading {
-        Shading::Unlit => albedo,
+        Shading::Unlit => trilinear(k.albedo, u, v, la, k.decode),
         Shading::Lit | Shading::LitShadowed => {
             let zero = _mm256_setzero_ps();
-            let nu = trilinear(k.normal, u, v, lod(&d, k.normal), k.decode);
+            let (albedo, nu) = if k.albedo.same_shape(k.normal) {
+                trilinear_pair(k.albedo, k.normal, u, v, la, k.decode)
+            } else {
+                (
+                    trilinear(k.albedo, u, v, la, k.decode),
+                    trilinear(k.normal, u, v, lod(&d, k.normal), k.decode),
+                )
+            };
             let n = nu.map(|c| _mm256_sub_ps(_mm256_mul_ps(c, splat(2.0 / 255.0)), splat(1.0)));
             let n = normalized(n, [zero, zero, splat(1.0)]);
             let l = [ld(&p.lx), ld(&p.ly), ld(&p.lz)];
