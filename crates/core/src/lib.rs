@@ -28,4 +28,4 @@ pub use image::Image;
 pub use material::Material;
 pub use mesh::{Mesh, Vertex};
 pub use scene::{DirectionalLight, Scene, SceneObject};
-pub use surface::SurfacePoint;
+pub use surface::{ShadePoint, SurfacePoint};

@@ -48,6 +48,8 @@ pub mod deferred;
 mod frame;
 mod gbuffer;
 mod resolve;
+#[cfg(target_arch = "x86_64")]
+mod resolve_x4;
 mod setup;
 mod tile;
 mod triangle;
@@ -161,6 +163,8 @@ pub struct RowRaster {
 pub struct RowScratch {
     vis: tile::Scratch,
     row: Vec<Option<renderlab_core::SurfacePoint>>,
+    xs: Vec<u32>,
+    points: Vec<renderlab_core::ShadePoint>,
 }
 
 impl RowRaster {
@@ -220,6 +224,31 @@ impl RowRaster {
             Frame { setups: &prepared.setups, tris: &prepared.tris, width: self.width, height: self.height };
         let c =
             frame.render_rows(band, bins.band(band), &mut scratch.vis, &mut scratch.row, &self.constants, f);
+        RasterStats { fragments: c.fragments, covered: c.covered, ..RasterStats::default() }
+    }
+}
+
+impl RowRaster {
+    /// Like [`RowRaster::band`], handing `f(y, xs, points)` only each row's covered pixels:
+    /// their columns (increasing) and their [`ShadePoint`](renderlab_core::ShadePoint)s, the
+    /// same values as the surface points [`rasterize`] gives there. A relief renderer
+    /// needs no more, and moves half the bytes.
+    pub fn band_points(
+        &self,
+        band: usize,
+        scratch: &mut RowScratch,
+        mut f: impl FnMut(u32, &[u32], &[renderlab_core::ShadePoint]),
+    ) -> RasterStats {
+        let Some((prepared, bins)) = &self.prepared else {
+            let (y0, y1) = (band as u32 * BAND_HEIGHT, ((band as u32 + 1) * BAND_HEIGHT).min(self.height));
+            for y in y0..y1 {
+                f(y, &[], &[]);
+            }
+            return RasterStats::default();
+        };
+        let frame = Frame { setups: &prepared.setups, tris: &prepared.tris, width: self.width, height: self.height };
+        let RowScratch { vis, xs, points, .. } = scratch;
+        let c = frame.render_points(band, bins.band(band), vis, xs, points, &self.constants, f);
         RasterStats { fragments: c.fragments, covered: c.covered, ..RasterStats::default() }
     }
 }

@@ -4,7 +4,7 @@
 use crate::frame::tangent_frame;
 use crate::setup::{TriangleSetup, INV_W, NORMAL, POSITION, TANGENT, UV};
 use glam::{DVec2, DVec3, Vec2, Vec3};
-use renderlab_core::SurfacePoint;
+use renderlab_core::{ShadePoint, SurfacePoint};
 
 /// What is constant over a frame.
 #[derive(Clone, Copy, Debug)]
@@ -24,6 +24,26 @@ pub(crate) struct FrameConstants {
 /// one normal and tangent (the frame is then constant and set up once).
 #[inline]
 pub(crate) fn resolve(s: &TriangleSetup, x: u32, y: u32, frame: &FrameConstants) -> Option<SurfacePoint> {
+    resolve_with(s, x, y, frame, |p| p)
+}
+
+/// The [`ShadePoint`] of `setup` at pixel `(x, y)`: the same values as [`resolve`]'s, for the
+/// same pixels, without building the rest of the surface point.
+#[inline]
+pub(crate) fn resolve_shade(s: &TriangleSetup, x: u32, y: u32, frame: &FrameConstants) -> Option<ShadePoint> {
+    resolve_with(s, x, y, frame, |p| ShadePoint::from(&p))
+}
+
+/// [`resolve`]'s computation, handing the surface point to `out` (inlined, so that fields
+/// `out` drops are never stored).
+#[inline(always)]
+fn resolve_with<P>(
+    s: &TriangleSetup,
+    x: u32,
+    y: u32,
+    frame: &FrameConstants,
+    out: impl FnOnce(SurfacePoint) -> P,
+) -> Option<P> {
     let (px, py) = (x as f64 + 0.5, y as f64 + 0.5);
     let plane = |k: usize| s.dx[k] * px + s.dy[k] * py + s.c[k];
     let q = plane(INV_W);
@@ -70,5 +90,5 @@ pub(crate) fn resolve(s: &TriangleSetup, x: u32, y: u32, frame: &FrameConstants)
         && p.position.is_finite()
         && p.view_ts.is_finite()
         && p.depth.is_finite())
-    .then_some(p)
+    .then(|| out(p))
 }

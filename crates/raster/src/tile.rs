@@ -4,10 +4,10 @@
 //! result does not depend on the thread count.
 
 use crate::bin::BAND_HEIGHT;
-use crate::resolve::{resolve, FrameConstants};
+use crate::resolve::{resolve, resolve_shade, FrameConstants};
 use crate::setup::TriangleSetup;
 use crate::triangle::RasterTriangle;
-use renderlab_core::SurfacePoint;
+use renderlab_core::{ShadePoint, SurfacePoint};
 
 /// Pixels in band `band` of `frame`.
 fn scratch_len(frame: &Frame, band: usize) -> usize {
@@ -136,6 +136,67 @@ impl Frame<'_> {
                 covered += px.is_some() as u64;
             }
             f(y, row);
+        }
+        BandCounts { fragments, covered }
+    }
+
+    /// Like [`Frame::render_rows`], handing `f(y, xs, points)` only the row's covered
+    /// pixels: their columns and their [`ShadePoint`]s, in column order.
+    #[allow(clippy::too_many_arguments)] // the band, its scratch, two row buffers, the callback
+    pub fn render_points(
+        &self,
+        band: usize,
+        bin: &[u32],
+        scratch: &mut Scratch,
+        xs: &mut Vec<u32>,
+        points: &mut Vec<ShadePoint>,
+        constants: &FrameConstants,
+        mut f: impl FnMut(u32, &[u32], &[ShadePoint]),
+    ) -> BandCounts {
+        let w = self.width as usize;
+        let (y_start, _) = self.rows(band);
+        let fragments = self.visibility(band, bin, scratch);
+        let mut covered = 0u64;
+        let vector = renderlab_core::kernel::has_avx2();
+        for (r, id_row) in scratch.id.chunks_exact(w).enumerate() {
+            let y = y_start + r as u32;
+            xs.clear();
+            points.clear();
+            let mut x = 0;
+            while x < w {
+                let i = id_row[x];
+                // The run of pixels showing the same triangle.
+                let end = x + id_row[x..].iter().take_while(|&&j| j == i).count();
+                if i == NO_TRIANGLE {
+                    x = end;
+                    continue;
+                }
+                let setup = &self.setups[self.tris[i as usize].setup as usize];
+                #[cfg(target_arch = "x86_64")]
+                if let (true, Some(tbn)) = (vector, setup.flat_frame) {
+                    let k = crate::resolve_x4::FlatConstants::new(tbn, constants);
+                    while x + 4 <= end {
+                        // SAFETY: AVX2 is present (checked above).
+                        let lanes = unsafe { crate::resolve_x4::resolve_x4(setup, &k, x as u32, y, constants) };
+                        for (l, p) in lanes.into_iter().enumerate() {
+                            if let Some(p) = p {
+                                xs.push((x + l) as u32);
+                                points.push(p);
+                            }
+                        }
+                        x += 4;
+                    }
+                }
+                for px in x..end {
+                    if let Some(p) = resolve_shade(setup, px as u32, y, constants) {
+                        xs.push(px as u32);
+                        points.push(p);
+                    }
+                }
+                x = end;
+            }
+            covered += xs.len() as u64;
+            f(y, xs, points);
         }
         BandCounts { fragments, covered }
     }

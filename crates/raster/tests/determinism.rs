@@ -134,3 +134,29 @@ fn streamed_rows_equal_the_whole_gbuffer() {
         assert_eq!(covered, whole.1.covered);
     }
 }
+
+/// The covered pixels' shade points through [`RowRaster::band_points`] are the G-buffer's
+/// surface points, field for field, at the same columns.
+#[test]
+fn streamed_points_equal_the_gbuffer() {
+    for (scene, cam) in [(room(), room_camera(301, 187)), (wall_scene(), wall_camera(80.0, 257, 161))] {
+        let g = renderlab_raster::rasterize(&scene, &cam);
+        let r = renderlab_raster::RowRaster::new(&scene, &cam);
+        let mut scratch = renderlab_raster::RowScratch::default();
+        let mut seen = 0;
+        for band in 0..r.band_count() {
+            r.band_points(band, &mut scratch, |y, xs, points| {
+                let row = g.row(y);
+                let expected: Vec<(u32, renderlab_core::ShadePoint)> = row
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(x, p)| p.as_ref().map(|p| (x as u32, p.into())))
+                    .collect();
+                let got: Vec<(u32, renderlab_core::ShadePoint)> = xs.iter().copied().zip(points.iter().copied()).collect();
+                assert_eq!(got, expected, "row {y}");
+                seen += xs.len();
+            });
+        }
+        assert_eq!(seen, g.covered());
+    }
+}

@@ -8,7 +8,7 @@ use crate::error::ReliefError;
 use crate::kernel::Kernel;
 use crate::march::exact::exact_shadowed;
 use crate::render::material::ReliefMaterial;
-use crate::render::shade::{trace_points, Frame, RowScratch as TraceScratch, ShadeOptions, ShadowMode};
+use crate::render::shade::{trace_rays, Frame, RowScratch as TraceScratch, ShadeOptions, ShadowMode};
 use crate::render::shadow::soft_shadow;
 use crate::render::{check, options};
 use crate::techniques::descriptor::WithTracer;
@@ -18,7 +18,7 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use renderlab_core::color::{encode_srgb8, srgb8_encode_table, srgb8_to_linear_table};
 use renderlab_core::counter::{Counter, NoCount, Tally};
-use renderlab_core::{Camera, Image, Scene, SurfacePoint};
+use renderlab_core::{Camera, Image, Scene, ShadePoint};
 use renderlab_raster::{RowRaster, RowScratch, BAND_HEIGHT};
 
 /// A material's textures in the fused frame's 8-bit formats.
@@ -202,7 +202,7 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
     fn shadow<C: Counter>(
         &self,
         hit: &ReliefHit,
-        sp: &SurfacePoint,
+        sp: &ShadePoint,
         mat: &ReliefMaterial,
         counter: &mut C,
     ) -> f32 {
@@ -233,15 +233,16 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
         let y0 = band * BAND_HEIGHT as usize;
         let mut raster = std::mem::take(&mut worker.raster);
         let last = self.materials.len() - 1;
-        self.raster.band(band, &mut raster, |y, row| {
+        self.raster.band_points(band, &mut raster, |y, xs, points| {
             let r = (y as usize - y0) * w;
             let out_row = &mut out[r..r + w];
             out_row.fill(self.background);
-            trace_points(self.t, self.materials, row, &mut worker.trace, counter);
+            let rays = points.iter().map(|p| (p.uv, p.view_ts, p.material));
+            trace_rays(self.t, self.materials, rays, &mut worker.trace, counter);
             let hits = std::mem::take(&mut worker.trace.hits);
             let (mut n, mut cur) = (0, 0);
-            let covered = row.iter().enumerate().filter_map(|(x, p)| p.as_ref().map(|sp| (x, sp)));
-            for ((x, sp), hit) in covered.zip(&hits) {
+            for ((&x, sp), hit) in xs.iter().zip(points).zip(&hits) {
+                let x = x as usize;
                 let m = (sp.material as usize).min(last);
                 if n == LANES || (n > 0 && m != cur) {
                     self.flush(worker, n, cur, out_row);
@@ -271,7 +272,7 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
 impl ShadeLanes {
     /// Lane `i` from a traced pixel.
     #[inline]
-    fn set(&mut self, i: usize, hit: &ReliefHit, sp: &SurfacePoint, shadow: f32) {
+    fn set(&mut self, i: usize, hit: &ReliefHit, sp: &ShadePoint, shadow: f32) {
         self.u[i] = hit.uv.x;
         self.v[i] = hit.uv.y;
         self.dudx[i] = sp.duv_dx.x;

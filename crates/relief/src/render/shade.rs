@@ -172,16 +172,28 @@ pub(crate) fn trace_points<T: ReliefTechnique, C: Counter>(
     scratch: &mut RowScratch,
     counter: &mut C,
 ) {
+    let points = row.iter().flatten().map(|sp| (sp.uv, sp.view_ts, sp.material));
+    trace_rays(t, materials, points, scratch, counter)
+}
+
+/// [`trace_points`] over the covered pixels' `(uv, view_ts, material)`, in pixel order.
+pub(crate) fn trace_rays<T: ReliefTechnique, C: Counter>(
+    t: &T,
+    materials: &[ReliefMaterial],
+    points: impl Iterator<Item = (Vec2, Vec3, u32)>,
+    scratch: &mut RowScratch,
+    counter: &mut C,
+) {
     let RowScratch { rays, bases, materials: ids, hits } = scratch;
     rays.clear();
     bases.clear();
     ids.clear();
-    for sp in row.iter().flatten() {
-        let base = floor2(sp.uv);
+    for (uv, view_ts, material) in points {
+        let base = floor2(uv);
         let base = if base.is_finite() { base } else { Vec2::ZERO };
-        rays.push((sp.uv - base, sp.view_ts));
+        rays.push((uv - base, view_ts));
         bases.push(base);
-        ids.push((sp.material as usize).min(materials.len() - 1));
+        ids.push((material as usize).min(materials.len() - 1));
     }
     hits.clear();
     hits.resize(rays.len(), ReliefHit::default());
