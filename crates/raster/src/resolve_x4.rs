@@ -6,7 +6,7 @@
 //! G-buffer).
 
 use crate::resolve::FrameConstants;
-use crate::setup::{TriangleSetup, INV_W, POSITION, UV};
+use crate::setup::{TriangleSetup, INV_W, PLANES, POSITION, UV};
 use glam::{Mat3, Vec2, Vec3};
 use renderlab_core::ShadePoint;
 use std::arch::x86_64::*;
@@ -32,6 +32,57 @@ impl FlatConstants {
 /// # Safety
 ///
 /// The CPU must support AVX2.
+/// `a/w` planes at four pixels: `(∂x·px + ∂y·py) + c`.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn plane(s: &TriangleSetup, i: usize, px: __m256d, py: __m256d) -> __m256d {
+    _mm256_add_pd(
+        _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(s.dx[i]), px), _mm256_mul_pd(_mm256_set1_pd(s.dy[i]), py)),
+        _mm256_set1_pd(s.c[i]),
+    )
+}
+
+/// The exact derivative `(∂h − a·∂q)·w` of attribute `a` (plane `i`) from the table `t`
+/// (`dx` or `dy`).
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn derivative(t: &[f64; PLANES], i: usize, a: __m256d, w: __m256d) -> __m256d {
+    _mm256_mul_pd(_mm256_sub_pd(_mm256_set1_pd(t[i]), _mm256_mul_pd(a, _mm256_set1_pd(t[INV_W]))), w)
+}
+
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn narrow(a: __m256d) -> [f32; 4] {
+    let mut o = [0.0f32; 4];
+    _mm_storeu_ps(o.as_mut_ptr(), _mm256_cvtpd_ps(a));
+    o
+}
+
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn lanes(a: __m128) -> [f32; 4] {
+    let mut o = [0.0f32; 4];
+    _mm_storeu_ps(o.as_mut_ptr(), a);
+    o
+}
+
+/// Row `c` of `m · v` for four vectors `v`: `(m₀c·v.x + m₁c·v.y) + m₂c·v.z`, as glam's
+/// `Mat3 * Vec3` sums it.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn mat_row(m: &Mat3, c: usize, v: &[__m128; 3]) -> __m128 {
+    _mm_add_ps(
+        _mm_add_ps(_mm_mul_ps(_mm_set1_ps(m.x_axis[c]), v[0]), _mm_mul_ps(_mm_set1_ps(m.y_axis[c]), v[1])),
+        _mm_mul_ps(_mm_set1_ps(m.z_axis[c]), v[2]),
+    )
+}
+
+/// Pixels `x0 .. x0 + 4` of row `y` on triangle `s` (whose frame is constant): each lane's
+/// point, `None` where the scalar resolve gives none.
+///
+/// # Safety
+///
+/// The CPU must support AVX2.
 #[target_feature(enable = "avx2")]
 pub(crate) unsafe fn resolve_x4(
     s: &TriangleSetup,
@@ -40,57 +91,42 @@ pub(crate) unsafe fn resolve_x4(
     y: u32,
     frame: &FrameConstants,
 ) -> [Option<ShadePoint>; 4] {
-    let px = _mm256_add_pd(
-        _mm256_set_pd(x0 as f64 + 3.0, x0 as f64 + 2.0, x0 as f64 + 1.0, x0 as f64),
-        _mm256_set1_pd(0.5),
-    );
+    let x = x0 as f64;
+    let px = _mm256_add_pd(_mm256_set_pd(x + 3.0, x + 2.0, x + 1.0, x), _mm256_set1_pd(0.5));
     let py = _mm256_set1_pd(y as f64 + 0.5);
-    let splat = _mm256_set1_pd;
-    let plane = |i: usize| {
-        _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(splat(s.dx[i]), px), _mm256_mul_pd(splat(s.dy[i]), py)), splat(s.c[i]))
-    };
-    let q = plane(INV_W);
+    let q = plane(s, INV_W, px, py);
     let valid_q = _mm256_cmp_pd::<_CMP_GT_OQ>(q, _mm256_setzero_pd());
-    let w = _mm256_div_pd(splat(1.0), q);
-    let u = _mm256_mul_pd(plane(UV), w);
-    let v = _mm256_mul_pd(plane(UV + 1), w);
-    let d = |a: usize| {
-        // (∂h − a·∂q)·w for the x or y derivative table `t`.
-        move |t: &[f64; crate::setup::PLANES], val| _mm256_mul_pd(_mm256_sub_pd(splat(t[a]), _mm256_mul_pd(val, splat(t[INV_W]))), w)
-    };
-    let (du, dv) = (d(UV), d(UV + 1));
-    let (dudx, dvdx) = (du(&s.dx, u), dv(&s.dx, v));
-    let (dudy, dvdy) = (du(&s.dy, u), dv(&s.dy, v));
-    let pos = [0, 1, 2].map(|c| _mm256_mul_pd(plane(POSITION + c), w));
-    let eye = [frame.eye.x, frame.eye.y, frame.eye.z];
-    let to_eye = [0, 1, 2].map(|c| _mm256_cvtpd_ps(_mm256_sub_pd(splat(eye[c]), pos[c])));
-    let sq = |a: __m128| _mm_mul_ps(a, a);
-    let depth = _mm_sqrt_ps(_mm_add_ps(_mm_add_ps(sq(to_eye[0]), sq(to_eye[1])), sq(to_eye[2])));
+    let w = _mm256_div_pd(_mm256_set1_pd(1.0), q);
+    let u = _mm256_mul_pd(plane(s, UV, px, py), w);
+    let v = _mm256_mul_pd(plane(s, UV + 1, px, py), w);
+    let (dudx, dvdx) = (derivative(&s.dx, UV, u, w), derivative(&s.dx, UV + 1, v, w));
+    let (dudy, dvdy) = (derivative(&s.dy, UV, u, w), derivative(&s.dy, UV + 1, v, w));
+    let pos = [
+        _mm256_mul_pd(plane(s, POSITION, px, py), w),
+        _mm256_mul_pd(plane(s, POSITION + 1, px, py), w),
+        _mm256_mul_pd(plane(s, POSITION + 2, px, py), w),
+    ];
+    let to_eye = [
+        _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_set1_pd(frame.eye.x), pos[0])),
+        _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_set1_pd(frame.eye.y), pos[1])),
+        _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_set1_pd(frame.eye.z), pos[2])),
+    ];
+    let dot = _mm_add_ps(
+        _mm_add_ps(_mm_mul_ps(to_eye[0], to_eye[0]), _mm_mul_ps(to_eye[1], to_eye[1])),
+        _mm_mul_ps(to_eye[2], to_eye[2]),
+    );
+    let depth = _mm_sqrt_ps(dot);
     let recip = _mm_div_ps(_mm_set1_ps(1.0), depth);
-    let view = to_eye.map(|c| _mm_mul_ps(c, recip));
+    let view = [_mm_mul_ps(to_eye[0], recip), _mm_mul_ps(to_eye[1], recip), _mm_mul_ps(to_eye[2], recip)];
     let t = &k.to_tangent;
-    let view_ts = [0, 1, 2].map(|c| {
-        let col = |m: Vec3| _mm_set1_ps(m[c]);
-        _mm_add_ps(
-            _mm_add_ps(_mm_mul_ps(col(t.x_axis), view[0]), _mm_mul_ps(col(t.y_axis), view[1])),
-            _mm_mul_ps(col(t.z_axis), view[2]),
-        )
-    });
-    let f32s = |a: __m128| {
-        let mut o = [0.0f32; 4];
-        _mm_storeu_ps(o.as_mut_ptr(), a);
-        o
-    };
-    let f64s = |a: __m256d| {
-        let mut o = [0.0f32; 4];
-        _mm_storeu_ps(o.as_mut_ptr(), _mm256_cvtpd_ps(a));
-        o
-    };
-    let (u, v, dudx, dvdx, dudy, dvdy) = (f64s(u), f64s(v), f64s(dudx), f64s(dvdx), f64s(dudy), f64s(dvdy));
-    let pos = pos.map(f64s);
-    let (vt, depth) = (view_ts.map(f32s), f32s(depth));
+    let vt = [lanes(mat_row(t, 0, &view)), lanes(mat_row(t, 1, &view)), lanes(mat_row(t, 2, &view))];
+    let (u, v) = (narrow(u), narrow(v));
+    let (dudx, dvdx, dudy, dvdy) = (narrow(dudx), narrow(dvdx), narrow(dudy), narrow(dvdy));
+    let pos = [narrow(pos[0]), narrow(pos[1]), narrow(pos[2])];
+    let depth = lanes(depth);
     let ok_q = _mm256_movemask_pd(valid_q);
-    std::array::from_fn(|i| {
+    let mut out = [None; 4];
+    for (i, o) in out.iter_mut().enumerate() {
         let p = ShadePoint {
             uv: Vec2::new(u[i], v[i]),
             duv_dx: Vec2::new(dudx[i], dvdx[i]),
@@ -106,6 +142,7 @@ pub(crate) unsafe fn resolve_x4(
             && Vec3::new(pos[0][i], pos[1][i], pos[2][i]).is_finite()
             && p.view_ts.is_finite()
             && depth[i].is_finite();
-        finite.then_some(p)
-    })
+        *o = finite.then_some(p);
+    }
+    out
 }

@@ -27,6 +27,23 @@ unsafe fn sanitize(v: V) -> V {
     _mm256_and_ps(c, finite)
 }
 
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn ld(a: &[f32; LANES]) -> V {
+    _mm256_load_ps(a.as_ptr())
+}
+
+/// Channel at bit `shift` of the texels `p` as the filter sees it.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn channel(p: I, shift: i32, enc: Encoding, decode: &[f32; 256]) -> V {
+    let code = _mm256_and_si256(_mm256_srlv_epi32(p, _mm256_set1_epi32(shift)), _mm256_set1_epi32(0xff));
+    match enc {
+        Encoding::Srgb => _mm256_i32gather_ps::<4>(decode.as_ptr(), code),
+        Encoding::SignedUnorm => _mm256_cvtepi32_ps(code),
+    }
+}
+
 /// `x - x == 0`: the lanes holding finite values.
 #[inline]
 #[target_feature(enable = "avx2")]
@@ -113,20 +130,18 @@ unsafe fn taps(tex: &Texture8, k: I, u: V, v: V) -> ([I; 4], V, V) {
 #[target_feature(enable = "avx2")]
 unsafe fn bilinear(tex: &Texture8, (idx, fx, fy): &([I; 4], V, V), decode: &[f32; 256]) -> [V; 3] {
     let base = tex.texels().as_ptr() as *const i32;
-    let px = idx.map(|i| _mm256_i32gather_epi32::<4>(base, i));
-    let mask = _mm256_set1_epi32(0xff);
+    let px = [
+        _mm256_i32gather_epi32::<4>(base, idx[0]),
+        _mm256_i32gather_epi32::<4>(base, idx[1]),
+        _mm256_i32gather_epi32::<4>(base, idx[2]),
+        _mm256_i32gather_epi32::<4>(base, idx[3]),
+    ];
     let enc = tex.encoding();
-    let channel = |p: I, shift: i32| -> V {
-        let code = _mm256_and_si256(_mm256_srlv_epi32(p, _mm256_set1_epi32(shift)), mask);
-        match enc {
-            Encoding::Srgb => _mm256_i32gather_ps::<4>(decode.as_ptr(), code),
-            Encoding::SignedUnorm => _mm256_cvtepi32_ps(code),
-        }
-    };
     let mut out = [_mm256_setzero_ps(); 3];
     for (c, o) in out.iter_mut().enumerate() {
         let s = 8 * c as i32;
-        let (a, b, cc, d) = (channel(px[0], s), channel(px[1], s), channel(px[2], s), channel(px[3], s));
+        let (a, b) = (channel(px[0], s, enc, decode), channel(px[1], s, enc, decode));
+        let (cc, d) = (channel(px[2], s, enc, decode), channel(px[3], s, enc, decode));
         let top = _mm256_add_ps(a, _mm256_mul_ps(_mm256_sub_ps(b, a), *fx));
         let bottom = _mm256_add_ps(cc, _mm256_mul_ps(_mm256_sub_ps(d, cc), *fx));
         *o = _mm256_add_ps(top, _mm256_mul_ps(_mm256_sub_ps(bottom, top), *fy));
@@ -150,7 +165,11 @@ unsafe fn levels(tex: &Texture8, l: V) -> (I, I, V) {
 #[inline]
 #[target_feature(enable = "avx2")]
 unsafe fn blend(s0: [V; 3], s1: [V; 3], t: V) -> [V; 3] {
-    [0, 1, 2].map(|c| _mm256_add_ps(s0[c], _mm256_mul_ps(_mm256_sub_ps(s1[c], s0[c]), t)))
+    let mut out = s0;
+    for (o, (a, b)) in out.iter_mut().zip(s0.iter().zip(&s1)) {
+        *o = _mm256_add_ps(*a, _mm256_mul_ps(_mm256_sub_ps(*b, *a), t));
+    }
+    out
 }
 
 #[inline]
@@ -196,7 +215,11 @@ unsafe fn dot(a: &[V; 3], b: &[V; 3]) -> V {
 unsafe fn normalized(v: [V; 3], fallback: [V; 3]) -> [V; 3] {
     let r = _mm256_div_ps(splat(1.0), _mm256_sqrt_ps(dot(&v, &v)));
     let ok = _mm256_and_ps(finite(r), _mm256_cmp_ps::<_CMP_GT_OQ>(r, _mm256_setzero_ps()));
-    [0, 1, 2].map(|c| _mm256_blendv_ps(fallback[c], _mm256_mul_ps(v[c], r), ok))
+    let mut out = fallback;
+    for (o, (f, c)) in out.iter_mut().zip(fallback.iter().zip(&v)) {
+        *o = _mm256_blendv_ps(*f, _mm256_mul_ps(*c, r), ok);
+    }
+    out
 }
 
 #[inline]
@@ -223,7 +246,7 @@ unsafe fn encode(x: V, table: &[u32]) -> I {
 /// [`Texture8::from_texture`] builds them).
 #[target_feature(enable = "avx2")]
 pub(crate) unsafe fn shade(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANES]) {
-    let ld = |a: &[f32; LANES]| _mm256_load_ps(a.as_ptr());
+
     let (u, v) = (sanitize(ld(&p.u)), sanitize(ld(&p.v)));
     let d = [ld(&p.dudx), ld(&p.dvdx), ld(&p.dudy), ld(&p.dvdy)];
     let la = lod(&d, k.albedo);
@@ -239,7 +262,10 @@ pub(crate) unsafe fn shade(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANE
                     trilinear(k.normal, u, v, lod(&d, k.normal), k.decode),
                 )
             };
-            let n = nu.map(|c| _mm256_sub_ps(_mm256_mul_ps(c, splat(2.0 / 255.0)), splat(1.0)));
+            let mut n = nu;
+            for c in &mut n {
+                *c = _mm256_sub_ps(_mm256_mul_ps(*c, splat(2.0 / 255.0)), splat(1.0));
+            }
             let n = normalized(n, [zero, zero, splat(1.0)]);
             let l = [ld(&p.lx), ld(&p.ly), ld(&p.lz)];
             let diff = _mm256_max_ps(dot(&n, &l), zero);
@@ -274,12 +300,14 @@ pub(crate) unsafe fn shade(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANE
             let spec = _mm256_mul_ps(powed, splat(k.strength));
             let facing = _mm256_and_ps(_mm256_cmp_ps::<_CMP_GT_OQ>(l[2], zero), ld(&p.shadow));
             let ambient = splat(k.ambient);
-            albedo.map(|c| {
-                _mm256_add_ps(
-                    _mm256_mul_ps(c, ambient),
-                    _mm256_mul_ps(_mm256_add_ps(_mm256_mul_ps(c, diff), spec), facing),
-                )
-            })
+            let mut lit = albedo;
+            for c in &mut lit {
+                *c = _mm256_add_ps(
+                    _mm256_mul_ps(*c, ambient),
+                    _mm256_mul_ps(_mm256_add_ps(_mm256_mul_ps(*c, diff), spec), facing),
+                );
+            }
+            lit
         }
     };
     let r = encode(color[0], k.encode);
