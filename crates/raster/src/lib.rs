@@ -246,7 +246,8 @@ impl RowRaster {
             }
             return RasterStats::default();
         };
-        let frame = Frame { setups: &prepared.setups, tris: &prepared.tris, width: self.width, height: self.height };
+        let frame =
+            Frame { setups: &prepared.setups, tris: &prepared.tris, width: self.width, height: self.height };
         let RowScratch { vis, xs, points, .. } = scratch;
         let c = frame.render_points(band, bins.band(band), vis, xs, points, &self.constants, f);
         RasterStats { fragments: c.fragments, covered: c.covered, ..RasterStats::default() }

@@ -177,7 +177,8 @@ impl Frame<'_> {
                     let k = crate::resolve_x4::FlatConstants::new(tbn, constants);
                     while x + 4 <= end {
                         // SAFETY: AVX2 is present (checked above).
-                        let lanes = unsafe { crate::resolve_x4::resolve_x4(setup, &k, x as u32, y, constants) };
+                        let lanes =
+                            unsafe { crate::resolve_x4::resolve_x4(setup, &k, x as u32, y, constants) };
                         for (l, p) in lanes.into_iter().enumerate() {
                             if let Some(p) = p {
                                 xs.push((x + l) as u32);

@@ -152,7 +152,8 @@ fn streamed_points_equal_the_gbuffer() {
                     .enumerate()
                     .filter_map(|(x, p)| p.as_ref().map(|p| (x as u32, p.into())))
                     .collect();
-                let got: Vec<(u32, renderlab_core::ShadePoint)> = xs.iter().copied().zip(points.iter().copied()).collect();
+                let got: Vec<(u32, renderlab_core::ShadePoint)> =
+                    xs.iter().copied().zip(points.iter().copied()).collect();
                 assert_eq!(got, expected, "row {y}");
                 seen += xs.len();
             });

@@ -145,6 +145,46 @@ fn default_cone_newton_errors_stay_within_its_tolerance() {
     }
 }
 
+/// Adaptive POM's vector kernel (a layer count per lane) gives its scalar twin's hits bit
+/// for bit, whatever the row split, and the scalar kernel's layer counts with UVs within
+/// 0.05 texel (the 16-bit depths).
+#[test]
+fn simd_adaptive_kernel_agrees_and_matches_adaptive() {
+    use renderlab_relief::techniques::adaptive_pom::{AdaptivePom, AdaptiveSimd};
+    for fx in [fixture(64, 64, 64), fixture(48, 40, 24)] {
+        let inp = fx.inputs();
+        let rays = rays(211);
+        for rule in [AdaptivePom { min: 4, max: 32 }, AdaptivePom { min: 1, max: 50 }] {
+            let twin = AdaptiveSimd { rule, lanes: false };
+            let t = AdaptiveSimd { rule, lanes: true };
+            let mut scalar = vec![ReliefHit::default(); rays.len()];
+            let mut scalar_count = Tally::default();
+            twin.trace_row(&inp, &rays, &mut scalar, &mut scalar_count);
+            for chunk in [1usize, 7, rays.len()] {
+                let mut vector = vec![ReliefHit::default(); rays.len()];
+                let mut vector_count = Tally::default();
+                for (r, o) in rays.chunks(chunk).zip(vector.chunks_mut(chunk)) {
+                    t.trace_row(&inp, r, o, &mut vector_count);
+                }
+                for (i, (a, b)) in scalar.iter().zip(&vector).enumerate() {
+                    assert_eq!(bits(a), bits(b), "{rule:?}, ray {i} {:?}, rows of {chunk}", rays[i]);
+                }
+                assert_eq!(scalar_count, vector_count);
+            }
+            for (&(uv, v), a) in rays.iter().zip(&scalar) {
+                if uv.is_finite() && v.is_finite() && uv.abs().max_element() < 10.0 {
+                    let reference = rule.trace(&inp, uv, v, &mut Tally::default());
+                    assert_eq!(reference.layers, a.layers, "{uv} {v}: same layer count");
+                    assert!(
+                        ((reference.uv - a.uv) * 64.0).length() < 0.05,
+                        "{uv} {v}: {reference:?} vs {a:?}"
+                    );
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn simd_pom_kernels_agree_and_match_pom() {
     for fx in [fixture(64, 64, 64), fixture(48, 40, 24)] {

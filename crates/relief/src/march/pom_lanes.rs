@@ -17,6 +17,59 @@ pub struct PomLanes {
     pub layers: u32,
 }
 
+/// How many layers the packed-map march gives a ray: fixed (POM) or chosen per ray (the
+/// thesis's adaptive POM). The vector kernel takes the count per lane.
+pub trait LayerRule: Sync {
+    /// The layer count for the ray entering at `uv` toward `v` (at least 1).
+    fn layer_count(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3) -> u32;
+}
+
+impl LayerRule for PomLanes {
+    #[inline(always)]
+    fn layer_count(&self, _: &ReliefInputs, _: Vec2, _: Vec3) -> u32 {
+        self.layers.max(1)
+    }
+}
+
+impl LayerRule for crate::techniques::adaptive_pom::AdaptivePom {
+    #[inline(always)]
+    fn layer_count(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3) -> u32 {
+        self.layers(v, inp.complexity_at(uv))
+    }
+}
+
+/// One ray with the scalar twin of the vector kernel, `rule` giving its layer count.
+#[inline(always)]
+pub fn trace_lanes_scalar<R: LayerRule, C: Counter>(
+    rule: &R,
+    inp: &ReliefInputs,
+    map: &PackedRelief,
+    uv: Vec2,
+    v: Vec3,
+    counter: &mut C,
+) -> ReliefHit {
+    let layers = rule.layer_count(inp, uv, v);
+    let (uv0, step) = setup(inp, layers, uv, v);
+    let m = layered_march(map, uv0, step, layers, counter);
+    let (uv, depth) = interpolate(&m);
+    ReliefHit { uv, depth, layers }
+}
+
+/// [`trace_lanes_scalar`] for each ray of a row.
+#[inline(always)]
+pub fn scalar_row<R: LayerRule, C: Counter>(
+    rule: &R,
+    inp: &ReliefInputs,
+    map: &PackedRelief,
+    rays: &[(Vec2, Vec3)],
+    out: &mut [ReliefHit],
+    counter: &mut C,
+) {
+    for (o, &(uv, v)) in out.iter_mut().zip(rays) {
+        *o = trace_lanes_scalar(rule, inp, map, uv, v, counter);
+    }
+}
+
 /// Entry and per-layer step of one ray (non-finite values replaced by zero).
 #[inline(always)]
 pub(crate) fn setup(inp: &ReliefInputs, layers: u32, uv: Vec2, v: Vec3) -> (Vec2, Vec2) {
@@ -67,10 +120,7 @@ impl PomLanes {
         v: Vec3,
         counter: &mut C,
     ) -> ReliefHit {
-        let (uv0, step) = setup(inp, self.layers, uv, v);
-        let m = layered_march(map, uv0, step, self.layers, counter);
-        let (uv, depth) = interpolate(&m);
-        ReliefHit { uv, depth, layers: self.layers }
+        trace_lanes_scalar(self, inp, map, uv, v, counter)
     }
 
     /// [`PomLanes::trace_scalar`] for each ray of a row.
@@ -83,8 +133,6 @@ impl PomLanes {
         out: &mut [ReliefHit],
         counter: &mut C,
     ) {
-        for (o, &(uv, v)) in out.iter_mut().zip(rays) {
-            *o = self.trace_scalar(inp, map, uv, v, counter);
-        }
+        scalar_row(self, inp, map, rays, out, counter)
     }
 }

@@ -8,7 +8,7 @@ mod avx2;
 
 use crate::maps::packed::PackedRelief;
 use crate::march::cone_newton::NewtonCone;
-use crate::march::pom_lanes::PomLanes;
+use crate::march::pom_lanes::LayerRule;
 use crate::trace::{ReliefHit, ReliefInputs};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
@@ -49,8 +49,8 @@ pub fn cone_newton_row<C: Counter>(
 /// Traces `rays` with POM's vector kernel on the packed map; `false` (and nothing traced)
 /// where it cannot run.
 #[inline]
-pub fn pom_row<C: Counter>(
-    pom: &PomLanes,
+pub fn pom_row<R: LayerRule, C: Counter>(
+    pom: &R,
     inp: &ReliefInputs,
     map: &PackedRelief,
     rays: &[(Vec2, Vec3)],
@@ -76,8 +76,8 @@ pub fn pom_row<C: Counter>(
 /// Traces `rays` with the scalar twin of POM's vector kernel, built with the CPU's AVX2 and
 /// SSE4.1 where present (bit-identical results either way).
 #[inline]
-pub fn pom_twin_row<C: Counter>(
-    pom: &PomLanes,
+pub fn pom_twin_row<R: LayerRule, C: Counter>(
+    pom: &R,
     inp: &ReliefInputs,
     map: &PackedRelief,
     rays: &[(Vec2, Vec3)],
@@ -90,7 +90,7 @@ pub fn pom_twin_row<C: Counter>(
         unsafe { avx2::pom::twin_row(pom, inp, map, rays, out, counter) };
         return;
     }
-    pom.scalar_row(inp, map, rays, out, counter)
+    crate::march::pom_lanes::scalar_row(pom, inp, map, rays, out, counter)
 }
 
 /// Shades eight pixels with the fused frame's vector kernel; `false` (and nothing written)

@@ -1,7 +1,7 @@
 //! The thesis's adaptive POM: the layer count follows the view angle and the Sobel
 //! complexity map, then an ordinary POM march runs with that many layers.
 
-use super::descriptor::{Descriptor, Entry, Param, WithTracer};
+use super::descriptor::{BenchSetting, Descriptor, Entry, Param, WithTracer};
 use crate::kernel::Kernel;
 use crate::march::layered::{interpolate, layer_step, layered_march};
 use crate::trace::{ReliefHit, ReliefInputs, ReliefTechnique, Shading};
@@ -61,6 +61,40 @@ impl ReliefTechnique for AdaptivePom {
     }
 }
 
+/// Adaptive POM's `simd` kernel: the per-ray layer count as on the scalar kernel, then POM's
+/// packed-map march in vector lanes with a count per lane (its scalar twin where the lanes
+/// cannot run). It differs from `scalar` only by the 16-bit depths, as POM's kernels do.
+#[derive(Clone, Copy, Debug)]
+pub struct AdaptiveSimd {
+    /// The layer rule.
+    pub rule: AdaptivePom,
+    /// Whether rows may run in vector lanes (off: the scalar twin, for comparisons).
+    pub lanes: bool,
+}
+
+/// The message of the panic when a caller skipped the map check.
+const NO_PACKED_MAP: &str = "adaptive POM's simd kernel needs the packed depth map (checked by render)";
+
+impl ReliefTechnique for AdaptiveSimd {
+    fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
+        let map = inp.packed.expect(NO_PACKED_MAP);
+        crate::march::pom_lanes::trace_lanes_scalar(&self.rule, inp, map, uv, v, counter)
+    }
+
+    fn trace_row<C: Counter>(
+        &self,
+        inp: &ReliefInputs,
+        rays: &[(Vec2, Vec3)],
+        out: &mut [ReliefHit],
+        counter: &mut C,
+    ) {
+        let map = inp.packed.expect(NO_PACKED_MAP);
+        if !(self.lanes && crate::simd::pom_row(&self.rule, inp, map, rays, out, counter)) {
+            crate::simd::pom_twin_row(&self.rule, inp, map, rays, out, counter);
+        }
+    }
+}
+
 impl Entry for AdaptivePom {
     const DESCRIPTOR: Descriptor = Descriptor {
         name: "adaptive",
@@ -70,9 +104,12 @@ impl Entry for AdaptivePom {
             Param::count("MAX", 32, "base maximum layer count (thesis: 32)"),
         ],
         needs: &[],
-        kernels: &[Kernel::Scalar],
+        kernels: &[Kernel::Scalar, Kernel::Simd],
         shading: Shading::Lit,
     };
+
+    /// The thesis's setting on its scalar march, then on the fastest kernel.
+    const BENCH: &'static [BenchSetting] = &[BenchSetting::on(&[], Kernel::Scalar), BenchSetting::DEFAULTS];
 
     fn from_params(v: &[u32]) -> Result<Self, String> {
         if v[0] > v[1] {
@@ -91,8 +128,11 @@ impl Entry for AdaptivePom {
 
     const WGSL: Option<&'static str> = Some(include_str!("adaptive_pom.wgsl"));
 
-    fn dispatch<A: WithTracer>(&self, _: Kernel, action: A) -> A::Output {
-        action.run(self)
+    fn dispatch<A: WithTracer>(&self, kernel: Kernel, action: A) -> A::Output {
+        match kernel {
+            Kernel::Scalar => action.run(self),
+            Kernel::Simd => action.run(&AdaptiveSimd { rule: *self, lanes: true }),
+        }
     }
 }
 

@@ -6,7 +6,7 @@
 use super::gather::gather_cell;
 use super::{LANES, RANKS};
 use crate::maps::packed::{PackedRelief, DEPTH_STEP};
-use crate::march::pom_lanes::{finish, setup, PomLanes};
+use crate::march::pom_lanes::{finish, scalar_row, setup, LayerRule};
 use crate::trace::{ReliefHit, ReliefInputs};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
@@ -20,6 +20,10 @@ struct Group {
     sv: __m256,
     /// Layer to fetch next.
     i: __m256i,
+    /// The ray's layer depth, `1 / layers`.
+    ld: __m256,
+    /// The ray's layer count.
+    nl: __m256i,
     prev: __m256,
     owner: __m256i,
     active: u32,
@@ -28,8 +32,8 @@ struct Group {
 macro_rules! kernel {
     ($name:ident, $features:literal) => {
         #[target_feature(enable = $features)]
-        pub(crate) unsafe fn $name<C: Counter>(
-            pom: &PomLanes,
+        pub(crate) unsafe fn $name<R: LayerRule, C: Counter>(
+            rule: &R,
             inp: &ReliefInputs,
             map: &PackedRelief,
             rays: &[(Vec2, Vec3)],
@@ -38,21 +42,26 @@ macro_rules! kernel {
         ) {
             let n = rays.len().min(out.len());
             let len = n.div_ceil(LANES) * LANES + LANES;
-            let (mut cu, mut cv, mut csu, mut csv) =
-                (vec![0.0f32; len], vec![0.0f32; len], vec![0.0f32; len], vec![0.0f32; len]);
+            let mut cols = COLUMNS.take();
+            for c in cols.iter_mut() {
+                c.clear();
+                c.resize(len, 0.0);
+            }
+            let [cu, cv, csu, csv, cld, cn] = &mut cols;
             for (i, &(uv, v)) in rays[..n].iter().enumerate() {
-                let (uv0, step) = setup(inp, pom.layers, uv, v);
+                let layers = rule.layer_count(inp, uv, v).max(1);
+                let (uv0, step) = setup(inp, layers, uv, v);
                 cu[i] = uv0.x;
                 cv[i] = uv0.y;
                 csu[i] = step.x;
                 csv[i] = step.y;
+                cld[i] = 1.0 / layers as f32;
+                cn[i] = layers as f32;
             }
+            let [cu, cv, csu, csv, cld, cn] = &cols;
             let (mxk, myk) = map.masks().expect("power-of-two map");
             let base = map.texels().as_ptr() as *const i32;
             let stride = map.stride() as i32;
-            let layers = pom.layers.max(1);
-            let ld = _mm256_set1_ps(1.0 / layers as f32);
-            let n_layers = _mm256_set1_epi32(layers as i32);
             let wf = _mm256_set1_ps(map.width() as f32);
             let hf = _mm256_set1_ps(map.height() as f32);
             let half = _mm256_set1_ps(0.5);
@@ -81,10 +90,12 @@ macro_rules! kernel {
                     let vals = _mm256_loadu_ps(v.as_ptr().add(next));
                     _mm256_blendv_ps(src, _mm256_permutevar8x32_ps(vals, rank), take_ps)
                 };
-                g.u0 = col(g.u0, &cu);
-                g.v0 = col(g.v0, &cv);
-                g.su = col(g.su, &csu);
-                g.sv = col(g.sv, &csv);
+                g.u0 = col(g.u0, cu);
+                g.v0 = col(g.v0, cv);
+                g.su = col(g.su, csu);
+                g.sv = col(g.sv, csv);
+                g.ld = col(g.ld, cld);
+                g.nl = _mm256_cvttps_epi32(col(_mm256_cvtepi32_ps(g.nl), cn));
                 g.i = _mm256_blendv_epi8(g.i, zero_i, take);
                 g.owner = _mm256_blendv_epi8(g.owner, idx, take);
                 g.active = (g.active & !free) | _mm256_movemask_ps(take_ps) as u32;
@@ -92,7 +103,18 @@ macro_rules! kernel {
             };
 
             let z = _mm256_setzero_ps();
-            let empty = Group { u0: z, v0: z, su: z, sv: z, i: zero_i, prev: z, owner: zero_i, active: 0 };
+            let empty = Group {
+                u0: z,
+                v0: z,
+                su: z,
+                sv: z,
+                i: zero_i,
+                ld: z,
+                nl: zero_i,
+                prev: z,
+                owner: zero_i,
+                active: 0,
+            };
             let mut groups = [empty; 2];
             let mut next = 0usize;
             for g in groups.iter_mut() {
@@ -123,8 +145,8 @@ macro_rules! kernel {
                     // Layer 0 has no layer above: its own value.
                     let prev = _mm256_blendv_ps(g.prev, m, first);
                     let go_on = _mm256_and_ps(
-                        _mm256_cmp_ps::<_CMP_LT_OQ>(_mm256_mul_ps(fi, ld), m),
-                        _mm256_castsi256_ps(_mm256_cmpgt_epi32(n_layers, g.i)),
+                        _mm256_cmp_ps::<_CMP_LT_OQ>(_mm256_mul_ps(fi, g.ld), m),
+                        _mm256_castsi256_ps(_mm256_cmpgt_epi32(g.nl, g.i)),
                     );
                     let done = (!(_mm256_movemask_ps(go_on) as u32)) & 0xff & g.active;
                     if done != 0 {
@@ -140,7 +162,7 @@ macro_rules! kernel {
                             f &= f - 1;
                             let r = own[l] as usize;
                             let (uv0, step) = (Vec2::new(cu[r], cv[r]), Vec2::new(csu[r], csv[r]));
-                            out[r] = finish(pom.layers, uv0, step, mi[l] as u32, mm[l], mp[l]);
+                            out[r] = finish(cn[r] as u32, uv0, step, mi[l] as u32, mm[l], mp[l]);
                         }
                     }
                     // Going on: this layer becomes the previous one.
@@ -152,23 +174,30 @@ macro_rules! kernel {
                     }
                 }
             }
+            COLUMNS.set(cols);
         }
     };
 }
 
 kernel!(trace_row, "avx2");
+
+thread_local! {
+    /// Each thread's ray columns (entry, step, layer depth and count), reused from row to
+    /// row so that a frame allocates nothing.
+    static COLUMNS: std::cell::Cell<[Vec<f32>; 6]> = const { std::cell::Cell::new([const { Vec::new() }; 6]) };
+}
 kernel!(trace_row_avx512, "avx2,avx512f,avx512vl");
 
 /// The scalar twin, compiled with AVX2 and SSE4.1 (a single instruction for each `floor`):
 /// what runs where the lanes cannot; results are the same as without the features.
 #[target_feature(enable = "avx2,sse4.1")]
-pub(crate) fn twin_row<C: Counter>(
-    pom: &PomLanes,
+pub(crate) fn twin_row<R: LayerRule, C: Counter>(
+    rule: &R,
     inp: &ReliefInputs,
     map: &PackedRelief,
     rays: &[(Vec2, Vec3)],
     out: &mut [ReliefHit],
     counter: &mut C,
 ) {
-    pom.scalar_row(inp, map, rays, out, counter)
+    scalar_row(rule, inp, map, rays, out, counter)
 }

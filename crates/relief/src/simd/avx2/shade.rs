@@ -246,7 +246,6 @@ unsafe fn encode(x: V, table: &[u32]) -> I {
 /// [`Texture8::from_texture`] builds them).
 #[target_feature(enable = "avx2")]
 pub(crate) unsafe fn shade(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANES]) {
-
     let (u, v) = (sanitize(ld(&p.u)), sanitize(ld(&p.v)));
     let d = [ld(&p.dudx), ld(&p.dvdx), ld(&p.dudy), ld(&p.dvdy)];
     let la = lod(&d, k.albedo);
