@@ -139,6 +139,11 @@ struct Worker {
     xs: [usize; LANES],
 }
 
+thread_local! {
+    /// This thread's [`Worker`], kept from frame to frame: a frame allocates no buffers.
+    static WORKER: std::cell::RefCell<Worker> = std::cell::RefCell::default();
+}
+
 /// What every band of a frame shares.
 struct Pass<'a, T> {
     raster: &'a RowRaster,
@@ -363,13 +368,9 @@ pub fn render_fused(
             if band_len == 0 {
                 return;
             }
-            self.frame
-                .pixels
-                .par_chunks_mut(band_len)
-                .enumerate()
-                .for_each_init(Worker::default, |worker, (b, out)| {
-                    pass.band(b, out, None, worker, &mut NoCount)
-                });
+            self.frame.pixels.par_chunks_mut(band_len).enumerate().for_each(|(b, out)| {
+                WORKER.with_borrow_mut(|worker| pass.band(b, out, None, worker, &mut NoCount))
+            });
         }
     }
     let opt = options(technique, scene.lighting, scene.background);

@@ -88,22 +88,24 @@ impl RaySoa {
 /// [`Ray::new`] for every ray, eight at a time: the same operations in the same order.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn setup_rays(fc: &NewtonCone, inp: &ReliefInputs, rays: &[(Vec2, Vec3)]) -> RaySoa {
+unsafe fn setup_rays(fc: &NewtonCone, inp: &ReliefInputs, rays: &[(Vec2, Vec3)], soa: &mut RaySoa) {
     let n = rays.len();
     let len = n.div_ceil(LANES) * LANES + LANES;
-    let col = || vec![0.0f32; len];
-    let mut soa = RaySoa {
-        px: col(),
-        py: col(),
-        tu: col(),
-        tv: col(),
-        s: col(),
-        eps: col(),
-        u0: col(),
-        v0: col(),
-        du: col(),
-        dv: col(),
-    };
+    for c in [
+        &mut soa.px,
+        &mut soa.py,
+        &mut soa.tu,
+        &mut soa.tv,
+        &mut soa.s,
+        &mut soa.eps,
+        &mut soa.u0,
+        &mut soa.v0,
+        &mut soa.du,
+        &mut soa.dv,
+    ] {
+        c.clear();
+        c.resize(len, 0.0);
+    }
     let (w, h) = (inp.height.width() as f32, inp.height.height() as f32);
     let (wv, hv) = (_mm256_set1_ps(w), _mm256_set1_ps(h));
     let abs_mask = _mm256_set1_ps(-0.0);
@@ -163,7 +165,11 @@ unsafe fn setup_rays(fc: &NewtonCone, inp: &ReliefInputs, rays: &[(Vec2, Vec3)])
             }
         }
     }
-    soa
+}
+
+thread_local! {
+    /// Each thread's ray columns, reused from row to row so that a frame allocates nothing.
+    static COLUMNS: std::cell::Cell<RaySoa> = std::cell::Cell::new(RaySoa::default());
 }
 
 /// The vector `interp`.
@@ -240,7 +246,8 @@ macro_rules! kernel {
             let base = map.texels().as_ptr() as *const i32;
             let stride = map.stride() as i32;
             // Every ray's constants, computed up front eight at a time (`Ray::new` in vectors).
-            let soa = setup_rays(fc, inp, &rays[..n]);
+            let mut soa = COLUMNS.take();
+            setup_rays(fc, inp, &rays[..n], &mut soa);
             let zero = _mm256_setzero_ps();
             let empty = Group {
                 px: zero,
@@ -426,6 +433,7 @@ macro_rules! kernel {
                     }
                 }
             }
+            COLUMNS.set(soa);
         }
     };
 }
