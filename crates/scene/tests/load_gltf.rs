@@ -235,3 +235,52 @@ fn size_limits_and_unknown_formats_are_errors() {
     assert!(load(dir.path().join("absent.obj")).is_err());
     let _ = Vec2::ZERO;
 }
+
+/// Strips and fans (modes 5 and 6, which some exporters write) load as the triangles the
+/// specification assembles, every one wound like the first; points and lines are
+/// skipped with a warning, not an error.
+#[test]
+fn triangle_strips_and_fans_load_with_one_winding() {
+    let grid: Vec<[f32; 3]> = (0..6).map(|i| [(i / 2) as f32, (i % 2) as f32, 0.0]).collect();
+    for (mode, expected) in [(5, 4), (6, 4)] {
+        let mut d = Doc::default();
+        let pos = if mode == 5 {
+            d.vec3(&grid)
+        } else {
+            // A fan around the centre of a hexagon, counter-clockwise seen from +Z.
+            let mut fan = vec![[0.0, 0.0, 0.0]];
+            fan.extend((0..5).map(|k| {
+                let a = k as f32 * 0.9;
+                [a.cos(), a.sin(), 0.0]
+            }));
+            d.vec3(&fan)
+        };
+        let idx = d.indices(&[0, 1, 2, 3, 4, 5]);
+        let mesh = d.mesh(json!({"POSITION": pos}), Some(idx), None);
+        d.meshes[mesh]["primitives"][0]["mode"] = json!(mode);
+        let node = d.node(json!({"mesh": mesh}));
+        d.roots.push(node);
+        let loaded = from_slice(&d.gltf_embedded(), "s", None, &limits()).unwrap();
+        assert_eq!(loaded.scene.triangle_count(), expected, "mode {mode}");
+        let m = &loaded.scene.meshes[0];
+        let normal_z = |t: &[u32; 3]| {
+            let [a, b, c] = t.map(|i| m.vertices[i as usize].position);
+            (b - a).cross(c - a).z
+        };
+        let first = normal_z(&m.triangles[0]);
+        assert!(first != 0.0, "mode {mode}: degenerate first triangle");
+        for t in &m.triangles {
+            assert!(normal_z(t) * first > 0.0, "mode {mode}: {t:?} winds the other way");
+        }
+    }
+    let mut d = Doc::default();
+    let pos = d.vec3(&grid);
+    let mesh = d.mesh(json!({"POSITION": pos}), None, None);
+    d.meshes[mesh]["primitives"][0]["mode"] = json!(1);
+    let node = d.node(json!({"mesh": mesh}));
+    d.roots.push(node);
+    match from_slice(&d.gltf_embedded(), "l", None, &limits()) {
+        Ok(l) => assert!(l.warnings.iter().any(|w| w.contains("draws no triangles")), "{:?}", l.warnings),
+        Err(e) => assert!(e.to_string().contains("triangle") || e.to_string().contains("mesh"), "{e}"),
+    }
+}

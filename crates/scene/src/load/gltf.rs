@@ -334,8 +334,10 @@ impl Loader<'_> {
             mesh.name().map_or_else(|| format!("mesh {}", mesh.index()), str::to_string),
             prim.index()
         );
-        if prim.mode() != ::gltf::mesh::Mode::Triangles {
-            self.warnings.push(format!("{label}: mode {:?} is not triangles, skipped", prim.mode()));
+        use ::gltf::mesh::Mode;
+        let mode = prim.mode();
+        if !matches!(mode, Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
+            self.warnings.push(format!("{label}: mode {mode:?} draws no triangles, skipped"));
             return Ok(None);
         }
         let Some(pos_acc) = prim.get(&Semantic::Positions) else {
@@ -388,11 +390,11 @@ impl Loader<'_> {
                 )?;
                 let idx: Vec<u32> =
                     reader.read_indices().ok_or_else(|| unreadable("index"))?.into_u32().collect();
-                idx.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect::<Vec<_>>()
+                assemble(mode, &idx)
             }
             None => {
-                let n = positions.len() as u32;
-                (0..n / 3).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect()
+                let idx: Vec<u32> = (0..positions.len() as u32).collect();
+                assemble(mode, &idx)
             }
         };
         let raw = RawMesh { name: label.clone(), positions, normals, uvs, tangents, triangles };
@@ -634,5 +636,46 @@ fn finite_or(x: f32, default: f32) -> f32 {
         x
     } else {
         default
+    }
+}
+
+/// The triangles a primitive of `mode` draws from its vertex sequence `idx`, as the glTF
+/// specification (§3.7.2.1) assembles them: lists by threes (a trailing partial triangle
+/// dropped), strips with every other triangle's first two vertices swapped so that all keep
+/// the first one's winding, fans around the first vertex.
+pub(crate) fn assemble(mode: ::gltf::mesh::Mode, idx: &[u32]) -> Vec<[u32; 3]> {
+    use ::gltf::mesh::Mode;
+    match mode {
+        Mode::TriangleStrip => {
+            (0..idx.len().saturating_sub(2))
+                .map(|i| {
+                    if i % 2 == 0 {
+                        [idx[i], idx[i + 1], idx[i + 2]]
+                    } else {
+                        [idx[i + 1], idx[i], idx[i + 2]]
+                    }
+                })
+                .collect()
+        }
+        Mode::TriangleFan => (1..idx.len().saturating_sub(1)).map(|i| [idx[i], idx[i + 1], idx[0]]).collect(),
+        _ => idx.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
+    }
+}
+
+#[cfg(test)]
+mod assembly_tests {
+    use super::assemble;
+    use ::gltf::mesh::Mode;
+
+    #[test]
+    fn strips_keep_the_winding_and_fans_turn_around_the_first_vertex() {
+        let idx = [10, 11, 12, 13, 14];
+        assert_eq!(assemble(Mode::TriangleStrip, &idx), vec![[10, 11, 12], [12, 11, 13], [12, 13, 14]]);
+        assert_eq!(assemble(Mode::TriangleFan, &idx), vec![[11, 12, 10], [12, 13, 10], [13, 14, 10]]);
+        assert_eq!(assemble(Mode::Triangles, &idx), vec![[10, 11, 12]]);
+        for mode in [Mode::TriangleStrip, Mode::TriangleFan, Mode::Triangles] {
+            assert!(assemble(mode, &idx[..2]).is_empty());
+            assert!(assemble(mode, &[]).is_empty());
+        }
     }
 }
