@@ -284,3 +284,44 @@ fn triangle_strips_and_fans_load_with_one_winding() {
         Err(e) => assert!(e.to_string().contains("triangle") || e.to_string().contains("mesh"), "{e}"),
     }
 }
+
+/// An interleaved vertex buffer (one view with `byteStride` 24: position, then a
+/// normalized u16 UV pair and padding, as exporters pack them) and u8 indices load like
+/// separate arrays.
+#[test]
+fn interleaved_vertices_and_byte_indices_load() {
+    let mut d = Doc::default();
+    let verts: [([f32; 3], [u16; 2]); 3] =
+        [([0.0, 0.0, 0.0], [0, 65535]), ([1.0, 0.0, 0.0], [65535, 65535]), ([0.0, 1.0, 0.0], [0, 0])];
+    let mut bytes = Vec::new();
+    for (p, uv) in verts {
+        bytes.extend(p.iter().flat_map(|x| x.to_le_bytes()));
+        bytes.extend(uv.iter().flat_map(|x| x.to_le_bytes()));
+        bytes.extend([0u8; 8]);
+    }
+    let view = d.view(&bytes);
+    d.views[view]["byteStride"] = json!(24);
+    d.accessors.push(json!({"bufferView": view, "componentType": 5126, "type": "VEC3", "count": 3,
+        "min": [0.0, 0.0, 0.0], "max": [1.0, 1.0, 0.0]}));
+    let pos = d.accessors.len() - 1;
+    d.accessors.push(json!({"bufferView": view, "byteOffset": 12, "componentType": 5123,
+        "normalized": true, "type": "VEC2", "count": 3}));
+    let uv = d.accessors.len() - 1;
+    let idx = d.accessor(&[0u8, 1, 2, 0], 5121, "SCALAR", 3);
+    let mesh = d.mesh(json!({"POSITION": pos, "TEXCOORD_0": uv}), Some(idx), None);
+    let node = d.node(json!({"mesh": mesh}));
+    d.roots.push(node);
+    let loaded = from_slice(&d.gltf_embedded(), "i", None, &limits()).unwrap();
+    assert_eq!(loaded.scene.triangle_count(), 1);
+    let m = &loaded.scene.meshes[0];
+    let mut got: Vec<(Vec3, glam::Vec2)> = m.vertices.iter().map(|v| (v.position, v.uv)).collect();
+    got.sort_by(|a, b| a.0.x.total_cmp(&b.0.x).then(a.0.y.total_cmp(&b.0.y)));
+    let expect = [
+        (Vec3::new(0.0, 0.0, 0.0), glam::Vec2::new(0.0, 1.0)),
+        (Vec3::new(0.0, 1.0, 0.0), glam::Vec2::new(0.0, 0.0)),
+        (Vec3::new(1.0, 0.0, 0.0), glam::Vec2::new(1.0, 1.0)),
+    ];
+    for ((p, t), (ep, et)) in got.iter().zip(expect) {
+        assert!((*p - ep).length() < 1e-6 && (*t - et).length() < 1e-4, "{p} {t} vs {ep} {et}");
+    }
+}
