@@ -19,6 +19,7 @@ pub mod kernel;
 pub mod material;
 pub mod mesh;
 pub mod scene;
+pub mod srgb8;
 pub mod surface;
 
 pub use camera::Camera;

@@ -4,8 +4,9 @@
 //! renderer's pass on a G-buffer given in advance.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use renderlab_core::color::{srgb8_encode_table, srgb8_to_linear_table};
+use renderlab_core::color::srgb8_to_linear_table;
 use renderlab_core::scene::{bricks_wall, BRICKS_WALL_CENTRE};
+use renderlab_core::srgb8::srgb8_encode_table;
 use renderlab_core::{Camera, Scene, SceneObject};
 use renderlab_relief::fused::lanes::{shade_scalar, ShadeConsts, ShadeLanes, LANES};
 use renderlab_relief::fused::{render_fused, FusedFrame};

@@ -5,8 +5,9 @@
 
 use glam::{Vec2, Vec3};
 use proptest::prelude::*;
-use renderlab_core::color::{srgb8_encode_table, srgb8_to_linear_table};
+use renderlab_core::color::srgb8_to_linear_table;
 use renderlab_core::scene::{bricks_wall, BRICKS_WALL_CENTRE};
+use renderlab_core::srgb8::srgb8_encode_table;
 use renderlab_core::{Camera, Image, Scene, SceneObject};
 use renderlab_raster::rasterize;
 use renderlab_relief::fused::lanes::{shade_scalar, ShadeConsts, ShadeLanes, LANES};

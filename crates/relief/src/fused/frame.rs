@@ -16,8 +16,9 @@ use crate::techniques::Technique;
 use crate::trace::{ReliefHit, ReliefTechnique, Shading};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
-use renderlab_core::color::{encode_srgb8, srgb8_encode_table, srgb8_to_linear_table};
+use renderlab_core::color::srgb8_to_linear_table;
 use renderlab_core::counter::{Counter, NoCount, Tally};
+use renderlab_core::srgb8::{encode_srgb8, srgb8_encode_table};
 use renderlab_core::{Camera, Image, Scene, ShadePoint};
 use renderlab_raster::{RowRaster, RowScratch, BAND_HEIGHT};
 

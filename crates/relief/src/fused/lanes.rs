@@ -9,11 +9,11 @@
 //!    as a GPU samples an `rgba8unorm-srgb` texture.
 //! 3. For lit techniques, the trilinear normal from the unorm normal map, normalised, and
 //!    the thesis's ambient + Lambert + Blinn–Phong light (`renderlab_relief::render::shade::light`).
-//! 4. sRGB encoding by table ([`renderlab_core::color::encode_srgb8`]) into one RGBA8 `u32`.
+//! 4. sRGB encoding by table ([`renderlab_core::srgb8::encode_srgb8`]) into one RGBA8 `u32`.
 
 use super::texture8::{Encoding, Texture8};
 use crate::trace::Shading;
-use renderlab_core::color::{encode_srgb8, ENCODE_BUCKETS};
+use renderlab_core::srgb8::{encode_srgb8, ENCODE_BUCKETS};
 
 /// Pixels per kernel call.
 pub const LANES: usize = 8;

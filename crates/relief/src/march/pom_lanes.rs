@@ -31,13 +31,6 @@ impl LayerRule for PomLanes {
     }
 }
 
-impl LayerRule for crate::techniques::adaptive_pom::AdaptivePom {
-    #[inline(always)]
-    fn layer_count(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3) -> u32 {
-        self.layers(v, inp.complexity_at(uv))
-    }
-}
-
 /// One ray with the scalar twin of the vector kernel, `rule` giving its layer count.
 #[inline(always)]
 pub fn trace_lanes_scalar<R: LayerRule, C: Counter>(

@@ -61,6 +61,13 @@ impl ReliefTechnique for AdaptivePom {
     }
 }
 
+impl crate::march::pom_lanes::LayerRule for AdaptivePom {
+    #[inline(always)]
+    fn layer_count(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3) -> u32 {
+        self.layers(v, inp.complexity_at(uv))
+    }
+}
+
 /// Adaptive POM's `simd` kernel: the per-ray layer count as on the scalar kernel, then POM's
 /// packed-map march in vector lanes with a count per lane (its scalar twin where the lanes
 /// cannot run). It differs from `scalar` only by the 16-bit depths, as POM's kernels do.

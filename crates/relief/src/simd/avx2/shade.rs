@@ -6,7 +6,7 @@
 use crate::fused::lanes::{ShadeConsts, ShadeLanes, LANES};
 use crate::fused::texture8::{Encoding, Texture8};
 use crate::trace::Shading;
-use renderlab_core::color::{ENCODE_MAX_BITS, ENCODE_MIN_BITS};
+use renderlab_core::srgb8::{ENCODE_MAX_BITS, ENCODE_MIN_BITS};
 use std::arch::x86_64::*;
 
 type V = __m256;

@@ -9,7 +9,7 @@
 //! bias and a 16-bit slope in one `u32`. The vector shading kernels gather from the same
 //! table, so their pixels equal [`encode_srgb8`]'s bit for bit.
 
-use super::linear_to_srgb;
+use crate::color::linear_to_srgb;
 use std::sync::OnceLock;
 
 /// Smallest input the table distinguishes (2⁻¹³); anything below encodes to 0.

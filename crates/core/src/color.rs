@@ -1,8 +1,5 @@
 //! Colour handling: renderlab computes in linear light and stores sRGB on disk.
 
-mod encode;
-
-pub use encode::{encode_srgb8, srgb8_encode_table, ENCODE_BUCKETS, ENCODE_MAX_BITS, ENCODE_MIN_BITS};
 use glam::Vec3;
 
 /// Converts one sRGB-encoded component in [0, 1] to linear light (IEC 61966-2-1).
