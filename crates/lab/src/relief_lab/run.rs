@@ -20,7 +20,7 @@ use renderlab_gpu::ReliefRenderer;
 use renderlab_raster::{rasterize, GBuffer};
 use renderlab_relief::fused::{render_fused, render_fused_records, FusedFrame};
 use renderlab_relief::render::{check, render, render_reference, trace_only};
-use renderlab_relief::{Frame, FrameInput, Kernel, Map, ReliefMaterial, Shading, Technique};
+use renderlab_relief::{Frame, FrameInput, Kernel, KernelChoice, Map, ReliefMaterial, Shading, Technique};
 use std::path::Path;
 
 /// A rasterized view: the G-buffer the relief renderer shades.
@@ -112,9 +112,9 @@ pub fn run_relief_bench(
             progress(done, total, &format!("{angle}°: {}", label(t, kernel)));
             // The whole frame a user waits for: scene to 8-bit pixels, rasterization included.
             let mut cpu_pass = || render_fused(&scene, &camera, mats, t, kernel, true, &mut frame);
-            let paired = cfg.backend == Backend::Both
-                && on_gpu.contains(&t)
-                && gpu_runs.iter().all(|(g, _, _)| *g != t);
+            // Each GPU shader is paired with its technique's fastest CPU kernel.
+            let paired =
+                cfg.backend == Backend::Both && on_gpu.contains(&t) && paired_method(&methods, t) == Some(i);
             let (pass, ratio) = match (&mut renderer, paired) {
                 (Some(r), true) => {
                     let (pass, gpu) = time_interleaved(r, &camera, t, cfg.warmup, cfg.reps, || {
@@ -210,6 +210,16 @@ pub fn run_relief_bench(
     progress(total, total, "done");
     records.extend(gpu_records);
     Ok(ReliefSummary { records, findings, headline, index, gpu_note })
+}
+
+/// The method a GPU shader of `t` is timed in turn with: the one on `t`'s fastest kernel here
+/// (the kernel `auto` picks), else `t`'s first.
+fn paired_method(methods: &[(Technique, Kernel)], t: Technique) -> Option<usize> {
+    let best = t.kernel(KernelChoice::Auto).ok();
+    methods
+        .iter()
+        .position(|&(m, k)| m == t && Some(k) == best)
+        .or_else(|| methods.iter().position(|&(m, _)| m == t))
 }
 
 /// A technique timed on the GPU at one angle: its times and, when it was timed in turn with a
@@ -321,5 +331,22 @@ fn shading_name(s: Shading) -> &'static str {
         Shading::Unlit => "unlit",
         Shading::Lit => "lit",
         Shading::LitShadowed => "shadowed",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_shader_pairs_with_its_fastest_cpu_kernel() {
+        let pom = Technique::parse("pom:32").unwrap();
+        let basic = Technique::parse("basic").unwrap();
+        let methods = [(basic, Kernel::Scalar), (pom, Kernel::Scalar), (pom, Kernel::Simd)];
+        let fastest = if pom.kernel(KernelChoice::Auto).unwrap() == Kernel::Simd { 2 } else { 1 };
+        assert_eq!(paired_method(&methods, pom), Some(fastest));
+        assert_eq!(paired_method(&methods, basic), Some(0));
+        assert_eq!(paired_method(&methods[..2], pom), Some(1), "the first when the fastest is not measured");
+        assert_eq!(paired_method(&methods[..1], pom), None);
     }
 }
