@@ -27,7 +27,8 @@ impl FlatConstants {
 }
 
 /// Pixels `x0 .. x0 + 4` of row `y` on triangle `s` (whose frame is constant): each lane's
-/// point, `None` where the scalar resolve gives none.
+/// point, and a mask with bit `i` set where lane `i` has one (where the scalar resolve gives
+/// `Some`; the other lanes' points are unspecified).
 ///
 /// # Safety
 ///
@@ -78,7 +79,8 @@ unsafe fn mat_row(m: &Mat3, c: usize, v: &[__m128; 3]) -> __m128 {
 }
 
 /// Pixels `x0 .. x0 + 4` of row `y` on triangle `s` (whose frame is constant): each lane's
-/// point, `None` where the scalar resolve gives none.
+/// point, and a mask with bit `i` set where lane `i` has one (where the scalar resolve gives
+/// `Some`; the other lanes' points are unspecified).
 ///
 /// # Safety
 ///
@@ -90,7 +92,7 @@ pub(crate) unsafe fn resolve_x4(
     x0: u32,
     y: u32,
     frame: &FrameConstants,
-) -> [Option<ShadePoint>; 4] {
+) -> (u32, [ShadePoint; 4]) {
     let x = x0 as f64;
     let px = _mm256_add_pd(_mm256_set_pd(x + 3.0, x + 2.0, x + 1.0, x), _mm256_set1_pd(0.5));
     let py = _mm256_set1_pd(y as f64 + 0.5);
@@ -125,9 +127,10 @@ pub(crate) unsafe fn resolve_x4(
     let pos = [narrow(pos[0]), narrow(pos[1]), narrow(pos[2])];
     let depth = lanes(depth);
     let ok_q = _mm256_movemask_pd(valid_q);
-    let mut out = [None; 4];
-    for (i, o) in out.iter_mut().enumerate() {
-        let p = ShadePoint {
+    let mut out = [ShadePoint::default(); 4];
+    let mut mask = 0;
+    for (i, p) in out.iter_mut().enumerate() {
+        *p = ShadePoint {
             uv: Vec2::new(u[i], v[i]),
             duv_dx: Vec2::new(dudx[i], dvdx[i]),
             duv_dy: Vec2::new(dudy[i], dvdy[i]),
@@ -142,7 +145,7 @@ pub(crate) unsafe fn resolve_x4(
             && Vec3::new(pos[0][i], pos[1][i], pos[2][i]).is_finite()
             && p.view_ts.is_finite()
             && depth[i].is_finite();
-        *o = finite.then_some(p);
+        mask |= (finite as u32) << i;
     }
-    out
+    (mask, out)
 }

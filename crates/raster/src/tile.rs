@@ -162,6 +162,8 @@ impl Frame<'_> {
             let y = y_start + r as u32;
             xs.clear();
             points.clear();
+            xs.reserve(w);
+            points.reserve(w);
             let mut x = 0;
             while x < w {
                 let i = id_row[x];
@@ -177,10 +179,15 @@ impl Frame<'_> {
                     let k = crate::resolve_x4::FlatConstants::new(tbn, constants);
                     while x + 4 <= end {
                         // SAFETY: AVX2 is present (checked above).
-                        let lanes =
+                        let (mask, lanes) =
                             unsafe { crate::resolve_x4::resolve_x4(setup, &k, x as u32, y, constants) };
-                        for (l, p) in lanes.into_iter().enumerate() {
-                            if let Some(p) = p {
+                        if mask == 0xf {
+                            let x = x as u32;
+                            xs.extend_from_slice(&[x, x + 1, x + 2, x + 3]);
+                            points.extend_from_slice(&lanes);
+                        } else {
+                            for (l, p) in lanes.into_iter().enumerate().filter(|&(l, _)| mask & (1 << l) != 0)
+                            {
                                 xs.push((x + l) as u32);
                                 points.push(p);
                             }
