@@ -28,7 +28,7 @@ pub const KEY_HELP: &[(&str, &str)] = &[
     ("Left Right", "every technique of the registry"),
     ("Up Down", "layers (1-50)"),
     ("B", "layer-count heat map"),
-    ("V", "split: side by side, error map, off"),
+    ("V", "split: side by side, error map, off (drag the line to move it)"),
     ("H", "hide the interface (captures the mouse; showing it frees it)"),
     ("X", "FPS readout"),
     ("C", "reset the FPS statistics"),

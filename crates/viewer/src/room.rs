@@ -61,6 +61,10 @@ pub struct RoomScreen {
     split: SplitMode,
     right: Technique,
     split_times: SplitTimes,
+    /// Where the split line is, as a fraction of the view's width.
+    split_fraction: f32,
+    /// Whether the drag in progress moves the split line (not the head).
+    dragging_split: bool,
     look: MouseLook,
     /// What this frame's keys did to the cursor (see [`MouseLook::update`]).
     look_keys: LookInput,
@@ -113,6 +117,8 @@ impl RoomScreen {
             split: launch.split,
             right: launch.right.unwrap_or_else(split::reference),
             split_times: SplitTimes::default(),
+            split_fraction: 0.5,
+            dragging_split: false,
             look: MouseLook::default(),
             look_keys: LookInput::default(),
             view_rect: egui::Rect::NOTHING,
@@ -144,6 +150,11 @@ impl RoomScreen {
     /// The split screen's right-hand technique (side by side).
     pub fn right(&self) -> Technique {
         self.right
+    }
+
+    /// Where the split line is, as a fraction of the view's width from its left edge.
+    pub fn split_fraction(&self) -> f32 {
+        self.split_fraction
     }
 
     /// What the last split frame measured.
@@ -254,6 +265,28 @@ impl RoomScreen {
         }
     }
 
+    /// A drag that starts on the split line (cursor free) moves it, and turns nothing; any
+    /// other drag is returned, to turn the head.
+    fn drag_split(&mut self, ctx: &egui::Context, response: &egui::Response, rect: egui::Rect) -> egui::Vec2 {
+        if response.drag_started() {
+            let line = rect.left() + rect.width() * self.split_fraction;
+            let origin = ctx.input(|i| i.pointer.press_origin());
+            self.dragging_split = self.split != SplitMode::Off
+                && !self.look.captured()
+                && origin.is_some_and(|p| (p.x - line).abs() <= split::GRAB_POINTS);
+        }
+        if !response.dragged() {
+            self.dragging_split = false;
+        }
+        if !self.dragging_split {
+            return response.drag_delta();
+        }
+        if let Some(p) = response.interact_pointer_pos() {
+            self.split_fraction = split::dragged_to(p.x, rect.left(), rect.width(), self.split_fraction);
+        }
+        egui::Vec2::ZERO
+    }
+
     /// Sends the cursor's window commands for what happened this frame.
     fn update_look(&mut self, ctx: &egui::Context, entered: bool, clicked_view: bool) {
         let input = LookInput {
@@ -315,7 +348,7 @@ impl RoomScreen {
             self.view_rect = rect;
             let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
             self.update_look(&ctx, entered, response.clicked());
-            let drag = response.drag_delta();
+            let drag = self.drag_split(&ctx, &response, rect);
             self.movement(&ctx, drag, sensitivity, dt.unwrap_or(0.0) as f32);
             let ppp = ctx.pixels_per_point();
             let (w, h) =
@@ -344,6 +377,7 @@ impl RoomScreen {
             split::labels(
                 &ctx,
                 self.view_rect,
+                self.split_fraction,
                 self.split,
                 self.technique,
                 self.right,
@@ -388,7 +422,14 @@ impl RoomScreen {
             return Ok((id, None));
         }
         if self.split != SplitMode::Off {
-            let (id, times) = self.view.draw_split(rs, camera, self.split, self.technique, self.right)?;
+            let (id, times) = self.view.draw_split(
+                rs,
+                camera,
+                self.split_fraction,
+                self.split,
+                self.technique,
+                self.right,
+            )?;
             self.split_times = times;
             return Ok((id, times.total()));
         }

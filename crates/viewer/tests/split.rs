@@ -229,3 +229,51 @@ fn the_error_pass_is_the_labs_heat_map() {
     assert!(worst <= 1, "the error pass differs from the lab's heat map by {worst} levels");
     assert!(warm > 100, "pom:8 against the reference should show some error ({warm} warm pixels)");
 }
+
+/// Drags with the primary button from `from` to `to` (points), in a few moves.
+fn drag(h: &mut Harness<'static, ViewerApp>, from: egui::Pos2, to: egui::Pos2) {
+    let button = |pos, pressed| egui::Event::PointerButton {
+        pos,
+        button: egui::PointerButton::Primary,
+        pressed,
+        modifiers: Default::default(),
+    };
+    h.event(egui::Event::PointerMoved(from));
+    h.event(button(from, true));
+    h.step();
+    for k in 1..=4 {
+        h.event(egui::Event::PointerMoved(from + (to - from) * (k as f32 / 4.0)));
+        h.step();
+    }
+    h.event(button(to, false));
+    h.run_steps(2);
+}
+
+#[test]
+fn the_split_line_drags_with_a_free_cursor() {
+    if adapter().is_none() {
+        return;
+    }
+    let launch = Launch { split: SplitMode::Side, ..Default::default() };
+    let mut h = harness_with(Settings::default(), launch);
+    enter(&mut h);
+    // H hides the interface (nothing in the way), M frees the cursor.
+    h.key_press(Key::H);
+    h.run_steps(2);
+    h.key_press(Key::M);
+    h.run_steps(2);
+    let room = h.state().room().unwrap();
+    assert!(!room.mouse_captured() && room.split_fraction() == 0.5);
+    let yaw = room.player().yaw_deg;
+    // From the line (the middle of the 480-point view) to a quarter of the width: the line
+    // follows, the head does not turn.
+    drag(&mut h, egui::pos2(241.0, 150.0), egui::pos2(120.0, 150.0));
+    let room = h.state().room().unwrap();
+    assert!((room.split_fraction() - 0.25).abs() < 1e-3, "the line is at {}", room.split_fraction());
+    assert_eq!(room.player().yaw_deg, yaw, "dragging the line turned the head");
+    // A drag away from the line turns the head and leaves the line.
+    drag(&mut h, egui::pos2(400.0, 150.0), egui::pos2(360.0, 150.0));
+    let room = h.state().room().unwrap();
+    assert!((room.split_fraction() - 0.25).abs() < 1e-3);
+    assert!(room.player().yaw_deg != yaw, "a drag away from the line should turn the head");
+}

@@ -22,14 +22,16 @@ pub(super) struct Scratch {
 }
 
 impl RoomView {
-    /// Draws the split screen of `mode` (not [`SplitMode::Off`]) from `camera`: `left` on the
-    /// left; `right` on the right (side by side) or `left`'s error against
-    /// [`split::reference`] (error map). Returns the display texture's egui id and each
-    /// picture's GPU time.
+    /// Draws the split screen of `mode` (not [`SplitMode::Off`]) from `camera`, split at
+    /// `fraction` of the width ([`split::split_x`]): `left` on the left; `right` on the right
+    /// (side by side) or `left`'s error against [`split::reference`] (error map). Returns the
+    /// display texture's egui id and each picture's GPU time.
+    #[allow(clippy::too_many_arguments)]
     pub fn draw_split(
         &mut self,
         render_state: &egui_wgpu::RenderState,
         camera: &Camera,
+        fraction: f32,
         mode: SplitMode,
         left: Technique,
         right: Technique,
@@ -38,7 +40,7 @@ impl RoomView {
         self.ensure_maps(left)?;
         self.ensure_maps(right)?;
         let (w, h) = (camera.width, camera.height);
-        let x = split::split_x(w);
+        let x = split::split_x(w, fraction);
         let target = self.target(render_state, camera)?;
         let (view, codes, id) = (target.view.clone(), target.codes.clone(), target.id);
         let left_half = DisplayRegion { rect: [0, 0, x, h], clear_alpha: Some(1.0) };
