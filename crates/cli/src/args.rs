@@ -103,7 +103,7 @@ pub enum Command {
     /// run directory with results.json, results.csv and index.html.
     Merge(MergeArgs),
     /// The interactive viewer: walk through the thesis's room and switch techniques live
-    /// (keys 1–6, arrows, B, H, X, C, F12, Esc). With --screenshot, render --frames frames in
+    /// (keys 1–6, arrows, B, V, H, X, C, M, F12, Esc). With --screenshot, render --frames frames in
     /// the window, write the last one and print the frame times.
     View(crate::commands::view::ViewArgs),
 }

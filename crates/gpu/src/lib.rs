@@ -45,5 +45,5 @@ mod upload;
 pub use context::{AdapterReport, GpuContext};
 pub use error::{GpuError, Result};
 pub use filter::{FilterRenderer, GpuFilter};
-pub use relief::{read_rgba8, FrameTime, GpuFrame, ReliefRenderer};
+pub use relief::{read_rgba8, DisplayRegion, FrameTime, GpuFrame, ReliefRenderer};
 pub use timing::GpuTiming;

@@ -23,7 +23,7 @@ use std::collections::HashMap;
 use std::time::Instant;
 
 mod display;
-pub use display::read_rgba8;
+pub use display::{read_rgba8, DisplayRegion};
 
 /// The colour target: linear light in 32-bit floats, as the CPU's `Image<Vec3>`, so that the
 /// comparison sees no quantisation; alpha marks covered pixels.

@@ -2,12 +2,14 @@
 //! from the registry), the FPS readout (current, min, average, max, and the relief pass's GPU
 //! time from timestamp queries), the key help, and the controls beyond the thesis (height
 //! scale, adaptive min/max layers, complexity-map parameters, light direction, camera
-//! bookmarks, one's own maps by path or drag and drop). The panels only read the state and
+//! bookmarks, one's own maps by path or drag and drop), and the split screen's mode and
+//! right-hand technique ([`crate::split::controls`]). The panels only read the state and
 //! return [`Changes`]; the room carries them out.
 
 use crate::controller::Player;
 use crate::launch::{light_angles, light_direction, BOOKMARKS};
 use crate::room_view::RoomView;
+use crate::split::{self, SplitMode};
 use crate::stats::FrameStats;
 use crate::techniques::{self, MAX_LAYERS, MIN_LAYERS};
 use glam::Vec3;
@@ -20,16 +22,18 @@ use renderlab_relief::Technique;
 pub const KEY_HELP: &[(&str, &str)] = &[
     ("W S A D", "walk"),
     ("Space", "jump"),
-    ("drag", "look around"),
+    ("mouse", "look around (captured; free: drag)"),
+    ("M", "capture / free the mouse (click the view: capture)"),
     ("1-6", "basic, normal, parallax, steep, POM, adaptive POM"),
     ("Left Right", "every technique of the registry"),
     ("Up Down", "layers (1-50)"),
     ("B", "layer-count heat map"),
-    ("H", "hide the interface"),
+    ("V", "split: side by side, error map, off (drag the line to move it)"),
+    ("H", "hide the interface (captures the mouse; showing it frees it)"),
     ("X", "FPS readout"),
     ("C", "reset the FPS statistics"),
     ("F12", "screenshot (PNG)"),
-    ("Esc", "menu"),
+    ("Esc", "menu (frees the mouse)"),
 ];
 
 /// The controls' values, kept between frames.
@@ -84,6 +88,12 @@ pub struct HudState<'a> {
     pub layers: Option<u32>,
     /// Whether the heat map is shown.
     pub heat_map: bool,
+    /// The split screen's mode.
+    pub split: SplitMode,
+    /// The split screen's right-hand technique.
+    pub right: Technique,
+    /// Whether the cursor is captured.
+    pub mouse_captured: bool,
     /// Whether the FPS readout is shown.
     pub show_fps: bool,
     /// The frame statistics.
@@ -115,13 +125,17 @@ pub struct Changes {
     pub material: Option<Material>,
     /// A notice for the user.
     pub message: Option<String>,
+    /// A new split-screen mode.
+    pub split: Option<SplitMode>,
+    /// A new right-hand technique for the split screen.
+    pub right: Option<Technique>,
 }
 
 /// Shows the panels and returns what changed.
 pub fn show(ctx: &egui::Context, s: HudState<'_>) -> Changes {
     let technique = s.technique;
     let mut changes = Changes::default();
-    info_panel(ctx, &s);
+    info_panel(ctx, &s, &mut changes);
     if s.show_fps {
         fps_panel(ctx, &s);
     }
@@ -147,7 +161,7 @@ pub fn show(ctx: &egui::Context, s: HudState<'_>) -> Changes {
     changes
 }
 
-fn info_panel(ctx: &egui::Context, s: &HudState<'_>) {
+fn info_panel(ctx: &egui::Context, s: &HudState<'_>, changes: &mut Changes) {
     egui::Area::new(egui::Id::unique("info")).anchor(egui::Align2::LEFT_TOP, [8.0, 8.0]).show(ctx, |ui| {
         egui::Frame::popup(ui.style()).show(ui, |ui| {
             ui.set_max_width(420.0);
@@ -164,6 +178,18 @@ fn info_panel(ctx: &egui::Context, s: &HudState<'_>) {
             if s.heat_map {
                 ui.label("Heat map: planned layers per pixel, blue 1 to red 50");
             }
+            let (mode, right) = split::controls(ui, s.split, s.right);
+            if mode != s.split {
+                changes.split = Some(mode);
+            }
+            if right != s.right {
+                changes.right = Some(right);
+            }
+            ui.small(if s.mouse_captured {
+                "mouse captured: M or Esc frees it"
+            } else {
+                "mouse free: drag to look, M or a click on the view captures it"
+            });
             let p = s.player.eye();
             ui.small(format!(
                 "eye ({:.2}, {:.2}, {:.2}), {}×{}",
@@ -180,6 +206,9 @@ fn fps_panel(ctx: &egui::Context, s: &HudState<'_>) {
             ui.monospace(format!("FPS {:7.1}", st.current()));
             ui.monospace(format!("min {:7.1}  avg {:7.1}  max {:7.1}", st.min(), st.avg(), st.max()));
             match (st.gpu_ms(), st.gpu_ms_avg()) {
+                (Some(ms), Some(avg)) if s.split != SplitMode::Off => {
+                    ui.monospace(format!("GPU relief passes, both pictures {ms:.3} ms (avg {avg:.3})"))
+                }
                 (Some(ms), Some(avg)) => ui.monospace(format!("GPU relief pass {ms:.3} ms (avg {avg:.3})")),
                 _ if !s.adapter.timestamps => ui.monospace("GPU time: this adapter has no timestamp queries"),
                 _ => ui.monospace("GPU time: not measured for the heat map"),

@@ -4,6 +4,7 @@
 //! by the window and the tests: Vulkan only, the best adapter first, with the features the
 //! GPU renderer needs.
 
+use crate::split::SplitMode;
 use glam::Vec3;
 use renderlab_core::{Camera, Material};
 use renderlab_gpu::GpuContext;
@@ -46,11 +47,23 @@ pub struct Launch {
     pub texture_size: u32,
     /// A scripted run, or `None` for the interactive viewer.
     pub script: Option<Script>,
+    /// The split screen to start in ([`SplitMode::Off`]: one picture).
+    pub split: SplitMode,
+    /// The split screen's right-hand technique (the GPU reference when `None`).
+    pub right: Option<Technique>,
 }
 
 impl Default for Launch {
     fn default() -> Self {
-        Self { technique: None, camera: None, material: None, texture_size: 512, script: None }
+        Self {
+            technique: None,
+            camera: None,
+            material: None,
+            texture_size: 512,
+            script: None,
+            split: SplitMode::Off,
+            right: None,
+        }
     }
 }
 
@@ -67,7 +80,8 @@ pub struct ScriptReport {
     pub technique: String,
     /// Frames rendered.
     pub frames: u32,
-    /// Median GPU time of the relief pass (timestamps), `None` without timestamps.
+    /// Median GPU time of the relief pass (timestamps), `None` without timestamps; in a split
+    /// screen, of the frame's relief passes together (both halves).
     pub gpu_ms: Option<f64>,
     /// Median time between frames, the whole frame (UI included), in milliseconds.
     pub frame_ms: f64,

@@ -7,19 +7,24 @@
 //! values; [`room`] is the room screen (keys, movement, the frame, the scripted run) over
 //! [`room_view`] (the renderer drawing into a texture egui shows), [`controller`] (walking,
 //! jumping, collisions; pure, unit-tested), [`techniques`] (the keys' technique choices, from
-//! the registry) and [`hud`] (the panels); [`stats`] keeps the FPS readout; [`launch`] says
+//! the registry) and [`hud`] (the panels); [`split`] is the split screen (two techniques side
+//! by side, or one against its error heat map, drawn by [`compose`]'s WGSL pass); [`look`]
+//! captures the cursor for mouse look; [`stats`] keeps the FPS readout; [`launch`] says
 //! what to start on and sets up the device.
 
 #![warn(missing_docs)]
 
 pub mod app;
+pub mod compose;
 pub mod controller;
 pub mod error;
 pub mod hud;
 pub mod launch;
+pub mod look;
 pub mod room;
 pub mod room_view;
 pub mod settings;
+pub mod split;
 pub mod stats;
 pub mod techniques;
 

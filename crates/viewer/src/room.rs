@@ -2,15 +2,18 @@
 //! movement, the thesis's keys, and the HUD ([`crate::hud`]).
 //!
 //! Keys: 1–6 the thesis's techniques, ←/→ every technique of the registry, ↑/↓ layers
-//! (1–50), B the layer-count heat map, H hides the interface, X the FPS readout, C resets its
-//! statistics, F12 writes a screenshot, Esc goes back to the menu. W/S/A/D walk, Space jumps,
-//! dragging over the view with a mouse button held turns the head.
+//! (1–50), B the layer-count heat map, V the split screen ([`crate::split`]), H hides the
+//! interface, X the FPS readout, C resets its statistics, F12 writes a screenshot, M captures
+//! or frees the mouse, Esc goes back to the menu. W/S/A/D walk, Space jumps; the mouse turns
+//! the head, captured ([`crate::look`]) or, when free, by dragging over the view.
 
 use crate::controller::{Input, Player, Room};
 use crate::error::ViewerError;
 use crate::hud::{self, Controls};
 use crate::launch::{self, bookmark, Launch, Script, ScriptOutcome, ScriptReport};
+use crate::look::{self, LookInput, MouseLook};
 use crate::room_view::RoomView;
+use crate::split::{self, SplitMode, SplitTimes};
 use crate::stats::FrameStats;
 use crate::techniques;
 use egui::Key;
@@ -55,6 +58,18 @@ pub struct RoomScreen {
     screenshots: u32,
     controls: Controls,
     script: Option<ScriptRun>,
+    split: SplitMode,
+    right: Technique,
+    split_times: SplitTimes,
+    /// Where the split line is, as a fraction of the view's width.
+    split_fraction: f32,
+    /// Whether the drag in progress moves the split line (not the head).
+    dragging_split: bool,
+    look: MouseLook,
+    /// What this frame's keys did to the cursor (see [`MouseLook::update`]).
+    look_keys: LookInput,
+    /// The view's rectangle in points (where the split labels go).
+    view_rect: egui::Rect,
 }
 
 impl RoomScreen {
@@ -99,6 +114,14 @@ impl RoomScreen {
             message: None,
             screenshots: 0,
             controls,
+            split: launch.split,
+            right: launch.right.unwrap_or_else(split::reference),
+            split_times: SplitTimes::default(),
+            split_fraction: 0.5,
+            dragging_split: false,
+            look: MouseLook::default(),
+            look_keys: LookInput::default(),
+            view_rect: egui::Rect::NOTHING,
             script: launch.script.clone().map(|script| ScriptRun {
                 script,
                 done: 0,
@@ -117,6 +140,31 @@ impl RoomScreen {
     /// Whether the heat map is shown.
     pub fn heat_map(&self) -> bool {
         self.heat_map
+    }
+
+    /// The split screen's mode.
+    pub fn split(&self) -> SplitMode {
+        self.split
+    }
+
+    /// The split screen's right-hand technique (side by side).
+    pub fn right(&self) -> Technique {
+        self.right
+    }
+
+    /// Where the split line is, as a fraction of the view's width from its left edge.
+    pub fn split_fraction(&self) -> f32 {
+        self.split_fraction
+    }
+
+    /// What the last split frame measured.
+    pub fn split_times(&self) -> SplitTimes {
+        self.split_times
+    }
+
+    /// Whether the cursor is captured for mouse look.
+    pub fn mouse_captured(&self) -> bool {
+        self.look.captured()
     }
 
     /// The player.
@@ -178,9 +226,19 @@ impl RoomScreen {
         }
         if pressed(Key::B) {
             self.heat_map = !self.heat_map;
+            if self.heat_map {
+                self.split = SplitMode::Off;
+            }
+        }
+        if pressed(Key::V) {
+            self.set_split(self.split.next());
         }
         if pressed(Key::H) {
             self.hide_ui = !self.hide_ui;
+            self.look_keys.interface_shown = Some(!self.hide_ui);
+        }
+        if pressed(Key::M) {
+            self.look_keys.toggle = true;
         }
         if pressed(Key::X) {
             self.show_fps = !self.show_fps;
@@ -192,9 +250,55 @@ impl RoomScreen {
             self.screenshot();
         }
         if pressed(Key::Escape) {
+            self.look_keys.escape = true;
             return RoomExit::ToMenu;
         }
         RoomExit::Stay
+    }
+
+    /// Sets the split screen's mode (the layer heat map and the split screen exclude each
+    /// other).
+    fn set_split(&mut self, mode: SplitMode) {
+        self.split = mode;
+        if mode != SplitMode::Off {
+            self.heat_map = false;
+        }
+    }
+
+    /// A drag that starts on the split line (cursor free) moves it, and turns nothing; any
+    /// other drag is returned, to turn the head.
+    fn drag_split(&mut self, ctx: &egui::Context, response: &egui::Response, rect: egui::Rect) -> egui::Vec2 {
+        if response.drag_started() {
+            let line = rect.left() + rect.width() * self.split_fraction;
+            let origin = ctx.input(|i| i.pointer.press_origin());
+            self.dragging_split = self.split != SplitMode::Off
+                && !self.look.captured()
+                && origin.is_some_and(|p| (p.x - line).abs() <= split::GRAB_POINTS);
+        }
+        if !response.dragged() {
+            self.dragging_split = false;
+        }
+        if !self.dragging_split {
+            return response.drag_delta();
+        }
+        if let Some(p) = response.interact_pointer_pos() {
+            self.split_fraction = split::dragged_to(p.x, rect.left(), rect.width(), self.split_fraction);
+        }
+        egui::Vec2::ZERO
+    }
+
+    /// Sends the cursor's window commands for what happened this frame.
+    fn update_look(&mut self, ctx: &egui::Context, entered: bool, clicked_view: bool) {
+        let input = LookInput {
+            entered,
+            clicked_view,
+            focused: ctx.input(|i| i.focused),
+            scripted: self.script.is_some(),
+            ..std::mem::take(&mut self.look_keys)
+        };
+        for command in self.look.update(input) {
+            ctx.send_viewport_cmd(command);
+        }
     }
 
     /// F12: the last frame into `renderlab-screenshot-N.png` in the working directory.
@@ -207,36 +311,44 @@ impl RoomScreen {
         });
     }
 
-    /// Walking and looking: held keys and the drag over the view.
+    /// Walking and looking: held keys, and the mouse's raw motion while it is captured or
+    /// the drag over the view while it is free.
     fn movement(&mut self, ctx: &egui::Context, drag: egui::Vec2, sensitivity: f32, dt: f32) {
         let typing = ctx.egui_wants_keyboard_input();
         let down = |k| !typing && ctx.input(|i| i.key_down(k));
         let axis = |plus, minus| f32::from(u8::from(down(plus))) - f32::from(u8::from(down(minus)));
+        let motion = ctx.input(|i| i.pointer.motion());
+        let (yaw_deg, pitch_deg) = look::turn(self.look.captured(), motion, drag, sensitivity);
         let input = Input {
             forward: axis(Key::W, Key::S),
             right: axis(Key::D, Key::A),
             jump: down(Key::Space),
-            yaw_deg: -drag.x * sensitivity,
-            pitch_deg: -drag.y * sensitivity,
+            yaw_deg,
+            pitch_deg,
         };
         self.player.step(&self.walk, input, dt);
     }
 
-    /// One frame of the room; `sensitivity` is the mouse's, in degrees per point.
+    /// One frame of the room; `sensitivity` is the mouse's, in degrees per point of drag or
+    /// per count of captured motion.
     pub fn ui(&mut self, ui: &mut egui::Ui, frame: &eframe::Frame, sensitivity: f32) -> RoomExit {
         let ctx = ui.ctx().clone();
         let now = Instant::now();
         let dt = self.last_frame.map(|t| (now - t).as_secs_f64());
+        let entered = self.last_frame.is_none();
         self.last_frame = Some(now);
         if self.keys(&ctx) == RoomExit::ToMenu {
+            self.update_look(&ctx, false, false);
             self.last_frame = None;
             return RoomExit::ToMenu;
         }
         let mut gpu_ms = None;
         egui::CentralPanel::no_frame().show(ui, |ui| {
             let rect = ui.max_rect();
-            let response = ui.allocate_rect(rect, egui::Sense::drag());
-            let drag = response.drag_delta();
+            self.view_rect = rect;
+            let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
+            self.update_look(&ctx, entered, response.clicked());
+            let drag = self.drag_split(&ctx, &response, rect);
             self.movement(&ctx, drag, sensitivity, dt.unwrap_or(0.0) as f32);
             let ppp = ctx.pixels_per_point();
             let (w, h) =
@@ -259,6 +371,19 @@ impl RoomScreen {
         if !self.hide_ui {
             let changes = hud::show(&ctx, self.hud_state());
             self.apply(changes);
+        }
+        if self.split != SplitMode::Off && !self.hide_ui {
+            let timestamps = self.view.context().report.timestamps;
+            split::labels(
+                &ctx,
+                self.view_rect,
+                self.split_fraction,
+                self.split,
+                self.technique,
+                self.right,
+                self.split_times,
+                timestamps,
+            );
         }
         if let Some(m) = &self.message {
             egui::Area::new(egui::Id::unique("room message"))
@@ -295,6 +420,18 @@ impl RoomScreen {
                 .map(|t| t.id())
                 .ok_or_else(|| ViewerError::Message("no heat map".into()))?;
             return Ok((id, None));
+        }
+        if self.split != SplitMode::Off {
+            let (id, times) = self.view.draw_split(
+                rs,
+                camera,
+                self.split_fraction,
+                self.split,
+                self.technique,
+                self.right,
+            )?;
+            self.split_times = times;
+            return Ok((id, times.total()));
         }
         self.view.draw(rs, camera, self.technique)
     }
@@ -335,6 +472,9 @@ impl RoomScreen {
             technique: self.technique,
             layers: techniques::layers(self.technique),
             heat_map: self.heat_map,
+            split: self.split,
+            right: self.right,
+            mouse_captured: self.look.captured(),
             show_fps: self.show_fps,
             stats: &self.stats,
             adapter: &self.view.context().report,
@@ -355,6 +495,12 @@ impl RoomScreen {
             }
             if let Some(p) = changes.complexity {
                 self.view.set_complexity(p)?;
+            }
+            if let Some(mode) = changes.split {
+                self.set_split(mode);
+            }
+            if let Some(t) = changes.right {
+                self.right = t;
             }
             if let Some((min, max)) = changes.range {
                 self.technique = techniques::with_range(self.technique, min, max);

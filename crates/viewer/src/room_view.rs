@@ -1,8 +1,10 @@
 //! The room on the window's device: the GPU renderer draws each frame straight into a texture
 //! that egui shows as an image (registered with `egui_wgpu::Renderer::register_native_texture`),
 //! so a frame never crosses the CPU. The layer-count heat map (key B) is the renderer's debug
-//! target, read back and coloured on the CPU (a debug view, not a timed one).
+//! target, read back and coloured on the CPU (a debug view, not a timed one). The split
+//! screen's two pictures are drawn by `split_draw` ([`RoomView::draw_split`]).
 
+use crate::compose::{ErrorCompose, CODE_FORMAT};
 use crate::error::ViewerError;
 use crate::techniques::MAX_LAYERS;
 use glam::Vec3;
@@ -10,6 +12,8 @@ use renderlab_core::{Camera, Image, Material, Scene};
 use renderlab_gpu::{GpuContext, ReliefRenderer};
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::{Map, ReliefMaterial, Technique};
+
+mod split_draw;
 
 /// The format of the texture the room is drawn into: 8-bit sRGB, so that the hardware encodes
 /// the shader's linear colour as the CPU's `linear_to_srgb8` does, and egui samples it back
@@ -20,7 +24,35 @@ pub const DISPLAY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormS
 struct Target {
     texture: wgpu::Texture,
     view: wgpu::TextureView,
+    /// The same texture seen as 8-bit codes (the split screen's error pass writes codes).
+    codes: wgpu::TextureView,
     id: egui::TextureId,
+}
+
+/// A display-sized texture of [`DISPLAY_FORMAT`] that can be drawn into, sampled as codes
+/// ([`CODE_FORMAT`]) and read back; with both of its views.
+fn display_texture(
+    ctx: &GpuContext,
+    label: &str,
+    w: u32,
+    h: u32,
+) -> (wgpu::Texture, wgpu::TextureView, wgpu::TextureView) {
+    let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: DISPLAY_FORMAT,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+            | wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[CODE_FORMAT],
+    });
+    let view = texture.create_view(&Default::default());
+    let codes =
+        texture.create_view(&wgpu::TextureViewDescriptor { format: Some(CODE_FORMAT), ..Default::default() });
+    (texture, view, codes)
 }
 
 /// The room's scene, its prepared materials and the renderer drawing them on the window's
@@ -33,6 +65,9 @@ pub struct RoomView {
     with_cone: bool,
     renderer: ReliefRenderer<'static>,
     target: Option<Target>,
+    /// The split screen's error mode: the technique's and the reference's pictures.
+    scratch: Option<split_draw::Scratch>,
+    compose: Option<ErrorCompose>,
 }
 
 impl RoomView {
@@ -48,7 +83,17 @@ impl RoomView {
         let complexity = ComplexityParams::default();
         let materials = prepare(&scene.materials, &complexity, false);
         let renderer = ReliefRenderer::new(ctx, &scene, &materials)?;
-        Ok(Self { ctx, scene, complexity, materials, with_cone: false, renderer, target: None })
+        Ok(Self {
+            ctx,
+            scene,
+            complexity,
+            materials,
+            with_cone: false,
+            renderer,
+            target: None,
+            scratch: None,
+            compose: None,
+        })
     }
 
     /// What the device is (for the HUD).
@@ -91,43 +136,44 @@ impl RoomView {
         technique: Technique,
     ) -> Result<(egui::TextureId, Option<f64>), ViewerError> {
         self.ensure_maps(technique)?;
+        let target = self.target(render_state, camera)?;
+        let (view, id) = (target.view.clone(), target.id);
+        let gpu_ms = self.renderer.render_to_view(&view, DISPLAY_FORMAT, camera, technique)?;
+        Ok((id, gpu_ms))
+    }
+
+    /// The display texture at the camera's size (made, or remade and registered with egui
+    /// again, when the size changes). egui gets the texture's code view: egui blends in
+    /// gamma space and takes what it samples as sRGB codes, so the sRGB view (which decodes
+    /// to linear on sampling) would show the picture too dark.
+    fn target(
+        &mut self,
+        render_state: &egui_wgpu::RenderState,
+        camera: &Camera,
+    ) -> Result<&Target, ViewerError> {
         let (w, h) = (camera.width, camera.height);
         self.ctx.check_size("the window", w, h)?;
         let resized = self.target.as_ref().is_none_or(|t| (t.texture.width(), t.texture.height()) != (w, h));
         if resized {
-            let texture = self.ctx.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("room display"),
-                size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: DISPLAY_FORMAT,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                    | wgpu::TextureUsages::TEXTURE_BINDING
-                    | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
-            });
-            let view = texture.create_view(&Default::default());
+            let (texture, view, codes) = display_texture(self.ctx, "room display", w, h);
             let mut egui_renderer = render_state.renderer.write();
             let id = match self.target.take() {
                 Some(old) => {
                     egui_renderer.update_egui_texture_from_wgpu_texture(
                         &self.ctx.device,
-                        &view,
+                        &codes,
                         wgpu::FilterMode::Linear,
                         old.id,
                     );
                     old.id
                 }
                 None => {
-                    egui_renderer.register_native_texture(&self.ctx.device, &view, wgpu::FilterMode::Linear)
+                    egui_renderer.register_native_texture(&self.ctx.device, &codes, wgpu::FilterMode::Linear)
                 }
             };
-            self.target = Some(Target { texture, view, id });
+            self.target = Some(Target { texture, view, codes, id });
         }
-        let target = self.target.as_ref().ok_or_else(|| ViewerError::Message("no display target".into()))?;
-        let gpu_ms = self.renderer.render_to_view(&target.view, DISPLAY_FORMAT, camera, technique)?;
-        Ok((target.id, gpu_ms))
+        self.target.as_ref().ok_or_else(|| ViewerError::Message("no display target".into()))
     }
 
     /// The planned layer count per pixel of `technique` from `camera`, coloured from blue (one

@@ -11,6 +11,7 @@ use renderlab_lab::fixtures::thesis_room;
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::{Map, ReliefMaterial, Technique};
 use renderlab_viewer::launch::{bookmark, BOOKMARKS};
+use renderlab_viewer::split::SplitMode;
 use renderlab_viewer::{Launch, Script, ScriptReport};
 use std::path::PathBuf;
 
@@ -28,6 +29,13 @@ pub struct ViewArgs {
     /// Camera to start at: room, bench0, bench45, bench60 or bench80 (the thesis's views).
     #[arg(long, default_value = "room")]
     pub camera: String,
+    /// Start in the split screen: `side` (the technique beside --right) or `error` (the
+    /// technique beside its error heat map against the GPU reference); `off` by default.
+    #[arg(long, default_value = "off", value_parser = |s: &str| SplitMode::parse(s).ok_or_else(|| format!("'{s}' is not one of off, side, error")))]
+    pub split: SplitMode,
+    /// The split screen's right-hand technique (default: the GPU reference).
+    #[arg(long, value_parser = |s: &str| Technique::parse(s).map_err(|e| e.to_string()))]
+    pub right: Option<Technique>,
     /// Frames a --screenshot run renders (the first builds the pipeline and is not timed).
     #[arg(long, default_value_t = 30, requires = "screenshot")]
     pub frames: u32,
@@ -88,12 +96,27 @@ pub(crate) fn view(a: ViewArgs) -> Result<()> {
         material: material.clone(),
         texture_size: a.texture_size,
         script: a.screenshot.clone().map(|out| Script { out, frames: a.frames }),
+        split: a.split,
+        right: a.right,
     };
     let Some(report) = renderlab_viewer::run(launch)? else {
         return Ok(());
     };
     let gpu = |ms: Option<f64>| ms.map_or("no timestamps".to_string(), |m| format!("{m:.3} ms"));
     println!("adapter: {}", report.adapter);
+    match a.split {
+        SplitMode::Off => {}
+        SplitMode::Side => println!(
+            "split side by side: {} | {} (relief pass below: both halves together)",
+            report.technique,
+            a.right.unwrap_or_else(renderlab_viewer::split::reference).name()
+        ),
+        SplitMode::Error => println!(
+            "split error map: {} | its error against {} (relief pass below: the technique's whole frame and the reference's half together)",
+            report.technique,
+            renderlab_viewer::split::REFERENCE
+        ),
+    }
     println!(
         "viewer: {} at {}x{}, {} frames: relief pass {} (GPU, median), whole frame {:.3} ms (median)",
         report.technique,
@@ -103,7 +126,9 @@ pub(crate) fn view(a: ViewArgs) -> Result<()> {
         gpu(report.gpu_ms),
         report.frame_ms
     );
-    if a.compare {
+    if a.compare && a.split != SplitMode::Off {
+        println!("(--compare times one technique over the whole frame; skipped for a split screen)");
+    } else if a.compare {
         compare(&report, a.texture_size, material)?;
     }
     println!("wrote {}", report.out.display());
