@@ -1,5 +1,5 @@
 //! Each stage of the hybrid frame at 320×180 on the small showcase scene (about 4,000
-//! triangles, three lights): the all-raster frame (with the TEMPORARY stand-ins), each
+//! triangles, three lights): the all-raster frame (the deferred pipeline), each
 //! ray-traced stage alone at the thesis's lowest settings, and one path-traced sample.
 //! `cargo bench -p renderlab-hybrid --bench stages`.
 
