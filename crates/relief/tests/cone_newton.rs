@@ -145,6 +145,56 @@ fn default_cone_newton_errors_stay_within_its_tolerance() {
     }
 }
 
+/// Steep parallax's vector kernel gives its scalar twin's hits bit for bit, whatever the row
+/// split, and the scalar kernel's layer with UVs within 0.05 texel (the 16-bit depths may stop
+/// the march one layer apart where the surface lies within a 16-bit step of a layer; such
+/// rays are counted, and must be rare).
+#[test]
+fn simd_steep_kernel_agrees_and_matches_steep() {
+    use renderlab_relief::march::pom_lanes::SteepLanes;
+    use renderlab_relief::techniques::steep::{Steep, SteepSimd};
+    for fx in [fixture(64, 64, 64), fixture(48, 40, 24)] {
+        let inp = fx.inputs();
+        let rays = rays(211);
+        for layers in [1, 8, 32] {
+            let twin = SteepSimd { march: SteepLanes { layers }, lanes: false };
+            let t = SteepSimd { march: SteepLanes { layers }, lanes: true };
+            let mut scalar = vec![ReliefHit::default(); rays.len()];
+            let mut scalar_count = Tally::default();
+            twin.trace_row(&inp, &rays, &mut scalar, &mut scalar_count);
+            for chunk in [1usize, 7, rays.len()] {
+                let mut vector = vec![ReliefHit::default(); rays.len()];
+                let mut vector_count = Tally::default();
+                for (r, o) in rays.chunks(chunk).zip(vector.chunks_mut(chunk)) {
+                    t.trace_row(&inp, r, o, &mut vector_count);
+                }
+                for (i, (a, b)) in scalar.iter().zip(&vector).enumerate() {
+                    assert_eq!(
+                        bits(a),
+                        bits(b),
+                        "steep:{layers} simd, ray {i} {:?}, rows of {chunk}",
+                        rays[i]
+                    );
+                }
+                assert_eq!(scalar_count, vector_count);
+            }
+            let (mut checked, mut apart) = (0, 0);
+            for (&(uv, v), a) in rays.iter().zip(&scalar) {
+                if uv.is_finite() && v.is_finite() && uv.abs().max_element() < 10.0 {
+                    let reference = Steep { layers }.trace(&inp, uv, v, &mut Tally::default());
+                    checked += 1;
+                    if (reference.depth - a.depth).abs() > 1e-6
+                        || ((reference.uv - a.uv) * 64.0).length() > 0.05
+                    {
+                        apart += 1;
+                    }
+                }
+            }
+            assert!(apart * 50 <= checked, "steep:{layers}: {apart} of {checked} rays stop on another layer");
+        }
+    }
+}
+
 /// Adaptive POM's vector kernel (a layer count per lane) gives its scalar twin's hits bit
 /// for bit, whatever the row split, and the scalar kernel's layer counts with UVs within
 /// 0.05 texel (the 16-bit depths).

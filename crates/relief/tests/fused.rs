@@ -126,7 +126,9 @@ fn records_equal_the_float_renderer_and_the_image_is_within_8_bit_precision() {
         let cam = camera(angle, w, h);
         let g = rasterize(&scene, &cam);
         let input = FrameInput { width: w, height: h, points: g.pixels() };
-        for name in ["basic", "normal", "parallax", "pom:16", "adaptive", "pom-shadow", "cone-newton"] {
+        for name in
+            ["basic", "normal", "parallax", "steep:16", "pom:16", "adaptive", "pom-shadow", "cone-newton"]
+        {
             let t = Technique::parse(name).expect("technique");
             for kernel in [Kernel::Scalar, t.kernel(KernelChoice::Auto).expect("kernel")] {
                 let float =

@@ -22,6 +22,31 @@ pub struct PomLanes {
 pub trait LayerRule: Sync {
     /// The layer count for the ray entering at `uv` toward `v` (at least 1).
     fn layer_count(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3) -> u32;
+
+    /// Whether the hit is interpolated between the last two layers (POM) or is the first
+    /// layer below the surface (steep parallax).
+    fn interpolates(&self) -> bool {
+        true
+    }
+}
+
+/// Steep parallax's march on the packed map: `layers` layers, no interpolation.
+#[derive(Clone, Copy, Debug)]
+pub struct SteepLanes {
+    /// Number of layers.
+    pub layers: u32,
+}
+
+impl LayerRule for SteepLanes {
+    #[inline(always)]
+    fn layer_count(&self, _: &ReliefInputs, _: Vec2, _: Vec3) -> u32 {
+        self.layers.max(1)
+    }
+
+    #[inline(always)]
+    fn interpolates(&self) -> bool {
+        false
+    }
 }
 
 impl LayerRule for PomLanes {
@@ -44,6 +69,9 @@ pub fn trace_lanes_scalar<R: LayerRule, C: Counter>(
     let layers = rule.layer_count(inp, uv, v);
     let (uv0, step) = setup(inp, layers, uv, v);
     let m = layered_march(map, uv0, step, layers, counter);
+    if !rule.interpolates() {
+        return ReliefHit { uv: m.uv, depth: m.layer, layers };
+    }
     let (uv, depth) = interpolate(&m);
     ReliefHit { uv, depth, layers }
 }
@@ -83,12 +111,23 @@ fn layer_uv(uv0: Vec2, step: Vec2, i: u32) -> Vec2 {
     }
 }
 
-/// The result once the march stopped at layer `i` with depth-map values `map` there and
+/// The result once the march stopped at layer `i` (interpolated when `rule` says so) with depth-map values `map` there and
 /// `prev_map` one layer up (as [`crate::march::layered::interpolate`] finishes the march).
 #[inline(always)]
-pub(crate) fn finish(layers: u32, uv0: Vec2, step: Vec2, i: u32, map: f32, prev_map: f32) -> ReliefHit {
+pub(crate) fn finish<R: LayerRule>(
+    rule: &R,
+    layers: u32,
+    uv0: Vec2,
+    step: Vec2,
+    i: u32,
+    map: f32,
+    prev_map: f32,
+) -> ReliefHit {
     let layer_depth = 1.0 / layers.max(1) as f32;
     let layer = i as f32 * layer_depth;
+    if !rule.interpolates() {
+        return ReliefHit { uv: layer_uv(uv0, step, i), depth: layer, layers };
+    }
     let prev_layer = if i == 0 { 0.0 } else { layer - layer_depth };
     let m = March {
         prev_uv: layer_uv(uv0, step, i.saturating_sub(1)),

@@ -4,6 +4,7 @@
 use super::descriptor::{Descriptor, Entry, Param, WithTracer};
 use crate::kernel::Kernel;
 use crate::march::layered::{layer_step, layered_march};
+use crate::march::pom_lanes::SteepLanes;
 use crate::trace::{ReliefHit, ReliefInputs, ReliefTechnique, Shading};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
@@ -24,13 +25,47 @@ impl ReliefTechnique for Steep {
     }
 }
 
+/// Steep parallax's `simd` kernel: POM's packed-map lanes without the final interpolation
+/// (its scalar twin where the lanes cannot run); it differs from `scalar` only by the 16-bit
+/// depths.
+#[derive(Clone, Copy, Debug)]
+pub struct SteepSimd {
+    /// The march.
+    pub march: SteepLanes,
+    /// Whether rows may run in vector lanes (off: the scalar twin, for comparisons).
+    pub lanes: bool,
+}
+
+/// The message of the panic when a caller skipped the map check.
+const NO_PACKED_MAP: &str = "steep's simd kernel needs the packed depth map (checked by render)";
+
+impl ReliefTechnique for SteepSimd {
+    fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
+        let map = inp.packed.expect(NO_PACKED_MAP);
+        crate::march::pom_lanes::trace_lanes_scalar(&self.march, inp, map, uv, v, counter)
+    }
+
+    fn trace_row<C: Counter>(
+        &self,
+        inp: &ReliefInputs,
+        rays: &[(Vec2, Vec3)],
+        out: &mut [ReliefHit],
+        counter: &mut C,
+    ) {
+        let map = inp.packed.expect(NO_PACKED_MAP);
+        if !(self.lanes && crate::simd::pom_row(&self.march, inp, map, rays, out, counter)) {
+            crate::simd::pom_twin_row(&self.march, inp, map, rays, out, counter);
+        }
+    }
+}
+
 impl Entry for Steep {
     const DESCRIPTOR: Descriptor = Descriptor {
         name: "steep",
         summary: "layered march, the first layer below the surface without interpolation",
         params: &[Param::count("LAYERS", 32, "number of layers")],
         needs: &[],
-        kernels: &[Kernel::Scalar],
+        kernels: &[Kernel::Scalar, Kernel::Simd],
         shading: Shading::Lit,
     };
 
@@ -48,7 +83,10 @@ impl Entry for Steep {
 
     const WGSL: Option<&'static str> = Some(include_str!("steep.wgsl"));
 
-    fn dispatch<A: WithTracer>(&self, _: Kernel, action: A) -> A::Output {
-        action.run(self)
+    fn dispatch<A: WithTracer>(&self, kernel: Kernel, action: A) -> A::Output {
+        match kernel {
+            Kernel::Scalar => action.run(self),
+            Kernel::Simd => action.run(&SteepSimd { march: SteepLanes { layers: self.layers }, lanes: true }),
+        }
     }
 }

@@ -162,7 +162,7 @@ macro_rules! kernel {
                             f &= f - 1;
                             let r = own[l] as usize;
                             let (uv0, step) = (Vec2::new(cu[r], cv[r]), Vec2::new(csu[r], csv[r]));
-                            out[r] = finish(cn[r] as u32, uv0, step, mi[l] as u32, mm[l], mp[l]);
+                            out[r] = finish(rule, cn[r] as u32, uv0, step, mi[l] as u32, mm[l], mp[l]);
                         }
                     }
                     // Going on: this layer becomes the previous one.
