@@ -145,6 +145,47 @@ fn default_cone_newton_errors_stay_within_its_tolerance() {
     }
 }
 
+/// Parallax's vector kernel gives its scalar twin's hits bit for bit, whatever the row split,
+/// and the float kernel's depths within 3·10⁻⁵ (the 16-bit depths) and UVs within 0.01 texel
+/// away from grazing views.
+#[test]
+fn simd_parallax_kernel_agrees_and_matches_parallax() {
+    use renderlab_relief::techniques::parallax::{Parallax, ParallaxSimd};
+    for fx in [fixture(64, 64, 64), fixture(48, 40, 24)] {
+        let inp = fx.inputs();
+        let rays = rays(211);
+        let (twin, t) = (ParallaxSimd { lanes: false }, ParallaxSimd { lanes: true });
+        let mut scalar = vec![ReliefHit::default(); rays.len()];
+        let mut scalar_count = Tally::default();
+        twin.trace_row(&inp, &rays, &mut scalar, &mut scalar_count);
+        for chunk in [1usize, 7, 8, 9, rays.len()] {
+            let mut vector = vec![ReliefHit::default(); rays.len()];
+            let mut vector_count = Tally::default();
+            for (r, o) in rays.chunks(chunk).zip(vector.chunks_mut(chunk)) {
+                t.trace_row(&inp, r, o, &mut vector_count);
+            }
+            for (i, (a, b)) in scalar.iter().zip(&vector).enumerate() {
+                assert_eq!(bits(a), bits(b), "parallax simd, ray {i} {:?}, rows of {chunk}", rays[i]);
+            }
+            assert_eq!(scalar_count, vector_count);
+        }
+        for (&(uv, v), a) in rays.iter().zip(&scalar) {
+            if uv.is_finite() && v.is_finite() && uv.abs().max_element() < 10.0 {
+                let reference = Parallax.trace(&inp, uv, v, &mut Tally::default());
+                // Depths differ by the 16-bit quantisation; the UVs by that times the offset
+                // per unit depth, which grows without bound toward grazing views.
+                assert!((reference.depth - a.depth).abs() < 3e-5, "{uv} {v}: {reference:?} vs {a:?}");
+                if v.z > 0.1 {
+                    assert!(
+                        ((reference.uv - a.uv) * 64.0).length() < 0.01,
+                        "{uv} {v}: {reference:?} vs {a:?}"
+                    );
+                }
+            }
+        }
+    }
+}
+
 /// Steep parallax's vector kernel gives its scalar twin's hits bit for bit, whatever the row
 /// split, and the scalar kernel's layer with UVs within 0.05 texel (the 16-bit depths may stop
 /// the march one layer apart where the surface lies within a 16-bit step of a layer; such

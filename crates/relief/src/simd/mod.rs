@@ -111,3 +111,23 @@ pub fn shade_lanes(
     let _ = (p, k, out);
     false
 }
+
+/// Traces `rays` with parallax mapping's vector kernel on the packed map; `false` (and nothing
+/// traced) where it cannot run (the caller runs the scalar twin; the hits are bit-identical).
+#[inline]
+pub fn parallax_row<C: Counter>(
+    inp: &ReliefInputs,
+    map: &PackedRelief,
+    rays: &[(Vec2, Vec3)],
+    out: &mut [ReliefHit],
+    counter: &mut C,
+) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if usable(map) {
+        // SAFETY: the CPU supports AVX2 and the map has power-of-two sides.
+        unsafe { avx2::parallax::trace_row(inp, map, rays, out, counter) };
+        return true;
+    }
+    let _ = (inp, map, rays, out, counter);
+    false
+}

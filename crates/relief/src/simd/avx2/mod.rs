@@ -4,6 +4,7 @@
 
 pub(crate) mod cone_newton;
 pub(crate) mod gather;
+pub(crate) mod parallax;
 pub(crate) mod pom;
 pub(crate) mod shade;
 

@@ -1,0 +1,73 @@
+//! The vector kernel of parallax mapping on the packed map: eight rays per vector, one
+//! bilinear depth fetch each (the packed map's 64-bit gathers), the offset `uv + dp · depth`.
+//! Each lane performs the scalar twin's operations ([`crate::techniques::parallax::trace_packed`])
+//! in the same order, so the hits are bit-identical to it.
+
+use super::gather::gather_cell;
+use super::LANES;
+use crate::maps::packed::{PackedRelief, DEPTH_STEP};
+use crate::techniques::parallax::setup;
+use crate::trace::{ReliefHit, ReliefInputs};
+use glam::{Vec2, Vec3};
+use renderlab_core::counter::Counter;
+use std::arch::x86_64::*;
+
+/// Traces `rays` into `out` (same length).
+///
+/// # Safety
+///
+/// The CPU must support AVX2 and the map must have power-of-two sides (`masks()`).
+#[target_feature(enable = "avx2")]
+pub(crate) unsafe fn trace_row<C: Counter>(
+    inp: &ReliefInputs,
+    map: &PackedRelief,
+    rays: &[(Vec2, Vec3)],
+    out: &mut [ReliefHit],
+    counter: &mut C,
+) {
+    let n = rays.len().min(out.len());
+    let (mxk, myk) = map.masks().expect("power-of-two map");
+    let base = map.texels().as_ptr() as *const i32;
+    let stride = map.stride() as i32;
+    let (mask_x, mask_y) = (_mm256_set1_epi32(mxk), _mm256_set1_epi32(myk));
+    let stride_v = _mm256_set1_epi32(stride);
+    let lane_order = _mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7);
+    let (wf, hf) = (_mm256_set1_ps(map.width() as f32), _mm256_set1_ps(map.height() as f32));
+    let (half, lo, hi) = (_mm256_set1_ps(0.5), _mm256_set1_ps(-1.0e7), _mm256_set1_ps(1.0e7));
+    let step = _mm256_set1_ps(DEPTH_STEP);
+    counter.count(n as u32);
+    let mut start = 0;
+    while start < n {
+        let m = (n - start).min(LANES);
+        let (mut u, mut v, mut du, mut dv) =
+            ([0.0f32; LANES], [0.0f32; LANES], [0.0f32; LANES], [0.0f32; LANES]);
+        for l in 0..LANES {
+            // Lanes past the row's end repeat its last ray (computed, not written).
+            let (uv, view) = rays[start + l.min(m - 1)];
+            let (uv0, dp) = setup(inp, uv, view);
+            (u[l], v[l], du[l], dv[l]) = (uv0.x, uv0.y, dp.x, dp.y);
+        }
+        let (uu, vv) = (_mm256_loadu_ps(u.as_ptr()), _mm256_loadu_ps(v.as_ptr()));
+        let x = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(uu, wf), half), lo), hi);
+        let y = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(vv, hf), half), lo), hi);
+        let (fx, fy, t00, t10, t01, t11) =
+            gather_cell!(base, stride, x, y, mask_x, mask_y, stride_v, lane_order);
+        let d00 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t00));
+        let d10 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t10));
+        let d01 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t01));
+        let d11 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t11));
+        let top = _mm256_add_ps(d00, _mm256_mul_ps(_mm256_sub_ps(d10, d00), fx));
+        let bottom = _mm256_add_ps(d01, _mm256_mul_ps(_mm256_sub_ps(d11, d01), fx));
+        let depth = _mm256_mul_ps(_mm256_add_ps(top, _mm256_mul_ps(_mm256_sub_ps(bottom, top), fy)), step);
+        let hu = _mm256_add_ps(uu, _mm256_mul_ps(_mm256_loadu_ps(du.as_ptr()), depth));
+        let hv = _mm256_add_ps(vv, _mm256_mul_ps(_mm256_loadu_ps(dv.as_ptr()), depth));
+        let (mut ou, mut ov, mut od) = ([0.0f32; LANES], [0.0f32; LANES], [0.0f32; LANES]);
+        _mm256_storeu_ps(ou.as_mut_ptr(), hu);
+        _mm256_storeu_ps(ov.as_mut_ptr(), hv);
+        _mm256_storeu_ps(od.as_mut_ptr(), depth);
+        for l in 0..m {
+            out[start + l] = ReliefHit { uv: Vec2::new(ou[l], ov[l]), depth: od[l], layers: 1 };
+        }
+        start += m;
+    }
+}
