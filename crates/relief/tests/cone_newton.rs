@@ -246,8 +246,8 @@ fn simd_adaptive_kernel_agrees_and_matches_adaptive() {
         let inp = fx.inputs();
         let rays = rays(211);
         for rule in [AdaptivePom { min: 4, max: 32 }, AdaptivePom { min: 1, max: 50 }] {
-            let twin = AdaptiveSimd { rule, lanes: false };
-            let t = AdaptiveSimd { rule, lanes: true };
+            let twin = AdaptiveSimd { march: rule, lanes: false };
+            let t = AdaptiveSimd { march: rule, lanes: true };
             let mut scalar = vec![ReliefHit::default(); rays.len()];
             let mut scalar_count = Tally::default();
             twin.trace_row(&inp, &rays, &mut scalar, &mut scalar_count);

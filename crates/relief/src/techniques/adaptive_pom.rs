@@ -69,38 +69,9 @@ impl crate::march::pom_lanes::LayerRule for AdaptivePom {
 }
 
 /// Adaptive POM's `simd` kernel: the per-ray layer count as on the scalar kernel, then POM's
-/// packed-map march in vector lanes with a count per lane (its scalar twin where the lanes
-/// cannot run). It differs from `scalar` only by the 16-bit depths, as POM's kernels do.
-#[derive(Clone, Copy, Debug)]
-pub struct AdaptiveSimd {
-    /// The layer rule.
-    pub rule: AdaptivePom,
-    /// Whether rows may run in vector lanes (off: the scalar twin, for comparisons).
-    pub lanes: bool,
-}
-
-/// The message of the panic when a caller skipped the map check.
-const NO_PACKED_MAP: &str = "adaptive POM's simd kernel needs the packed depth map (checked by render)";
-
-impl ReliefTechnique for AdaptiveSimd {
-    fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
-        let map = inp.packed.expect(NO_PACKED_MAP);
-        crate::march::pom_lanes::trace_lanes_scalar(&self.rule, inp, map, uv, v, counter)
-    }
-
-    fn trace_row<C: Counter>(
-        &self,
-        inp: &ReliefInputs,
-        rays: &[(Vec2, Vec3)],
-        out: &mut [ReliefHit],
-        counter: &mut C,
-    ) {
-        let map = inp.packed.expect(NO_PACKED_MAP);
-        if !(self.lanes && crate::simd::pom_row(&self.rule, inp, map, rays, out, counter)) {
-            crate::simd::pom_twin_row(&self.rule, inp, map, rays, out, counter);
-        }
-    }
-}
+/// packed-map march in vector lanes with a count per lane. It differs from `scalar` only by
+/// the 16-bit depths, as POM's kernels do.
+pub type AdaptiveSimd = super::pom::LaneTracer<AdaptivePom>;
 
 impl Entry for AdaptivePom {
     const DESCRIPTOR: Descriptor = Descriptor {
@@ -138,7 +109,7 @@ impl Entry for AdaptivePom {
     fn dispatch<A: WithTracer>(&self, kernel: Kernel, action: A) -> A::Output {
         match kernel {
             Kernel::Scalar => action.run(self),
-            Kernel::Simd => action.run(&AdaptiveSimd { rule: *self, lanes: true }),
+            Kernel::Simd => action.run(&AdaptiveSimd { march: *self, lanes: true }),
         }
     }
 }

@@ -8,7 +8,7 @@
 use super::descriptor::{BenchSetting, Descriptor, Entry, Param, WithTracer};
 use crate::kernel::Kernel;
 use crate::march::layered::{interpolate, layer_step, layered_march};
-use crate::march::pom_lanes::PomLanes;
+use crate::march::pom_lanes::{LayerRule, PomLanes};
 use crate::trace::{ReliefHit, ReliefInputs, ReliefTechnique, Shading};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
@@ -30,24 +30,28 @@ impl ReliefTechnique for Pom {
     }
 }
 
-/// POM's `simd` kernel: the packed map, rows in vector lanes where the CPU and the map allow
-/// it (`lanes`), its bit-identical scalar twin otherwise and for single rays. Panics on inputs
-/// without the packed map (the checked entry points refuse them with an error).
+/// A packed-map march in vector lanes, its layer count and finish given by `march` (POM,
+/// adaptive POM, steep parallax): rows run in the AVX2 lanes where the CPU and the map allow
+/// it (`lanes`), in the bit-identical scalar twin otherwise and for single rays. Panics on
+/// inputs without the packed map (the checked entry points refuse them with an error).
 #[derive(Clone, Copy, Debug)]
-pub struct PomSimd {
-    /// The march.
-    pub march: PomLanes,
+pub struct LaneTracer<R> {
+    /// The march's layer rule.
+    pub march: R,
     /// Whether rows may run in vector lanes (off: the scalar twin, for comparisons).
     pub lanes: bool,
 }
 
-/// The message of the panic when a caller skipped the map check.
-const NO_PACKED_MAP: &str = "POM's simd kernel needs the packed depth map (checked by render)";
+/// POM's `simd` kernel.
+pub type PomSimd = LaneTracer<PomLanes>;
 
-impl ReliefTechnique for PomSimd {
+/// The message of the panic when a caller skipped the map check.
+const NO_PACKED_MAP: &str = "a simd kernel needs the packed depth map (checked by render)";
+
+impl<R: LayerRule> ReliefTechnique for LaneTracer<R> {
     fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
         let map = inp.packed.expect(NO_PACKED_MAP);
-        self.march.trace_scalar(inp, map, uv, v, counter)
+        crate::march::pom_lanes::trace_lanes_scalar(&self.march, inp, map, uv, v, counter)
     }
 
     fn trace_row<C: Counter>(

@@ -25,39 +25,9 @@ impl ReliefTechnique for Steep {
     }
 }
 
-/// Steep parallax's `simd` kernel: POM's packed-map lanes without the final interpolation
-/// (its scalar twin where the lanes cannot run); it differs from `scalar` only by the 16-bit
-/// depths.
-#[derive(Clone, Copy, Debug)]
-pub struct SteepSimd {
-    /// The march.
-    pub march: SteepLanes,
-    /// Whether rows may run in vector lanes (off: the scalar twin, for comparisons).
-    pub lanes: bool,
-}
-
-/// The message of the panic when a caller skipped the map check.
-const NO_PACKED_MAP: &str = "steep's simd kernel needs the packed depth map (checked by render)";
-
-impl ReliefTechnique for SteepSimd {
-    fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
-        let map = inp.packed.expect(NO_PACKED_MAP);
-        crate::march::pom_lanes::trace_lanes_scalar(&self.march, inp, map, uv, v, counter)
-    }
-
-    fn trace_row<C: Counter>(
-        &self,
-        inp: &ReliefInputs,
-        rays: &[(Vec2, Vec3)],
-        out: &mut [ReliefHit],
-        counter: &mut C,
-    ) {
-        let map = inp.packed.expect(NO_PACKED_MAP);
-        if !(self.lanes && crate::simd::pom_row(&self.march, inp, map, rays, out, counter)) {
-            crate::simd::pom_twin_row(&self.march, inp, map, rays, out, counter);
-        }
-    }
-}
+/// Steep parallax's `simd` kernel: POM's packed-map lanes without the final interpolation. It
+/// differs from `scalar` only by the 16-bit depths.
+pub type SteepSimd = super::pom::LaneTracer<SteepLanes>;
 
 impl Entry for Steep {
     const DESCRIPTOR: Descriptor = Descriptor {
