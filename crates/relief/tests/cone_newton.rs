@@ -48,6 +48,33 @@ fn bits(h: &ReliefHit) -> (u32, u32, u32, u32) {
     (h.uv.x.to_bits(), h.uv.y.to_bits(), h.depth.to_bits(), h.layers)
 }
 
+/// Traces `rays` with `twin` in one row and with `t` in rows of every size in `chunks`,
+/// asserting the same bits and the same fetch count; returns the twin's hits.
+fn assert_rows_equal_twin<A: ReliefTechnique, B: ReliefTechnique>(
+    twin: &A,
+    t: &B,
+    inp: &ReliefInputs,
+    rays: &[(Vec2, Vec3)],
+    chunks: &[usize],
+    what: &str,
+) -> Vec<ReliefHit> {
+    let mut scalar = vec![ReliefHit::default(); rays.len()];
+    let mut scalar_count = Tally::default();
+    twin.trace_row(inp, rays, &mut scalar, &mut scalar_count);
+    for &chunk in chunks {
+        let mut vector = vec![ReliefHit::default(); rays.len()];
+        let mut vector_count = Tally::default();
+        for (r, o) in rays.chunks(chunk).zip(vector.chunks_mut(chunk)) {
+            t.trace_row(inp, r, o, &mut vector_count);
+        }
+        for (i, (a, b)) in scalar.iter().zip(&vector).enumerate() {
+            assert_eq!(bits(a), bits(b), "{what}, ray {i} {:?}, rows of {chunk}", rays[i]);
+        }
+        assert_eq!(scalar_count, vector_count, "{what}, rows of {chunk}");
+    }
+    scalar
+}
+
 fn techniques() -> Vec<NewtonCone> {
     vec![
         NewtonCone { steps: 64, secant: 3, tol: 0.25, jump: 1.0 },
@@ -155,20 +182,8 @@ fn simd_parallax_kernel_agrees_and_matches_parallax() {
         let inp = fx.inputs();
         let rays = rays(211);
         let (twin, t) = (ParallaxSimd { lanes: false }, ParallaxSimd { lanes: true });
-        let mut scalar = vec![ReliefHit::default(); rays.len()];
-        let mut scalar_count = Tally::default();
-        twin.trace_row(&inp, &rays, &mut scalar, &mut scalar_count);
-        for chunk in [1usize, 7, 8, 9, rays.len()] {
-            let mut vector = vec![ReliefHit::default(); rays.len()];
-            let mut vector_count = Tally::default();
-            for (r, o) in rays.chunks(chunk).zip(vector.chunks_mut(chunk)) {
-                t.trace_row(&inp, r, o, &mut vector_count);
-            }
-            for (i, (a, b)) in scalar.iter().zip(&vector).enumerate() {
-                assert_eq!(bits(a), bits(b), "parallax simd, ray {i} {:?}, rows of {chunk}", rays[i]);
-            }
-            assert_eq!(scalar_count, vector_count);
-        }
+        let scalar =
+            assert_rows_equal_twin(&twin, &t, &inp, &rays, &[1usize, 7, 8, 9, rays.len()], "parallax simd");
         for (&(uv, v), a) in rays.iter().zip(&scalar) {
             if uv.is_finite() && v.is_finite() && uv.abs().max_element() < 10.0 {
                 let reference = Parallax.trace(&inp, uv, v, &mut Tally::default());
@@ -200,25 +215,14 @@ fn simd_steep_kernel_agrees_and_matches_steep() {
         for layers in [1, 8, 32] {
             let twin = SteepSimd { march: SteepLanes { layers }, lanes: false };
             let t = SteepSimd { march: SteepLanes { layers }, lanes: true };
-            let mut scalar = vec![ReliefHit::default(); rays.len()];
-            let mut scalar_count = Tally::default();
-            twin.trace_row(&inp, &rays, &mut scalar, &mut scalar_count);
-            for chunk in [1usize, 7, rays.len()] {
-                let mut vector = vec![ReliefHit::default(); rays.len()];
-                let mut vector_count = Tally::default();
-                for (r, o) in rays.chunks(chunk).zip(vector.chunks_mut(chunk)) {
-                    t.trace_row(&inp, r, o, &mut vector_count);
-                }
-                for (i, (a, b)) in scalar.iter().zip(&vector).enumerate() {
-                    assert_eq!(
-                        bits(a),
-                        bits(b),
-                        "steep:{layers} simd, ray {i} {:?}, rows of {chunk}",
-                        rays[i]
-                    );
-                }
-                assert_eq!(scalar_count, vector_count);
-            }
+            let scalar = assert_rows_equal_twin(
+                &twin,
+                &t,
+                &inp,
+                &rays,
+                &[1usize, 7, rays.len()],
+                &format!("steep:{layers} simd"),
+            );
             let (mut checked, mut apart) = (0, 0);
             for (&(uv, v), a) in rays.iter().zip(&scalar) {
                 if uv.is_finite() && v.is_finite() && uv.abs().max_element() < 10.0 {
@@ -248,20 +252,14 @@ fn simd_adaptive_kernel_agrees_and_matches_adaptive() {
         for rule in [AdaptivePom { min: 4, max: 32 }, AdaptivePom { min: 1, max: 50 }] {
             let twin = AdaptiveSimd { march: rule, lanes: false };
             let t = AdaptiveSimd { march: rule, lanes: true };
-            let mut scalar = vec![ReliefHit::default(); rays.len()];
-            let mut scalar_count = Tally::default();
-            twin.trace_row(&inp, &rays, &mut scalar, &mut scalar_count);
-            for chunk in [1usize, 7, rays.len()] {
-                let mut vector = vec![ReliefHit::default(); rays.len()];
-                let mut vector_count = Tally::default();
-                for (r, o) in rays.chunks(chunk).zip(vector.chunks_mut(chunk)) {
-                    t.trace_row(&inp, r, o, &mut vector_count);
-                }
-                for (i, (a, b)) in scalar.iter().zip(&vector).enumerate() {
-                    assert_eq!(bits(a), bits(b), "{rule:?}, ray {i} {:?}, rows of {chunk}", rays[i]);
-                }
-                assert_eq!(scalar_count, vector_count);
-            }
+            let scalar = assert_rows_equal_twin(
+                &twin,
+                &t,
+                &inp,
+                &rays,
+                &[1usize, 7, rays.len()],
+                &format!("{rule:?}"),
+            );
             for (&(uv, v), a) in rays.iter().zip(&scalar) {
                 if uv.is_finite() && v.is_finite() && uv.abs().max_element() < 10.0 {
                     let reference = rule.trace(&inp, uv, v, &mut Tally::default());
@@ -284,20 +282,14 @@ fn simd_pom_kernels_agree_and_match_pom() {
         for layers in [1, 8, 32] {
             let twin = PomSimd { march: PomLanes { layers }, lanes: false };
             let t = PomSimd { march: PomLanes { layers }, lanes: true };
-            let mut scalar = vec![ReliefHit::default(); rays.len()];
-            let mut scalar_count = Tally::default();
-            twin.trace_row(&inp, &rays, &mut scalar, &mut scalar_count);
-            for chunk in [1usize, 5, 16, rays.len()] {
-                let mut vector = vec![ReliefHit::default(); rays.len()];
-                let mut vector_count = Tally::default();
-                for (r, o) in rays.chunks(chunk).zip(vector.chunks_mut(chunk)) {
-                    t.trace_row(&inp, r, o, &mut vector_count);
-                }
-                for (i, (a, b)) in scalar.iter().zip(&vector).enumerate() {
-                    assert_eq!(bits(a), bits(b), "pom:{layers} simd, ray {i} {:?}, rows of {chunk}", rays[i]);
-                }
-                assert_eq!(scalar_count, vector_count);
-            }
+            let scalar = assert_rows_equal_twin(
+                &twin,
+                &t,
+                &inp,
+                &rays,
+                &[1usize, 5, 16, rays.len()],
+                &format!("pom:{layers} simd"),
+            );
             for (&(uv, v), a) in rays.iter().zip(&scalar) {
                 assert!(a.uv.is_finite() && (0.0..=1.0).contains(&a.depth), "{uv} {v}: {a:?}");
                 if uv.is_finite() && v.is_finite() && uv.abs().max_element() < 10.0 {
