@@ -7,7 +7,9 @@ use renderlab_texture::reference::PixelFilter;
 use std::path::PathBuf;
 
 mod hybrid;
+mod view;
 pub use hybrid::*;
+pub use view::*;
 
 /// Reads one technique name for clap (the error names the problem; clap adds the flag).
 fn parse_technique(s: &str) -> Result<Technique, String> {
@@ -105,7 +107,7 @@ pub enum Command {
     /// The interactive viewer: walk through the thesis's room and switch techniques live
     /// (keys 1–6, arrows, B, V, H, X, C, M, F12, Esc). With --screenshot, render --frames frames in
     /// the window, write the last one and print the frame times.
-    View(crate::commands::view::ViewArgs),
+    View(ViewArgs),
 }
 
 /// `renderlab report`.
@@ -139,7 +141,16 @@ pub struct MaterialArgs {
     /// Size of the built-in material's maps in texels per side.
     #[arg(long, default_value_t = 1024)]
     pub texture_size: u32,
-    /// Your albedo map (PNG, JPEG, TGA or EXR); use with --height-map instead of --material.
+    /// Your own maps, in place of the built-in material.
+    #[command(flatten)]
+    pub own: OwnMapsArgs,
+}
+
+/// A material from the user's own maps (`relief` and `view` take the same flags).
+#[derive(Args, Debug, Clone)]
+pub struct OwnMapsArgs {
+    /// Your albedo map (PNG, JPEG, TGA or EXR); use with --height-map in place of the built-in
+    /// material.
     #[arg(long, requires = "height_map")]
     pub albedo: Option<PathBuf>,
     /// Your height map (first channel, 8 or 16 bit; white = top).

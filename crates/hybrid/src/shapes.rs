@@ -124,17 +124,9 @@ impl SceneBuilder {
     }
 }
 
-/// A white light of the given kind and intensity (see [`Light::intensity`] for its unit).
+/// A white light of the given kind and intensity ([`Light::white`]).
 pub fn light(kind: LightKind, position: Vec3, direction: Vec3, intensity: f32) -> Light {
-    Light {
-        name: "light".into(),
-        kind,
-        position,
-        direction: direction.normalize_or_zero(),
-        color: Vec3::ONE,
-        intensity,
-        range: None,
-    }
+    Light::white(kind, position, direction, intensity)
 }
 
 /// The benchmarks' small scene: a floor and a back wall, two boxes, a polished metal

@@ -71,6 +71,21 @@ pub struct LightSample {
 }
 
 impl Light {
+    /// A white light named `light` of `kind` at `position` facing `direction` (normalised;
+    /// zero if degenerate), of `intensity` (see [`Light::intensity`] for its unit), without a
+    /// range limit: how the built-in test and benchmark scenes place their lights.
+    pub fn white(kind: LightKind, position: Vec3, direction: Vec3, intensity: f32) -> Light {
+        Light {
+            name: "light".into(),
+            kind,
+            position,
+            direction: direction.normalize_or_zero(),
+            color: Vec3::ONE,
+            intensity,
+            range: None,
+        }
+    }
+
     /// Whether the light has extent (its shadows need many samples to be soft).
     pub fn is_area(&self) -> bool {
         matches!(self.kind, LightKind::Area { .. })

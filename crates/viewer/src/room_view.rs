@@ -31,7 +31,7 @@ struct Target {
 
 /// A display-sized texture of [`DISPLAY_FORMAT`] that can be drawn into, sampled as codes
 /// ([`CODE_FORMAT`]) and read back; with both of its views.
-fn display_texture(
+pub fn display_texture(
     ctx: &GpuContext,
     label: &str,
     w: u32,

@@ -10,15 +10,15 @@ use egui_kittest::kittest::Queryable;
 use egui_kittest::Harness;
 use renderlab_core::color::{heat_color, srgb8_to_linear_table};
 use renderlab_core::Image;
-use renderlab_gpu::{read_rgba8, DisplayRegion, GpuContext, ReliefRenderer};
+use renderlab_gpu::{read_rgba8, DisplayRegion, ReliefRenderer};
 use renderlab_lab::fixtures::{benchmark_camera, thesis_room};
 use renderlab_lab::heatmap::{heat_image, MASKED_OUT};
 use renderlab_lab::metrics::per_pixel_abs_error;
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::{ReliefMaterial, Technique};
 use renderlab_viewer::app::Screen;
-use renderlab_viewer::compose::{ErrorCompose, CODE_FORMAT, HEAT_MAX};
-use renderlab_viewer::room_view::DISPLAY_FORMAT;
+use renderlab_viewer::compose::{ErrorCompose, HEAT_MAX};
+use renderlab_viewer::room_view::{display_texture, DISPLAY_FORMAT};
 use renderlab_viewer::settings::Settings;
 use renderlab_viewer::split::{self, SplitMode, REFERENCE};
 use renderlab_viewer::{Launch, ViewerApp};
@@ -147,26 +147,6 @@ fn the_error_map_is_hot_where_the_techniques_differ_and_cold_where_they_agree() 
     assert!(hot < 0.001, "the reference against itself: {:.2}% of the heat map is warm", hot * 100.0);
 }
 
-/// A display-format texture with a code view, as the viewer's split screen makes them.
-fn texture(ctx: &GpuContext, w: u32, h: u32) -> (wgpu::Texture, wgpu::TextureView, wgpu::TextureView) {
-    let t = ctx.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("test"),
-        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: DISPLAY_FORMAT,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-            | wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[CODE_FORMAT],
-    });
-    let view = t.create_view(&Default::default());
-    let codes =
-        t.create_view(&wgpu::TextureViewDescriptor { format: Some(CODE_FORMAT), ..Default::default() });
-    (t, view, codes)
-}
-
 /// RGBA bytes → linear colour (alpha dropped) and coverage (alpha > 0).
 fn decode(bytes: &[u8], w: u32, h: u32) -> (Image<glam::Vec3>, Image<bool>) {
     let lut = srgb8_to_linear_table();
@@ -194,9 +174,9 @@ fn the_error_pass_is_the_labs_heat_map() {
     let (w, h) = (200, 120);
     // At 80° the frame shows the background too (the masked grey).
     let camera = benchmark_camera(80.0, w, h);
-    let (t_tex, t_view, t_codes) = texture(&ctx, w, h);
-    let (r_tex, r_view, r_codes) = texture(&ctx, w, h);
-    let (o_tex, _, o_codes) = texture(&ctx, w, h);
+    let (t_tex, t_view, t_codes) = display_texture(&ctx, "test", w, h);
+    let (r_tex, r_view, r_codes) = display_texture(&ctx, "test", w, h);
+    let (o_tex, _, o_codes) = display_texture(&ctx, "test", w, h);
     let whole = DisplayRegion { rect: [0, 0, w, h], clear_alpha: Some(0.0) };
     let pom8 = Technique::parse("pom:8").unwrap();
     renderer.render_to_view_region(&t_view, DISPLAY_FORMAT, &camera, pom8, whole).unwrap();

@@ -24,28 +24,26 @@ fn params(f: &ComplexityFlags) -> Result<ComplexityParams> {
     Ok(p)
 }
 
+/// The material of the user's own maps, if they gave them (`--height-scale` checked).
+pub(crate) fn load_own_material(own: &OwnMapsArgs) -> Result<Option<Material>> {
+    let (Some(a), Some(h)) = (&own.albedo, &own.height_map) else { return Ok(None) };
+    check_range("--height-scale", own.height_scale, 0.0, 1.0)?;
+    let albedo = io::load_color(a)?;
+    let height = io::load_height(h)?;
+    let normal = own.normal_map.as_ref().map(io::load_normal_map).transpose()?;
+    let name = a.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "user".into());
+    Ok(Some(Material::from_maps(name, albedo, height, normal, own.height_scale)?))
+}
+
 /// Loads the material the user asked for.
 fn load_material(m: &MaterialArgs) -> Result<Material> {
-    match (&m.albedo, &m.height_map) {
-        (Some(a), Some(h)) => {
-            check_range("--height-scale", m.height_scale, 0.0, 1.0)?;
-            let albedo = io::load_color(a)?;
-            let height = io::load_height(h)?;
-            let normal = match &m.normal_map {
-                Some(n) => Some(io::load_normal_map(n)?),
-                None => None,
-            };
-            let name =
-                a.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "user".into());
-            Ok(Material::from_maps(name, albedo, height, normal, m.height_scale)?)
-        }
-        _ => {
-            if m.texture_size > 8192 {
-                bail!("--texture-size: {} is larger than 8192", m.texture_size);
-            }
-            Ok(builtin_material(&m.material, m.texture_size)?)
-        }
+    if let Some(own) = load_own_material(&m.own)? {
+        return Ok(own);
     }
+    if m.texture_size > 8192 {
+        bail!("--texture-size: {} is larger than 8192", m.texture_size);
+    }
+    Ok(builtin_material(&m.material, m.texture_size)?)
 }
 
 /// The methods `relief bench` measures: the given techniques on `kernel` (default auto), or

@@ -3,8 +3,9 @@
 //! `--compare` the same camera and technique are then timed by the headless renderer, so that
 //! the viewer's overhead is one ratio measured in one run.
 
+use super::relief::load_own_material;
+use crate::args::ViewArgs;
 use anyhow::{bail, Context, Result};
-use clap::Args;
 use renderlab_core::{io, Material};
 use renderlab_gpu::{GpuContext, ReliefRenderer};
 use renderlab_lab::fixtures::thesis_room;
@@ -13,52 +14,6 @@ use renderlab_relief::{Map, ReliefMaterial, Technique};
 use renderlab_viewer::launch::{bookmark, BOOKMARKS};
 use renderlab_viewer::split::SplitMode;
 use renderlab_viewer::{Launch, Script, ScriptReport};
-use std::path::PathBuf;
-
-/// `renderlab view`.
-#[derive(Args, Debug)]
-pub struct ViewArgs {
-    /// Render --frames frames in the window, write the last one to this PNG, print the frame
-    /// times and close (for scripts, docs and measurements).
-    #[arg(long)]
-    pub screenshot: Option<PathBuf>,
-    /// Technique to start on (default: the thesis's adaptive POM); `renderlab relief render
-    /// --help` lists them.
-    #[arg(long, short, value_parser = |s: &str| Technique::parse(s).map_err(|e| e.to_string()))]
-    pub technique: Option<Technique>,
-    /// Camera to start at: room, bench0, bench45, bench60 or bench80 (the thesis's views).
-    #[arg(long, default_value = "room")]
-    pub camera: String,
-    /// Start in the split screen: `side` (the technique beside --right) or `error` (the
-    /// technique beside its error heat map against the GPU reference); `off` by default.
-    #[arg(long, default_value = "off", value_parser = |s: &str| SplitMode::parse(s).ok_or_else(|| format!("'{s}' is not one of off, side, error")))]
-    pub split: SplitMode,
-    /// The split screen's right-hand technique (default: the GPU reference).
-    #[arg(long, value_parser = |s: &str| Technique::parse(s).map_err(|e| e.to_string()))]
-    pub right: Option<Technique>,
-    /// Frames a --screenshot run renders (the first builds the pipeline and is not timed).
-    #[arg(long, default_value_t = 30, requires = "screenshot")]
-    pub frames: u32,
-    /// After a --screenshot run, time the same frame with the headless renderer and print the
-    /// viewer's overhead.
-    #[arg(long, requires = "screenshot")]
-    pub compare: bool,
-    /// Size of the built-in materials' maps in texels per side.
-    #[arg(long, default_value_t = 512)]
-    pub texture_size: u32,
-    /// Your albedo map, put on every surface of the room (use with --height-map).
-    #[arg(long, requires = "height_map")]
-    pub albedo: Option<PathBuf>,
-    /// Your height map (first channel, 8 or 16 bit; white = top).
-    #[arg(long, requires = "albedo")]
-    pub height_map: Option<PathBuf>,
-    /// Your tangent-space normal map (optional; derived from the height map if absent).
-    #[arg(long, requires = "albedo")]
-    pub normal_map: Option<PathBuf>,
-    /// Relief depth of your maps in UV units (the thesis's HeightScale).
-    #[arg(long, default_value_t = 0.05)]
-    pub height_scale: f32,
-}
 
 /// `renderlab view`.
 pub(crate) fn view(a: ViewArgs) -> Result<()> {
@@ -76,20 +31,7 @@ pub(crate) fn view(a: ViewArgs) -> Result<()> {
             bail!("--screenshot: {} must be a .png file", out.display());
         }
     }
-    let material = match (&a.albedo, &a.height_map) {
-        (Some(albedo), Some(height)) => {
-            let normal = a.normal_map.as_ref().map(io::load_normal_map).transpose()?;
-            let name = albedo.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-            Some(Material::from_maps(
-                name,
-                io::load_color(albedo)?,
-                io::load_height(height)?,
-                normal,
-                a.height_scale,
-            )?)
-        }
-        _ => None,
-    };
+    let material = load_own_material(&a.own)?;
     let launch = Launch {
         technique: a.technique,
         camera: Some(a.camera.clone()),

@@ -108,17 +108,9 @@ pub fn scene(parts: Vec<(Mesh, PbrMaterial)>, lights: Vec<Light>, sky: Vec3) -> 
     s
 }
 
-/// A light of `kind` with unit colour.
+/// A light of `kind` with unit colour ([`Light::white`]).
 pub fn light(kind: LightKind, position: Vec3, direction: Vec3, intensity: f32) -> Light {
-    Light {
-        name: "light".into(),
-        kind,
-        position,
-        direction: direction.normalize_or_zero(),
-        color: Vec3::ONE,
-        intensity,
-        range: None,
-    }
+    Light::white(kind, position, direction, intensity)
 }
 
 /// A camera at `eye` looking at `target` with an explicit up vector.
