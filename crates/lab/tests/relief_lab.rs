@@ -141,6 +141,6 @@ fn a_missing_map_is_an_error_naming_it() {
         assert!(err.contains("relaxed cone map"), "{t}: {err}");
     }
     assert!(check(tech("pom:8"), Kernel::Scalar, std::slice::from_ref(&mat)).is_ok());
-    let err = check(tech("relief"), Kernel::Simd, std::slice::from_ref(&mat)).unwrap_err().to_string();
+    let err = check(tech("basic"), Kernel::Simd, std::slice::from_ref(&mat)).unwrap_err().to_string();
     assert!(err.contains("no simd kernel"), "{err}");
 }

@@ -6,14 +6,18 @@
 use glam::{Vec2, Vec3};
 use proptest::prelude::*;
 use renderlab_core::color::srgb8_to_linear_table;
+use renderlab_core::counter::Tally;
 use renderlab_core::scene::{bricks_wall, BRICKS_WALL_CENTRE};
 use renderlab_core::srgb8::srgb8_encode_table;
+use renderlab_core::ShadePoint;
 use renderlab_core::{Camera, Image, Scene, SceneObject};
 use renderlab_raster::rasterize;
 use renderlab_relief::fused::lanes::{shade_scalar, ShadeConsts, ShadeLanes, LANES};
 use renderlab_relief::fused::{render_fused, render_fused_records, FusedFrame, Textures8};
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::render::render;
+use renderlab_relief::render::shadow::soft_shadow;
+use renderlab_relief::ReliefHit;
 use renderlab_relief::{FrameInput, Kernel, KernelChoice, ReliefMaterial, Shading, Technique};
 use renderlab_texture::{Texture, Wrap};
 
@@ -102,6 +106,49 @@ proptest! {
     }
 }
 
+/// A hit and its light for the soft-shadow pass: ordinary ones mostly, and the edges (light
+/// at or under the horizon, a hit on the top surface, NaN, huge UVs).
+fn shadow_case() -> impl Strategy<Value = (ReliefHit, ShadePoint)> {
+    let coord = prop_oneof![8 => -3.0f32..3.0, 1 => Just(f32::NAN), 1 => -1.0e9f32..1.0e9];
+    let depth = prop_oneof![8 => 0.0f32..1.0, 1 => Just(0.0f32), 1 => Just(f32::NAN)];
+    let light = prop_oneof![
+        8 => (-1.0f32..1.0, -1.0f32..1.0, 0.01f32..1.0),
+        1 => (-1.0f32..1.0, -1.0f32..1.0, -1.0f32..0.0),
+        1 => (Just(0.3f32), Just(f32::NAN), Just(1e-9f32)),
+    ];
+    (coord.clone(), coord, depth, light).prop_map(|(u, v, depth, (lx, ly, lz))| {
+        let hit = ReliefHit { uv: Vec2::new(u, v), depth, layers: 32 };
+        let point = ShadePoint { light_ts: Vec3::new(lx, ly, lz), ..ShadePoint::default() };
+        (hit, point)
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// The fused frame's soft-shadow pass on the packed map gives the scalar function's
+    /// factors bit for bit (and its fetch count), on rows of every length.
+    #[test]
+    fn vector_soft_shadows_equal_the_scalar_function(
+        cases in proptest::collection::vec(shadow_case(), 0..40),
+        samples in prop_oneof![Just(0u32), 1u32..24],
+    ) {
+        let mat = bricks(32);
+        let (hits, points): (Vec<ReliefHit>, Vec<ShadePoint>) = cases.into_iter().unzip();
+        let mut expected = Vec::new();
+        let mut scalar_count = Tally::default();
+        for (h, p) in hits.iter().zip(&points) {
+            expected.push(soft_shadow(&mat.packed, mat.height_scale, h.uv, h.depth, p.light_ts, samples, &mut scalar_count));
+        }
+        let mut got = vec![f32::NAN; hits.len()];
+        let mut count = Tally::default();
+        renderlab_relief::simd::soft_shadow_row(&mat.inputs(), samples, &hits, &points, &mut got, true, &mut count);
+        let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        prop_assert_eq!(bits(&expected), bits(&got));
+        prop_assert_eq!(scalar_count, count);
+    }
+}
+
 fn psnr(a: &Image<Vec3>, b: &Image<Vec3>, mask: &[bool]) -> f64 {
     let (mut se, mut n) = (0.0f64, 0usize);
     for ((x, y), &m) in a.pixels().iter().zip(b.pixels()).zip(mask) {
@@ -126,9 +173,18 @@ fn records_equal_the_float_renderer_and_the_image_is_within_8_bit_precision() {
         let cam = camera(angle, w, h);
         let g = rasterize(&scene, &cam);
         let input = FrameInput { width: w, height: h, points: g.pixels() };
-        for name in
-            ["basic", "normal", "parallax", "steep:16", "pom:16", "adaptive", "pom-shadow", "cone-newton"]
-        {
+        for name in [
+            "basic",
+            "normal",
+            "parallax",
+            "steep:16",
+            "pom:16",
+            "adaptive",
+            "pom-shadow",
+            "cone-newton",
+            "relief",
+            "adaptive-relief",
+        ] {
             let t = Technique::parse(name).expect("technique");
             for kernel in [Kernel::Scalar, t.kernel(KernelChoice::Auto).expect("kernel")] {
                 let float =
@@ -154,7 +210,7 @@ fn fused_frames_are_bit_identical_across_kernels_threads_and_reuse() {
     let mats = [bricks(64)];
     let scene = wall(64);
     let cam = camera(45.0, 123, 77);
-    for name in ["pom:8", "basic"] {
+    for name in ["pom:8", "basic", "pom-shadow:16:8", "relief"] {
         let t = Technique::parse(name).expect("technique");
         let kernel = t.kernel(KernelChoice::Auto).expect("kernel");
         let (recorded, _) = render_fused_records(&scene, &cam, &mats, t, kernel, true).expect("renders");

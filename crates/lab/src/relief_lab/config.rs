@@ -109,9 +109,9 @@ impl Method {
 pub const POM_32: Technique = Technique::Pom(Pom { layers: 32 });
 
 /// The catalogue's bench settings (see [`renderlab_relief::techniques::descriptor::Entry::BENCH`]): the
-/// thesis's POM settings on its scalar march, adaptive POM, and the methods beyond the thesis
-/// on their fastest kernels, POM-32 among them (on the packed map in vector lanes where the
-/// CPU has them, the like-for-like baseline of cone-newton).
+/// thesis's POM layer counts and adaptive POM, and the methods beyond the thesis, on their
+/// fastest kernels (on the packed map in vector lanes where the CPU has them), and POM-32 on
+/// the scalar march as well (the thesis's baseline).
 pub fn default_techniques() -> Vec<Method> {
     bench_settings().into_iter().map(|(technique, kernel)| Method { technique, kernel }).collect()
 }

@@ -9,7 +9,6 @@ use crate::kernel::Kernel;
 use crate::march::exact::exact_shadowed;
 use crate::render::material::ReliefMaterial;
 use crate::render::shade::{trace_rays, Frame, RowScratch as TraceScratch, ShadeOptions, ShadowMode};
-use crate::render::shadow::soft_shadow;
 use crate::render::{check, options};
 use crate::techniques::descriptor::WithTracer;
 use crate::techniques::Technique;
@@ -138,6 +137,8 @@ struct Worker {
     trace: TraceScratch,
     lanes: ShadeLanes,
     xs: [usize; LANES],
+    /// The row's light factors.
+    shadows: Vec<f32>,
 }
 
 thread_local! {
@@ -203,25 +204,48 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
         }
     }
 
-    /// The light reaching the hit (1 unless the technique self-shadows).
-    #[inline]
-    fn shadow<C: Counter>(
+    /// The light reaching each of a row's hits into `out` (1 unless the technique
+    /// self-shadows). Soft shadows sample the packed 16-bit depths, the fused frame's height
+    /// format, in vector lanes for a run of pixels of one material at a time.
+    fn shadows<C: Counter>(
         &self,
-        hit: &ReliefHit,
-        sp: &ShadePoint,
-        mat: &ReliefMaterial,
+        hits: &[ReliefHit],
+        points: &[ShadePoint],
+        out: &mut Vec<f32>,
         counter: &mut C,
-    ) -> f32 {
+    ) {
+        out.clear();
+        out.resize(hits.len(), 1.0);
+        let last = self.materials.len() - 1;
+        let material = |i: usize| (points[i].material as usize).min(last);
         match (self.opt.shading, self.opt.shadow) {
             (Shading::LitShadowed, ShadowMode::Soft(samples)) => {
-                soft_shadow(&mat.height, mat.height_scale, hit.uv, hit.depth, sp.light_ts, samples, counter)
+                let mut start = 0;
+                while start < hits.len() {
+                    let m = material(start);
+                    let end = start + (start..hits.len()).take_while(|&i| material(i) == m).count();
+                    let mat = &self.materials[m];
+                    crate::simd::soft_shadow_row(
+                        &mat.inputs(),
+                        samples,
+                        &hits[start..end],
+                        &points[start..end],
+                        &mut out[start..end],
+                        self.vector,
+                        counter,
+                    );
+                    start = end;
+                }
             }
-            (Shading::LitShadowed, ShadowMode::Exact)
-                if exact_shadowed(&mat.height, mat.height_scale, hit.uv, hit.depth, sp.light_ts) =>
-            {
-                0.0
+            (Shading::LitShadowed, ShadowMode::Exact) => {
+                for (i, (hit, sp)) in hits.iter().zip(points).enumerate() {
+                    let mat = &self.materials[material(i)];
+                    if exact_shadowed(&mat.height, mat.height_scale, hit.uv, hit.depth, sp.light_ts) {
+                        out[i] = 0.0;
+                    }
+                }
             }
-            _ => 1.0,
+            _ => {}
         }
     }
 
@@ -246,8 +270,10 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
             let rays = points.iter().map(|p| (p.uv, p.view_ts, p.material));
             trace_rays(self.t, self.materials, rays, &mut worker.trace, counter);
             let hits = std::mem::take(&mut worker.trace.hits);
+            let mut shadows = std::mem::take(&mut worker.shadows);
+            self.shadows(&hits, points, &mut shadows, counter);
             let (mut n, mut cur) = (0, 0);
-            for ((&x, sp), hit) in xs.iter().zip(points).zip(&hits) {
+            for (((&x, sp), hit), &shadow) in xs.iter().zip(points).zip(&hits).zip(&shadows) {
                 let x = x as usize;
                 let m = (sp.material as usize).min(last);
                 if n == LANES || (n > 0 && m != cur) {
@@ -255,7 +281,6 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
                     n = 0;
                 }
                 cur = m;
-                let shadow = self.shadow(hit, sp, &self.materials[m], counter);
                 worker.lanes.set(n, hit, sp, shadow);
                 worker.xs[n] = x;
                 n += 1;
@@ -270,6 +295,7 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
                 self.flush(worker, n, cur, out_row);
             }
             worker.trace.hits = hits;
+            worker.shadows = shadows;
         });
         worker.raster = raster;
     }

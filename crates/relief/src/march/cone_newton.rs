@@ -66,7 +66,7 @@ pub(crate) const REFINE_B: i32 = 3;
 
 /// `a < b ? a : b`, as `minps` computes it.
 #[inline(always)]
-fn mn(a: f32, b: f32) -> f32 {
+pub(crate) fn mn(a: f32, b: f32) -> f32 {
     if a < b {
         a
     } else {
@@ -76,7 +76,7 @@ fn mn(a: f32, b: f32) -> f32 {
 
 /// `a > b ? a : b`, as `maxps` computes it.
 #[inline(always)]
-fn mx(a: f32, b: f32) -> f32 {
+pub(crate) fn mx(a: f32, b: f32) -> f32 {
     if a > b {
         a
     } else {
@@ -104,6 +104,13 @@ pub(crate) struct Ray {
 impl Ray {
     #[inline(always)]
     pub(crate) fn new(fc: &NewtonCone, inp: &ReliefInputs, uv: Vec2, v: Vec3) -> Ray {
+        Ray::with_tolerance(fc.tol, MAX_EPS, inp, uv, v)
+    }
+
+    /// The ray with a stopping tolerance of `tol` texels along the surface, at most `max_eps`
+    /// in depth.
+    #[inline(always)]
+    pub(crate) fn with_tolerance(tol: f32, max_eps: f32, inp: &ReliefInputs, uv: Vec2, v: Vec3) -> Ray {
         let dp = uv_per_depth(v, inp.height_scale);
         let dp = if dp.is_finite() { dp } else { Vec2::ZERO };
         let uv0 = if uv.is_finite() { uv } else { Vec2::ZERO };
@@ -121,7 +128,7 @@ impl Ray {
             tu: dp.x * w,
             tv: dp.y * h,
             s,
-            eps: (fc.tol / texels_per_depth.max(1e-3)).clamp(1e-6, MAX_EPS),
+            eps: (tol / texels_per_depth.max(1e-3)).clamp(1e-6, max_eps),
         }
     }
 
@@ -163,7 +170,7 @@ impl State {
 
 /// The false-position estimate inside the bracket.
 #[inline(always)]
-fn interp(a: f32, fa: f32, b: f32, fb: f32) -> f32 {
+pub(crate) fn interp(a: f32, fa: f32, b: f32, fb: f32) -> f32 {
     let den = fb - fa;
     if den > 1e-12 {
         mn(mx((a * fb - b * fa) / den, a), b)

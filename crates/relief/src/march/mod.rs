@@ -5,6 +5,7 @@
 //! parameterise them.
 
 pub mod bisect;
+pub mod cone_lanes;
 pub mod cone_newton;
 pub mod cone_step;
 pub mod exact;

@@ -2,10 +2,12 @@
 //! its interpolation are the thesis's (see [`crate::march::layered`]); only the depths are
 //! the packed map's 16-bit ones. Non-finite inputs count as zero (as in cone-newton's
 //! kernels). This file holds the scalar twin and the per-ray set-up and result that the
-//! vector kernel ([`crate::simd`]) shares with it.
+//! vector kernel ([`crate::simd`]) shares with it. The same lanes run steep parallax (no
+//! interpolation) and relief mapping (the march, then a bisection of the last layer's
+//! bracket, [`refine`]).
 
 use crate::maps::packed::PackedRelief;
-use crate::march::layered::{interpolate, layered_march, March};
+use crate::march::layered::{interpolate, layered_march, DepthSource, March};
 use crate::trace::{uv_per_depth, ReliefHit, ReliefInputs};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
@@ -27,6 +29,39 @@ pub trait LayerRule: Sync {
     /// layer below the surface (steep parallax).
     fn interpolates(&self) -> bool {
         true
+    }
+
+    /// Bisection steps after the march (relief mapping, whose rules do not interpolate), or
+    /// `None` where the march's result is the hit (POM, steep parallax).
+    fn bisect_steps(&self) -> Option<u32> {
+        None
+    }
+}
+
+/// Relief mapping's march on the packed map: `linear` layers, then `binary` bisection steps
+/// in the last layer's bracket.
+#[derive(Clone, Copy, Debug)]
+pub struct ReliefLanes {
+    /// Linear search steps.
+    pub linear: u32,
+    /// Bisection steps.
+    pub binary: u32,
+}
+
+impl LayerRule for ReliefLanes {
+    #[inline(always)]
+    fn layer_count(&self, _: &ReliefInputs, _: Vec2, _: Vec3) -> u32 {
+        self.linear.max(1)
+    }
+
+    #[inline(always)]
+    fn interpolates(&self) -> bool {
+        false
+    }
+
+    #[inline(always)]
+    fn bisect_steps(&self) -> Option<u32> {
+        Some(self.binary)
     }
 }
 
@@ -70,7 +105,11 @@ pub fn trace_lanes_scalar<R: LayerRule, C: Counter>(
     let (uv0, step) = setup(inp, layers, uv, v);
     let m = layered_march(map, uv0, step, layers, counter);
     if !rule.interpolates() {
-        return ReliefHit { uv: m.uv, depth: m.layer, layers };
+        let hit = ReliefHit { uv: m.uv, depth: m.layer, layers };
+        return match rule.bisect_steps() {
+            Some(steps) => refine(inp, map, uv, v, hit, steps, counter),
+            None => hit,
+        };
     }
     let (uv, depth) = interpolate(&m);
     ReliefHit { uv, depth, layers }
@@ -99,6 +138,56 @@ pub(crate) fn setup(inp: &ReliefInputs, layers: u32, uv: Vec2, v: Vec3) -> (Vec2
     let dp = if dp.is_finite() { dp } else { Vec2::ZERO };
     let uv0 = if uv.is_finite() { uv } else { Vec2::ZERO };
     (uv0, dp * layer_depth)
+}
+
+/// The bracket that relief mapping bisects after the march stopped at `hit` (a march without
+/// interpolation): the entry, the UV per unit depth and the depths of the last layer above
+/// and the first at or below the surface; `None` when the march stopped at the top layer (the
+/// hit stands). Shared by the scalar twin and the vector pass.
+#[inline(always)]
+pub(crate) fn bracket(
+    inp: &ReliefInputs,
+    uv: Vec2,
+    v: Vec3,
+    hit: &ReliefHit,
+) -> Option<(Vec2, Vec2, f32, f32)> {
+    if hit.depth == 0.0 {
+        return None;
+    }
+    let layer_depth = 1.0 / hit.layers.max(1) as f32;
+    let dp = uv_per_depth(v, inp.height_scale);
+    let dp = if dp.is_finite() { dp } else { Vec2::ZERO };
+    let uv0 = if uv.is_finite() { uv } else { Vec2::ZERO };
+    Some((uv0, dp, hit.depth - layer_depth, hit.depth))
+}
+
+/// Relief mapping's second phase on the packed map: `steps` bisections of the bracket of
+/// `hit` (see [`bracket`]), the midpoint of the last one the result, as
+/// [`crate::march::bisect::bisect`] does on the `f32` field.
+#[inline(always)]
+pub fn refine<C: Counter>(
+    inp: &ReliefInputs,
+    map: &PackedRelief,
+    uv: Vec2,
+    v: Vec3,
+    hit: ReliefHit,
+    steps: u32,
+    counter: &mut C,
+) -> ReliefHit {
+    let Some((uv0, dp, mut a, mut b)) = bracket(inp, uv, v, &hit) else {
+        return hit;
+    };
+    for _ in 0..steps {
+        let mid = 0.5 * (a + b);
+        let depth = map.fetch(uv0 + dp * mid, counter);
+        if mid >= depth {
+            b = mid;
+        } else {
+            a = mid;
+        }
+    }
+    let t = 0.5 * (a + b);
+    ReliefHit { uv: uv0 + dp * t, depth: t, layers: hit.layers }
 }
 
 /// The UV of layer `i`, as the layered march computes it.

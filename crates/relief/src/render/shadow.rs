@@ -1,15 +1,19 @@
 //! Self-shadowing of the height field toward a directional light.
 
-use crate::maps::height::HeightField;
+use crate::march::layered::DepthSource;
 use crate::trace::MIN_VIEW_Z;
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
 
 /// Soft self-shadowing: samples the light ray from the hit upward to the top surface and
 /// darkens by the deepest penetration of the surface above the ray, weighted down with
-/// distance so that far occluders give a softer shadow. Returns 1 (lit) … 0 (shadowed).
-pub fn soft_shadow<C: Counter>(
-    field: &HeightField,
+/// distance so that far occluders give a softer shadow. Returns 1 (lit) … 0 (shadowed). The
+/// depths come from `field`: the `f32` field (the float renderer) or the packed 16-bit map
+/// (the fused frame, whose vector pass [`crate::simd::soft_shadow_row`] is bit-identical to
+/// this function there).
+#[inline]
+pub fn soft_shadow<S: DepthSource, C: Counter>(
+    field: &S,
     height_scale: f32,
     uv: Vec2,
     depth: f32,
@@ -31,7 +35,7 @@ pub fn soft_shadow<C: Counter>(
     for i in 1..=samples {
         let risen = step * i as f32;
         let ray_depth = depth - risen;
-        let map = field.depth(uv + dl * risen, counter);
+        let map = field.fetch(uv + dl * risen, counter);
         let pen = (ray_depth - map) * (1.0 - i as f32 / (n + 1.0));
         occlusion = occlusion.max(pen);
     }

@@ -46,8 +46,37 @@ pub fn cone_newton_row<C: Counter>(
     false
 }
 
-/// Traces `rays` with POM's vector kernel on the packed map; `false` (and nothing traced)
-/// where it cannot run.
+/// Traces `rays` with relaxed cone stepping's vector kernel on the packed map; `false` (and
+/// nothing traced) where it cannot run (the caller runs the scalar twin,
+/// [`crate::march::cone_lanes::scalar_row`]; the hits are bit-identical).
+#[inline]
+pub fn cone_row<C: Counter>(
+    cs: &crate::march::cone_step::ConeStep,
+    inp: &ReliefInputs,
+    map: &PackedRelief,
+    rays: &[(Vec2, Vec3)],
+    out: &mut [ReliefHit],
+    counter: &mut C,
+) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if usable(map) {
+        // SAFETY: the CPU supports the kernel's features and the map suits it.
+        unsafe {
+            if crate::cpu::has_avx512() {
+                avx2::cone::trace_row_avx512(cs, inp, map, rays, out, counter)
+            } else {
+                avx2::cone::trace_row(cs, inp, map, rays, out, counter)
+            }
+        }
+        return true;
+    }
+    let _ = (cs, inp, map, rays, out, counter);
+    false
+}
+
+/// Traces `rays` with POM's vector kernel on the packed map (the layered march; then, for
+/// relief mapping's rules, the bisection pass); `false` (and nothing traced) where it cannot
+/// run.
 #[inline]
 pub fn pom_row<R: LayerRule, C: Counter>(
     pom: &R,
@@ -62,9 +91,15 @@ pub fn pom_row<R: LayerRule, C: Counter>(
         // SAFETY: the CPU supports the kernel's features and the map suits it.
         unsafe {
             if crate::cpu::has_avx512() {
-                avx2::pom::trace_row_avx512(pom, inp, map, rays, out, counter)
+                avx2::pom::trace_row_avx512(pom, inp, map, rays, out, counter);
+                if let Some(steps) = pom.bisect_steps() {
+                    avx2::bisect::refine_row_avx512(steps, inp, map, rays, out, counter);
+                }
             } else {
-                avx2::pom::trace_row(pom, inp, map, rays, out, counter)
+                avx2::pom::trace_row(pom, inp, map, rays, out, counter);
+                if let Some(steps) = pom.bisect_steps() {
+                    avx2::bisect::refine_row(steps, inp, map, rays, out, counter);
+                }
             }
         }
         return true;
@@ -130,4 +165,44 @@ pub fn parallax_row<C: Counter>(
     }
     let _ = (inp, map, rays, out, counter);
     false
+}
+
+/// The soft-shadow factors of a row's `hits` (lit from `points`) on the packed map, with the
+/// vector pass where asked (`vector`) and where the CPU and the map allow it, with the scalar
+/// function otherwise (bit-identical either way): [`crate::render::shadow::soft_shadow`] for
+/// each hit, on the `f32` field where the inputs have no packed map.
+#[inline]
+pub fn soft_shadow_row<C: Counter>(
+    inp: &ReliefInputs,
+    samples: u32,
+    hits: &[ReliefHit],
+    points: &[renderlab_core::ShadePoint],
+    out: &mut [f32],
+    vector: bool,
+    counter: &mut C,
+) {
+    use crate::render::shadow::soft_shadow;
+    let hs = inp.height_scale;
+    let Some(map) = inp.packed else {
+        for ((o, h), p) in out.iter_mut().zip(hits).zip(points) {
+            *o = soft_shadow(inp.height, hs, h.uv, h.depth, p.light_ts, samples, counter);
+        }
+        return;
+    };
+    #[cfg(target_arch = "x86_64")]
+    if vector && usable(map) {
+        // SAFETY: the CPU supports the kernel's features and the map suits it.
+        unsafe {
+            if crate::cpu::has_avx512() {
+                avx2::shadow::soft_shadow_row_avx512(map, hs, samples, hits, points, out, counter)
+            } else {
+                avx2::shadow::soft_shadow_row(map, hs, samples, hits, points, out, counter)
+            }
+        }
+        return;
+    }
+    let _ = vector;
+    for ((o, h), p) in out.iter_mut().zip(hits).zip(points) {
+        *o = soft_shadow(map, hs, h.uv, h.depth, p.light_ts, samples, counter);
+    }
 }

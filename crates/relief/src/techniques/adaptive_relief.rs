@@ -1,6 +1,9 @@
 //! Angle-adaptive relief mapping: relief mapping whose linear step count follows the length
 //! of the ray's path through the relief box in texels, so head-on views take few steps and
 //! grazing views as many as they need.
+//!
+//! Kernels: `scalar` on the `f32` depth field; `simd` on the packed map, as relief mapping's
+//! (the step count per lane).
 
 use super::descriptor::{Descriptor, Entry, Param, WithTracer};
 use crate::kernel::Kernel;
@@ -52,6 +55,26 @@ impl ReliefTechnique for AdaptiveRelief {
     }
 }
 
+impl crate::march::pom_lanes::LayerRule for AdaptiveRelief {
+    #[inline(always)]
+    fn layer_count(&self, inp: &ReliefInputs, _: Vec2, v: Vec3) -> u32 {
+        self.steps(inp, v)
+    }
+
+    #[inline(always)]
+    fn interpolates(&self) -> bool {
+        false
+    }
+
+    #[inline(always)]
+    fn bisect_steps(&self) -> Option<u32> {
+        Some(self.binary)
+    }
+}
+
+/// Adaptive relief mapping's `simd` kernel.
+pub type AdaptiveReliefSimd = super::pom::LaneTracer<AdaptiveRelief>;
+
 impl Entry for AdaptiveRelief {
     const DESCRIPTOR: Descriptor = Descriptor {
         name: "adaptive-relief",
@@ -62,7 +85,7 @@ impl Entry for AdaptiveRelief {
             Param::count("BINARY", 5, "binary refinement steps"),
         ],
         needs: &[],
-        kernels: &[Kernel::Scalar],
+        kernels: &[Kernel::Scalar, Kernel::Simd],
         shading: Shading::Lit,
     };
 
@@ -83,7 +106,10 @@ impl Entry for AdaptiveRelief {
 
     const WGSL: Option<&'static str> = Some(include_str!("adaptive_relief.wgsl"));
 
-    fn dispatch<A: WithTracer>(&self, _: Kernel, action: A) -> A::Output {
-        action.run(self)
+    fn dispatch<A: WithTracer>(&self, kernel: Kernel, action: A) -> A::Output {
+        match kernel {
+            Kernel::Scalar => action.run(self),
+            Kernel::Simd => action.run(&AdaptiveReliefSimd { march: *self, lanes: true }),
+        }
     }
 }

@@ -1,11 +1,17 @@
 //! Relaxed cone stepping (Policarpo and Oliveira): space leaping with the relaxed cone map,
 //! then the bracketed crossing refined by bisection (as published) or by Illinois false
 //! position (secant steps, with a tolerance stop) — the refinement is a parameter.
+//!
+//! Kernels: `scalar` on the `f32` depth field and cone map; `simd` on the packed map in vector
+//! lanes ([`crate::march::cone_lanes`]): the same steps, with 16-bit depths and the packed,
+//! conservatively pooled cone ratios.
 
 use super::descriptor::{BenchSetting, Descriptor, Entry, Param, WithTracer};
 use crate::kernel::{Kernel, KernelChoice};
 use crate::march::cone_step::{ConeStep, Refinement};
-use crate::trace::{Map, Shading};
+use crate::trace::{Map, ReliefHit, ReliefInputs, ReliefTechnique, Shading};
+use glam::{Vec2, Vec3};
+use renderlab_core::counter::Counter;
 
 /// Relaxed cone stepping with its refinement.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -16,6 +22,40 @@ pub struct ConeStepping {
     pub refine_steps: u32,
     /// How the crossing is refined.
     pub refinement: Refinement,
+}
+
+/// The `simd` kernel of relaxed cone stepping: rows in vector lanes on the packed map where
+/// the CPU allows (`lanes`), in the bit-identical scalar twin otherwise. Panics on inputs
+/// without the packed cone ratios (the checked entry points refuse them with an error).
+#[derive(Clone, Copy, Debug)]
+pub struct ConeSimd {
+    /// The march.
+    pub march: ConeStep,
+    /// Whether rows may run in vector lanes (off: the scalar twin, for comparisons).
+    pub lanes: bool,
+}
+
+/// The message of the panic when a caller skipped the map check.
+const NO_PACKED_CONES: &str = "cone's simd kernel needs the cone ratios in the packed map (checked by render)";
+
+impl ReliefTechnique for ConeSimd {
+    fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
+        let map = inp.packed.filter(|m| m.has_cones()).expect(NO_PACKED_CONES);
+        crate::march::cone_lanes::trace_scalar(&self.march, inp, map, uv, v, counter)
+    }
+
+    fn trace_row<C: Counter>(
+        &self,
+        inp: &ReliefInputs,
+        rays: &[(Vec2, Vec3)],
+        out: &mut [ReliefHit],
+        counter: &mut C,
+    ) {
+        let map = inp.packed.filter(|m| m.has_cones()).expect(NO_PACKED_CONES);
+        if !(self.lanes && crate::simd::cone_row(&self.march, inp, map, rays, out, counter)) {
+            crate::march::cone_lanes::scalar_row(&self.march, inp, map, rays, out, counter);
+        }
+    }
 }
 
 /// The refinements in parameter order (the index is the parameter's value).
@@ -35,7 +75,7 @@ impl Entry for ConeStepping {
             ),
         ],
         needs: &[Map::Cone],
-        kernels: &[Kernel::Scalar],
+        kernels: &[Kernel::Scalar, Kernel::Simd],
         shading: Shading::Lit,
     };
 
@@ -59,7 +99,11 @@ impl Entry for ConeStepping {
         self.steps
     }
 
-    fn dispatch<A: WithTracer>(&self, _: Kernel, action: A) -> A::Output {
-        action.run(&ConeStep { steps: self.steps, refine_steps: self.refine_steps, refine: self.refinement })
+    fn dispatch<A: WithTracer>(&self, kernel: Kernel, action: A) -> A::Output {
+        let march = ConeStep { steps: self.steps, refine_steps: self.refine_steps, refine: self.refinement };
+        match kernel {
+            Kernel::Scalar => action.run(&march),
+            Kernel::Simd => action.run(&ConeSimd { march, lanes: true }),
+        }
     }
 }

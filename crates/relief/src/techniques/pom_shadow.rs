@@ -1,8 +1,12 @@
 //! POM with soft self-shadowing toward the light: POM's trace, then the light ray sampled from
 //! the hit up to the top surface (see [`crate::render::shadow`]).
+//!
+//! Kernels: `scalar` traces with POM's scalar march, `simd` with POM's vector lanes. The
+//! float renderer samples the light ray on the `f32` field; the fused frame on the packed
+//! 16-bit depths, in vector lanes where the CPU has them.
 
 use super::descriptor::{Descriptor, Entry, Param, WithTracer};
-use super::pom::Pom;
+use super::pom::{Pom, PomSimd};
 use crate::kernel::Kernel;
 use crate::render::shade::ShadowMode;
 use crate::trace::Shading;
@@ -25,7 +29,7 @@ impl Entry for PomShadow {
             Param::count("SAMPLES", 16, "samples along the light ray"),
         ],
         needs: &[],
-        kernels: &[Kernel::Scalar],
+        kernels: &[Kernel::Scalar, Kernel::Simd],
         shading: Shading::LitShadowed,
     };
 
@@ -47,7 +51,13 @@ impl Entry for PomShadow {
         ShadowMode::Soft(self.shadow_samples)
     }
 
-    fn dispatch<A: WithTracer>(&self, _: Kernel, action: A) -> A::Output {
-        action.run(&Pom { layers: self.layers })
+    fn dispatch<A: WithTracer>(&self, kernel: Kernel, action: A) -> A::Output {
+        match kernel {
+            Kernel::Scalar => action.run(&Pom { layers: self.layers }),
+            Kernel::Simd => action.run(&PomSimd {
+                march: crate::march::pom_lanes::PomLanes { layers: self.layers },
+                lanes: true,
+            }),
+        }
     }
 }

@@ -1,10 +1,16 @@
 //! Relief mapping: a linear search for the first layer under the surface, then a binary
 //! search between the last point above and the first point below.
+//!
+//! Kernels: `scalar` on the `f32` depth field; `simd` on the packed map's 16-bit depths, the
+//! march in POM's vector lanes and the bisection sixteen rays at a time (the same search, so
+//! it differs from `scalar` only by the depth quantisation).
 
 use super::descriptor::{Descriptor, Entry, Param, WithTracer};
 use crate::kernel::Kernel;
 use crate::march::bisect::bisect;
 use crate::march::layered::{layer_step, layered_march};
+use crate::march::pom_lanes::ReliefLanes;
+use crate::techniques::pom::LaneTracer;
 use crate::trace::{uv_per_depth, ReliefHit, ReliefInputs, ReliefTechnique, Shading};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
@@ -32,6 +38,9 @@ impl ReliefTechnique for ReliefMapping {
     }
 }
 
+/// Relief mapping's `simd` kernel.
+pub type ReliefSimd = LaneTracer<ReliefLanes>;
+
 impl Entry for ReliefMapping {
     const DESCRIPTOR: Descriptor = Descriptor {
         name: "relief",
@@ -41,7 +50,7 @@ impl Entry for ReliefMapping {
             Param::count("BINARY", 6, "binary refinement steps"),
         ],
         needs: &[],
-        kernels: &[Kernel::Scalar],
+        kernels: &[Kernel::Scalar, Kernel::Simd],
         shading: Shading::Lit,
     };
 
@@ -59,7 +68,13 @@ impl Entry for ReliefMapping {
 
     const WGSL: Option<&'static str> = Some(include_str!("relief.wgsl"));
 
-    fn dispatch<A: WithTracer>(&self, _: Kernel, action: A) -> A::Output {
-        action.run(self)
+    fn dispatch<A: WithTracer>(&self, kernel: Kernel, action: A) -> A::Output {
+        match kernel {
+            Kernel::Scalar => action.run(self),
+            Kernel::Simd => action.run(&ReliefSimd {
+                march: ReliefLanes { linear: self.linear, binary: self.binary },
+                lanes: true,
+            }),
+        }
     }
 }

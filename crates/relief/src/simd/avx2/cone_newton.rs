@@ -46,23 +46,23 @@ struct Group {
 /// The rays of a row as structure of arrays (each padded by [`LANES`] entries), for
 /// loading into lanes: the fields of [`Ray`].
 #[derive(Default)]
-struct RaySoa {
-    px: Vec<f32>,
-    py: Vec<f32>,
-    tu: Vec<f32>,
-    tv: Vec<f32>,
-    s: Vec<f32>,
-    eps: Vec<f32>,
-    u0: Vec<f32>,
-    v0: Vec<f32>,
-    du: Vec<f32>,
-    dv: Vec<f32>,
+pub(crate) struct RaySoa {
+    pub(crate) px: Vec<f32>,
+    pub(crate) py: Vec<f32>,
+    pub(crate) tu: Vec<f32>,
+    pub(crate) tv: Vec<f32>,
+    pub(crate) s: Vec<f32>,
+    pub(crate) eps: Vec<f32>,
+    pub(crate) u0: Vec<f32>,
+    pub(crate) v0: Vec<f32>,
+    pub(crate) du: Vec<f32>,
+    pub(crate) dv: Vec<f32>,
 }
 
 impl RaySoa {
     /// [`Ray::hit`] of ray `i`.
     #[inline(always)]
-    fn hit(&self, i: usize, t: f32, layers: u32) -> ReliefHit {
+    pub(crate) fn hit(&self, i: usize, t: f32, layers: u32) -> ReliefHit {
         Ray {
             uv0: Vec2::new(self.u0[i], self.v0[i]),
             dp: Vec2::new(self.du[i], self.dv[i]),
@@ -85,10 +85,17 @@ impl RaySoa {
     }
 }
 
-/// [`Ray::new`] for every ray, eight at a time: the same operations in the same order.
+/// [`Ray::with_tolerance`] for every ray, eight at a time: the same operations in the same
+/// order.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn setup_rays(fc: &NewtonCone, inp: &ReliefInputs, rays: &[(Vec2, Vec3)], soa: &mut RaySoa) {
+pub(crate) unsafe fn setup_rays(
+    tol: f32,
+    max_eps: f32,
+    inp: &ReliefInputs,
+    rays: &[(Vec2, Vec3)],
+    soa: &mut RaySoa,
+) {
     let n = rays.len();
     let len = n.div_ceil(LANES) * LANES + LANES;
     for c in [
@@ -136,8 +143,8 @@ unsafe fn setup_rays(fc: &NewtonCone, inp: &ReliefInputs, rays: &[(Vec2, Vec3)],
         let py = _mm256_sub_ps(_mm256_mul_ps(uy, hv), half);
         let s = _mm256_sqrt_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)));
         let tpd = _mm256_mul_ps(s, _mm256_set1_ps(w.max(h)));
-        let eps = _mm256_div_ps(_mm256_set1_ps(fc.tol), _mm256_max_ps(tpd, _mm256_set1_ps(1e-3)));
-        let eps = _mm256_min_ps(_mm256_max_ps(eps, _mm256_set1_ps(1e-6)), _mm256_set1_ps(MAX_EPS));
+        let eps = _mm256_div_ps(_mm256_set1_ps(tol), _mm256_max_ps(tpd, _mm256_set1_ps(1e-3)));
+        let eps = _mm256_min_ps(_mm256_max_ps(eps, _mm256_set1_ps(1e-6)), _mm256_set1_ps(max_eps));
         let st = |v: &mut Vec<f32>, x: __m256| _mm256_storeu_ps(v.as_mut_ptr().add(start), x);
         st(&mut soa.px, px);
         st(&mut soa.py, py);
@@ -161,7 +168,7 @@ unsafe fn setup_rays(fc: &NewtonCone, inp: &ReliefInputs, rays: &[(Vec2, Vec3)],
             far &= far - 1;
             if start + l < n {
                 let (uv, v) = rays[start + l];
-                soa.set(start + l, &Ray::new(fc, inp, uv, v));
+                soa.set(start + l, &Ray::with_tolerance(tol, max_eps, inp, uv, v));
             }
         }
     }
@@ -169,13 +176,13 @@ unsafe fn setup_rays(fc: &NewtonCone, inp: &ReliefInputs, rays: &[(Vec2, Vec3)],
 
 thread_local! {
     /// Each thread's ray columns, reused from row to row so that a frame allocates nothing.
-    static COLUMNS: std::cell::Cell<RaySoa> = std::cell::Cell::new(RaySoa::default());
+    pub(crate) static COLUMNS: std::cell::Cell<RaySoa> = std::cell::Cell::new(RaySoa::default());
 }
 
 /// The vector `interp`.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn interp_v(a: __m256, fa: __m256, b: __m256, fb: __m256) -> __m256 {
+pub(crate) unsafe fn interp_v(a: __m256, fa: __m256, b: __m256, fb: __m256) -> __m256 {
     let den = _mm256_sub_ps(fb, fa);
     let q = _mm256_div_ps(_mm256_sub_ps(_mm256_mul_ps(a, fb), _mm256_mul_ps(b, fa)), den);
     let q = _mm256_min_ps(_mm256_max_ps(q, a), b);
@@ -247,7 +254,7 @@ macro_rules! kernel {
             let stride = map.stride() as i32;
             // Every ray's constants, computed up front eight at a time (`Ray::new` in vectors).
             let mut soa = COLUMNS.take();
-            setup_rays(fc, inp, &rays[..n], &mut soa);
+            setup_rays(fc.tol, MAX_EPS, inp, &rays[..n], &mut soa);
             let zero = _mm256_setzero_ps();
             let empty = Group {
                 px: zero,

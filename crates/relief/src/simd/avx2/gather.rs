@@ -36,3 +36,67 @@ macro_rules! gather_cell {
     }};
 }
 pub(crate) use gather_cell;
+
+/// The constants of the packed map's eight-lane bilinear depth fetch ([`packed_depth`]).
+#[derive(Clone, Copy)]
+pub(crate) struct DepthConsts {
+    pub base: *const i32,
+    pub stride: i32,
+    pub wf: std::arch::x86_64::__m256,
+    pub hf: std::arch::x86_64::__m256,
+    pub half: std::arch::x86_64::__m256,
+    pub lo: std::arch::x86_64::__m256,
+    pub hi: std::arch::x86_64::__m256,
+    pub mask_x: std::arch::x86_64::__m256i,
+    pub mask_y: std::arch::x86_64::__m256i,
+    pub stride_v: std::arch::x86_64::__m256i,
+    pub lane_order: std::arch::x86_64::__m256i,
+    pub depth_step: std::arch::x86_64::__m256,
+}
+
+impl DepthConsts {
+    /// The constants for `map`, whose sides must be powers of two (`masks()` is `Some`).
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[target_feature(enable = "avx2")]
+    pub(crate) unsafe fn new(map: &crate::maps::packed::PackedRelief) -> Self {
+        use std::arch::x86_64::*;
+        let (mxk, myk) = map.masks().expect("power-of-two map");
+        let stride = map.stride() as i32;
+        DepthConsts {
+            base: map.texels().as_ptr() as *const i32,
+            stride,
+            wf: _mm256_set1_ps(map.width() as f32),
+            hf: _mm256_set1_ps(map.height() as f32),
+            half: _mm256_set1_ps(0.5),
+            lo: _mm256_set1_ps(-1.0e7),
+            hi: _mm256_set1_ps(1.0e7),
+            mask_x: _mm256_set1_epi32(mxk),
+            mask_y: _mm256_set1_epi32(myk),
+            stride_v: _mm256_set1_epi32(stride),
+            lane_order: _mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7),
+            depth_step: _mm256_set1_ps(crate::maps::packed::DEPTH_STEP),
+        }
+    }
+}
+
+/// The packed map's bilinear depth at UV `(u, v)` for eight lanes, computed as
+/// `PackedRelief::depth` computes it (bit-identical); `k` is a [`DepthConsts`]. A macro for the
+/// reason [`gather_cell`] is one.
+macro_rules! packed_depth {
+    ($k:expr, $u:expr, $v:expr) => {{
+        let k: &DepthConsts = &$k;
+        let x = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps($u, k.wf), k.half), k.lo), k.hi);
+        let y = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps($v, k.hf), k.half), k.lo), k.hi);
+        let (fx, fy, t00, t10, t01, t11) =
+            gather_cell!(k.base, k.stride, x, y, k.mask_x, k.mask_y, k.stride_v, k.lane_order);
+        let hi16 = |t: __m256i| _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t));
+        let (d00, d10, d01, d11) = (hi16(t00), hi16(t10), hi16(t01), hi16(t11));
+        let top = _mm256_add_ps(d00, _mm256_mul_ps(_mm256_sub_ps(d10, d00), fx));
+        let bottom = _mm256_add_ps(d01, _mm256_mul_ps(_mm256_sub_ps(d11, d01), fx));
+        let dy = _mm256_sub_ps(bottom, top);
+        _mm256_mul_ps(_mm256_add_ps(top, _mm256_mul_ps(dy, fy)), k.depth_step)
+    }};
+}
+pub(crate) use packed_depth;

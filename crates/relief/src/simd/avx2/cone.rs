@@ -1,0 +1,295 @@
+//! The vector kernel of relaxed cone stepping on the packed map
+//! ([`crate::march::cone_lanes`]): eight rays per vector, two vectors in turn, each lane a ray
+//! in one of the three phases (cone steps, the fallback tail, the refinement), one gather per
+//! step for all of them. A finished lane takes the row's next ray at once. Each lane performs
+//! the scalar twin's operations in its order, so the hits are bit-identical to it.
+
+use super::cone_newton::{interp_v, setup_rays, RaySoa, COLUMNS};
+use super::gather::gather_cell;
+use super::{LANES, RANKS};
+use crate::maps::packed::{PackedRelief, DEPTH_STEP, RATIO_STEP};
+use crate::march::cone_lanes::{State, CONE, MAX_EPS, MIN_STEP, REFINE, TAIL_PHASE};
+use crate::march::cone_step::{ConeStep, Refinement, TAIL, TOLERANCE_TEXELS};
+use crate::trace::{ReliefHit, ReliefInputs};
+use glam::{Vec2, Vec3};
+use renderlab_core::counter::Counter;
+use std::arch::x86_64::*;
+
+/// Vectors of rays stepped in turn, so that one's gathers overlap the other's arithmetic.
+const GROUPS: usize = 2;
+
+/// One vector of rays: each lane's ray constants and state ([`State`]).
+#[derive(Clone, Copy)]
+struct Group {
+    px: __m256,
+    py: __m256,
+    tu: __m256,
+    tv: __m256,
+    s: __m256,
+    eps: __m256,
+    t: __m256,
+    a: __m256,
+    fa: __m256,
+    b: __m256,
+    fb: __m256,
+    k: __m256i,
+    phase: __m256i,
+    side: __m256i,
+    owner: __m256i,
+    active: u32,
+}
+
+/// Loads the next rays (from `next` on, at most `n`) into the lanes of `g` set in `free`, with
+/// a fresh state; lanes left without a ray become inactive. Returns the new `next`.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn refill(cs: &ConeStep, g: &mut Group, free: u32, next: usize, n: usize, soa: &RaySoa) -> usize {
+    if free == 0 {
+        return next;
+    }
+    let rank = _mm256_loadu_si256(RANKS[free as usize].as_ptr() as *const __m256i);
+    let idx = _mm256_add_epi32(_mm256_set1_epi32(next as i32), rank);
+    let bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    let is_free = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(free as i32), bits), bits);
+    let take = _mm256_and_si256(is_free, _mm256_cmpgt_epi32(_mm256_set1_epi32(n as i32), idx));
+    let take_ps = _mm256_castsi256_ps(take);
+    let col = |src: __m256, v: &Vec<f32>| {
+        debug_assert!(next + LANES <= v.len());
+        let vals = _mm256_loadu_ps(v.as_ptr().add(next));
+        _mm256_blendv_ps(src, _mm256_permutevar8x32_ps(vals, rank), take_ps)
+    };
+    g.px = col(g.px, &soa.px);
+    g.py = col(g.py, &soa.py);
+    g.tu = col(g.tu, &soa.tu);
+    g.tv = col(g.tv, &soa.tv);
+    g.s = col(g.s, &soa.s);
+    g.eps = col(g.eps, &soa.eps);
+    let st = State::new(cs);
+    let set = |old: __m256, v: f32| _mm256_blendv_ps(old, _mm256_set1_ps(v), take_ps);
+    let set_i = |old: __m256i, v: i32| _mm256_blendv_epi8(old, _mm256_set1_epi32(v), take);
+    g.t = set(g.t, st.t);
+    g.a = set(g.a, st.a);
+    g.fa = set(g.fa, st.fa);
+    g.b = set(g.b, st.b);
+    g.fb = set(g.fb, st.fb);
+    g.k = set_i(g.k, st.k);
+    g.phase = set_i(g.phase, st.phase);
+    g.side = set_i(g.side, st.side);
+    g.owner = _mm256_blendv_epi8(g.owner, idx, take);
+    g.active = (g.active & !free) | _mm256_movemask_ps(take_ps) as u32;
+    (next + free.count_ones() as usize).min(n)
+}
+
+macro_rules! kernel {
+    ($name:ident, $features:literal) => {
+        /// Traces `rays` eight at a time, refilling finished lanes (see the module
+        /// documentation).
+        #[target_feature(enable = $features)]
+        pub(crate) unsafe fn $name<C: Counter>(
+            cs: &ConeStep,
+            inp: &ReliefInputs,
+            map: &PackedRelief,
+            rays: &[(Vec2, Vec3)],
+            out: &mut [ReliefHit],
+            counter: &mut C,
+        ) {
+            let n = rays.len().min(out.len());
+            let secant = cs.refine == Refinement::Secant;
+            let mut soa = COLUMNS.take();
+            setup_rays(TOLERANCE_TEXELS, MAX_EPS, inp, &rays[..n], &mut soa);
+            if !secant {
+                // Bisection never stops early (`cone_lanes::ray`).
+                soa.eps.iter_mut().for_each(|e| *e = 0.0);
+            }
+            let (mxk, myk) = map.masks().expect("power-of-two map");
+            let base = map.texels().as_ptr() as *const i32;
+            let stride = map.stride() as i32;
+            let z = _mm256_setzero_ps();
+            let zi = _mm256_setzero_si256();
+            let empty = Group {
+                px: z,
+                py: z,
+                tu: z,
+                tv: z,
+                s: z,
+                eps: z,
+                t: z,
+                a: z,
+                fa: z,
+                b: z,
+                fb: z,
+                k: zi,
+                phase: zi,
+                side: zi,
+                owner: zi,
+                active: 0,
+            };
+            let mut groups = [empty; GROUPS];
+            let mut next = 0usize;
+            for g in groups.iter_mut() {
+                next = refill(cs, g, 0xff, next, n, &soa);
+            }
+
+            let ps = _mm256_set1_ps;
+            let pi = _mm256_set1_epi32;
+            let (one, half, sign, min_step) = (ps(1.0), ps(0.5), ps(-0.0), ps(MIN_STEP));
+            let tail_f = ps(TAIL as f32);
+            let (cone_i, tail_i, refine_i) = (pi(CONE), pi(TAIL_PHASE), pi(REFINE));
+            let (one_i, minus_one_i) = (pi(1), pi(-1));
+            let steps_m1 = pi(cs.steps as i32 - 1);
+            let refine_m1 = pi(cs.refine_steps as i32 - 1);
+            let tail_max = pi(TAIL as i32);
+            let secant_v = if secant { _mm256_castsi256_ps(minus_one_i) } else { z };
+            let no_refine = if cs.refine_steps == 0 { _mm256_castsi256_ps(minus_one_i) } else { z };
+            let (mask_x, mask_y, stride_v) = (pi(mxk), pi(myk), pi(stride));
+            let lane_order = _mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7);
+            let (lo16, depth_step, ratio_step) = (pi(0xffff), ps(DEPTH_STEP), ps(RATIO_STEP));
+            // Where the refinement samples: the midpoint or the false position.
+            let refine_point = |a: __m256, fa: __m256, b: __m256, fb: __m256| {
+                if secant {
+                    interp_v(a, fa, b, fb)
+                } else {
+                    _mm256_mul_ps(half, _mm256_add_ps(a, b))
+                }
+            };
+
+            while groups.iter().any(|g| g.active != 0) {
+                for grp in groups.iter_mut() {
+                    if grp.active == 0 {
+                        continue;
+                    }
+                    counter.count(grp.active.count_ones());
+                    let Group { px, py, tu, tv, s, eps, t, a, fa, b, fb, k, phase, side, .. } = *grp;
+                    let is_cone_i = _mm256_cmpeq_epi32(phase, cone_i);
+                    let is_tail_i = _mm256_cmpeq_epi32(phase, tail_i);
+                    let (is_cone, is_tail) = (_mm256_castsi256_ps(is_cone_i), _mm256_castsi256_ps(is_tail_i));
+                    let is_refine =
+                        _mm256_andnot_ps(_mm256_or_ps(is_cone, is_tail), _mm256_castsi256_ps(minus_one_i));
+                    let any_refine = _mm256_movemask_ps(is_refine) != 0;
+
+                    // The depth sampled: the cone's, the tail's or the refinement's.
+                    let kf = _mm256_cvtepi32_ps(k);
+                    let c_tail =
+                        _mm256_add_ps(t, _mm256_div_ps(_mm256_mul_ps(_mm256_sub_ps(one, t), kf), tail_f));
+                    let c = _mm256_blendv_ps(t, c_tail, is_tail);
+                    let c_ref = if any_refine { refine_point(a, fa, b, fb) } else { c };
+                    let c = _mm256_blendv_ps(c, c_ref, is_refine);
+
+                    let x = _mm256_add_ps(px, _mm256_mul_ps(tu, c));
+                    let y = _mm256_add_ps(py, _mm256_mul_ps(tv, c));
+                    let (fx, fy, t00, t10, t01, t11) =
+                        gather_cell!(base, stride, x, y, mask_x, mask_y, stride_v, lane_order);
+                    let hi = |t: __m256i| _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t));
+                    let (d00, d10, d01, d11) = (hi(t00), hi(t10), hi(t01), hi(t11));
+                    let top = _mm256_add_ps(d00, _mm256_mul_ps(_mm256_sub_ps(d10, d00), fx));
+                    let bottom = _mm256_add_ps(d01, _mm256_mul_ps(_mm256_sub_ps(d11, d01), fx));
+                    let dy = _mm256_sub_ps(bottom, top);
+                    let depth = _mm256_mul_ps(_mm256_add_ps(top, _mm256_mul_ps(dy, fy)), depth_step);
+                    let ratio = _mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_and_si256(t00, lo16)), ratio_step);
+
+                    let f = _mm256_sub_ps(c, depth);
+                    let pos = _mm256_cmp_ps::<_CMP_GE_OQ>(f, z);
+                    let k1 = _mm256_add_epi32(k, one_i);
+
+                    // Cone steps.
+                    let gap = _mm256_sub_ps(depth, c);
+                    let near = _mm256_andnot_ps(pos, _mm256_cmp_ps::<_CMP_LE_OQ>(gap, eps));
+                    let stepping = _mm256_andnot_ps(_mm256_or_ps(pos, near), is_cone);
+                    let cone = _mm256_div_ps(_mm256_mul_ps(ratio, gap), _mm256_add_ps(s, ratio));
+                    let cone = _mm256_blendv_ps(gap, cone, _mm256_cmp_ps::<_CMP_GT_OQ>(s, z));
+                    let t_next = _mm256_min_ps(_mm256_add_ps(c, _mm256_max_ps(cone, min_step)), one);
+                    let to_tail =
+                        _mm256_and_ps(stepping, _mm256_castsi256_ps(_mm256_cmpgt_epi32(k1, steps_m1)));
+                    // The tail: a bracket below the surface or after its last sample.
+                    let tail_end = _mm256_or_ps(pos, _mm256_castsi256_ps(_mm256_cmpgt_epi32(k1, tail_max)));
+                    let tail_on = _mm256_andnot_ps(tail_end, is_tail);
+                    // Bracket found (cone or tail): finished when there is nothing to refine.
+                    let bracket = _mm256_or_ps(_mm256_and_ps(pos, is_cone), _mm256_and_ps(tail_end, is_tail));
+                    let fb_bracket = _mm256_blendv_ps(_mm256_max_ps(f, z), f, is_cone);
+                    let b_le0 = _mm256_cmp_ps::<_CMP_LE_OQ>(c, z);
+                    let bracket_done = _mm256_and_ps(bracket, _mm256_or_ps(b_le0, no_refine));
+                    let bracket_out = _mm256_andnot_ps(b_le0, c);
+                    let starts_refine = _mm256_andnot_ps(bracket_done, bracket);
+
+                    // Moves above the surface (cone steps, tail samples).
+                    let moves_a = _mm256_or_ps(stepping, tail_on);
+                    let mut new_a = _mm256_blendv_ps(a, c, moves_a);
+                    let mut new_fa = _mm256_blendv_ps(fa, f, moves_a);
+                    let mut new_b = _mm256_blendv_ps(b, c, bracket);
+                    let mut new_fb = _mm256_blendv_ps(fb, fb_bracket, bracket);
+                    let new_t = _mm256_blendv_ps(t, t_next, stepping);
+                    let moves_k = _mm256_castps_si256(_mm256_andnot_ps(to_tail, moves_a));
+                    // Stepping on: k + 1; into the tail or the refinement: 0; others keep k.
+                    let resets = _mm256_castps_si256(_mm256_or_ps(moves_a, bracket));
+                    let mut new_k = _mm256_blendv_epi8(k, _mm256_blendv_epi8(zi, k1, moves_k), resets);
+                    let mut new_phase = _mm256_blendv_epi8(phase, tail_i, _mm256_castps_si256(to_tail));
+                    new_phase = _mm256_blendv_epi8(new_phase, refine_i, _mm256_castps_si256(starts_refine));
+                    let mut new_side = _mm256_blendv_epi8(side, zi, _mm256_castps_si256(bracket));
+                    let mut done = _mm256_or_ps(_mm256_and_ps(near, is_cone), bracket_done);
+                    let mut result = _mm256_blendv_ps(c, bracket_out, bracket_done);
+
+                    if any_refine {
+                        let conv = _mm256_and_ps(
+                            secant_v,
+                            _mm256_cmp_ps::<_CMP_LE_OQ>(_mm256_andnot_ps(sign, f), eps),
+                        );
+                        let on = _mm256_andnot_ps(conv, is_refine);
+                        let on_pos = _mm256_and_ps(on, pos);
+                        let on_neg = _mm256_andnot_ps(pos, on);
+                        // Illinois: halve the other end's value when the same end moves twice.
+                        let halve_a = _mm256_and_ps(
+                            _mm256_and_ps(on_pos, secant_v),
+                            _mm256_castsi256_ps(_mm256_cmpeq_epi32(side, minus_one_i)),
+                        );
+                        let halve_b = _mm256_and_ps(
+                            _mm256_and_ps(on_neg, secant_v),
+                            _mm256_castsi256_ps(_mm256_cmpeq_epi32(side, one_i)),
+                        );
+                        new_b = _mm256_blendv_ps(new_b, c, on_pos);
+                        new_fb = _mm256_blendv_ps(new_fb, f, on_pos);
+                        new_fa = _mm256_blendv_ps(new_fa, _mm256_mul_ps(fa, half), halve_a);
+                        new_a = _mm256_blendv_ps(new_a, c, on_neg);
+                        new_fa = _mm256_blendv_ps(new_fa, f, on_neg);
+                        new_fb = _mm256_blendv_ps(new_fb, _mm256_mul_ps(fb, half), halve_b);
+                        new_side = _mm256_blendv_epi8(new_side, minus_one_i, _mm256_castps_si256(on_pos));
+                        new_side = _mm256_blendv_epi8(new_side, one_i, _mm256_castps_si256(on_neg));
+                        new_k = _mm256_blendv_epi8(new_k, k1, _mm256_castps_si256(on));
+                        let last = _mm256_and_ps(on, _mm256_castsi256_ps(_mm256_cmpgt_epi32(k1, refine_m1)));
+                        let final_point = refine_point(new_a, new_fa, new_b, new_fb);
+                        result = _mm256_blendv_ps(result, final_point, last);
+                        done = _mm256_or_ps(done, _mm256_or_ps(_mm256_and_ps(conv, is_refine), last));
+                    }
+
+                    grp.t = new_t;
+                    grp.a = new_a;
+                    grp.fa = new_fa;
+                    grp.b = new_b;
+                    grp.fb = new_fb;
+                    grp.k = new_k;
+                    grp.phase = new_phase;
+                    grp.side = new_side;
+
+                    let finished = _mm256_movemask_ps(done) as u32 & grp.active;
+                    if finished != 0 {
+                        let mut res = [0.0f32; LANES];
+                        let mut own = [0i32; LANES];
+                        _mm256_storeu_ps(res.as_mut_ptr(), result);
+                        _mm256_storeu_si256(own.as_mut_ptr() as *mut __m256i, grp.owner);
+                        let mut fin = finished;
+                        while fin != 0 {
+                            let l = fin.trailing_zeros() as usize;
+                            fin &= fin - 1;
+                            let i = own[l] as usize;
+                            out[i] = soa.hit(i, res[l], cs.steps);
+                        }
+                        next = refill(cs, grp, finished, next, n, &soa);
+                    }
+                }
+            }
+            COLUMNS.set(soa);
+        }
+    };
+}
+
+kernel!(trace_row, "avx2");
+kernel!(trace_row_avx512, "avx2,avx512f,avx512vl");
