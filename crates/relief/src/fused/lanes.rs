@@ -81,26 +81,7 @@ impl ShadeConsts<'_> {
     }
 }
 
-/// `1 / ln 2 · 2`: the series' factor.
-const TWO_OVER_LN2: f32 = std::f32::consts::LOG2_E * 2.0;
-
-/// `log2 x` for finite, positive, normal `x`: exponent plus the series
-/// `2/ln2 · (t + t³/3 + t⁵/5 + t⁷/7)`, `t = (m − 1)/(m + 1)`, with the mantissa `m` in
-/// [√½, √2) so that |t| ≤ 0.172 and the first dropped term is below 2⁻²⁶.
-#[inline]
-pub fn log2(x: f32) -> f32 {
-    let bits = x.to_bits();
-    let mut e = ((bits >> 23) & 0xff) as i32 - 127;
-    let mut m = f32::from_bits((bits & 0x007f_ffff) | 0x3f80_0000);
-    if m > std::f32::consts::SQRT_2 {
-        m *= 0.5;
-        e += 1;
-    }
-    let t = (m - 1.0) / (m + 1.0);
-    let t2 = t * t;
-    let p = ((t2 * (1.0 / 7.0) + 1.0 / 5.0) * t2 + 1.0 / 3.0) * t2 + 1.0;
-    e as f32 + p * t * TWO_OVER_LN2
-}
+pub use renderlab_core::fastmath::log2;
 
 /// A texture coordinate made safe: non-finite → 0, clamped to ±10⁷.
 #[inline]

@@ -31,10 +31,30 @@ pub trait LayerRule: Sync {
         true
     }
 
+    /// [`LayerRule::layer_count`] (at least 1) of each ray of `rays`, as `f32`, into `out`:
+    /// what the vector kernel reads. Rules whose count is costly compute it in vector lanes
+    /// here (the same counts).
+    fn layer_counts(&self, inp: &ReliefInputs, rays: &[(Vec2, Vec3)], out: &mut [f32]) {
+        scalar_layer_counts(self, inp, rays, out)
+    }
+
     /// Bisection steps after the march (relief mapping, whose rules do not interpolate), or
     /// `None` where the march's result is the hit (POM, steep parallax).
     fn bisect_steps(&self) -> Option<u32> {
         None
+    }
+}
+
+/// [`LayerRule::layer_counts`] one ray at a time.
+#[inline]
+pub fn scalar_layer_counts<R: LayerRule + ?Sized>(
+    rule: &R,
+    inp: &ReliefInputs,
+    rays: &[(Vec2, Vec3)],
+    out: &mut [f32],
+) {
+    for (o, &(uv, v)) in out.iter_mut().zip(rays) {
+        *o = rule.layer_count(inp, uv, v).max(1) as f32;
     }
 }
 

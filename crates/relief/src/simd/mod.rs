@@ -206,3 +206,23 @@ pub fn soft_shadow_row<C: Counter>(
         *o = soft_shadow(map, hs, h.uv, h.depth, p.light_ts, samples, counter);
     }
 }
+
+/// Adaptive POM's layer count of each ray of `rays` (as `f32`) into `out` with the vector
+/// kernel; `false` (and nothing written) where the CPU lacks AVX2. The counts are
+/// [`crate::techniques::adaptive_pom::AdaptivePom::layers`]'s, bit for bit.
+#[inline]
+pub fn adaptive_layer_counts(
+    rule: &crate::techniques::adaptive_pom::AdaptivePom,
+    inp: &ReliefInputs,
+    rays: &[(Vec2, Vec3)],
+    out: &mut [f32],
+) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if crate::cpu::has_avx2() {
+        // SAFETY: the CPU supports AVX2.
+        unsafe { avx2::adaptive::layer_counts(rule, inp, rays, out) };
+        return true;
+    }
+    let _ = (rule, inp, rays, out);
+    false
+}

@@ -2,10 +2,12 @@
 //! 32 vector registers): the packed-map gather and the kernels built on it. Every kernel
 //! gives results bit-identical to its scalar twin.
 
+pub(crate) mod adaptive;
 pub(crate) mod bisect;
 pub(crate) mod cone;
 pub(crate) mod cone_newton;
 pub(crate) mod gather;
+pub(crate) mod math;
 pub(crate) mod parallax;
 pub(crate) mod pom;
 pub(crate) mod shade;

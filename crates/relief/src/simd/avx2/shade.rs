@@ -3,6 +3,7 @@
 //! scalar twin's order (no fused multiply-add), so that the pixels are bit-identical to
 //! [`crate::fused::lanes::shade_scalar`]'s.
 
+use super::math::log2;
 use crate::fused::lanes::{ShadeConsts, ShadeLanes, LANES};
 use crate::fused::texture8::{Encoding, Texture8};
 use crate::trace::Shading;
@@ -49,31 +50,6 @@ unsafe fn channel(p: I, shift: i32, enc: Encoding, decode: &[f32; 256]) -> V {
 #[target_feature(enable = "avx2")]
 unsafe fn finite(x: V) -> V {
     _mm256_cmp_ps::<_CMP_EQ_OQ>(_mm256_sub_ps(x, x), _mm256_setzero_ps())
-}
-
-#[inline]
-#[target_feature(enable = "avx2")]
-unsafe fn log2(x: V) -> V {
-    let bits = _mm256_castps_si256(x);
-    let e = _mm256_sub_epi32(
-        _mm256_and_si256(_mm256_srli_epi32::<23>(bits), _mm256_set1_epi32(0xff)),
-        _mm256_set1_epi32(127),
-    );
-    let m = _mm256_castsi256_ps(_mm256_or_si256(
-        _mm256_and_si256(bits, _mm256_set1_epi32(0x007f_ffff)),
-        _mm256_set1_epi32(0x3f80_0000),
-    ));
-    let big = _mm256_cmp_ps::<_CMP_GT_OQ>(m, splat(std::f32::consts::SQRT_2));
-    let m = _mm256_blendv_ps(m, _mm256_mul_ps(m, splat(0.5)), big);
-    let e = _mm256_sub_epi32(e, _mm256_castps_si256(big));
-    let one = splat(1.0);
-    let t = _mm256_div_ps(_mm256_sub_ps(m, one), _mm256_add_ps(m, one));
-    let t2 = _mm256_mul_ps(t, t);
-    let p = _mm256_add_ps(_mm256_mul_ps(t2, splat(1.0 / 7.0)), splat(1.0 / 5.0));
-    let p = _mm256_add_ps(_mm256_mul_ps(p, t2), splat(1.0 / 3.0));
-    let p = _mm256_add_ps(_mm256_mul_ps(p, t2), one);
-    let two_over_ln2 = std::f32::consts::LOG2_E * 2.0;
-    _mm256_add_ps(_mm256_cvtepi32_ps(e), _mm256_mul_ps(_mm256_mul_ps(p, t), splat(two_over_ln2)))
 }
 
 /// Level of detail in `tex` of the footprints `d` (∂u/∂x, ∂v/∂x, ∂u/∂y, ∂v/∂y).
