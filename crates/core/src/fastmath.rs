@@ -91,15 +91,8 @@ pub fn exp2(y: f32) -> f32 {
 }
 
 /// The series coefficients of [`exp2`]: `ln(2)^i / i!`.
-pub const EXP2_C: [f32; 7] = [
-    1.0,
-    std::f32::consts::LN_2,
-    0.240_226_5,
-    0.055_504_11,
-    0.009_618_129,
-    0.001_333_355_8,
-    0.000_154_035_3,
-];
+pub const EXP2_C: [f32; 7] =
+    [1.0, std::f32::consts::LN_2, 0.240_226_5, 0.055_504_11, 0.009_618_129, 0.001_333_355_8, 0.000_154_035_3];
 
 /// `x^e` for `x` in [0, 1] and `e > 0`, as `exp2(e · log2 x)` ([`log2`], [`exp2`]): within
 /// `7·10⁻⁷·e + 3·10⁻⁷` of `powf` relative (the series' `log2` error scaled by `e`); 0 for `x` below the smallest normal (or NaN), 1 for `x = 1`.

@@ -101,7 +101,7 @@ fn frames(c: &mut Criterion) {
         });
         let gbuf = renderlab_raster::rasterize(&scene, &cam);
         let input = FrameInput { width: 1280, height: 800, points: gbuf.pixels() };
-        for name in ["basic", "pom:32", "cone-newton"] {
+        for name in ["basic", "pom:32", "cone-newton", "relief", "cone", "pom-shadow", "adaptive"] {
             let t = Technique::parse(name).expect("technique");
             let k = t.kernel(KernelChoice::Auto).expect("kernel");
             let mut fused = FusedFrame::default();

@@ -8,10 +8,13 @@ use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::march::cone_newton::{NewtonCone, JUMP};
 use renderlab_relief::march::cone_step::{ConeStep, Refinement};
 use renderlab_relief::march::exact::ExactTrace;
-use renderlab_relief::march::pom_lanes::PomLanes;
-use renderlab_relief::techniques::adaptive_pom::AdaptivePom;
+use renderlab_relief::march::pom_lanes::{PomLanes, ReliefLanes};
+use renderlab_relief::techniques::adaptive_pom::{AdaptivePom, AdaptiveSimd};
+use renderlab_relief::techniques::adaptive_relief::AdaptiveReliefSimd;
+use renderlab_relief::techniques::cone::ConeSimd;
 use renderlab_relief::techniques::cone_newton::ConeNewtonTracer;
 use renderlab_relief::techniques::pom::{Pom, PomSimd};
+use renderlab_relief::techniques::relief::ReliefSimd;
 use renderlab_relief::techniques::{
     adaptive_relief::AdaptiveRelief, parallax::Parallax, relief::ReliefMapping, steep::Steep,
 };
@@ -89,6 +92,29 @@ fn kernels(c: &mut Criterion) {
     let lanes = PomLanes { layers: 32 };
     run_rows(c, "pom_32_packed_twin_rows", &PomSimd { march: lanes, lanes: false }, &inp);
     run_rows(c, "pom_32_simd_rows", &PomSimd { march: lanes, lanes: true }, &inp);
+    // The vector kernels added for relief mapping, adaptive relief, relaxed cone stepping and
+    // adaptive POM, each beside its scalar twin on the same packed map.
+    let relief = ReliefLanes { linear: 16, binary: 6 };
+    run_rows(c, "relief_16_6_packed_twin_rows", &ReliefSimd { march: relief, lanes: false }, &inp);
+    run_rows(c, "relief_16_6_simd_rows", &ReliefSimd { march: relief, lanes: true }, &inp);
+    let ar = AdaptiveRelief { min: 4, max: 16, binary: 5 };
+    run_rows(
+        c,
+        "adaptive_relief_4_16_5_packed_twin_rows",
+        &AdaptiveReliefSimd { march: ar, lanes: false },
+        &inp,
+    );
+    run_rows(c, "adaptive_relief_4_16_5_simd_rows", &AdaptiveReliefSimd { march: ar, lanes: true }, &inp);
+    for (name, march) in [
+        ("cone_16_5", ConeStep { steps: 16, refine_steps: 5, refine: Refinement::Binary }),
+        ("cone_secant_24_3", cs),
+    ] {
+        run_rows(c, &format!("{name}_packed_twin_rows"), &ConeSimd { march, lanes: false }, &inp);
+        run_rows(c, &format!("{name}_simd_rows"), &ConeSimd { march, lanes: true }, &inp);
+    }
+    let ap = AdaptivePom { min: 4, max: 32 };
+    run_rows(c, "adaptive_pom_4_32_packed_twin_rows", &AdaptiveSimd { march: ap, lanes: false }, &inp);
+    run_rows(c, "adaptive_pom_4_32_simd_rows", &AdaptiveSimd { march: ap, lanes: true }, &inp);
     run(c, "exact_reference", &ExactTrace, &inp);
 }
 

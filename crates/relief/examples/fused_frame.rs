@@ -1,6 +1,8 @@
 //! Times the fused frame against the float renderer's pass on the relief benchmark's frame
 //! (1280×800, bricks 1024², 6 units from the wall, as the lab), median of 15 frames each:
-//! `cargo run --release -p renderlab-relief --example fused_frame -- [technique…]`.
+//! `cargo run --release -p renderlab-relief --example fused_frame -- [technique…]`. With
+//! `FUSED_ONLY=N` (and `FUSED_ANGLE=DEG`) it renders only the first technique's fused frame N
+//! times, for profilers.
 
 use renderlab_core::scene::{bricks_wall, BRICKS_WALL_CENTRE};
 use renderlab_core::{Camera, Scene, SceneObject};
@@ -51,8 +53,9 @@ fn main() {
     let scene =
         Scene::new(vec![SceneObject { name: "wall2".into(), mesh: bricks_wall(), material: 0 }], vec![m]);
     if let Ok(n) = std::env::var("FUSED_ONLY") {
-        // For profilers: only the fused frame, `n` times.
-        let cam = Camera::orbit(BRICKS_WALL_CENTRE, 6.0, 0.0, 1280, 800);
+        // For profilers: only the fused frame, `n` times, at FUSED_ANGLE degrees (default 0).
+        let angle = std::env::var("FUSED_ANGLE").ok().and_then(|a| a.parse().ok()).unwrap_or(0.0);
+        let cam = Camera::orbit(BRICKS_WALL_CENTRE, 6.0, angle, 1280, 800);
         let t = Technique::parse(&names[0]).expect("technique");
         let k = t.kernel(KernelChoice::Auto).expect("kernel");
         let mut fused = FusedFrame::default();
