@@ -94,7 +94,8 @@ impl GpuContext {
 
     /// The features the renderer asks of `adapter`: `FLOAT32_FILTERABLE`, which it needs (its
     /// maps are 32-bit float textures, filtered by the sampler as the CPU filters them), and
-    /// timestamp queries where the adapter has them. An adapter without the first is refused.
+    /// timestamp queries where the adapter has them (with timestamps inside passes, where it
+    /// has those too). An adapter without the first is refused.
     /// A program that opens the device itself (the viewer, through its window library)
     /// requests these so that [`GpuContext::from_parts`] accepts its device.
     pub fn features_for(adapter: &wgpu::Adapter) -> Result<wgpu::Features> {
@@ -109,6 +110,10 @@ impl GpuContext {
         let mut features = wgpu::Features::FLOAT32_FILTERABLE;
         if have.contains(wgpu::Features::TIMESTAMP_QUERY) {
             features |= wgpu::Features::TIMESTAMP_QUERY;
+            // The viewer times egui's pass, which it does not own, from inside it.
+            if have.contains(wgpu::Features::TIMESTAMP_QUERY_INSIDE_PASSES) {
+                features |= wgpu::Features::TIMESTAMP_QUERY_INSIDE_PASSES;
+            }
         }
         Ok(features)
     }

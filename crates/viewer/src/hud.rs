@@ -1,6 +1,6 @@
 //! The room's interface: the info panel (the technique's name, description and parameters
 //! from the registry), the FPS readout (current, min, average, max, and the relief pass's GPU
-//! time from timestamp queries), the key help, and the controls beyond the thesis (height
+//! time from timestamp queries), the key help (F1), and the controls beyond the thesis (height
 //! scale, adaptive min/max layers, complexity-map parameters, light direction, camera
 //! bookmarks, one's own maps by path or drag and drop), and the split screen's mode and
 //! right-hand technique ([`crate::split::controls`]). The panels only read the state and
@@ -33,6 +33,7 @@ pub const KEY_HELP: &[(&str, &str)] = &[
     ("X", "FPS readout"),
     ("C", "reset the FPS statistics"),
     ("F12", "screenshot (PNG)"),
+    ("F1", "this key help"),
     ("Esc", "menu (frees the mouse)"),
 ];
 
@@ -96,10 +97,15 @@ pub struct HudState<'a> {
     pub mouse_captured: bool,
     /// Whether the FPS readout is shown.
     pub show_fps: bool,
+    /// Whether the key help is shown (F1; the info panel says so when it is not).
+    pub show_keys: bool,
     /// The frame statistics.
     pub stats: &'a FrameStats,
     /// The adapter.
     pub adapter: &'a AdapterReport,
+    /// egui's own pass's last GPU time in milliseconds (picture, HUD), where the device can
+    /// time it ([`crate::egui_timer`]).
+    pub egui_ms: Option<f64>,
     /// The frame's size in pixels.
     pub frame_size: (u32, u32),
     /// Where the player stands.
@@ -139,10 +145,24 @@ pub fn show(ctx: &egui::Context, s: HudState<'_>) -> Changes {
     if s.show_fps {
         fps_panel(ctx, &s);
     }
+    if s.show_keys {
+        key_help(ctx);
+    }
+    egui::Window::new("Controls")
+        .frame(egui::Frame::window(&ctx.global_style()).shadow(egui::Shadow::NONE))
+        .anchor(egui::Align2::RIGHT_BOTTOM, [-8.0, -8.0])
+        .default_open(false)
+        .show(ctx, |ui| controls(ui, technique, s.controls, &mut changes));
+    dropped_files(ctx, s.controls);
+    changes
+}
+
+/// The key help panel (F1).
+fn key_help(ctx: &egui::Context) {
     egui::Area::new(egui::Id::unique("keys")).anchor(egui::Align2::LEFT_BOTTOM, [8.0, -8.0]).show(
         ctx,
         |ui| {
-            egui::Frame::popup(ui.style()).show(ui, |ui| {
+            panel_frame(ui.style()).show(ui, |ui| {
                 egui::Grid::new("key grid").num_columns(2).show(ui, |ui| {
                     for (k, what) in KEY_HELP {
                         ui.strong(*k);
@@ -153,17 +173,11 @@ pub fn show(ctx: &egui::Context, s: HudState<'_>) -> Changes {
             });
         },
     );
-    egui::Window::new("Controls")
-        .anchor(egui::Align2::RIGHT_BOTTOM, [-8.0, -8.0])
-        .default_open(false)
-        .show(ctx, |ui| controls(ui, technique, s.controls, &mut changes));
-    dropped_files(ctx, s.controls);
-    changes
 }
 
 fn info_panel(ctx: &egui::Context, s: &HudState<'_>, changes: &mut Changes) {
     egui::Area::new(egui::Id::unique("info")).anchor(egui::Align2::LEFT_TOP, [8.0, 8.0]).show(ctx, |ui| {
-        egui::Frame::popup(ui.style()).show(ui, |ui| {
+        panel_frame(ui.style()).show(ui, |ui| {
             ui.set_max_width(420.0);
             let d = s.technique.descriptor();
             ui.strong(format!("Technique: {}", s.technique.name()));
@@ -195,13 +209,23 @@ fn info_panel(ctx: &egui::Context, s: &HudState<'_>, changes: &mut Changes) {
                 "eye ({:.2}, {:.2}, {:.2}), {}×{}",
                 p.x, p.y, p.z, s.frame_size.0, s.frame_size.1
             ));
+            if !s.show_keys {
+                ui.small("F1: key help");
+            }
         });
     });
 }
 
+/// The HUD's panel frame: egui's popup frame without its shadow. The shadow is a wide,
+/// feathered mesh around each panel; on a software adapter (lavapipe) the HUD's shadows cost
+/// more GPU time than the panels themselves (`examples/egui_pass.rs`).
+pub fn panel_frame(style: &egui::Style) -> egui::Frame {
+    egui::Frame::popup(style).shadow(egui::Shadow::NONE)
+}
+
 fn fps_panel(ctx: &egui::Context, s: &HudState<'_>) {
     egui::Area::new(egui::Id::unique("fps")).anchor(egui::Align2::RIGHT_TOP, [-8.0, 8.0]).show(ctx, |ui| {
-        egui::Frame::popup(ui.style()).show(ui, |ui| {
+        panel_frame(ui.style()).show(ui, |ui| {
             let st = s.stats;
             ui.monospace(format!("FPS {:7.1}", st.current()));
             ui.monospace(format!("min {:7.1}  avg {:7.1}  max {:7.1}", st.min(), st.avg(), st.max()));
@@ -213,6 +237,9 @@ fn fps_panel(ctx: &egui::Context, s: &HudState<'_>) {
                 _ if !s.adapter.timestamps => ui.monospace("GPU time: this adapter has no timestamp queries"),
                 _ => ui.monospace("GPU time: not measured for the heat map"),
             };
+            if let Some(ms) = s.egui_ms {
+                ui.monospace(format!("GPU egui pass (picture and HUD) {ms:.3} ms"));
+            }
             ui.small(&s.adapter.name);
         });
     });

@@ -83,6 +83,9 @@ pub struct ScriptReport {
     /// Median GPU time of the relief pass (timestamps), `None` without timestamps; in a split
     /// screen, of the frame's relief passes together (both halves).
     pub gpu_ms: Option<f64>,
+    /// Median GPU time of egui's own pass (the picture drawn as a textured quad, the HUD),
+    /// from timestamps inside that pass; `None` where the device cannot write them.
+    pub egui_ms: Option<f64>,
     /// Median time between frames, the whole frame (UI included), in milliseconds.
     pub frame_ms: f64,
     /// The camera of the frame written.

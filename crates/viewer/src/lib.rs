@@ -15,8 +15,10 @@
 #![warn(missing_docs)]
 
 pub mod app;
+pub mod blit;
 pub mod compose;
 pub mod controller;
+pub mod egui_timer;
 pub mod error;
 pub mod hud;
 pub mod launch;

@@ -8,6 +8,7 @@
 //! the head, captured ([`crate::look`]) or, when free, by dragging over the view.
 
 use crate::controller::{Input, Player, Room};
+use crate::egui_timer::EguiPassTimer;
 use crate::error::ViewerError;
 use crate::hud::{self, Controls};
 use crate::launch::{self, bookmark, Launch, Script, ScriptOutcome, ScriptReport};
@@ -37,6 +38,7 @@ struct ScriptRun {
     script: Script,
     done: u32,
     gpu_ms: Vec<f64>,
+    egui_ms: Vec<f64>,
     frame_ms: Vec<f64>,
     outcome: Arc<Mutex<Option<ScriptOutcome>>>,
 }
@@ -51,6 +53,7 @@ pub struct RoomScreen {
     heat_texture: Option<egui::TextureHandle>,
     hide_ui: bool,
     show_fps: bool,
+    show_keys: bool,
     stats: FrameStats,
     last_frame: Option<Instant>,
     frame_size: (u32, u32),
@@ -58,6 +61,8 @@ pub struct RoomScreen {
     screenshots: u32,
     controls: Controls,
     script: Option<ScriptRun>,
+    /// Times egui's own pass where the device can.
+    egui_timer: Option<EguiPassTimer>,
     split: SplitMode,
     right: Technique,
     split_times: SplitTimes,
@@ -99,6 +104,7 @@ impl RoomScreen {
             .or_else(|| techniques::thesis(6))
             .ok_or_else(|| ViewerError::Message("the registry has no adaptive POM".into()))?;
         let controls = Controls::new(&view, technique);
+        let view_ctx = view.context();
         Ok(Self {
             player: Player::from_camera(&walk, &camera),
             walk,
@@ -108,6 +114,7 @@ impl RoomScreen {
             heat_texture: None,
             hide_ui: launch.script.is_some(),
             show_fps: true,
+            show_keys: false,
             stats: FrameStats::default(),
             last_frame: None,
             frame_size: (0, 0),
@@ -126,9 +133,11 @@ impl RoomScreen {
                 script,
                 done: 0,
                 gpu_ms: vec![],
+                egui_ms: vec![],
                 frame_ms: vec![],
                 outcome,
             }),
+            egui_timer: EguiPassTimer::new(view_ctx),
         })
     }
 
@@ -243,6 +252,9 @@ impl RoomScreen {
         if pressed(Key::X) {
             self.show_fps = !self.show_fps;
         }
+        if pressed(Key::F1) {
+            self.show_keys = !self.show_keys;
+        }
         if pressed(Key::C) {
             self.stats.reset();
         }
@@ -342,6 +354,9 @@ impl RoomScreen {
             self.last_frame = None;
             return RoomExit::ToMenu;
         }
+        if let Some(t) = &self.egui_timer {
+            t.mark_start(&ctx);
+        }
         let mut gpu_ms = None;
         egui::CentralPanel::no_frame().show(ui, |ui| {
             let rect = ui.max_rect();
@@ -358,8 +373,21 @@ impl RoomScreen {
             match self.picture(&ctx, frame, &camera) {
                 Ok((id, ms)) => {
                     gpu_ms = ms;
-                    let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
-                    ui.painter().image(id, rect, uv, egui::Color32::WHITE);
+                    // The renderer's picture is copied pixel for pixel into egui's pass; the
+                    // heat map (a CPU image) is drawn as egui draws images.
+                    let copy = match frame.wgpu_render_state() {
+                        Some(rs) if !self.heat_map => self.view.picture_callback(rs, rect),
+                        _ => None,
+                    };
+                    match copy {
+                        Some(callback) => {
+                            ui.painter().add(callback);
+                        }
+                        None => {
+                            let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
+                            ui.painter().image(id, rect, uv, egui::Color32::WHITE);
+                        }
+                    }
                 }
                 Err(e) => {
                     self.message = Some(e.to_string());
@@ -391,6 +419,9 @@ impl RoomScreen {
                 .show(&ctx, |ui| {
                     ui.colored_label(ui.visuals().warn_fg_color, m);
                 });
+        }
+        if let Some(t) = &self.egui_timer {
+            t.mark_end(&ctx);
         }
         self.script_step(&ctx, dt, gpu_ms);
         ctx.request_repaint();
@@ -443,6 +474,7 @@ impl RoomScreen {
         if run.done > 1 {
             // The first frame builds the pipeline; it is not measured.
             run.gpu_ms.extend(gpu_ms);
+            run.egui_ms.extend(self.egui_timer.as_ref().and_then(EguiPassTimer::last_ms));
             run.frame_ms.extend(dt.map(|s| s * 1e3));
         }
         if run.done < run.script.frames {
@@ -458,6 +490,7 @@ impl RoomScreen {
                     technique: self.technique.name(),
                     frames: run.done,
                     gpu_ms: (!run.gpu_ms.is_empty()).then(|| median(&mut run.gpu_ms)),
+                    egui_ms: (!run.egui_ms.is_empty()).then(|| median(&mut run.egui_ms)),
                     frame_ms: median(&mut run.frame_ms),
                     camera: self.player.camera(w, h),
                     adapter: self.view.context().report.to_string(),
@@ -476,8 +509,10 @@ impl RoomScreen {
             right: self.right,
             mouse_captured: self.look.captured(),
             show_fps: self.show_fps,
+            show_keys: self.show_keys,
             stats: &self.stats,
             adapter: &self.view.context().report,
+            egui_ms: self.egui_timer.as_ref().and_then(EguiPassTimer::last_ms),
             frame_size: self.frame_size,
             player: &self.player,
             controls: &mut self.controls,

@@ -1,9 +1,11 @@
 //! The room on the window's device: the GPU renderer draws each frame straight into a texture
-//! that egui shows as an image (registered with `egui_wgpu::Renderer::register_native_texture`),
-//! so a frame never crosses the CPU. The layer-count heat map (key B) is the renderer's debug
+//! that a paint callback copies into egui's pass ([`crate::blit`]; the texture is also
+//! registered with egui as an image, for the tests' and other views), so a frame never
+//! crosses the CPU. The layer-count heat map (key B) is the renderer's debug
 //! target, read back and coloured on the CPU (a debug view, not a timed one). The split
 //! screen's two pictures are drawn by `split_draw` ([`RoomView::draw_split`]).
 
+use crate::blit::PictureBlit;
 use crate::compose::{ErrorCompose, CODE_FORMAT};
 use crate::error::ViewerError;
 use crate::techniques::MAX_LAYERS;
@@ -27,6 +29,8 @@ struct Target {
     /// The same texture seen as 8-bit codes (the split screen's error pass writes codes).
     codes: wgpu::TextureView,
     id: egui::TextureId,
+    /// The copy's bind group over this texture (made on first use).
+    blit_group: Option<wgpu::BindGroup>,
 }
 
 /// A display-sized texture of [`DISPLAY_FORMAT`] that can be drawn into, sampled as codes
@@ -68,6 +72,8 @@ pub struct RoomView {
     /// The split screen's error mode: the technique's and the reference's pictures.
     scratch: Option<split_draw::Scratch>,
     compose: Option<ErrorCompose>,
+    /// The copy of the picture into egui's pass, for the window's format.
+    blit: Option<PictureBlit>,
 }
 
 impl RoomView {
@@ -93,6 +99,7 @@ impl RoomView {
             target: None,
             scratch: None,
             compose: None,
+            blit: None,
         })
     }
 
@@ -142,6 +149,29 @@ impl RoomView {
         Ok((id, gpu_ms))
     }
 
+    /// The paint callback that copies the last picture drawn into egui's pass over `rect`
+    /// (the window's format from `render_state`); `None` before a picture is drawn.
+    pub fn picture_callback(
+        &mut self,
+        render_state: &egui_wgpu::RenderState,
+        rect: egui::Rect,
+    ) -> Option<egui::PaintCallback> {
+        let format = render_state.target_format;
+        if self.blit.as_ref().is_none_or(|b| b.format() != format) {
+            self.blit = Some(PictureBlit::new(&self.ctx.device, format));
+            if let Some(t) = &mut self.target {
+                t.blit_group = None;
+            }
+        }
+        let blit = self.blit.as_ref()?;
+        let target = self.target.as_mut()?;
+        let group = target
+            .blit_group
+            .get_or_insert_with(|| blit.bind_group(&self.ctx.device, &target.view, &target.codes))
+            .clone();
+        Some(blit.callback(rect, group))
+    }
+
     /// The display texture at the camera's size (made, or remade and registered with egui
     /// again, when the size changes). egui gets the texture's code view: egui blends in
     /// gamma space and takes what it samples as sRGB codes, so the sRGB view (which decodes
@@ -171,7 +201,7 @@ impl RoomView {
                     egui_renderer.register_native_texture(&self.ctx.device, &codes, wgpu::FilterMode::Linear)
                 }
             };
-            self.target = Some(Target { texture, view, codes, id });
+            self.target = Some(Target { texture, view, codes, id, blit_group: None });
         }
         self.target.as_ref().ok_or_else(|| ViewerError::Message("no display target".into()))
     }

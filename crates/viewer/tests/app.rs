@@ -112,3 +112,26 @@ fn the_window_shows_the_headless_renderers_frame() {
         .max();
     assert!(worst <= Some(1), "the screen differs from the display texture by {worst:?} levels");
 }
+
+/// The key help is one key away: hidden at first (the info panel says F1), F1 shows it, F1
+/// again hides it.
+#[test]
+fn f1_toggles_the_key_help() {
+    if adapter().is_none() {
+        return;
+    }
+    let mut h = common::harness_sized(Default::default(), Default::default(), [900.0, 700.0]);
+    h.run_steps(2);
+    h.get_by_label("Start").click();
+    h.run_steps(3);
+    h.get_by_label("F1: key help");
+    assert!(h.query_by_label("W S A D").is_none(), "the key help starts hidden");
+    h.key_press(Key::F1);
+    h.run_steps(2);
+    h.get_by_label("W S A D");
+    h.get_by_label("look around (captured; free: drag)");
+    assert!(h.query_by_label("F1: key help").is_none(), "the hint goes while the help shows");
+    h.key_press(Key::F1);
+    h.run_steps(2);
+    assert!(h.query_by_label("W S A D").is_none(), "F1 hides it again");
+}

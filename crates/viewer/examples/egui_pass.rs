@@ -1,0 +1,178 @@
+//! What the viewer's interface costs the GPU at 1280×800: the app runs headless (egui_kittest
+//! over eframe, on the machine's Vulkan adapter) in the room with the HUD shown, and then
+//! egui's render pass of its last frame (the room's picture drawn as a textured quad, the info,
+//! key-help, FPS and control panels) is recorded again with timestamps at the pass's
+//! beginning and end, the way the relief pass is timed, into a target of the window's format.
+//! Prints the relief pass's GPU time, egui's pass's, and their ratio (the issue's limit: the
+//! viewer adds at most 10%).
+//!
+//! `cargo run --release -p renderlab-viewer --example egui_pass -- [technique] [camera]
+//! [hidden]` (defaults `adaptive` and `bench45`; `hidden` hides the interface, key H).
+
+use egui_kittest::kittest::Queryable;
+use egui_kittest::wgpu::{create_render_state, WgpuTestRenderer};
+use egui_kittest::Harness;
+use renderlab_relief::Technique;
+use renderlab_viewer::launch::wgpu_setup;
+use renderlab_viewer::settings::Settings;
+use renderlab_viewer::{Launch, ViewerApp};
+use std::sync::Arc;
+
+/// Frames run in the room before measuring (the first builds pipelines and maps).
+const WARM_FRAMES: usize = 4;
+/// Frames whose relief pass is averaged, and repetitions of egui's pass.
+const FRAMES: usize = 9;
+
+fn main() {
+    if let Err(e) = run() {
+        eprintln!("error: {e}");
+        std::process::exit(1);
+    }
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn run() -> Result<(), String> {
+    let mut args = std::env::args().skip(1);
+    let technique =
+        Technique::parse(&args.next().unwrap_or_else(|| "adaptive".into())).map_err(|e| e.to_string())?;
+    let camera = args.next().unwrap_or_else(|| "bench45".into());
+    // `hidden`: the interface hidden (key H), the picture alone.
+    let hud = args.next().as_deref() != Some("hidden");
+    let rs = create_render_state(wgpu_setup(), egui_wgpu::RendererOptions::default());
+    if !rs.device.features().contains(wgpu::Features::TIMESTAMP_QUERY) {
+        return Err("the adapter has no timestamp queries".into());
+    }
+    let launch = Launch { technique: Some(technique), camera: Some(camera.clone()), ..Launch::default() };
+    let mut h = Harness::builder()
+        .with_size([1280.0, 800.0])
+        .renderer(WgpuTestRenderer::from_render_state(rs.clone()))
+        .build_eframe(move |_cc| ViewerApp::new(Settings::default(), None, None, launch, Arc::default()));
+    h.run_steps(2);
+    h.get_by_label("Start").click();
+    h.run_steps(WARM_FRAMES);
+    if !hud {
+        h.key_press(egui::Key::H);
+    }
+    let mut relief = Vec::new();
+    for _ in 0..FRAMES {
+        h.run_steps(1);
+        let room = h.state().room().ok_or("the room did not open")?;
+        if let Some(m) = room.message() {
+            return Err(m.to_string());
+        }
+        relief.extend(room.stats().gpu_ms());
+    }
+    if relief.is_empty() {
+        return Err("the relief pass was not timed".into());
+    }
+
+    if let Ok(path) = std::env::var("EGUI_PASS_PNG") {
+        // The frame as kittest draws it, to look at what the pass draws.
+        h.render()?.save(&path).map_err(|e| e.to_string())?;
+    }
+    // egui's pass of the last frame, recorded again with pass-level timestamps.
+    let ctx = h.ctx.clone();
+    let output = h.output().clone();
+    let ppp = ctx.pixels_per_point();
+    let size = ctx.content_rect().size() * ppp;
+    let screen = egui_wgpu::ScreenDescriptor {
+        pixels_per_point: ppp,
+        size_in_pixels: [size.x.round() as u32, size.y.round() as u32],
+    };
+    let tessellated = ctx.tessellate(output.shapes.clone(), ppp);
+    let device = &rs.device;
+    let target = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("egui pass target"),
+        size: wgpu::Extent3d {
+            width: screen.size_in_pixels[0],
+            height: screen.size_in_pixels[1],
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: rs.target_format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+        view_formats: &[],
+    });
+    let view = target.create_view(&Default::default());
+    let queries = device.create_query_set(&wgpu::QuerySetDescriptor {
+        label: None,
+        ty: wgpu::QueryType::Timestamp,
+        count: 2,
+    });
+    let buffer = |usage| {
+        device.create_buffer(&wgpu::BufferDescriptor {
+            label: None,
+            size: 16,
+            usage,
+            mapped_at_creation: false,
+        })
+    };
+    let resolve = buffer(wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC);
+    let read = buffer(wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ);
+    let period_ns = rs.queue.get_timestamp_period() as f64;
+    let mut egui_ms = Vec::new();
+    for _ in 0..FRAMES + 1 {
+        let mut renderer = rs.renderer.write();
+        let mut encoder = device.create_command_encoder(&Default::default());
+        let user = renderer.update_buffers(device, &rs.queue, &mut encoder, &tessellated, &screen);
+        {
+            let mut pass = encoder
+                .begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("egui pass, timed"),
+                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                        view: &view,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                            store: wgpu::StoreOp::Store,
+                        },
+                        depth_slice: None,
+                    })],
+                    timestamp_writes: Some(wgpu::RenderPassTimestampWrites {
+                        query_set: &queries,
+                        beginning_of_pass_write_index: Some(0),
+                        end_of_pass_write_index: Some(1),
+                    }),
+                    ..Default::default()
+                })
+                .forget_lifetime();
+            renderer.render(&mut pass, &tessellated, &screen);
+        }
+        encoder.resolve_query_set(&queries, 0..2, &resolve, 0);
+        encoder.copy_buffer_to_buffer(&resolve, 0, &read, 0, 16);
+        rs.queue.submit(user.into_iter().chain([encoder.finish()]));
+        drop(renderer);
+        let (tx, rx) = std::sync::mpsc::channel();
+        read.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| e.to_string())?;
+        rx.recv().map_err(|e| e.to_string())?.map_err(|e| e.to_string())?;
+        let t = {
+            let bytes = read.get_mapped_range(..).map_err(|e| e.to_string())?;
+            let t = |i: usize| u64::from_le_bytes(bytes[i * 8..i * 8 + 8].try_into().unwrap_or_default());
+            t(1).saturating_sub(t(0)) as f64 * period_ns * 1e-6
+        };
+        read.unmap();
+        egui_ms.push(t);
+    }
+    egui_ms.remove(0); // the first recording uploads buffers
+    let (r, e) = (median(&mut relief), median(&mut egui_ms));
+    println!(
+        "{} at {}x{} ({camera}, HUD {}), on {}: relief pass {r:.3} ms, egui pass {e:.3} ms (GPU, medians of {FRAMES}); \
+         (relief + egui) / relief = {:.3} (the issue's limit is 1.10)",
+        technique.name(),
+        screen.size_in_pixels[0],
+        screen.size_in_pixels[1],
+        if hud { "shown" } else { "hidden" },
+        rs.adapter.get_info().name,
+        (r + e) / r
+    );
+    Ok(())
+}

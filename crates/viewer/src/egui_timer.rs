@@ -1,0 +1,172 @@
+//! The GPU time of egui's own render pass, which eframe records and the viewer cannot give
+//! pass-level timestamp writes: two paint callbacks, the first shape of the frame and the
+//! last, write a timestamp each from inside that pass (wgpu's
+//! `TIMESTAMP_QUERY_INSIDE_PASSES`). Everything egui draws lies between them: the room's
+//! picture as a textured quad, the HUD, the split screen's labels. The pass's clear and store
+//! lie outside. The pair is resolved in the next frame's egui encoder and read one frame
+//! later still, so each reading is two frames old.
+//!
+//! Not on a software adapter: lavapipe records such a timestamp when it bins the pass's
+//! draws, before it rasterizes them, so the pair misses nearly all the work (measured at
+//! 1280×800 with the picture drawn as egui's textured quad and the HUD hidden: 0.2 ms between
+//! the marks in the window against 36 ms for the same pass with pass-level timestamps in
+//! `examples/egui_pass.rs`, which times egui's pass whole on any adapter).
+
+use egui_wgpu::{CallbackResources, CallbackTrait, ScreenDescriptor};
+use renderlab_gpu::GpuContext;
+use std::sync::{Arc, Mutex};
+
+/// Times egui's pass from inside it (see the module documentation).
+#[derive(Clone)]
+pub struct EguiPassTimer {
+    inner: Arc<Inner>,
+}
+
+struct Inner {
+    queries: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    read: wgpu::Buffer,
+    period_ns: f64,
+    state: Mutex<State>,
+}
+
+#[derive(Default)]
+struct State {
+    /// Both marks of a frame were painted and are not yet resolved.
+    written: bool,
+    /// The read buffer holds a resolved pair not yet read.
+    copied: bool,
+    /// The last pass time read, in milliseconds.
+    last_ms: Option<f64>,
+}
+
+impl EguiPassTimer {
+    /// A timer, or `None` where the device cannot write timestamps inside a render pass or
+    /// is a software adapter (see the module documentation).
+    pub fn new(ctx: &GpuContext) -> Option<Self> {
+        let needed = wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_PASSES;
+        if ctx.report.software || !ctx.device.features().contains(needed) {
+            return None;
+        }
+        let queries = ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
+            label: Some("egui pass timestamps"),
+            ty: wgpu::QueryType::Timestamp,
+            count: 2,
+        });
+        let buffer = |label, usage| {
+            ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: 16,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        Some(Self {
+            inner: Arc::new(Inner {
+                queries,
+                resolve: buffer(
+                    "egui timestamps",
+                    wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                ),
+                read: buffer(
+                    "egui timestamps read",
+                    wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+                ),
+                period_ns: ctx.queue.get_timestamp_period() as f64,
+                state: Mutex::new(State::default()),
+            }),
+        })
+    }
+
+    /// Adds the frame's first mark: call before anything else is drawn this frame (it goes
+    /// first into the background layer, which is painted first).
+    pub fn mark_start(&self, ctx: &egui::Context) {
+        self.mark(ctx, egui::LayerId::background(), 0);
+    }
+
+    /// Adds the frame's last mark: call after everything else is drawn this frame (it goes
+    /// into a layer of the topmost order).
+    pub fn mark_end(&self, ctx: &egui::Context) {
+        self.mark(ctx, egui::LayerId::new(egui::Order::Debug, egui::Id::unique("egui pass timer end")), 1);
+    }
+
+    fn mark(&self, ctx: &egui::Context, layer: egui::LayerId, index: u32) {
+        // One point: egui skips callbacks without pixels.
+        let rect = egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1.0, 1.0));
+        let callback = Mark { index, inner: Arc::clone(&self.inner) };
+        ctx.layer_painter(layer).add(egui_wgpu::Callback::new_paint_callback(rect, callback));
+    }
+
+    /// The last measured GPU time between the two marks, in milliseconds.
+    pub fn last_ms(&self) -> Option<f64> {
+        self.inner.state.lock().unwrap_or_else(|p| p.into_inner()).last_ms
+    }
+}
+
+/// One of the two marks.
+struct Mark {
+    index: u32,
+    inner: Arc<Inner>,
+}
+
+impl Inner {
+    /// Reads the resolved pair (submitted with an earlier frame), waiting for it.
+    fn read_ms(&self, device: &wgpu::Device) -> Option<f64> {
+        let (tx, rx) = std::sync::mpsc::channel();
+        self.read.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        device.poll(wgpu::PollType::wait_indefinitely()).ok()?;
+        rx.recv().ok()?.ok()?;
+        let ms = {
+            let view = self.read.get_mapped_range(..).ok()?;
+            let t = |i: usize| u64::from_le_bytes(view[i * 8..i * 8 + 8].try_into().unwrap_or_default());
+            let (start, end) = (t(0), t(1));
+            (end >= start).then(|| (end - start) as f64 * self.period_ns * 1e-6)
+        };
+        self.read.unmap();
+        ms
+    }
+}
+
+impl CallbackTrait for Mark {
+    fn prepare(
+        &self,
+        device: &wgpu::Device,
+        _queue: &wgpu::Queue,
+        _screen: &ScreenDescriptor,
+        encoder: &mut wgpu::CommandEncoder,
+        _resources: &mut CallbackResources,
+    ) -> Vec<wgpu::CommandBuffer> {
+        if self.index != 0 {
+            return Vec::new();
+        }
+        let inner = &self.inner;
+        let mut st = inner.state.lock().unwrap_or_else(|p| p.into_inner());
+        if st.copied {
+            if let Some(ms) = inner.read_ms(device) {
+                st.last_ms = Some(ms);
+            }
+            st.copied = false;
+        }
+        if st.written {
+            // Before this frame's pass in the same encoder: the last frame's pair.
+            encoder.resolve_query_set(&inner.queries, 0..2, &inner.resolve, 0);
+            encoder.copy_buffer_to_buffer(&inner.resolve, 0, &inner.read, 0, 16);
+            (st.written, st.copied) = (false, true);
+        }
+        Vec::new()
+    }
+
+    fn paint(
+        &self,
+        _info: egui::PaintCallbackInfo,
+        pass: &mut wgpu::RenderPass<'static>,
+        _resources: &CallbackResources,
+    ) {
+        pass.write_timestamp(&self.inner.queries, self.index);
+        if self.index == 1 {
+            self.inner.state.lock().unwrap_or_else(|p| p.into_inner()).written = true;
+        }
+    }
+}
