@@ -14,6 +14,9 @@ pub enum ViewerError {
     /// The window could not be opened (no display, no adapter for the window).
     #[error("cannot open the viewer's window: {0}")]
     Window(String),
+    /// Maps are being built on another thread; the frame waits for them (said in one line).
+    #[error("{0}")]
+    Pending(String),
     /// Anything else, said in one line.
     #[error("{0}")]
     Message(String),

@@ -51,6 +51,10 @@ pub struct Launch {
     pub split: SplitMode,
     /// The split screen's right-hand technique (the GPU reference when `None`).
     pub right: Option<Technique>,
+    /// Whether cone maps are built on another thread, the window going on meanwhile (the
+    /// interactive viewer); otherwise the frame that first needs them waits (scripted runs,
+    /// tests).
+    pub maps_in_background: bool,
 }
 
 impl Default for Launch {
@@ -63,6 +67,7 @@ impl Default for Launch {
             script: None,
             split: SplitMode::Off,
             right: None,
+            maps_in_background: false,
         }
     }
 }

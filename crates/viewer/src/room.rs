@@ -58,6 +58,8 @@ pub struct RoomScreen {
     last_frame: Option<Instant>,
     frame_size: (u32, u32),
     message: Option<String>,
+    /// What this frame waits for (maps being built), shown until they are there.
+    pending: Option<String>,
     screenshots: u32,
     controls: Controls,
     script: Option<ScriptRun>,
@@ -88,6 +90,7 @@ impl RoomScreen {
             .wgpu_render_state()
             .ok_or_else(|| ViewerError::Window("the window has no wgpu renderer".into()))?;
         let mut view = RoomView::new(render_state, thesis_room(launch.texture_size)?)?;
+        view.build_maps_in_background(launch.maps_in_background && launch.script.is_none());
         if let Some(m) = &launch.material {
             view.set_material(m.clone())?;
         }
@@ -119,6 +122,7 @@ impl RoomScreen {
             last_frame: None,
             frame_size: (0, 0),
             message: None,
+            pending: None,
             screenshots: 0,
             controls,
             split: launch.split,
@@ -139,6 +143,11 @@ impl RoomScreen {
             }),
             egui_timer: EguiPassTimer::new(view_ctx),
         })
+    }
+
+    /// What the room waits for (maps being built on another thread), if anything.
+    pub fn pending(&self) -> Option<&str> {
+        self.pending.as_deref()
     }
 
     /// The technique shown.
@@ -358,6 +367,7 @@ impl RoomScreen {
             t.mark_start(&ctx);
         }
         let mut gpu_ms = None;
+        self.pending = None;
         egui::CentralPanel::no_frame().show(ui, |ui| {
             let rect = ui.max_rect();
             self.view_rect = rect;
@@ -389,6 +399,18 @@ impl RoomScreen {
                         }
                     }
                 }
+                Err(ViewerError::Pending(what)) => {
+                    // The last picture stays while the maps are built.
+                    self.pending = Some(what);
+                    match frame.wgpu_render_state().and_then(|rs| self.view.picture_callback(rs, rect)) {
+                        Some(callback) => {
+                            ui.painter().add(callback);
+                        }
+                        None => {
+                            ui.painter().rect_filled(rect, 0.0, egui::Color32::from_gray(20));
+                        }
+                    }
+                }
                 Err(e) => {
                     self.message = Some(e.to_string());
                     ui.painter().rect_filled(rect, 0.0, egui::Color32::from_gray(20));
@@ -413,11 +435,13 @@ impl RoomScreen {
                 timestamps,
             );
         }
-        if let Some(m) = &self.message {
+        if self.message.is_some() || self.pending.is_some() {
             egui::Area::new(egui::Id::unique("room message"))
                 .anchor(egui::Align2::CENTER_BOTTOM, [0.0, -8.0])
                 .show(&ctx, |ui| {
-                    ui.colored_label(ui.visuals().warn_fg_color, m);
+                    for m in [&self.pending, &self.message].into_iter().flatten() {
+                        ui.colored_label(ui.visuals().warn_fg_color, m);
+                    }
                 });
         }
         if let Some(t) = &self.egui_timer {
@@ -470,6 +494,10 @@ impl RoomScreen {
     /// The scripted run: counts frames, and after the last writes it and reports.
     fn script_step(&mut self, ctx: &egui::Context, dt: Option<f64>, gpu_ms: Option<f64>) {
         let Some(run) = &mut self.script else { return };
+        if self.pending.is_some() {
+            // Not a frame of the technique yet.
+            return;
+        }
         run.done += 1;
         if run.done > 1 {
             // The first frame builds the pipeline; it is not measured.

@@ -74,6 +74,20 @@ pub struct RoomView {
     compose: Option<ErrorCompose>,
     /// The copy of the picture into egui's pass, for the window's format.
     blit: Option<PictureBlit>,
+    /// Whether cone maps are built on another thread (the window) or at once (scripts, tests).
+    background: bool,
+    /// The cone-map build in flight.
+    cone_build: Option<ConeBuild>,
+    /// Counts replacements of the materials, so that a build started from older ones is
+    /// dropped.
+    generation: u64,
+}
+
+/// Materials with cone maps being prepared on another thread.
+struct ConeBuild {
+    rx: std::sync::mpsc::Receiver<Vec<ReliefMaterial>>,
+    generation: u64,
+    started: std::time::Instant,
 }
 
 impl RoomView {
@@ -100,6 +114,9 @@ impl RoomView {
             scratch: None,
             compose: None,
             blit: None,
+            background: false,
+            cone_build: None,
+            generation: 0,
         })
     }
 
@@ -113,19 +130,63 @@ impl RoomView {
         &self.scene
     }
 
-    /// Makes sure the materials have the maps `technique` reads (the cone map is computed on
-    /// the first use of a cone technique, which takes a moment).
+    /// Builds cone maps on another thread from now on (the window), so that the first cone
+    /// technique does not stop the window for the seconds the build takes; until they are
+    /// there, frames that need them fail with [`ViewerError::Pending`].
+    pub fn build_maps_in_background(&mut self, on: bool) {
+        self.background = on;
+    }
+
+    /// Makes sure the materials have the maps `technique` reads: the cone map is computed on
+    /// the first use of a cone technique, at once or on another thread (see
+    /// [`RoomView::build_maps_in_background`]).
     fn ensure_maps(&mut self, technique: Technique) -> Result<(), ViewerError> {
-        if technique.needs_map(Map::Cone) && !self.with_cone {
-            let scales: Vec<f32> = self.materials.iter().map(|m| m.height_scale).collect();
-            self.materials = prepare(&self.scene.materials, &self.complexity, true);
-            for (m, s) in self.materials.iter_mut().zip(scales) {
-                m.height_scale = s;
-            }
-            self.with_cone = true;
-            self.rebuild()?;
+        if !technique.needs_map(Map::Cone) || self.with_cone {
+            return Ok(());
         }
-        Ok(())
+        if !self.background {
+            let materials = prepare(&self.scene.materials, &self.complexity, true);
+            return self.install_cone_materials(materials);
+        }
+        if let Some(build) = &self.cone_build {
+            match build.rx.try_recv() {
+                Ok(materials) if build.generation == self.generation => {
+                    self.cone_build = None;
+                    return self.install_cone_materials(materials);
+                }
+                Err(std::sync::mpsc::TryRecvError::Empty) => {
+                    return Err(ViewerError::Pending(format!(
+                        "building the relaxed cone maps for {} ({:.0} s)…",
+                        technique.name(),
+                        build.started.elapsed().as_secs_f64()
+                    )));
+                }
+                // Built from materials replaced since, or the thread failed: start again.
+                _ => self.cone_build = None,
+            }
+        }
+        let (tx, rx) = std::sync::mpsc::channel();
+        let (materials, params) = (self.scene.materials.clone(), self.complexity);
+        std::thread::Builder::new()
+            .name("cone maps".into())
+            .spawn(move || {
+                let _ = tx.send(prepare(&materials, &params, true));
+            })
+            .map_err(|e| ViewerError::Message(format!("cannot start the cone-map build: {e}")))?;
+        self.cone_build =
+            Some(ConeBuild { rx, generation: self.generation, started: std::time::Instant::now() });
+        Err(ViewerError::Pending(format!("building the relaxed cone maps for {}…", technique.name())))
+    }
+
+    /// Takes `materials` (prepared with cone maps) with the height scales now in force.
+    fn install_cone_materials(&mut self, mut materials: Vec<ReliefMaterial>) -> Result<(), ViewerError> {
+        for (m, old) in materials.iter_mut().zip(&self.materials) {
+            m.height_scale = old.height_scale;
+        }
+        self.materials = materials;
+        self.with_cone = true;
+        self.generation += 1;
+        self.rebuild()
     }
 
     /// Uploads the scene and materials again (after a change of light, height or maps).
@@ -263,6 +324,7 @@ impl RoomView {
         let scales: Vec<f32> = self.materials.iter().map(|m| m.height_scale).collect();
         self.complexity = params;
         self.materials = prepare(&self.scene.materials, &self.complexity, self.with_cone);
+        self.generation += 1;
         for (m, s) in self.materials.iter_mut().zip(scales) {
             m.height_scale = s;
         }
@@ -278,6 +340,7 @@ impl RoomView {
         let materials = prepare(&scene.materials, &self.complexity, self.with_cone);
         let renderer = ReliefRenderer::new(self.ctx, &scene, &materials)?;
         (self.scene, self.materials, self.renderer) = (scene, materials, renderer);
+        self.generation += 1;
         Ok(())
     }
 }

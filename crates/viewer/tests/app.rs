@@ -135,3 +135,47 @@ fn f1_toggles_the_key_help() {
     h.run_steps(2);
     assert!(h.query_by_label("W S A D").is_none(), "F1 hides it again");
 }
+
+/// In the interactive window the first cone technique's maps are built on another thread: the
+/// frame that asks for them says so (and keeps the last picture), the window goes on, and
+/// once built the technique is drawn.
+#[test]
+fn cone_maps_are_built_in_the_background() {
+    if adapter().is_none() {
+        return;
+    }
+    let launch = renderlab_viewer::Launch {
+        technique: Technique::parse("pom:8").ok(),
+        maps_in_background: true,
+        ..Default::default()
+    };
+    let mut h = common::harness_with(Default::default(), launch);
+    h.run_steps(2);
+    h.get_by_label("Start").click();
+    h.run_steps(3);
+    assert_eq!(h.state().room().expect("the room").pending(), None, "POM needs no cone map");
+    // →: the next technique of the registry until a cone technique comes.
+    let mut waited = false;
+    for _ in 0..20 {
+        h.key_press(Key::ArrowRight);
+        h.run_steps(1);
+        let room = h.state().room().expect("the room");
+        if let Some(p) = room.pending() {
+            assert!(p.contains("cone maps"), "{p}");
+            waited = true;
+            break;
+        }
+    }
+    assert!(waited, "no technique of the registry waited for the cone maps");
+    let start = std::time::Instant::now();
+    while h.state().room().expect("the room").pending().is_some() {
+        assert!(start.elapsed().as_secs() < 120, "the cone maps never arrived");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        h.run_steps(1);
+    }
+    let room = h.state().room().expect("the room");
+    assert_eq!(room.message(), None);
+    let (technique, name) = (room.technique(), room.technique().name());
+    assert!(technique.needs_map(renderlab_relief::Map::Cone), "{name}");
+    assert_room(&picture(&mut h), &name);
+}

@@ -40,6 +40,8 @@ pub(crate) fn view(a: ViewArgs) -> Result<()> {
         script: a.screenshot.clone().map(|out| Script { out, frames: a.frames }),
         split: a.split,
         right: a.right,
+        // The interactive window goes on while cone maps are built; a scripted run waits.
+        maps_in_background: a.screenshot.is_none(),
     };
     let Some(report) = renderlab_viewer::run(launch)? else {
         return Ok(());
