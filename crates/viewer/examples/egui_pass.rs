@@ -8,6 +8,8 @@
 //!
 //! `cargo run --release -p renderlab-viewer --example egui_pass -- [technique] [camera]
 //! [hidden]` (defaults `adaptive` and `bench45`; `hidden` hides the interface, key H).
+//! `EGUI_PASS_KEYS=X,F1` presses those keys first (X hides the FPS readout, F1 shows the key
+//! help), to time the panels one by one; `EGUI_PASS_PNG=file.png` writes the frame measured.
 
 use egui_kittest::kittest::Queryable;
 use egui_kittest::wgpu::{create_render_state, WgpuTestRenderer};
@@ -56,6 +58,12 @@ fn run() -> Result<(), String> {
     h.run_steps(WARM_FRAMES);
     if !hud {
         h.key_press(egui::Key::H);
+    }
+    // Extra keys to press before measuring (EGUI_PASS_KEYS, e.g. "X" hides the FPS readout).
+    for k in std::env::var("EGUI_PASS_KEYS").unwrap_or_default().split(',').filter(|k| !k.is_empty()) {
+        let key = egui::Key::from_name(k).ok_or_else(|| format!("no key {k}"))?;
+        h.key_press(key);
+        h.run_steps(1);
     }
     let mut relief = Vec::new();
     for _ in 0..FRAMES {
