@@ -4,9 +4,8 @@
 //! step for all of them. A finished lane takes the row's next ray at once. Each lane performs
 //! the scalar twin's operations in its order, so the hits are bit-identical to it.
 
-use super::cone_newton::{interp_v, setup_rays, RaySoa, COLUMNS};
+use super::cone_newton::{interp_v, setup_rays, RayLanes, RaySoa, COLUMNS};
 use super::gather::gather_cell;
-use super::{LANES, RANKS};
 use crate::maps::packed::{PackedRelief, DEPTH_STEP, RATIO_STEP};
 use crate::march::cone_lanes::{State, CONE, MAX_EPS, MIN_STEP, REFINE, TAIL_PHASE};
 use crate::march::cone_step::{ConeStep, Refinement, TAIL, TOLERANCE_TEXELS};
@@ -21,12 +20,8 @@ const GROUPS: usize = 2;
 /// One vector of rays: each lane's ray constants and state ([`State`]).
 #[derive(Clone, Copy)]
 struct Group {
-    px: __m256,
-    py: __m256,
-    tu: __m256,
-    tv: __m256,
-    s: __m256,
-    eps: __m256,
+    /// The lanes' rays.
+    ray: RayLanes,
     t: __m256,
     a: __m256,
     fa: __m256,
@@ -35,8 +30,6 @@ struct Group {
     k: __m256i,
     phase: __m256i,
     side: __m256i,
-    owner: __m256i,
-    active: u32,
 }
 
 /// Loads the next rays (from `next` on, at most `n`) into the lanes of `g` set in `free`, with
@@ -47,23 +40,8 @@ unsafe fn refill(cs: &ConeStep, g: &mut Group, free: u32, next: usize, n: usize,
     if free == 0 {
         return next;
     }
-    let rank = _mm256_loadu_si256(RANKS[free as usize].as_ptr() as *const __m256i);
-    let idx = _mm256_add_epi32(_mm256_set1_epi32(next as i32), rank);
-    let bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    let is_free = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(free as i32), bits), bits);
-    let take = _mm256_and_si256(is_free, _mm256_cmpgt_epi32(_mm256_set1_epi32(n as i32), idx));
+    let (take, next) = g.ray.refill(free, next, n, soa);
     let take_ps = _mm256_castsi256_ps(take);
-    let col = |src: __m256, v: &Vec<f32>| {
-        debug_assert!(next + LANES <= v.len());
-        let vals = _mm256_loadu_ps(v.as_ptr().add(next));
-        _mm256_blendv_ps(src, _mm256_permutevar8x32_ps(vals, rank), take_ps)
-    };
-    g.px = col(g.px, &soa.px);
-    g.py = col(g.py, &soa.py);
-    g.tu = col(g.tu, &soa.tu);
-    g.tv = col(g.tv, &soa.tv);
-    g.s = col(g.s, &soa.s);
-    g.eps = col(g.eps, &soa.eps);
     let st = State::new(cs);
     let set = |old: __m256, v: f32| _mm256_blendv_ps(old, _mm256_set1_ps(v), take_ps);
     let set_i = |old: __m256i, v: i32| _mm256_blendv_epi8(old, _mm256_set1_epi32(v), take);
@@ -75,9 +53,7 @@ unsafe fn refill(cs: &ConeStep, g: &mut Group, free: u32, next: usize, n: usize,
     g.k = set_i(g.k, st.k);
     g.phase = set_i(g.phase, st.phase);
     g.side = set_i(g.side, st.side);
-    g.owner = _mm256_blendv_epi8(g.owner, idx, take);
-    g.active = (g.active & !free) | _mm256_movemask_ps(take_ps) as u32;
-    (next + free.count_ones() as usize).min(n)
+    next
 }
 
 macro_rules! kernel {
@@ -106,24 +82,8 @@ macro_rules! kernel {
             let stride = map.stride() as i32;
             let z = _mm256_setzero_ps();
             let zi = _mm256_setzero_si256();
-            let empty = Group {
-                px: z,
-                py: z,
-                tu: z,
-                tv: z,
-                s: z,
-                eps: z,
-                t: z,
-                a: z,
-                fa: z,
-                b: z,
-                fb: z,
-                k: zi,
-                phase: zi,
-                side: zi,
-                owner: zi,
-                active: 0,
-            };
+            let empty =
+                Group { ray: RayLanes::empty(), t: z, a: z, fa: z, b: z, fb: z, k: zi, phase: zi, side: zi };
             let mut groups = [empty; GROUPS];
             let mut next = 0usize;
             for g in groups.iter_mut() {
@@ -153,13 +113,14 @@ macro_rules! kernel {
                 }
             };
 
-            while groups.iter().any(|g| g.active != 0) {
+            while groups.iter().any(|g| g.ray.active != 0) {
                 for grp in groups.iter_mut() {
-                    if grp.active == 0 {
+                    if grp.ray.active == 0 {
                         continue;
                     }
-                    counter.count(grp.active.count_ones());
-                    let Group { px, py, tu, tv, s, eps, t, a, fa, b, fb, k, phase, side, .. } = *grp;
+                    counter.count(grp.ray.active.count_ones());
+                    let RayLanes { px, py, tu, tv, s, eps, .. } = grp.ray;
+                    let Group { t, a, fa, b, fb, k, phase, side, .. } = *grp;
                     let is_cone_i = _mm256_cmpeq_epi32(phase, cone_i);
                     let is_tail_i = _mm256_cmpeq_epi32(phase, tail_i);
                     let (is_cone, is_tail) = (_mm256_castsi256_ps(is_cone_i), _mm256_castsi256_ps(is_tail_i));
@@ -269,19 +230,9 @@ macro_rules! kernel {
                     grp.phase = new_phase;
                     grp.side = new_side;
 
-                    let finished = _mm256_movemask_ps(done) as u32 & grp.active;
+                    let finished = _mm256_movemask_ps(done) as u32 & grp.ray.active;
                     if finished != 0 {
-                        let mut res = [0.0f32; LANES];
-                        let mut own = [0i32; LANES];
-                        _mm256_storeu_ps(res.as_mut_ptr(), result);
-                        _mm256_storeu_si256(own.as_mut_ptr() as *mut __m256i, grp.owner);
-                        let mut fin = finished;
-                        while fin != 0 {
-                            let l = fin.trailing_zeros() as usize;
-                            fin &= fin - 1;
-                            let i = own[l] as usize;
-                            out[i] = soa.hit(i, res[l], cs.steps);
-                        }
+                        grp.ray.write_hits(finished, result, cs.steps, &soa, out);
                         next = refill(cs, grp, finished, next, n, &soa);
                     }
                 }

@@ -24,12 +24,8 @@ pub const GROUPS: usize = 2;
 /// One vector of rays: the constants of each lane's ray and its variable state.
 #[derive(Clone, Copy)]
 struct Group {
-    px: __m256,
-    py: __m256,
-    tu: __m256,
-    tv: __m256,
-    s: __m256,
-    eps: __m256,
+    /// The lanes' rays.
+    ray: RayLanes,
     t: __m256,
     a: __m256,
     fa: __m256,
@@ -37,10 +33,6 @@ struct Group {
     fb: __m256,
     k: __m256i,
     phase: __m256i,
-    /// Index of each lane's ray in the row.
-    owner: __m256i,
-    /// Lanes holding a ray (bit per lane).
-    active: u32,
 }
 
 /// The rays of a row as structure of arrays (each padded by [`LANES`] entries), for
@@ -190,6 +182,92 @@ pub(crate) unsafe fn interp_v(a: __m256, fa: __m256, b: __m256, fb: __m256) -> _
     _mm256_blendv_ps(mid, q, _mm256_cmp_ps::<_CMP_GT_OQ>(den, _mm256_set1_ps(1e-12)))
 }
 
+/// The rays' columns in one vector of lanes, shared by the cone kernels' lane groups.
+#[derive(Clone, Copy)]
+pub(crate) struct RayLanes {
+    pub(crate) px: __m256,
+    pub(crate) py: __m256,
+    pub(crate) tu: __m256,
+    pub(crate) tv: __m256,
+    pub(crate) s: __m256,
+    pub(crate) eps: __m256,
+    /// Index of each lane's ray in the row.
+    pub(crate) owner: __m256i,
+    /// Lanes holding a ray (bit per lane).
+    pub(crate) active: u32,
+}
+
+impl RayLanes {
+    /// No rays.
+    #[inline]
+    #[target_feature(enable = "avx2")]
+    pub(crate) unsafe fn empty() -> Self {
+        let z = _mm256_setzero_ps();
+        Self { px: z, py: z, tu: z, tv: z, s: z, eps: z, owner: _mm256_setzero_si256(), active: 0 }
+    }
+
+    /// Loads the next rays (from `next` on, at most `n`) into the lanes set in `free` (a bit
+    /// per lane); lanes left without a ray become inactive. Returns the lanes that took a ray
+    /// (all bits set in each) and the new `next`; the caller resets their state.
+    #[inline]
+    #[target_feature(enable = "avx2")]
+    pub(crate) unsafe fn refill(
+        &mut self,
+        free: u32,
+        next: usize,
+        n: usize,
+        soa: &RaySoa,
+    ) -> (__m256i, usize) {
+        let rank = _mm256_loadu_si256(RANKS[free as usize].as_ptr() as *const __m256i);
+        let idx = _mm256_add_epi32(_mm256_set1_epi32(next as i32), rank);
+        let bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+        let is_free = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(free as i32), bits), bits);
+        let in_range = _mm256_cmpgt_epi32(_mm256_set1_epi32(n as i32), idx);
+        let take = _mm256_and_si256(is_free, in_range);
+        let take_ps = _mm256_castsi256_ps(take);
+        // The free lanes take rays next, next + 1, …: eight consecutive values, permuted by
+        // rank (the arrays are padded so the load stays inside them).
+        let gather = |src: __m256, v: &Vec<f32>| {
+            debug_assert!(next + LANES <= v.len());
+            let vals = _mm256_loadu_ps(v.as_ptr().add(next));
+            _mm256_blendv_ps(src, _mm256_permutevar8x32_ps(vals, rank), take_ps)
+        };
+        self.px = gather(self.px, &soa.px);
+        self.py = gather(self.py, &soa.py);
+        self.tu = gather(self.tu, &soa.tu);
+        self.tv = gather(self.tv, &soa.tv);
+        self.s = gather(self.s, &soa.s);
+        self.eps = gather(self.eps, &soa.eps);
+        self.owner = _mm256_blendv_epi8(self.owner, idx, take);
+        self.active = (self.active & !free) | _mm256_movemask_ps(take_ps) as u32;
+        (take, (next + free.count_ones() as usize).min(n))
+    }
+
+    /// Writes the hits of the lanes in `finished` (their depths in `result`) for their rays.
+    #[inline]
+    #[target_feature(enable = "avx2")]
+    pub(crate) unsafe fn write_hits(
+        &self,
+        finished: u32,
+        result: __m256,
+        layers: u32,
+        soa: &RaySoa,
+        out: &mut [ReliefHit],
+    ) {
+        let mut res = [0.0f32; LANES];
+        let mut own = [0i32; LANES];
+        _mm256_storeu_ps(res.as_mut_ptr(), result);
+        _mm256_storeu_si256(own.as_mut_ptr() as *mut __m256i, self.owner);
+        let mut f = finished;
+        while f != 0 {
+            let l = f.trailing_zeros() as usize;
+            f &= f - 1;
+            let i = own[l] as usize;
+            out[i] = soa.hit(i, res[l], layers);
+        }
+    }
+}
+
 /// Loads the next rays (from `next` on, at most `n`) into the lanes of `g` set in `free`
 /// (a bit per lane), with a fresh state; lanes left without a ray become inactive.
 /// Returns the new `next`.
@@ -199,26 +277,8 @@ unsafe fn refill(fc: &NewtonCone, g: &mut Group, free: u32, next: usize, n: usiz
     if free == 0 {
         return next;
     }
-    let rank = _mm256_loadu_si256(RANKS[free as usize].as_ptr() as *const __m256i);
-    let idx = _mm256_add_epi32(_mm256_set1_epi32(next as i32), rank);
-    let bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    let is_free = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(free as i32), bits), bits);
-    let in_range = _mm256_cmpgt_epi32(_mm256_set1_epi32(n as i32), idx);
-    let take = _mm256_and_si256(is_free, in_range);
+    let (take, next) = g.ray.refill(free, next, n, soa);
     let take_ps = _mm256_castsi256_ps(take);
-    // The free lanes take rays next, next + 1, …: eight consecutive values, permuted by
-    // rank (the arrays are padded so the load stays inside them).
-    let gather = |src: __m256, v: &Vec<f32>| {
-        debug_assert!(next + LANES <= v.len());
-        let vals = _mm256_loadu_ps(v.as_ptr().add(next));
-        _mm256_blendv_ps(src, _mm256_permutevar8x32_ps(vals, rank), take_ps)
-    };
-    g.px = gather(g.px, &soa.px);
-    g.py = gather(g.py, &soa.py);
-    g.tu = gather(g.tu, &soa.tu);
-    g.tv = gather(g.tv, &soa.tv);
-    g.s = gather(g.s, &soa.s);
-    g.eps = gather(g.eps, &soa.eps);
     let st = State::new(fc);
     let set = |old: __m256, v: f32| _mm256_blendv_ps(old, _mm256_set1_ps(v), take_ps);
     g.t = set(g.t, st.t);
@@ -228,10 +288,7 @@ unsafe fn refill(fc: &NewtonCone, g: &mut Group, free: u32, next: usize, n: usiz
     g.fb = set(g.fb, st.fb);
     g.k = _mm256_blendv_epi8(g.k, _mm256_set1_epi32(st.k), take);
     g.phase = _mm256_blendv_epi8(g.phase, _mm256_set1_epi32(st.phase), take);
-    g.owner = _mm256_blendv_epi8(g.owner, idx, take);
-    let taken = _mm256_movemask_ps(take_ps) as u32;
-    g.active = (g.active & !free) | taken;
-    (next + free.count_ones() as usize).min(n)
+    next
 }
 
 /// Stamps out the kernel for a set of target features (the same intrinsics; with AVX-512
@@ -257,12 +314,7 @@ macro_rules! kernel {
             setup_rays(fc.tol, MAX_EPS, inp, &rays[..n], &mut soa);
             let zero = _mm256_setzero_ps();
             let empty = Group {
-                px: zero,
-                py: zero,
-                tu: zero,
-                tv: zero,
-                s: zero,
-                eps: zero,
+                ray: RayLanes::empty(),
                 t: zero,
                 a: zero,
                 fa: zero,
@@ -270,8 +322,6 @@ macro_rules! kernel {
                 fb: zero,
                 k: _mm256_setzero_si256(),
                 phase: _mm256_setzero_si256(),
-                owner: _mm256_setzero_si256(),
-                active: 0,
             };
             let mut groups = [empty; GROUPS];
             let mut next = 0usize;
@@ -300,13 +350,14 @@ macro_rules! kernel {
             let depth_step = ps(DEPTH_STEP);
             let ratio_step = ps(RATIO_STEP);
 
-            while groups.iter().any(|g| g.active != 0) {
+            while groups.iter().any(|g| g.ray.active != 0) {
                 for grp in groups.iter_mut() {
-                    if grp.active == 0 {
+                    if grp.ray.active == 0 {
                         continue;
                     }
-                    counter.count(grp.active.count_ones());
-                    let Group { px, py, tu, tv, s, eps, t, a, fa, b, fb, k, phase, .. } = *grp;
+                    counter.count(grp.ray.active.count_ones());
+                    let RayLanes { px, py, tu, tv, s, eps, .. } = grp.ray;
+                    let Group { t, a, fa, b, fb, k, phase, .. } = *grp;
                     let is_cone = _mm256_castsi256_ps(_mm256_cmpeq_epi32(phase, cone_i));
 
                     // Lanes that refine need the false-position point (one division); skip it when
@@ -423,19 +474,9 @@ macro_rules! kernel {
                     grp.k = new_k;
                     grp.phase = new_phase;
 
-                    let finished = _mm256_movemask_ps(done) as u32 & grp.active;
+                    let finished = _mm256_movemask_ps(done) as u32 & grp.ray.active;
                     if finished != 0 {
-                        let mut res = [0.0f32; LANES];
-                        let mut own = [0i32; LANES];
-                        _mm256_storeu_ps(res.as_mut_ptr(), result);
-                        _mm256_storeu_si256(own.as_mut_ptr() as *mut __m256i, grp.owner);
-                        let mut f = finished;
-                        while f != 0 {
-                            let l = f.trailing_zeros() as usize;
-                            f &= f - 1;
-                            let i = own[l] as usize;
-                            out[i] = soa.hit(i, res[l], fc.steps);
-                        }
+                        grp.ray.write_hits(finished, result, fc.steps, &soa, out);
                         next = refill(fc, grp, finished, next, n, &soa);
                     }
                 }
