@@ -8,7 +8,7 @@
 //!   [`HybridRenderer::reference`] path-traces the same view in two independent halves and
 //!   estimates the reference's own noise floor ([`Reference`]).
 //! * [`stages`] holds the ray-traced stages, one file each, every one writing one slot of
-//!   the scene crate's `LightingTerms` (translucency: the final image); [`reference`] holds
+//!   the scene crate's `LightingTerms` (translucency: the final image); [`mod@reference`] holds
 //!   the path tracer; [`lighting`] the shading they share; [`accel`] the BVH as they query it.
 //! * The raster choices of every stage are `renderlab_raster::deferred`'s stage functions
 //!   (geometry pass, shadow maps, SSR, SSAO, ambient, sorted forward translucency), called

@@ -33,7 +33,7 @@ fn mix(mut z: u64) -> u64 {
     z ^ (z >> 31)
 }
 
-/// A small, fast generator (SplitMix64: a Weyl sequence through [`mix`]), ample for Monte
+/// A small, fast generator (SplitMix64: a Weyl sequence through `mix`), ample for Monte
 /// Carlo estimates of a few thousand samples per pixel.
 #[derive(Clone, Debug)]
 pub struct Rng {

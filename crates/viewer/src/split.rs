@@ -3,12 +3,12 @@
 //! moves it (within [`SPLIT_RANGE`] of the width).
 //!
 //! - [`SplitMode::Side`]: the current technique on the left, a second technique (chosen in
-//!   the HUD; the [`reference`] at first) on the right. Each half is its own render pass
+//!   the HUD; the [`reference()`] at first) on the right. Each half is its own render pass
 //!   over its half of the pixels, timed by its own timestamp queries, so each half's label
 //!   gives its technique's GPU time for *that half*: the two halves see different parts of
 //!   the room, so the same technique on both sides shows how far the halves alone differ.
 //! - [`SplitMode::Error`]: the current technique on the left; on the right the per-pixel
-//!   error of the same technique against the [`reference`], coloured by the lab's heat ramp
+//!   error of the same technique against the [`reference()`], coloured by the lab's heat ramp
 //!   (see [`crate::compose`]). The technique is drawn over the whole frame (its label's time
 //!   is the whole frame's), the reference over the right half.
 //!

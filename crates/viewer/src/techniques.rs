@@ -60,7 +60,7 @@ pub fn param(technique: Technique, param: &str) -> Option<u32> {
     technique.params().get(index).copied()
 }
 
-/// The layer count ↑/↓ change (the first of [`LAYER_PARAMS`] the technique has); `None` for
+/// The layer count ↑/↓ change (the first of `LAYER_PARAMS` the technique has); `None` for
 /// a technique without one (basic texturing, normal mapping, parallax mapping).
 pub fn layers(technique: Technique) -> Option<u32> {
     LAYER_PARAMS.iter().find_map(|p| param(technique, p))

@@ -5,7 +5,7 @@
 //! built). Non-finite inputs count as zero, as in cone-newton's kernels.
 //!
 //! Each ray is a small state machine that makes exactly one fetch per step
-//! ([`step_scalar`]), so that the vector kernel ([`crate::simd`]) can step eight rays in
+//! (`step_scalar`), so that the vector kernel ([`crate::simd`]) can step eight rays in
 //! lockstep, each lane performing the same IEEE operations in the same order: the two give
 //! the same bits (minima and maxima are written as the SSE instructions define them).
 

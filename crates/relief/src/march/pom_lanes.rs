@@ -182,7 +182,8 @@ pub(crate) fn bracket(
 }
 
 /// Relief mapping's second phase on the packed map: `steps` bisections of the bracket of
-/// `hit` (see [`bracket`]), the midpoint of the last one the result, as
+/// `hit` (from the last layer above the surface to the first below), the midpoint of the
+/// last one the result, as
 /// [`crate::march::bisect::bisect`] does on the `f32` field.
 #[inline(always)]
 pub fn refine<C: Counter>(

@@ -12,7 +12,7 @@
 //! Exact sizes: every scene places its fixed content first, then spends the rest of its
 //! triangle budget on one height field (terrain, pavement or sea bed) whose row count,
 //! plus one partial row at its far edge, is solved for the remainder
-//! ([`SceneBuilder::pad`]). The triangle count is that of [`HybridScene::triangle_count`]:
+//! (`SceneBuilder::pad`). The triangle count is that of [`HybridScene::triangle_count`]:
 //! every instance counts its mesh's triangles.
 //!
 //! The relief lab's materials (`bricks`, `sand_rocks`, `bark_willow`, `brick_pavement`)
