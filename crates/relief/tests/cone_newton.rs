@@ -464,7 +464,7 @@ fn vector_adaptive_layer_counts_equal_the_scalar_ones() {
             [AdaptivePom { min: 4, max: 32 }, AdaptivePom { min: 1, max: 50 }, AdaptivePom { min: 0, max: 0 }]
         {
             let mut got = vec![0.0f32; all.len()];
-            if !renderlab_relief::simd::adaptive_layer_counts(&rule, &inp, &all, &mut got) {
+            if !renderlab_relief::simd::adaptive_layer_counts(rule.min, rule.max, &inp, &all, &mut got) {
                 eprintln!("skipped: no AVX2 here");
                 return;
             }

@@ -162,7 +162,7 @@ fn key_help(ctx: &egui::Context) {
     egui::Area::new(egui::Id::unique("keys")).anchor(egui::Align2::LEFT_BOTTOM, [8.0, -8.0]).show(
         ctx,
         |ui| {
-            panel_frame(ui.style()).show(ui, |ui| {
+            crate::look_and_feel::panel_frame(ui.style()).show(ui, |ui| {
                 egui::Grid::new("key grid").num_columns(2).show(ui, |ui| {
                     for (k, what) in KEY_HELP {
                         ui.strong(*k);
@@ -177,7 +177,7 @@ fn key_help(ctx: &egui::Context) {
 
 fn info_panel(ctx: &egui::Context, s: &HudState<'_>, changes: &mut Changes) {
     egui::Area::new(egui::Id::unique("info")).anchor(egui::Align2::LEFT_TOP, [8.0, 8.0]).show(ctx, |ui| {
-        panel_frame(ui.style()).show(ui, |ui| {
+        crate::look_and_feel::panel_frame(ui.style()).show(ui, |ui| {
             ui.set_max_width(420.0);
             let d = s.technique.descriptor();
             ui.strong(format!("Technique: {}", s.technique.name()));
@@ -216,16 +216,9 @@ fn info_panel(ctx: &egui::Context, s: &HudState<'_>, changes: &mut Changes) {
     });
 }
 
-/// The HUD's panel frame: egui's popup frame without its shadow. The shadow is a wide,
-/// feathered mesh around each panel; on a software adapter (lavapipe) the HUD's shadows cost
-/// more GPU time than the panels themselves (`examples/egui_pass.rs`).
-pub fn panel_frame(style: &egui::Style) -> egui::Frame {
-    egui::Frame::popup(style).shadow(egui::Shadow::NONE)
-}
-
 fn fps_panel(ctx: &egui::Context, s: &HudState<'_>) {
     egui::Area::new(egui::Id::unique("fps")).anchor(egui::Align2::RIGHT_TOP, [-8.0, 8.0]).show(ctx, |ui| {
-        panel_frame(ui.style()).show(ui, |ui| {
+        crate::look_and_feel::panel_frame(ui.style()).show(ui, |ui| {
             let st = s.stats;
             ui.monospace(format!("FPS {:7.1}", st.current()));
             ui.monospace(format!("min {:7.1}  avg {:7.1}  max {:7.1}", st.min(), st.avg(), st.max()));

@@ -23,6 +23,7 @@ pub mod error;
 pub mod hud;
 pub mod launch;
 pub mod look;
+pub mod look_and_feel;
 pub mod room;
 pub mod room_view;
 pub mod settings;

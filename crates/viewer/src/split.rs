@@ -209,7 +209,7 @@ pub fn labels(
             .pivot(align)
             .interactable(false)
             .show(ctx, |ui| {
-                crate::hud::panel_frame(ui.style()).show(ui, |ui| {
+                crate::look_and_feel::panel_frame(ui.style()).show(ui, |ui| {
                     ui.strong(title);
                     ui.monospace(time);
                 });

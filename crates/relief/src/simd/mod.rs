@@ -208,11 +208,12 @@ pub fn soft_shadow_row<C: Counter>(
 }
 
 /// Adaptive POM's layer count of each ray of `rays` (as `f32`) into `out` with the vector
-/// kernel; `false` (and nothing written) where the CPU lacks AVX2. The counts are
-/// [`crate::techniques::adaptive_pom::AdaptivePom::layers`]'s, bit for bit.
+/// kernel, for the base layer range `min..max`; `false` (and nothing written) where the CPU
+/// lacks AVX2. The counts are `AdaptivePom::layers`'s, bit for bit.
 #[inline]
 pub fn adaptive_layer_counts(
-    rule: &crate::techniques::adaptive_pom::AdaptivePom,
+    min: u32,
+    max: u32,
     inp: &ReliefInputs,
     rays: &[(Vec2, Vec3)],
     out: &mut [f32],
@@ -220,9 +221,9 @@ pub fn adaptive_layer_counts(
     #[cfg(target_arch = "x86_64")]
     if crate::cpu::has_avx2() {
         // SAFETY: the CPU supports AVX2.
-        unsafe { avx2::adaptive::layer_counts(rule, inp, rays, out) };
+        unsafe { avx2::adaptive::layer_counts(min, max, inp, rays, out) };
         return true;
     }
-    let _ = (rule, inp, rays, out);
+    let _ = (min, max, inp, rays, out);
     false
 }

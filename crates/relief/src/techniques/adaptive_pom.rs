@@ -72,7 +72,7 @@ impl crate::march::pom_lanes::LayerRule for AdaptivePom {
 
     /// Eight rays at a time in vector lanes where the CPU has them (the same counts).
     fn layer_counts(&self, inp: &ReliefInputs, rays: &[(Vec2, Vec3)], out: &mut [f32]) {
-        if !crate::simd::adaptive_layer_counts(self, inp, rays, out) {
+        if !crate::simd::adaptive_layer_counts(self.min, self.max, inp, rays, out) {
             crate::march::pom_lanes::scalar_layer_counts(self, inp, rays, out)
         }
     }

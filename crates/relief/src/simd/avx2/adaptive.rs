@@ -1,26 +1,27 @@
 //! Adaptive POM's layer counts for eight rays at a time: the view-angle factor (normalise,
 //! [`super::math::pow_unit`]) and the two mixes in AVX2 lanes, the complexity lookup and the
-//! final truncation per ray, each step in [`AdaptivePom::layers`]'s order, so the counts are
+//! final truncation per ray, each step in `AdaptivePom::layers`'s order, so the counts are
 //! the scalar function's.
 
 use super::math::pow_unit;
 use super::LANES;
-use crate::techniques::adaptive_pom::{AdaptivePom, ANGLE_EXPONENT};
+use crate::techniques::adaptive_pom::ANGLE_EXPONENT;
 use crate::trace::ReliefInputs;
 use glam::{Vec2, Vec3};
 use std::arch::x86_64::*;
 
-/// [`AdaptivePom::layers`] for each ray of `rays` (its complexity read at the entry), as
+/// `AdaptivePom::layers` (base range `min..max`) for each ray of `rays` (its complexity read at the entry), as
 /// `f32`, into `out`.
 #[target_feature(enable = "avx2")]
 pub(crate) unsafe fn layer_counts(
-    rule: &AdaptivePom,
+    min: u32,
+    max: u32,
     inp: &ReliefInputs,
     rays: &[(Vec2, Vec3)],
     out: &mut [f32],
 ) {
     let ps = _mm256_set1_ps;
-    let (min, max) = (rule.min as f32, rule.max as f32);
+    let (min, max) = (min as f32, max as f32);
     let (zero, one) = (_mm256_setzero_ps(), ps(1.0));
     let map = inp.complexity;
     let (w, h) = (map.width(), map.height());
