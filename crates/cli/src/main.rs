@@ -17,11 +17,18 @@ fn main() {
         Ok(cli) => cli,
         Err(e) if !e.use_stderr() => e.exit(), // --help, --version
         Err(e) => {
-            // Clap's own message, on one line like every other error (its first line names the
-            // flag and the value; the rest is a usage hint).
+            // Clap's own message, on one line like every other error: its lines before the
+            // usage hint (the first names the flag and the value; a missing argument's name
+            // comes on the next).
             let text = e.to_string();
-            let first = text.lines().find(|l| !l.trim().is_empty()).unwrap_or("invalid arguments");
-            eprintln!("renderlab: error: {}", first.trim_start_matches("error: "));
+            let body: Vec<&str> = text
+                .lines()
+                .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
+                .map(str::trim)
+                .filter(|l| !l.is_empty())
+                .collect();
+            let message = if body.is_empty() { "invalid arguments".to_string() } else { body.join(" ") };
+            eprintln!("renderlab: error: {}", message.trim_start_matches("error: "));
             std::process::exit(1);
         }
     };

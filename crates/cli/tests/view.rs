@@ -58,6 +58,7 @@ fn bad_view_flags_fail_in_one_line() {
         (&["view", "--albedo", "missing.png", "--height-map", "missing.png"][..], "missing.png"),
         (&["view", "--split", "diagonal"][..], "--split"),
         (&["view", "--split", "side", "--right", "pom:0"][..], "--right"),
+        (&["view", "--hud"][..], "--screenshot"),
     ] {
         let out = renderlab(&[], args, dir.path());
         let err = String::from_utf8_lossy(&out.stderr);

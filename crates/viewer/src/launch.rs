@@ -32,6 +32,8 @@ pub struct Script {
     pub out: PathBuf,
     /// Frames to render (at least 1).
     pub frames: u32,
+    /// Whether the interface stays shown (otherwise the run hides it, as key H does).
+    pub hud: bool,
 }
 
 /// What to start on.

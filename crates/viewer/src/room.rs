@@ -115,7 +115,7 @@ impl RoomScreen {
             technique,
             heat_map: false,
             heat_texture: None,
-            hide_ui: launch.script.is_some(),
+            hide_ui: launch.script.as_ref().is_some_and(|s| !s.hud),
             show_fps: true,
             show_keys: false,
             stats: FrameStats::default(),

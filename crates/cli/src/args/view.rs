@@ -34,6 +34,10 @@ pub struct ViewArgs {
     /// viewer's overhead.
     #[arg(long, requires = "screenshot")]
     pub compare: bool,
+    /// Keep the interface (HUD) shown during a --screenshot run, so that the frame times
+    /// include it; the image written is the room's picture either way.
+    #[arg(long, requires = "screenshot")]
+    pub hud: bool,
     /// Size of the built-in materials' maps in texels per side.
     #[arg(long, default_value_t = 512)]
     pub texture_size: u32,

@@ -37,7 +37,7 @@ pub(crate) fn view(a: ViewArgs) -> Result<()> {
         camera: Some(a.camera.clone()),
         material: material.clone(),
         texture_size: a.texture_size,
-        script: a.screenshot.clone().map(|out| Script { out, frames: a.frames }),
+        script: a.screenshot.clone().map(|out| Script { out, frames: a.frames, hud: a.hud }),
         split: a.split,
         right: a.right,
         // The interactive window goes on while cone maps are built; a scripted run waits.
@@ -62,7 +62,7 @@ pub(crate) fn view(a: ViewArgs) -> Result<()> {
         ),
     }
     println!(
-        "viewer: {} at {}x{}, {} frames: relief pass {} (GPU, median), egui pass {} (GPU, median), whole frame {:.3} ms (median)",
+        "viewer: {} at {}x{}, {} frames: relief pass {} (GPU, median), egui pass {}, whole frame {:.3} ms (median)",
         report.technique,
         report.width,
         report.height,
@@ -70,7 +70,7 @@ pub(crate) fn view(a: ViewArgs) -> Result<()> {
         gpu(report.gpu_ms),
         report.egui_ms.map_or(
             "not timed here (software adapter or no timestamps in passes; see the viewer's egui_pass example)".to_string(),
-            |m| format!("{m:.3} ms")
+            |m| format!("{m:.3} ms (GPU, median)")
         ),
         report.frame_ms
     );
