@@ -46,4 +46,4 @@ pub use context::{AdapterReport, GpuContext};
 pub use error::{GpuError, Result};
 pub use filter::{FilterRenderer, GpuFilter};
 pub use relief::{read_rgba8, DisplayRegion, FrameTime, GpuFrame, ReliefRenderer};
-pub use timing::GpuTiming;
+pub use timing::{GpuTiming, PassTimer};

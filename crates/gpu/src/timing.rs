@@ -19,8 +19,10 @@ pub struct GpuTiming {
     pub reps: u32,
 }
 
-/// A pair of timestamp queries and the buffers that bring them back.
-pub(crate) struct PassTimer {
+/// A pair of timestamp queries and the buffers that bring them back: written at a pass's
+/// beginning and end ([`PassTimer::writes`]), or by the caller's own `write_timestamp` calls
+/// into [`PassTimer::query_set`] (indices 0 and 1), then resolved and read.
+pub struct PassTimer {
     queries: wgpu::QuerySet,
     resolve: wgpu::Buffer,
     read: wgpu::Buffer,
@@ -52,6 +54,11 @@ impl PassTimer {
             read: buffer("timestamps read", wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ),
             period_ns: ctx.queue.get_timestamp_period() as f64,
         })
+    }
+
+    /// The two queries (0: start, 1: end).
+    pub fn query_set(&self) -> &wgpu::QuerySet {
+        &self.queries
     }
 
     /// The pass's timestamp writes (beginning and end).

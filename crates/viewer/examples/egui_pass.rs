@@ -14,6 +14,7 @@
 use egui_kittest::kittest::Queryable;
 use egui_kittest::wgpu::{create_render_state, WgpuTestRenderer};
 use egui_kittest::Harness;
+use renderlab_gpu::{GpuContext, PassTimer};
 use renderlab_relief::Technique;
 use renderlab_viewer::launch::wgpu_setup;
 use renderlab_viewer::settings::Settings;
@@ -108,22 +109,9 @@ fn run() -> Result<(), String> {
         view_formats: &[],
     });
     let view = target.create_view(&Default::default());
-    let queries = device.create_query_set(&wgpu::QuerySetDescriptor {
-        label: None,
-        ty: wgpu::QueryType::Timestamp,
-        count: 2,
-    });
-    let buffer = |usage| {
-        device.create_buffer(&wgpu::BufferDescriptor {
-            label: None,
-            size: 16,
-            usage,
-            mapped_at_creation: false,
-        })
-    };
-    let resolve = buffer(wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC);
-    let read = buffer(wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ);
-    let period_ns = rs.queue.get_timestamp_period() as f64;
+    let gpu = GpuContext::from_parts(&rs.adapter, rs.device.clone(), rs.queue.clone())
+        .map_err(|e| e.to_string())?;
+    let timer = PassTimer::new(&gpu).ok_or("the adapter has no timestamp queries")?;
     let mut egui_ms = Vec::new();
     for _ in 0..FRAMES + 1 {
         let mut renderer = rs.renderer.write();
@@ -142,32 +130,16 @@ fn run() -> Result<(), String> {
                         },
                         depth_slice: None,
                     })],
-                    timestamp_writes: Some(wgpu::RenderPassTimestampWrites {
-                        query_set: &queries,
-                        beginning_of_pass_write_index: Some(0),
-                        end_of_pass_write_index: Some(1),
-                    }),
+                    timestamp_writes: Some(timer.writes()),
                     ..Default::default()
                 })
                 .forget_lifetime();
             renderer.render(&mut pass, &tessellated, &screen);
         }
-        encoder.resolve_query_set(&queries, 0..2, &resolve, 0);
-        encoder.copy_buffer_to_buffer(&resolve, 0, &read, 0, 16);
+        timer.resolve(&mut encoder);
         rs.queue.submit(user.into_iter().chain([encoder.finish()]));
         drop(renderer);
-        let (tx, rx) = std::sync::mpsc::channel();
-        read.slice(..).map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| e.to_string())?;
-        rx.recv().map_err(|e| e.to_string())?.map_err(|e| e.to_string())?;
-        let t = {
-            let bytes = read.get_mapped_range(..).map_err(|e| e.to_string())?;
-            let t = |i: usize| u64::from_le_bytes(bytes[i * 8..i * 8 + 8].try_into().unwrap_or_default());
-            t(1).saturating_sub(t(0)) as f64 * period_ns * 1e-6
-        };
-        read.unmap();
+        let t = timer.read_ms(&gpu).map_err(|e| e.to_string())?;
         egui_ms.push(t);
     }
     egui_ms.remove(0); // the first recording uploads buffers

@@ -13,7 +13,7 @@
 //! `examples/egui_pass.rs`, which times egui's pass whole on any adapter).
 
 use egui_wgpu::{CallbackResources, CallbackTrait, ScreenDescriptor};
-use renderlab_gpu::GpuContext;
+use renderlab_gpu::{GpuContext, PassTimer};
 use std::sync::{Arc, Mutex};
 
 /// Times egui's pass from inside it (see the module documentation).
@@ -23,10 +23,8 @@ pub struct EguiPassTimer {
 }
 
 struct Inner {
-    queries: wgpu::QuerySet,
-    resolve: wgpu::Buffer,
-    read: wgpu::Buffer,
-    period_ns: f64,
+    ctx: &'static GpuContext,
+    timer: PassTimer,
     state: Mutex<State>,
 }
 
@@ -43,39 +41,13 @@ struct State {
 impl EguiPassTimer {
     /// A timer, or `None` where the device cannot write timestamps inside a render pass or
     /// is a software adapter (see the module documentation).
-    pub fn new(ctx: &GpuContext) -> Option<Self> {
+    pub fn new(ctx: &'static GpuContext) -> Option<Self> {
         let needed = wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_PASSES;
         if ctx.report.software || !ctx.device.features().contains(needed) {
             return None;
         }
-        let queries = ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
-            label: Some("egui pass timestamps"),
-            ty: wgpu::QueryType::Timestamp,
-            count: 2,
-        });
-        let buffer = |label, usage| {
-            ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: 16,
-                usage,
-                mapped_at_creation: false,
-            })
-        };
-        Some(Self {
-            inner: Arc::new(Inner {
-                queries,
-                resolve: buffer(
-                    "egui timestamps",
-                    wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-                ),
-                read: buffer(
-                    "egui timestamps read",
-                    wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-                ),
-                period_ns: ctx.queue.get_timestamp_period() as f64,
-                state: Mutex::new(State::default()),
-            }),
-        })
+        let timer = PassTimer::new(ctx)?;
+        Some(Self { inner: Arc::new(Inner { ctx, timer, state: Mutex::new(State::default()) }) })
     }
 
     /// Adds the frame's first mark: call before anything else is drawn this frame (it goes
@@ -109,30 +81,10 @@ struct Mark {
     inner: Arc<Inner>,
 }
 
-impl Inner {
-    /// Reads the resolved pair (submitted with an earlier frame), waiting for it.
-    fn read_ms(&self, device: &wgpu::Device) -> Option<f64> {
-        let (tx, rx) = std::sync::mpsc::channel();
-        self.read.slice(..).map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        device.poll(wgpu::PollType::wait_indefinitely()).ok()?;
-        rx.recv().ok()?.ok()?;
-        let ms = {
-            let view = self.read.get_mapped_range(..).ok()?;
-            let t = |i: usize| u64::from_le_bytes(view[i * 8..i * 8 + 8].try_into().unwrap_or_default());
-            let (start, end) = (t(0), t(1));
-            (end >= start).then(|| (end - start) as f64 * self.period_ns * 1e-6)
-        };
-        self.read.unmap();
-        ms
-    }
-}
-
 impl CallbackTrait for Mark {
     fn prepare(
         &self,
-        device: &wgpu::Device,
+        _device: &wgpu::Device,
         _queue: &wgpu::Queue,
         _screen: &ScreenDescriptor,
         encoder: &mut wgpu::CommandEncoder,
@@ -144,15 +96,15 @@ impl CallbackTrait for Mark {
         let inner = &self.inner;
         let mut st = inner.state.lock().unwrap_or_else(|p| p.into_inner());
         if st.copied {
-            if let Some(ms) = inner.read_ms(device) {
+            // Submitted with an earlier frame: this waits for it.
+            if let Ok(ms) = inner.timer.read_ms(inner.ctx) {
                 st.last_ms = Some(ms);
             }
             st.copied = false;
         }
         if st.written {
             // Before this frame's pass in the same encoder: the last frame's pair.
-            encoder.resolve_query_set(&inner.queries, 0..2, &inner.resolve, 0);
-            encoder.copy_buffer_to_buffer(&inner.resolve, 0, &inner.read, 0, 16);
+            inner.timer.resolve(encoder);
             (st.written, st.copied) = (false, true);
         }
         Vec::new()
@@ -164,7 +116,7 @@ impl CallbackTrait for Mark {
         pass: &mut wgpu::RenderPass<'static>,
         _resources: &CallbackResources,
     ) {
-        pass.write_timestamp(&self.inner.queries, self.index);
+        pass.write_timestamp(self.inner.timer.query_set(), self.index);
         if self.index == 1 {
             self.inner.state.lock().unwrap_or_else(|p| p.into_inner()).written = true;
         }
