@@ -5,8 +5,8 @@
 //! the scalar twin's operations in its order, so the hits are bit-identical to it.
 
 use super::cone_newton::{interp_v, setup_rays, RayLanes, RaySoa, COLUMNS};
-use super::gather::gather_cell;
-use crate::maps::packed::{PackedRelief, DEPTH_STEP, RATIO_STEP};
+use super::gather::{gather_cell, packed_sample};
+use crate::maps::packed::PackedRelief;
 use crate::march::cone_lanes::{State, CONE, MAX_EPS, MIN_STEP, REFINE, TAIL_PHASE};
 use crate::march::cone_step::{ConeStep, Refinement, TAIL, TOLERANCE_TEXELS};
 use crate::trace::{ReliefHit, ReliefInputs};
@@ -103,7 +103,6 @@ macro_rules! kernel {
             let no_refine = if cs.refine_steps == 0 { _mm256_castsi256_ps(minus_one_i) } else { z };
             let (mask_x, mask_y, stride_v) = (pi(mxk), pi(myk), pi(stride));
             let lane_order = _mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7);
-            let (lo16, depth_step, ratio_step) = (pi(0xffff), ps(DEPTH_STEP), ps(RATIO_STEP));
             // Where the refinement samples: the midpoint or the false position.
             let refine_point = |a: __m256, fa: __m256, b: __m256, fb: __m256| {
                 if secant {
@@ -138,15 +137,8 @@ macro_rules! kernel {
 
                     let x = _mm256_add_ps(px, _mm256_mul_ps(tu, c));
                     let y = _mm256_add_ps(py, _mm256_mul_ps(tv, c));
-                    let (fx, fy, t00, t10, t01, t11) =
-                        gather_cell!(base, stride, x, y, mask_x, mask_y, stride_v, lane_order);
-                    let hi = |t: __m256i| _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t));
-                    let (d00, d10, d01, d11) = (hi(t00), hi(t10), hi(t01), hi(t11));
-                    let top = _mm256_add_ps(d00, _mm256_mul_ps(_mm256_sub_ps(d10, d00), fx));
-                    let bottom = _mm256_add_ps(d01, _mm256_mul_ps(_mm256_sub_ps(d11, d01), fx));
-                    let dy = _mm256_sub_ps(bottom, top);
-                    let depth = _mm256_mul_ps(_mm256_add_ps(top, _mm256_mul_ps(dy, fy)), depth_step);
-                    let ratio = _mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_and_si256(t00, lo16)), ratio_step);
+                    let (depth, ratio, ..) =
+                        packed_sample!(base, stride, x, y, mask_x, mask_y, stride_v, lane_order);
 
                     let f = _mm256_sub_ps(c, depth);
                     let pos = _mm256_cmp_ps::<_CMP_GE_OQ>(f, z);

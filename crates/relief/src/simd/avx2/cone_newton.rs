@@ -6,9 +6,9 @@
 //! performs the scalar step's IEEE operations in the same order, so the results are
 //! bit-identical to the scalar kernel's.
 
-use super::gather::gather_cell;
+use super::gather::{gather_cell, packed_sample};
 use super::{LANES, RANKS};
-use crate::maps::packed::{PackedRelief, DEPTH_STEP, RATIO_STEP};
+use crate::maps::packed::{PackedRelief, DEPTH_STEP};
 use crate::march::cone_newton::{
     NewtonCone, Ray, State, CONE, MAX_EPS, MIN_SLOPE, MIN_STEP, REFINE_0, REFINE_A, REFINE_B,
 };
@@ -345,10 +345,8 @@ macro_rules! kernel {
             let mask_x = _mm256_set1_epi32(mxk);
             let mask_y = _mm256_set1_epi32(myk);
             let stride_v = _mm256_set1_epi32(stride);
-            let lo16 = _mm256_set1_epi32(0xffff);
             let lane_order = _mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7);
             let depth_step = ps(DEPTH_STEP);
-            let ratio_step = ps(RATIO_STEP);
 
             while groups.iter().any(|g| g.ray.active != 0) {
                 for grp in groups.iter_mut() {
@@ -367,17 +365,8 @@ macro_rules! kernel {
                     // Fetch.
                     let x = _mm256_add_ps(px, _mm256_mul_ps(tu, c));
                     let y = _mm256_add_ps(py, _mm256_mul_ps(tv, c));
-                    let (fx, fy, t00, t10, t01, t11) =
-                        gather_cell!(base, stride, x, y, mask_x, mask_y, stride_v, lane_order);
-                    let hi = |t: __m256i| _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t));
-                    let (d00, d10, d01, d11) = (hi(t00), hi(t10), hi(t01), hi(t11));
-                    let dx0 = _mm256_sub_ps(d10, d00);
-                    let dx1 = _mm256_sub_ps(d11, d01);
-                    let top = _mm256_add_ps(d00, _mm256_mul_ps(dx0, fx));
-                    let bottom = _mm256_add_ps(d01, _mm256_mul_ps(dx1, fx));
-                    let dy = _mm256_sub_ps(bottom, top);
-                    let depth = _mm256_mul_ps(_mm256_add_ps(top, _mm256_mul_ps(dy, fy)), depth_step);
-                    let ratio = _mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_and_si256(t00, lo16)), ratio_step);
+                    let (depth, ratio, dx0, dx1, dy, fy) =
+                        packed_sample!(base, stride, x, y, mask_x, mask_y, stride_v, lane_order);
                     let ddx = _mm256_mul_ps(
                         _mm256_add_ps(dx0, _mm256_mul_ps(_mm256_sub_ps(dx1, dx0), fy)),
                         depth_step,

@@ -37,6 +37,31 @@ macro_rules! gather_cell {
 }
 pub(crate) use gather_cell;
 
+/// The packed map's bilinear sample at texel coordinates `(x, y)` for eight lanes, computed as
+/// `PackedRelief::sample_texel` computes it (bit-identical): returns `(depth, ratio, dx0, dx1,
+/// dy, fy)`, the depth and the cone ratio, and the 16-bit depth differences along x on the
+/// cell's two rows, down its x-interpolated column, and the y fraction (what the gradient is
+/// made of). The arguments are [`gather_cell`]'s. A macro for the reason that one is.
+macro_rules! packed_sample {
+    ($base:expr, $stride:expr, $x:expr, $y:expr, $mask_x:expr, $mask_y:expr, $stride_v:expr, $lane_order:expr) => {{
+        let (fx, fy, t00, t10, t01, t11) =
+            gather_cell!($base, $stride, $x, $y, $mask_x, $mask_y, $stride_v, $lane_order);
+        let hi16 = |t: __m256i| _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t));
+        let (d00, d10, d01, d11) = (hi16(t00), hi16(t10), hi16(t01), hi16(t11));
+        let dx0 = _mm256_sub_ps(d10, d00);
+        let dx1 = _mm256_sub_ps(d11, d01);
+        let top = _mm256_add_ps(d00, _mm256_mul_ps(dx0, fx));
+        let bottom = _mm256_add_ps(d01, _mm256_mul_ps(dx1, fx));
+        let dy = _mm256_sub_ps(bottom, top);
+        let depth_step = _mm256_set1_ps(crate::maps::packed::DEPTH_STEP);
+        let depth = _mm256_mul_ps(_mm256_add_ps(top, _mm256_mul_ps(dy, fy)), depth_step);
+        let code = _mm256_and_si256(t00, _mm256_set1_epi32(0xffff));
+        let ratio = _mm256_mul_ps(_mm256_cvtepi32_ps(code), _mm256_set1_ps(crate::maps::packed::RATIO_STEP));
+        (depth, ratio, dx0, dx1, dy, fy)
+    }};
+}
+pub(crate) use packed_sample;
+
 /// The constants of the packed map's eight-lane bilinear depth fetch ([`packed_depth`]).
 #[derive(Clone, Copy)]
 pub(crate) struct DepthConsts {
@@ -51,7 +76,6 @@ pub(crate) struct DepthConsts {
     pub mask_y: std::arch::x86_64::__m256i,
     pub stride_v: std::arch::x86_64::__m256i,
     pub lane_order: std::arch::x86_64::__m256i,
-    pub depth_step: std::arch::x86_64::__m256,
 }
 
 impl DepthConsts {
@@ -76,7 +100,6 @@ impl DepthConsts {
             mask_y: _mm256_set1_epi32(myk),
             stride_v: _mm256_set1_epi32(stride),
             lane_order: _mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7),
-            depth_step: _mm256_set1_ps(crate::maps::packed::DEPTH_STEP),
         }
     }
 }
@@ -89,14 +112,7 @@ macro_rules! packed_depth {
         let k: &DepthConsts = &$k;
         let x = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps($u, k.wf), k.half), k.lo), k.hi);
         let y = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps($v, k.hf), k.half), k.lo), k.hi);
-        let (fx, fy, t00, t10, t01, t11) =
-            gather_cell!(k.base, k.stride, x, y, k.mask_x, k.mask_y, k.stride_v, k.lane_order);
-        let hi16 = |t: __m256i| _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t));
-        let (d00, d10, d01, d11) = (hi16(t00), hi16(t10), hi16(t01), hi16(t11));
-        let top = _mm256_add_ps(d00, _mm256_mul_ps(_mm256_sub_ps(d10, d00), fx));
-        let bottom = _mm256_add_ps(d01, _mm256_mul_ps(_mm256_sub_ps(d11, d01), fx));
-        let dy = _mm256_sub_ps(bottom, top);
-        _mm256_mul_ps(_mm256_add_ps(top, _mm256_mul_ps(dy, fy)), k.depth_step)
+        packed_sample!(k.base, k.stride, x, y, k.mask_x, k.mask_y, k.stride_v, k.lane_order).0
     }};
 }
 pub(crate) use packed_depth;

@@ -3,9 +3,9 @@
 //! once. Each lane performs the scalar twin's operations in the same order, so the results
 //! are bit-identical to it.
 
-use super::gather::gather_cell;
+use super::gather::{gather_cell, packed_sample};
 use super::{LANES, RANKS};
-use crate::maps::packed::{PackedRelief, DEPTH_STEP};
+use crate::maps::packed::PackedRelief;
 use crate::march::pom_lanes::{finish, scalar_row, LayerRule};
 use crate::trace::{ReliefHit, ReliefInputs, MIN_VIEW_Z};
 use glam::{Vec2, Vec3};
@@ -98,7 +98,6 @@ macro_rules! kernel {
             let mask_y = _mm256_set1_epi32(myk);
             let stride_v = _mm256_set1_epi32(stride);
             let lane_order = _mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7);
-            let depth_step = _mm256_set1_ps(DEPTH_STEP);
             let zero_i = _mm256_setzero_si256();
             let one_i = _mm256_set1_epi32(1);
             let bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
@@ -161,14 +160,7 @@ macro_rules! kernel {
                     // PackedRelief::depth.
                     let x = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(u, wf), half), lo), hi);
                     let y = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(v, hf), half), lo), hi);
-                    let (fx, fy, t00, t10, t01, t11) =
-                        gather_cell!(base, stride, x, y, mask_x, mask_y, stride_v, lane_order);
-                    let hi16 = |t: __m256i| _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t));
-                    let (d00, d10, d01, d11) = (hi16(t00), hi16(t10), hi16(t01), hi16(t11));
-                    let top = _mm256_add_ps(d00, _mm256_mul_ps(_mm256_sub_ps(d10, d00), fx));
-                    let bottom = _mm256_add_ps(d01, _mm256_mul_ps(_mm256_sub_ps(d11, d01), fx));
-                    let dy = _mm256_sub_ps(bottom, top);
-                    let m = _mm256_mul_ps(_mm256_add_ps(top, _mm256_mul_ps(dy, fy)), depth_step);
+                    let (m, ..) = packed_sample!(base, stride, x, y, mask_x, mask_y, stride_v, lane_order);
                     // Layer 0 has no layer above: its own value.
                     let prev = _mm256_blendv_ps(g.prev, m, first);
                     let go_on = _mm256_and_ps(
