@@ -179,3 +179,18 @@ fn cone_maps_are_built_in_the_background() {
     assert!(technique.needs_map(renderlab_relief::Map::Cone), "{name}");
     assert_room(&picture(&mut h), &name);
 }
+
+/// egui's pass is timed from inside it only on hardware adapters: a software one (lavapipe)
+/// stamps such queries when it bins the draws, so the viewer must not show them there.
+#[test]
+fn egui_pass_marks_are_off_on_a_software_adapter() {
+    let Some(ctx) = adapter() else { return };
+    let ctx: &'static renderlab_gpu::GpuContext = Box::leak(Box::new(ctx));
+    let timer = renderlab_viewer::egui_timer::EguiPassTimer::new(ctx);
+    if ctx.report.software {
+        assert!(timer.is_none(), "software adapter {}: the marks would read near zero", ctx.report.name);
+    } else {
+        let inside = ctx.device.features().contains(wgpu::Features::TIMESTAMP_QUERY_INSIDE_PASSES);
+        assert_eq!(timer.is_some(), inside, "hardware adapter {}", ctx.report.name);
+    }
+}
