@@ -8,6 +8,7 @@
 
 use crate::controller::Player;
 use crate::launch::{light_angles, light_direction, BOOKMARKS};
+use crate::look_and_feel::Backdrops;
 use crate::room_view::RoomView;
 use crate::split::{self, SplitMode};
 use crate::stats::FrameStats;
@@ -112,6 +113,8 @@ pub struct HudState<'a> {
     pub player: &'a Player,
     /// The controls.
     pub controls: &'a mut Controls,
+    /// Where the panels' backgrounds go when the picture's copy paints them.
+    pub backdrops: &'a Backdrops,
 }
 
 /// What the user changed this frame.
@@ -146,7 +149,7 @@ pub fn show(ctx: &egui::Context, s: HudState<'_>) -> Changes {
         fps_panel(ctx, &s);
     }
     if s.show_keys {
-        key_help(ctx);
+        key_help(ctx, s.backdrops);
     }
     egui::Window::new("Controls")
         .frame(egui::Frame::window(&ctx.global_style()).shadow(egui::Shadow::NONE))
@@ -158,11 +161,11 @@ pub fn show(ctx: &egui::Context, s: HudState<'_>) -> Changes {
 }
 
 /// The key help panel (F1).
-fn key_help(ctx: &egui::Context) {
+fn key_help(ctx: &egui::Context, backdrops: &Backdrops) {
     egui::Area::new(egui::Id::unique("keys")).anchor(egui::Align2::LEFT_BOTTOM, [8.0, -8.0]).show(
         ctx,
         |ui| {
-            crate::look_and_feel::panel_frame(ui.style()).show(ui, |ui| {
+            backdrops.panel(ui, |ui| {
                 egui::Grid::new("key grid").num_columns(2).show(ui, |ui| {
                     for (k, what) in KEY_HELP {
                         ui.strong(*k);
@@ -177,7 +180,7 @@ fn key_help(ctx: &egui::Context) {
 
 fn info_panel(ctx: &egui::Context, s: &HudState<'_>, changes: &mut Changes) {
     egui::Area::new(egui::Id::unique("info")).anchor(egui::Align2::LEFT_TOP, [8.0, 8.0]).show(ctx, |ui| {
-        crate::look_and_feel::panel_frame(ui.style()).show(ui, |ui| {
+        s.backdrops.panel(ui, |ui| {
             ui.set_max_width(420.0);
             let d = s.technique.descriptor();
             ui.strong(format!("Technique: {}", s.technique.name()));
@@ -218,7 +221,7 @@ fn info_panel(ctx: &egui::Context, s: &HudState<'_>, changes: &mut Changes) {
 
 fn fps_panel(ctx: &egui::Context, s: &HudState<'_>) {
     egui::Area::new(egui::Id::unique("fps")).anchor(egui::Align2::RIGHT_TOP, [-8.0, 8.0]).show(ctx, |ui| {
-        crate::look_and_feel::panel_frame(ui.style()).show(ui, |ui| {
+        s.backdrops.panel(ui, |ui| {
             let st = s.stats;
             ui.monospace(format!("FPS {:7.1}", st.current()));
             ui.monospace(format!("min {:7.1}  avg {:7.1}  max {:7.1}", st.min(), st.avg(), st.max()));

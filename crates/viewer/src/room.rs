@@ -195,6 +195,12 @@ impl RoomScreen {
         &self.stats
     }
 
+    /// The HUD panels whose backgrounds the picture's copy painted in the last frame (none
+    /// where egui painted them: the heat map, or the interface hidden).
+    pub fn backdrops(&self) -> Vec<crate::look_and_feel::Backdrop> {
+        self.view.backdrops().panels()
+    }
+
     /// The camera of the last frame (the window's size in pixels).
     pub fn camera(&self) -> renderlab_core::Camera {
         self.player.camera(self.frame_size.0.max(1), self.frame_size.1.max(1))
@@ -368,6 +374,7 @@ impl RoomScreen {
         }
         let mut gpu_ms = None;
         self.pending = None;
+        self.view.backdrops().begin(false);
         egui::CentralPanel::no_frame().show(ui, |ui| {
             let rect = ui.max_rect();
             self.view_rect = rect;
@@ -433,6 +440,7 @@ impl RoomScreen {
                 self.right,
                 self.split_times,
                 timestamps,
+                self.view.backdrops(),
             );
         }
         if self.message.is_some() || self.pending.is_some() {
@@ -544,6 +552,7 @@ impl RoomScreen {
             frame_size: self.frame_size,
             player: &self.player,
             controls: &mut self.controls,
+            backdrops: self.view.backdrops(),
         }
     }
 

@@ -8,6 +8,7 @@
 use crate::blit::PictureBlit;
 use crate::compose::{ErrorCompose, CODE_FORMAT};
 use crate::error::ViewerError;
+use crate::look_and_feel::Backdrops;
 use crate::techniques::MAX_LAYERS;
 use glam::Vec3;
 use renderlab_core::{Camera, Image, Material, Scene};
@@ -74,6 +75,8 @@ pub struct RoomView {
     compose: Option<ErrorCompose>,
     /// The copy of the picture into egui's pass, for the window's format.
     blit: Option<PictureBlit>,
+    /// The HUD panels whose backgrounds the copy paints this frame.
+    backdrops: Backdrops,
     /// Whether cone maps are built on another thread (the window) or at once (scripts, tests).
     background: bool,
     /// The cone-map build in flight.
@@ -114,6 +117,7 @@ impl RoomView {
             scratch: None,
             compose: None,
             blit: None,
+            backdrops: Backdrops::default(),
             background: false,
             cone_build: None,
             generation: 0,
@@ -230,7 +234,15 @@ impl RoomView {
             .blit_group
             .get_or_insert_with(|| blit.bind_group(&self.ctx.device, &target.view, &target.codes))
             .clone();
-        Some(blit.callback(rect, group))
+        self.backdrops.begin(true);
+        Some(blit.callback(rect, group, self.backdrops.clone()))
+    }
+
+    /// The HUD panels whose backgrounds the picture's copy paints (see
+    /// [`crate::look_and_feel`]); the room starts each frame with `begin(false)`, and making
+    /// the copy's callback turns it on.
+    pub fn backdrops(&self) -> &Backdrops {
+        &self.backdrops
     }
 
     /// The display texture at the camera's size (made, or remade and registered with egui

@@ -26,6 +26,7 @@
 //! defaults, within a thousandth of a texel on average. It needs the cone map, computed on
 //! its first use (a moment when the mode is first shown).
 
+use crate::look_and_feel::Backdrops;
 use renderlab_relief::techniques::DESCRIPTORS;
 use renderlab_relief::Technique;
 
@@ -174,6 +175,7 @@ pub fn labels(
     right: Technique,
     times: SplitTimes,
     timestamps: bool,
+    backdrops: &Backdrops,
 ) {
     let line_x = view.left() + view.width() * fraction;
     ctx.layer_painter(egui::LayerId::new(egui::Order::Middle, egui::Id::unique("split line"))).line_segment(
@@ -209,7 +211,7 @@ pub fn labels(
             .pivot(align)
             .interactable(false)
             .show(ctx, |ui| {
-                crate::look_and_feel::panel_frame(ui.style()).show(ui, |ui| {
+                backdrops.panel(ui, |ui| {
                     ui.strong(title);
                     ui.monospace(time);
                 });

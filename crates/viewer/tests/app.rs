@@ -194,3 +194,49 @@ fn egui_pass_marks_are_off_on_a_software_adapter() {
         assert_eq!(timer.is_some(), inside, "hardware adapter {}", ctx.report.name);
     }
 }
+
+/// The HUD panels' backgrounds, painted by the picture's copy, look as egui paints them: the
+/// border (egui's window stroke) at the panel's edge, the fill inside, the picture untouched
+/// outside. The same checks pass on the heat map, where egui paints the panels itself.
+#[test]
+fn the_copy_paints_the_hud_panels_as_egui_does() {
+    if adapter().is_none() {
+        return;
+    }
+    let mut h = common::harness_sized(Default::default(), Default::default(), [900.0, 700.0]);
+    h.run_steps(2);
+    h.get_by_label("Start").click();
+    h.run_steps(3);
+    let panels = h.state().room().expect("the room").backdrops();
+    assert_eq!(panels.len(), 2, "the info and FPS panels: {panels:?}");
+    let frame = renderlab_viewer::look_and_feel::panel_frame(&egui::Style::default());
+    let (fill, stroke) = (frame.fill.to_array(), frame.stroke.color.to_array());
+    let bare = whole_picture(&mut h);
+    for heat_map in [false, true] {
+        if heat_map {
+            h.key_press(Key::B);
+            h.run_steps(2);
+            assert!(
+                h.state().room().unwrap().backdrops().is_empty(),
+                "egui paints the panels on the heat map"
+            );
+        }
+        let shown = image::DynamicImage::ImageRgba8(h.render().expect("render")).to_rgb8();
+        let bare = if heat_map { whole_picture(&mut h) } else { bare.clone() };
+        let near = |x: f32, y: f32, want: [u8; 3], what: &str| {
+            let p = shown.get_pixel(x as u32, y as u32).0;
+            let worst = (0..3).map(|k| p[k].abs_diff(want[k])).max().unwrap();
+            assert!(worst <= 2, "heat map {heat_map}: {what} at ({x}, {y}) is {p:?}, not {want:?}");
+        };
+        for p in &panels {
+            let (r, y) = (p.rect, p.rect.center().y);
+            near(r.min.x + 0.5, y, [stroke[0], stroke[1], stroke[2]], "the left border");
+            near(r.max.x - 0.5, y, [stroke[0], stroke[1], stroke[2]], "the right border");
+            near(r.min.x + 3.5, y, [fill[0], fill[1], fill[2]], "the fill");
+            if r.min.x >= 2.0 {
+                let outside = bare.get_pixel(r.min.x as u32 - 2, y as u32).0;
+                near(r.min.x - 1.5, y, outside, "the picture beside the panel");
+            }
+        }
+    }
+}
