@@ -325,3 +325,117 @@ fn interleaved_vertices_and_byte_indices_load() {
         assert!((*p - ep).length() < 1e-6 && (*t - et).length() < 1e-4, "{p} {t} vs {ep} {et}");
     }
 }
+
+/// A unit quad of four shared vertices (two indexed triangles) with a COLOR_0 accessor.
+fn coloured_quad(colours: Option<usize>, d: &mut Doc) -> usize {
+    let pos = d.vec3(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]);
+    let idx = d.indices(&[0, 1, 2, 0, 2, 3]);
+    let mut attributes = json!({"POSITION": pos});
+    if let Some(c) = colours {
+        attributes["COLOR_0"] = json!(c);
+    }
+    let mesh = d.mesh(attributes, Some(idx), Some(0));
+    let node = d.node(json!({"mesh": mesh}));
+    d.roots.push(node);
+    mesh
+}
+
+/// Checks that the instance's base-colour texture, read at its vertices' UVs and at each
+/// triangle's centroid, gives the vertex colours and their mean.
+fn assert_colours_drawn(s: &renderlab_scene::HybridScene, expected: &[[f32; 3]; 4]) {
+    let inst = &s.instances[0];
+    let m = &s.materials[inst.material as usize];
+    let tex = &s.textures[m.base_color_texture.expect("a baked vertex-colour texture") as usize];
+    let mesh = &s.meshes[inst.mesh as usize];
+    assert_eq!(mesh.triangles.len(), 2);
+    let colour_at = |p: Vec3| {
+        // The quad's corners are its positions; find which one `p` is.
+        let k = [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y]
+            .iter()
+            .position(|c| (*c - p).length() < 1e-6)
+            .unwrap();
+        Vec3::from(expected[k])
+    };
+    for t in &mesh.triangles {
+        let vs = t.map(|i| mesh.vertices[i as usize]);
+        for v in &vs {
+            let got = tex.sample(v.uv).truncate();
+            assert!((got - colour_at(v.position)).length() < 1e-5, "{got} at {}", v.position);
+        }
+        let centroid = (vs[0].uv + vs[1].uv + vs[2].uv) / 3.0;
+        let mean = vs.iter().map(|v| colour_at(v.position)).sum::<Vec3>() / 3.0;
+        let got = tex.sample(centroid).truncate();
+        assert!((got - mean).length() < 1e-5, "centroid {got}, expected {mean}");
+    }
+}
+
+#[test]
+fn vertex_colours_are_drawn_through_a_baked_texture() {
+    // Float RGBA colours, four shared vertices, a base colour factor that multiplies them.
+    let colours = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 1.0, 0.0]];
+    let mut d = Doc::default();
+    let rgba: Vec<u8> =
+        colours.iter().flat_map(|c| [c[0], c[1], c[2], 1.0]).flat_map(|x: f32| x.to_le_bytes()).collect();
+    let c = d.accessor(&rgba, FLOAT, "VEC4", 4);
+    d.materials.push(json!({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 1.0, 1.0, 1.0]}}));
+    coloured_quad(Some(c), &mut d);
+    let loaded = from_slice(&d.gltf_embedded(), "c", None, &limits()).unwrap();
+    let s = &loaded.scene;
+    assert_colours_drawn(s, &colours);
+    let m = &s.materials[s.instances[0].material as usize];
+    assert_eq!(m.base_color, Vec3::new(0.5, 1.0, 1.0), "the factor still multiplies the colours");
+
+    // Normalised unsigned-byte RGB colours in a GLB.
+    let bytes = [[255u8, 0, 0], [0, 255, 0], [0, 0, 255], [255, 255, 0]];
+    let mut d = Doc::default();
+    let c = d.accessor(&bytes.concat(), U8, "VEC3", 4);
+    d.accessors[c]["normalized"] = json!(true);
+    d.materials.push(json!({}));
+    coloured_quad(Some(c), &mut d);
+    let loaded = from_slice(&d.glb(), "c", None, &limits()).unwrap();
+    assert_colours_drawn(&loaded.scene, &colours);
+
+    // A material with its own base-colour texture keeps it; the colours are reported ignored.
+    let mut d = Doc::default();
+    let c = d.accessor(&rgba, FLOAT, "VEC4", 4);
+    let png_view = d.view(&png([[255, 255, 255, 255]; 4]));
+    d.images.push(json!({"bufferView": png_view, "mimeType": "image/png"}));
+    d.textures.push(json!({"source": 0}));
+    d.materials.push(json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}));
+    coloured_quad(Some(c), &mut d);
+    let loaded = from_slice(&d.gltf_embedded(), "c", None, &limits()).unwrap();
+    assert_eq!(loaded.scene.textures.len(), 1);
+    assert!(loaded.warnings.iter().any(|w| w.contains("vertex colours ignored")), "{:?}", loaded.warnings);
+}
+
+#[test]
+fn a_malformed_animation_is_dropped_with_a_warning() {
+    // Older exporters wrote a channel's target node as "id": the parser refuses it.
+    let animation = json!([{
+        "samplers": [{"input": 0, "output": 0, "interpolation": "LINEAR"}],
+        "channels": [{"sampler": 0, "target": {"id": 0, "path": "rotation"}}]
+    }]);
+    for glb in [false, true] {
+        let mut d = triangle();
+        d.extra.push(("animations", animation.clone()));
+        let bytes = if glb { d.glb() } else { d.gltf_embedded() };
+        let loaded = from_slice(&bytes, "a", None, &limits()).unwrap();
+        assert_eq!(loaded.scene.triangle_count(), 1);
+        assert!(loaded.warnings.iter().any(|w| w.contains("animations ignored")), "{:?}", loaded.warnings);
+    }
+    // An animation that parses but points at a node that does not exist: the scene loads
+    // (whether or not the parser's validation notices, animations are never read).
+    let mut d = triangle();
+    d.extra.push((
+        "animations",
+        json!([{"samplers": [{"input": 0, "output": 0}], "channels": [{"sampler": 0, "target": {"node": 9, "path": "rotation"}}]}]),
+    ));
+    let loaded = from_slice(&d.gltf_embedded(), "a", None, &limits()).unwrap();
+    assert_eq!(loaded.scene.triangle_count(), 1);
+    // A fault elsewhere is still an error, with the animations present or not.
+    let mut d = triangle();
+    d.extra.push(("animations", animation));
+    d.meshes[0]["primitives"][0]["indices"] = json!(7);
+    let err = from_slice(&d.gltf_embedded(), "a", None, &limits()).unwrap_err();
+    assert!(matches!(err, Problem::Gltf(_)), "{err}");
+}

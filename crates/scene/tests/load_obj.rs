@@ -91,3 +91,55 @@ fn bad_obj_input_is_an_error_or_a_repair() {
     assert_eq!(loaded.scene.triangle_count(), 0);
     assert!(loaded.warnings.iter().any(|w| w.contains("degenerate")));
 }
+
+#[test]
+fn vertex_colours_after_positions_are_drawn() {
+    // `v x y z r g b`, as MeshLab and tobj's own test files write them.
+    let obj = "o tri\nv 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 2 3\n";
+    let loaded = from_slice(obj.as_bytes(), "c", None, &LoadLimits::default()).unwrap();
+    let s = &loaded.scene;
+    let inst = &s.instances[0];
+    let m = &s.materials[inst.material as usize];
+    let tex = &s.textures[m.base_color_texture.expect("a baked vertex-colour texture") as usize];
+    let mesh = &s.meshes[inst.mesh as usize];
+    let mut centroid = glam::Vec2::ZERO;
+    for v in &mesh.vertices {
+        let want = if v.position == Vec3::ZERO {
+            Vec3::X
+        } else if v.position == Vec3::X {
+            Vec3::Y
+        } else {
+            Vec3::Z
+        };
+        assert!((tex.sample(v.uv).truncate() - want).length() < 1e-5);
+        centroid += v.uv / 3.0;
+    }
+    assert!((tex.sample(centroid).truncate() - Vec3::splat(1.0 / 3.0)).length() < 1e-5);
+    // Smooth normals are kept: the triangle faces +Z.
+    assert!(mesh.vertices.iter().all(|v| (v.normal - Vec3::Z).length() < 1e-6));
+}
+
+#[test]
+fn texture_names_with_spaces_and_options_and_skipped_lines() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = "mtllib m.mtl\no tri\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n\
+               usemtl a\nf 1/1 2/2 3/3\nl 1 2\np 3\n";
+    std::fs::write(dir.path().join("t.obj"), obj).unwrap();
+    std::fs::write(
+        dir.path().join("m.mtl"),
+        "newmtl a\nKd 1 1 1\nmap_Kd -s 1 1 1 -clamp on my red map.png\n",
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("my red map.png"), png([[255, 0, 0, 255]; 4])).unwrap();
+    let loaded = load(dir.path().join("t.obj")).unwrap();
+    let s = &loaded.scene;
+    let m = &s.materials[s.instances[0].material as usize];
+    let tex = &s.textures[m.base_color_texture.expect("the texture named with spaces") as usize].image;
+    assert_eq!(tex.get(0, 0).truncate(), Vec3::X);
+    assert!(loaded.warnings.iter().any(|w| w.contains("2 line and point elements")), "{:?}", loaded.warnings);
+
+    // Only lines: loads, and says there is nothing to draw.
+    let loaded = from_slice(b"v 0 0 0\nv 1 0 0\nl 1 2\n", "l", None, &LoadLimits::default()).unwrap();
+    assert_eq!(loaded.scene.triangle_count(), 0);
+    assert!(loaded.warnings.iter().any(|w| w.contains("nothing to draw")), "{:?}", loaded.warnings);
+}

@@ -30,6 +30,8 @@ pub struct RawMesh {
     pub uvs: Option<Vec<Vec2>>,
     /// Tangents with handedness, if any.
     pub tangents: Option<Vec<Vec4>>,
+    /// Linear RGBA vertex colours, if any.
+    pub colors: Option<Vec<Vec4>>,
     /// Triangles (not yet checked).
     pub triangles: Vec<[u32; 3]>,
 }
@@ -38,6 +40,8 @@ pub struct RawMesh {
 pub struct Cleaned {
     /// The usable mesh (possibly with no triangles left).
     pub mesh: Mesh,
+    /// The vertex colours of `mesh`'s vertices (one per vertex), when the file gave them.
+    pub colors: Option<Vec<Vec4>>,
     /// Degenerate triangles dropped.
     pub dropped: usize,
     /// Repairs worth telling the user (one line each).
@@ -54,6 +58,7 @@ pub fn clean(raw: RawMesh, rule: NormalRule) -> Result<Cleaned, Problem> {
         ("normals", raw.normals.as_ref().map(Vec::len)),
         ("texture coordinates", raw.uvs.as_ref().map(Vec::len)),
         ("tangents", raw.tangents.as_ref().map(Vec::len)),
+        ("colours", raw.colors.as_ref().map(Vec::len)),
     ] {
         if let Some(len) = len.filter(|&l| l != n) {
             return Err(Problem::Invalid(format!("mesh {name:?}: {len} {what} for {n} positions")));
@@ -97,6 +102,12 @@ pub fn clean(raw: RawMesh, rule: NormalRule) -> Result<Cleaned, Problem> {
         }
         ok
     });
+    let colors = raw.colors.map(|cs| {
+        if cs.iter().any(|c| !c.is_finite()) {
+            notes.push(format!("mesh {name:?}: non-finite vertex colours set to white"));
+        }
+        cs.into_iter().map(|c| if c.is_finite() { c.max(Vec4::ZERO) } else { Vec4::ONE }).collect::<Vec<_>>()
+    });
     let tangents = raw.tangents.filter(|ts| {
         let ok = ts.iter().all(|t| t.is_finite() && t.truncate().length_squared() > 1e-20);
         if !ok {
@@ -105,7 +116,8 @@ pub fn clean(raw: RawMesh, rule: NormalRule) -> Result<Cleaned, Problem> {
         ok
     });
 
-    let mut mesh = match (normals, rule) {
+    // `origin[i]`: the file's vertex that vertex `i` of the mesh built below comes from.
+    let (mut mesh, origin): (Mesh, Vec<u32>) = match (normals, rule) {
         (Some(ns), _) => {
             let vertices = (0..n)
                 .map(|i| Vertex {
@@ -125,13 +137,20 @@ pub fn clean(raw: RawMesh, rule: NormalRule) -> Result<Cleaned, Problem> {
                 }
                 None => mesh.compute_tangents(),
             }
-            return Ok(Cleaned { mesh: compact(mesh), dropped, notes });
+            let (mesh, kept) = compact(mesh);
+            let colors = colors.map(|cs| kept.iter().map(|&i| cs[i as usize]).collect());
+            return Ok(Cleaned { mesh, colors, dropped, notes });
         }
-        (None, NormalRule::Flat) => flat(&raw.positions, &uvs, &triangles),
-        (None, NormalRule::Smooth) => smooth(&raw.positions, &uvs, triangles),
+        (None, NormalRule::Flat) => {
+            let origin = triangles.iter().flatten().copied().collect();
+            (flat(&raw.positions, &uvs, &triangles), origin)
+        }
+        (None, NormalRule::Smooth) => (smooth(&raw.positions, &uvs, triangles), (0..n as u32).collect()),
     };
     mesh.compute_tangents();
-    Ok(Cleaned { mesh: compact(mesh), dropped, notes })
+    let (mesh, kept) = compact(mesh);
+    let colors = colors.map(|cs| kept.iter().map(|&i| cs[origin[i as usize] as usize]).collect());
+    Ok(Cleaned { mesh, colors, dropped, notes })
 }
 
 /// One vertex per triangle corner, each with its face's normal.
@@ -176,10 +195,12 @@ fn smooth(positions: &[Vec3], uvs: &[Vec2], triangles: Vec<[u32; 3]>) -> Mesh {
     Mesh { vertices, triangles }
 }
 
-/// Drops vertices no triangle uses (files often share one vertex pool among primitives).
-fn compact(mesh: Mesh) -> Mesh {
+/// Drops vertices no triangle uses (files often share one vertex pool among primitives);
+/// also returns, for each kept vertex, its index in `mesh`.
+fn compact(mesh: Mesh) -> (Mesh, Vec<u32>) {
     let mut map = vec![u32::MAX; mesh.vertices.len()];
     let mut vertices = Vec::new();
+    let mut kept = Vec::new();
     let mut triangles = Vec::with_capacity(mesh.triangles.len());
     for t in &mesh.triangles {
         triangles.push(t.map(|i| {
@@ -187,11 +208,50 @@ fn compact(mesh: Mesh) -> Mesh {
             if *slot == u32::MAX {
                 *slot = vertices.len() as u32;
                 vertices.push(mesh.vertices[i as usize]);
+                kept.push(i);
             }
             *slot
         }));
     }
-    Mesh { vertices, triangles }
+    (Mesh { vertices, triangles }, kept)
+}
+
+/// Gives each triangle of `mesh` its own three vertices and its own 2×2 texel cell of the
+/// returned texture, so that the material's bilinear texture lookup reproduces `colors`
+/// (one per vertex) interpolated across each triangle exactly as a vertex-colour
+/// rasteriser would. The cell's corner texels `a`, `b`, `c` hold the triangle's corner
+/// colours and its fourth texel `b + c − a`, so that the bilinear patch over the cell is the
+/// affine (barycentric) interpolant; the UVs sit on the three texel centres, so a lookup
+/// inside the triangle never reads a neighbouring cell. The mesh's UVs are replaced (any
+/// other texture of its material would be read at the wrong place: the caller checks).
+pub fn bake_vertex_colors(mesh: &mut Mesh, colors: &[Vec4]) -> Result<renderlab_core::Image<Vec4>, String> {
+    let n = mesh.triangles.len().max(1);
+    let cols = (n as f64).sqrt().ceil() as usize;
+    let rows = n.div_ceil(cols);
+    let (w, h) = (2 * cols, 2 * rows);
+    let mut texels = vec![Vec4::ONE; w * h];
+    let mut vertices = Vec::with_capacity(mesh.triangles.len() * 3);
+    let mut triangles = Vec::with_capacity(mesh.triangles.len());
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        let (x, y) = (2 * (t % cols), 2 * (t / cols));
+        let [a, b, c] = tri.map(|i| colors[i as usize]);
+        texels[y * w + x] = a;
+        texels[y * w + x + 1] = b;
+        texels[(y + 1) * w + x] = c;
+        texels[(y + 1) * w + x + 1] = b + c - a;
+        let base = vertices.len() as u32;
+        for (k, &i) in tri.iter().enumerate() {
+            let (dx, dy) = [(0, 0), (1, 0), (0, 1)][k];
+            let mut v = mesh.vertices[i as usize];
+            v.uv = Vec2::new((x + dx) as f32 + 0.5, (y + dy) as f32 + 0.5) / Vec2::new(w as f32, h as f32);
+            vertices.push(v);
+        }
+        triangles.push([base, base + 1, base + 2]);
+    }
+    mesh.vertices = vertices;
+    mesh.triangles = triangles;
+    mesh.compute_tangents();
+    renderlab_core::Image::from_vec(w as u32, h as u32, texels).map_err(|e| e.to_string())
 }
 
 #[cfg(test)]

@@ -4,10 +4,13 @@
 //! node becomes one [`Instance`] with the node's world transform), triangle primitives
 //! (positions, normals — flat ones computed when missing, as the specification asks —,
 //! the first UV set, tangents — computed when missing —, indexed or not, sparse accessors
-//! included), metal–roughness materials with their base-colour (decoded from sRGB),
-//! metal–roughness and normal textures, emissive colour, `KHR_materials_transmission` and
-//! `KHR_materials_ior`, `KHR_lights_punctual` lights (pointing down their node's −Z) and
-//! perspective cameras (aspect from the file, else 16:9, at 1920 pixels wide).
+//! included; COLOR_0 vertex colours, drawn through a texture baked for the primitive when
+//! its material has no texture of its own), metal–roughness materials with their
+//! base-colour (decoded from sRGB), metal–roughness and normal textures, emissive colour,
+//! `KHR_materials_transmission` and `KHR_materials_ior`, `KHR_lights_punctual` lights
+//! (pointing down their node's −Z) and perspective cameras (aspect from the file, else 16:9, at 1920 pixels wide). Animations,
+//! skins and morph targets are not read (the scene is drawn at rest); an `animations` array
+//! that does not parse is dropped with a warning.
 //!
 //! Units: light intensities are carried over as numbers (candela → the lab's radiant
 //! intensity, lux → irradiance), so a file's relative lighting is kept; the lab's
@@ -44,7 +47,7 @@ pub fn from_slice(
     base: Option<&Path>,
     limits: &LoadLimits,
 ) -> Result<LoadedScene, Problem> {
-    let Gltf { document, blob } = parse(bytes)?;
+    let (Gltf { document, blob }, parse_note) = parse(bytes)?;
     let buffers = load_buffers(&document, blob, base, limits)?;
     let mut loader = Loader {
         document: &document,
@@ -61,7 +64,7 @@ pub fn from_slice(
             cameras: Vec::new(),
             sky: Vec3::ZERO,
         },
-        warnings: Vec::new(),
+        warnings: parse_note.into_iter().collect(),
         textures: HashMap::new(),
         materials: HashMap::new(),
         primitives: HashMap::new(),
@@ -99,33 +102,60 @@ pub fn from_slice(
     Ok(LoadedScene { scene, warnings })
 }
 
-/// Parses and validates the document. The `gltf` crate's validation indexes the
-/// accessor list with a primitive's POSITION index before checking it, so that index is
-/// checked here first; any other panic inside the parser (none known) is caught and
-/// reported as a malformed file rather than taking the program down.
-fn parse(bytes: &[u8]) -> Result<Gltf, Problem> {
+/// Parses and validates the document; the second value is a warning when the document's
+/// `animations` had to be dropped to read it.
+///
+/// Animations are not read (the scene is drawn at rest), so an `animations` array that the
+/// parser refuses (older exporters wrote `"id"` for a channel's `"node"`) or that fails
+/// validation is dropped, with a warning, rather than refusing the whole file.
+///
+/// The `gltf` crate's validation indexes the accessor list with a primitive's POSITION
+/// index before checking it, so that index is checked here first; any other panic inside
+/// the parser (none known) is caught and reported as a malformed file rather than taking
+/// the program down.
+fn parse(bytes: &[u8]) -> Result<(Gltf, Option<String>), Problem> {
     let parsed = std::panic::catch_unwind(|| {
-        let Gltf { document, blob } =
-            Gltf::from_slice_without_validation(bytes).map_err(|e| Problem::Gltf(e.to_string()))?;
-        let root = document.into_json();
-        for (m, mesh) in root.meshes.iter().enumerate() {
-            for prim in &mesh.primitives {
-                let accessors = prim
-                    .attributes
-                    .values()
-                    .map(|a| a.value())
-                    .chain(prim.indices.as_ref().map(|i| i.value()));
-                if let Some(bad) = accessors.into_iter().find(|&a| a >= root.accessors.len()) {
-                    return Err(Problem::Gltf(format!(
-                        "mesh {m} refers to accessor {bad}, which does not exist"
-                    )));
+        let (json, blob) = if bytes.starts_with(b"glTF") {
+            let glb = ::gltf::binary::Glb::from_slice(bytes).map_err(|e| Problem::Gltf(e.to_string()))?;
+            (glb.json.into_owned(), glb.bin.map(|b| b.into_owned()))
+        } else {
+            (bytes.to_vec(), None)
+        };
+        let mut value: ::gltf::json::Value =
+            ::gltf::json::deserialize::from_slice(&json).map_err(|e| Problem::Gltf(e.to_string()))?;
+        let document = match document_of(value.clone()) {
+            Ok(document) => (document, None),
+            Err(first) => {
+                let dropped = value.as_object_mut().and_then(|root| root.remove("animations")).is_some();
+                match document_of(value) {
+                    Ok(document) if dropped => {
+                        (document, Some(format!("animations ignored: they do not parse ({first})")))
+                    }
+                    _ => return Err(first),
                 }
             }
-        }
-        let document = Document::from_json(root).map_err(|e| Problem::Gltf(e.to_string()))?;
-        Ok(Gltf { document, blob })
+        };
+        Ok((Gltf { document: document.0, blob }, document.1))
     });
     parsed.unwrap_or_else(|_| Err(Problem::Gltf("the parser failed on malformed input".into())))
+}
+
+/// The validated document of a parsed JSON tree.
+fn document_of(value: ::gltf::json::Value) -> Result<Document, Problem> {
+    let root: ::gltf::json::Root =
+        ::gltf::json::deserialize::from_value(value).map_err(|e| Problem::Gltf(e.to_string()))?;
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for prim in &mesh.primitives {
+            let accessors =
+                prim.attributes.values().map(|a| a.value()).chain(prim.indices.as_ref().map(|i| i.value()));
+            if let Some(bad) = accessors.into_iter().find(|&a| a >= root.accessors.len()) {
+                return Err(Problem::Gltf(format!(
+                    "mesh {m} refers to accessor {bad}, which does not exist"
+                )));
+            }
+        }
+    }
+    Document::from_json(root).map_err(|e| Problem::Gltf(e.to_string()))
 }
 
 /// Every buffer's bytes: the GLB binary chunk, a data URI or an external file.
@@ -379,6 +409,22 @@ impl Loader<'_> {
             }
             None => None,
         };
+        let colors = match prim.get(&Semantic::Colors(0)) {
+            Some(a) => {
+                let dims =
+                    if a.dimensions() == Dimensions::Vec3 { Dimensions::Vec3 } else { Dimensions::Vec4 };
+                check(&a, &[DataType::F32, DataType::U8, DataType::U16], dims, buffers, &label)?;
+                Some(
+                    reader
+                        .read_colors(0)
+                        .ok_or_else(|| unreadable("colour"))?
+                        .into_rgba_f32()
+                        .map(Vec4::from)
+                        .collect(),
+                )
+            }
+            None => None,
+        };
         let triangles = match prim.indices() {
             Some(a) => {
                 check(
@@ -397,8 +443,8 @@ impl Loader<'_> {
                 assemble(mode, &idx)
             }
         };
-        let raw = RawMesh { name: label.clone(), positions, normals, uvs, tangents, triangles };
-        let cleaned = clean(raw, NormalRule::Flat)?;
+        let raw = RawMesh { name: label.clone(), positions, normals, uvs, tangents, colors, triangles };
+        let mut cleaned = clean(raw, NormalRule::Flat)?;
         self.dropped += cleaned.dropped;
         self.warnings.extend(cleaned.notes);
         if cleaned.mesh.triangles.is_empty() {
@@ -409,7 +455,15 @@ impl Loader<'_> {
         if self.triangles > self.limits.max_triangles {
             return Err(Problem::Invalid(format!("more than {} triangles", self.limits.max_triangles)));
         }
-        let material = self.material(prim.material())?;
+        let mut material = self.material(prim.material())?;
+        if let Some(colors) = cleaned.colors.take() {
+            material =
+                vertex_colors(&mut self.scene, &mut cleaned.mesh, &colors, material, self.limits, &label)
+                    .unwrap_or_else(|why| {
+                        self.warnings.push(why);
+                        material
+                    });
+        }
         self.scene.meshes.push(cleaned.mesh);
         Ok(Some(((self.scene.meshes.len() - 1) as u32, material)))
     }
@@ -512,6 +566,42 @@ impl Loader<'_> {
         self.textures.insert(key, index);
         Ok(index)
     }
+}
+
+/// Draws a primitive's vertex colours (COLOR_0, or OBJ's `v x y z r g b`): bakes them into a
+/// texture of the mesh's own (see [`super::geometry::bake_vertex_colors`]) and returns a copy
+/// of `material` that uses it as its base-colour texture, the material's base colour
+/// multiplying it as glTF asks. `Err` holds the warning when they cannot be drawn: the
+/// material already has a texture read through the UVs, or the texture would be too large.
+pub(crate) fn vertex_colors(
+    scene: &mut HybridScene,
+    mesh: &mut renderlab_core::Mesh,
+    colors: &[Vec4],
+    material: u32,
+    limits: &LoadLimits,
+    label: &str,
+) -> Result<u32, String> {
+    let m = &scene.materials[material as usize];
+    if m.base_color_texture.is_some() || m.normal_texture.is_some() || m.metallic_roughness_texture.is_some()
+    {
+        return Err(format!(
+            "{label}: vertex colours ignored (its material has textures read through the UVs)"
+        ));
+    }
+    if colors.iter().all(|c| c.truncate() == Vec3::ONE) {
+        return Ok(material);
+    }
+    if (mesh.triangles.len() as u64).saturating_mul(4) > limits.max_texture_texels {
+        return Err(format!("{label}: vertex colours ignored (too many triangles to bake into a texture)"));
+    }
+    let image = super::geometry::bake_vertex_colors(mesh, colors)
+        .map_err(|e| format!("{label}: vertex colours ignored ({e})"))?;
+    let mut m = m.clone();
+    m.name = format!("{} × vertex colours of {label}", m.name);
+    scene.textures.push(Texture::new(image));
+    m.base_color_texture = Some((scene.textures.len() - 1) as u32);
+    scene.materials.push(m);
+    Ok((scene.materials.len() - 1) as u32)
 }
 
 /// Decodes a PNG or JPEG into linear RGBA, from sRGB when `srgb`.

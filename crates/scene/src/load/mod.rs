@@ -154,6 +154,9 @@ pub(crate) fn resolve(base: Option<&Path>, name: &str) -> Result<PathBuf, Proble
 /// The finishing steps shared by the loaders: a default light and camera when the file has
 /// none (each with a warning), then validation.
 pub(crate) fn finish(mut scene: HybridScene, warnings: &mut Vec<String>) -> Result<HybridScene, Problem> {
+    if scene.instances.is_empty() {
+        warnings.push("the file has no triangles: nothing to draw".into());
+    }
     if scene.lights.is_empty() {
         warnings.push("the file has no lights: added a default sun (directional, from above) and sky".into());
         scene.lights.push(Light {

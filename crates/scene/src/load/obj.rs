@@ -3,7 +3,9 @@
 //! Faces of any size are fan-triangulated, negative (relative) indices resolve as the
 //! format defines them, missing normals are computed smooth (area-weighted over shared
 //! vertices, what OBJ exporters assume), missing UVs are zero, tangents always come from
-//! the UVs. V is flipped (OBJ counts it upward, the lab's textures downward).
+//! the UVs. V is flipped (OBJ counts it upward, the lab's textures downward). Vertex
+//! colours (`v x y z r g b`) multiply the material's `Kd`, through a texture baked for the
+//! mesh, when the material has no texture of its own.
 //!
 //! MTL → [`PbrMaterial`]:
 //! - `Kd` → base colour; `map_Kd` → base-colour texture (decoded from sRGB); `norm` /
@@ -21,11 +23,11 @@
 //! warning; a missing texture is an error.
 
 use super::geometry::{clean, NormalRule, RawMesh};
-use super::gltf::decode_image;
+use super::gltf::{decode_image, vertex_colors};
 use super::{finish, read_limited, resolve, LoadLimits, LoadedScene, Problem};
 use crate::material::{PbrMaterial, Texture};
 use crate::scene::{HybridScene, Instance};
-use glam::{Affine3A, Vec2, Vec3};
+use glam::{Affine3A, Vec2, Vec3, Vec4};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -61,6 +63,13 @@ pub fn from_slice(
     })
     .map_err(|e| Problem::Obj(e.to_string()))?;
     warnings.append(&mut mtl_notes.into_inner());
+    let skipped = bytes
+        .split(|&b| b == b'\n')
+        .filter(|l| matches!(l.trim_ascii_start(), [b'l' | b'p', b' ' | b'\t', ..]))
+        .count();
+    if skipped > 0 {
+        warnings.push(format!("{skipped} line and point elements (l, p) are not drawn"));
+    }
     let materials = materials.unwrap_or_default();
 
     let mut scene = HybridScene {
@@ -84,10 +93,19 @@ pub fn from_slice(
             .then(|| m.normals.chunks_exact(3).map(|c| Vec3::new(c[0], c[1], c[2])).collect());
         let uvs = (m.texcoords.len() == 2 * n && n > 0)
             .then(|| m.texcoords.chunks_exact(2).map(|c| Vec2::new(c[0], 1.0 - c[1])).collect());
+        let colors = (m.vertex_color.len() == 3 * n && n > 0)
+            .then(|| m.vertex_color.chunks_exact(3).map(|c| Vec4::new(c[0], c[1], c[2], 1.0)).collect());
         let tris = m.indices.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
-        let raw =
-            RawMesh { name: model.name.clone(), positions, normals, uvs, tangents: None, triangles: tris };
-        let cleaned = clean(raw, NormalRule::Smooth)?;
+        let raw = RawMesh {
+            name: model.name.clone(),
+            positions,
+            normals,
+            uvs,
+            tangents: None,
+            colors,
+            triangles: tris,
+        };
+        let mut cleaned = clean(raw, NormalRule::Smooth)?;
         dropped += cleaned.dropped;
         warnings.extend(cleaned.notes);
         if cleaned.mesh.triangles.is_empty() {
@@ -113,6 +131,16 @@ pub fn from_slice(
                 converted.insert(key, index);
                 index
             }
+        };
+        let material = match cleaned.colors.take() {
+            Some(colors) => {
+                vertex_colors(&mut scene, &mut cleaned.mesh, &colors, material, limits, &model.name)
+                    .unwrap_or_else(|why| {
+                        warnings.push(why);
+                        material
+                    })
+            }
+            None => material,
         };
         scene.meshes.push(cleaned.mesh);
         scene.instances.push(Instance {
@@ -168,8 +196,7 @@ fn convert(
         if let Some(&done) = textures.get(&(file.to_string(), srgb)) {
             return Ok(done);
         }
-        // Options such as `-bm 1.0` may precede the file name: take the last word.
-        let file_name = file.split_whitespace().last().unwrap_or(file);
+        let file_name = texture_file_name(file);
         let bytes = resolve(base, file_name)
             .and_then(|p| read_limited(&p, limits))
             .map_err(|e| Problem::Image(format!("{file_name:?}: {e}")))?;
@@ -189,6 +216,34 @@ fn convert(
     Ok(out)
 }
 
+/// The file name of an MTL texture statement's argument: the options that may precede it
+/// (`-bm 1.0`, `-o 0 0.5`, `-clamp on` …, each with its argument count) are skipped, and the
+/// rest, spaces included, is the name (exporters write names such as `wood floor.png`).
+pub fn texture_file_name(arg: &str) -> &str {
+    let mut rest = arg.trim();
+    while rest.starts_with('-') {
+        let (option, after) = rest.split_once(char::is_whitespace).unwrap_or((rest, ""));
+        // (least, most) arguments; -o, -s and -t take one to three numbers.
+        let (least, most) = match option {
+            "-o" | "-s" | "-t" => (1, 3),
+            "-mm" => (2, 2),
+            "-blendu" | "-blendv" | "-boost" | "-texres" | "-clamp" | "-bm" | "-imfchan" | "-type"
+            | "-cc" => (1, 1),
+            _ => (0, 0),
+        };
+        rest = after.trim_start();
+        for k in 0..most {
+            let (word, after) = rest.split_once(char::is_whitespace).unwrap_or((rest, ""));
+            let numeric = word.parse::<f32>().is_ok();
+            if word.is_empty() || (k >= least && !numeric) || after.trim().is_empty() {
+                break;
+            }
+            rest = after.trim_start();
+        }
+    }
+    rest
+}
+
 /// Perceptual GGX roughness equivalent to a Blinn–Phong exponent: α = √(2 / (n + 2)),
 /// roughness = √α (clamped to [0, 1]; negative exponents count as 0).
 pub fn roughness_from_shininess(ns: f32) -> f32 {
@@ -199,6 +254,16 @@ pub fn roughness_from_shininess(ns: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn texture_names_keep_their_spaces_and_lose_their_options() {
+        assert_eq!(texture_file_name("wood.png"), "wood.png");
+        assert_eq!(texture_file_name("  this texture has spaces.jpg "), "this texture has spaces.jpg");
+        assert_eq!(texture_file_name("-bm 0.5 bump map.png"), "bump map.png");
+        assert_eq!(texture_file_name("-o 0.1 0.2 -s 2 -clamp on my file.png"), "my file.png");
+        assert_eq!(texture_file_name("-mm 0 1 a.png"), "a.png");
+        assert_eq!(texture_file_name("-bm 2.png"), "2.png", "a name is never eaten as an argument");
+    }
 
     #[test]
     fn shininess_maps_to_roughness_monotonically() {

@@ -9,6 +9,8 @@ use serde_json::{json, Value};
 
 /// glTF component types.
 pub const FLOAT: u32 = 5126;
+/// Unsigned 8-bit.
+pub const U8: u32 = 5121;
 /// Unsigned 16-bit.
 pub const U16: u32 = 5123;
 /// Unsigned 32-bit.
@@ -28,6 +30,8 @@ pub struct Doc {
     pub images: Vec<Value>,
     pub textures: Vec<Value>,
     pub roots: Vec<usize>,
+    /// Further top-level properties (`animations` …), written as given.
+    pub extra: Vec<(&'static str, Value)>,
 }
 
 impl Doc {
@@ -115,6 +119,9 @@ impl Doc {
             if !list.is_empty() {
                 doc[key] = json!(list);
             }
+        }
+        for (key, value) in &self.extra {
+            doc[*key] = value.clone();
         }
         if !self.lights.is_empty() {
             doc["extensions"] = json!({"KHR_lights_punctual": {"lights": self.lights}});
