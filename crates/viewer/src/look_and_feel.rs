@@ -76,31 +76,48 @@ impl Backdrops {
     /// the layout is the same either way (the border keeps its width, made transparent).
     pub fn panel<R>(&self, ui: &mut egui::Ui, add: impl FnOnce(&mut egui::Ui) -> R) -> R {
         let frame = panel_frame(ui.style());
-        let claimed = {
-            let f = self.lock();
-            f.active && f.panels.len() < MAX_BACKDROPS
-        };
-        if !claimed {
+        let Some(bare) = self.claim(frame) else {
             return frame.show(ui, add).inner;
-        }
-        let bare = frame
-            .fill(egui::Color32::TRANSPARENT)
-            .stroke(egui::Stroke::new(frame.stroke.width, egui::Color32::TRANSPARENT));
+        };
         let shown = bare.show(ui, add);
-        let ppp = ui.ctx().pixels_per_point();
-        let r = shown.response.rect;
+        self.record(ui.ctx(), shown.response.rect, frame);
+        shown.inner
+    }
+
+    /// `frame` without its fill and border colour (the border keeps its width, so the layout
+    /// is the same) when the copy runs this frame and has room for one more panel; `None`
+    /// otherwise (egui paints the frame). After showing a claimed frame, [`Self::record`] its
+    /// rectangle.
+    pub fn claim(&self, frame: egui::Frame) -> Option<egui::Frame> {
+        let f = self.lock();
+        (f.active && f.panels.len() < MAX_BACKDROPS).then(|| {
+            frame
+                .fill(egui::Color32::TRANSPARENT)
+                .stroke(egui::Stroke::new(frame.stroke.width, egui::Color32::TRANSPARENT))
+        })
+    }
+
+    /// Records the background of `frame` (as egui would paint it) over `rect`, in points; a
+    /// transparent border (egui paints it) is left out.
+    pub fn record(&self, ctx: &egui::Context, rect: egui::Rect, frame: egui::Frame) {
+        let ppp = ctx.pixels_per_point();
         // egui rounds a rectangle's corners to whole pixels before painting it; so does this.
         let rect = egui::Rect::from_min_max(
-            (r.min.to_vec2() * ppp).round().to_pos2(),
-            (r.max.to_vec2() * ppp).round().to_pos2(),
+            (rect.min.to_vec2() * ppp).round().to_pos2(),
+            (rect.max.to_vec2() * ppp).round().to_pos2(),
         );
-        self.lock().panels.push(Backdrop {
-            rect,
-            radius: f32::from(frame.corner_radius.nw) * ppp,
-            fill: frame.fill,
-            stroke: (frame.stroke.width * ppp, frame.stroke.color),
-        });
-        shown.inner
+        let mut f = self.lock();
+        if f.panels.len() < MAX_BACKDROPS {
+            f.panels.push(Backdrop {
+                rect,
+                radius: f32::from(frame.corner_radius.nw) * ppp,
+                fill: frame.fill,
+                stroke: match frame.stroke.color.a() {
+                    0 => (0.0, egui::Color32::TRANSPARENT),
+                    _ => (frame.stroke.width * ppp, frame.stroke.color),
+                },
+            });
+        }
     }
 }
 

@@ -197,7 +197,8 @@ fn egui_pass_marks_are_off_on_a_software_adapter() {
 
 /// The HUD panels' backgrounds, painted by the picture's copy, look as egui paints them: the
 /// border (egui's window stroke) at the panel's edge, the fill inside, the picture untouched
-/// outside. The same checks pass on the heat map, where egui paints the panels itself.
+/// outside. The same checks pass on the heat map, where egui paints the panels itself (there
+/// on the edges that stay put from frame to frame: the FPS panel's width follows its text).
 #[test]
 fn the_copy_paints_the_hud_panels_as_egui_does() {
     if adapter().is_none() {
@@ -207,36 +208,41 @@ fn the_copy_paints_the_hud_panels_as_egui_does() {
     h.run_steps(2);
     h.get_by_label("Start").click();
     h.run_steps(3);
-    let panels = h.state().room().expect("the room").backdrops();
-    assert_eq!(panels.len(), 2, "the info and FPS panels: {panels:?}");
     let frame = renderlab_viewer::look_and_feel::panel_frame(&egui::Style::default());
-    let (fill, stroke) = (frame.fill.to_array(), frame.stroke.color.to_array());
+    let rgb = |c: egui::Color32| [c.r(), c.g(), c.b()];
+    let (fill, stroke) = (rgb(frame.fill), rgb(frame.stroke.color));
     let bare = whole_picture(&mut h);
-    for heat_map in [false, true] {
-        if heat_map {
-            h.key_press(Key::B);
-            h.run_steps(2);
-            assert!(
-                h.state().room().unwrap().backdrops().is_empty(),
-                "egui paints the panels on the heat map"
-            );
-        }
-        let shown = image::DynamicImage::ImageRgba8(h.render().expect("render")).to_rgb8();
-        let bare = if heat_map { whole_picture(&mut h) } else { bare.clone() };
-        let near = |x: f32, y: f32, want: [u8; 3], what: &str| {
+    let shown = image::DynamicImage::ImageRgba8(h.render().expect("render")).to_rgb8();
+    // The panels of the frame just rendered.
+    let panels = h.state().room().expect("the room").backdrops();
+    assert_eq!(panels.len(), 3, "the info and FPS panels and the controls: {panels:?}");
+    // The controls' collapsed window shows its title bar (egui's widget fill) where the
+    // other panels show their fill, so only its border and outside are checked.
+    let check = |shown: &image::RgbImage, bare: &image::RgbImage, x: f32, y: f32, inward: f32, what: &str| {
+        let near = |x: f32, want: [u8; 3], part: &str| {
             let p = shown.get_pixel(x as u32, y as u32).0;
             let worst = (0..3).map(|k| p[k].abs_diff(want[k])).max().unwrap();
-            assert!(worst <= 2, "heat map {heat_map}: {what} at ({x}, {y}) is {p:?}, not {want:?}");
+            assert!(worst <= 2, "{what}: {part} at ({x}, {y}) is {p:?}, not {want:?}");
         };
-        for p in &panels {
-            let (r, y) = (p.rect, p.rect.center().y);
-            near(r.min.x + 0.5, y, [stroke[0], stroke[1], stroke[2]], "the left border");
-            near(r.max.x - 0.5, y, [stroke[0], stroke[1], stroke[2]], "the right border");
-            near(r.min.x + 3.5, y, [fill[0], fill[1], fill[2]], "the fill");
-            if r.min.x >= 2.0 {
-                let outside = bare.get_pixel(r.min.x as u32 - 2, y as u32).0;
-                near(r.min.x - 1.5, y, outside, "the picture beside the panel");
-            }
+        near(x + 0.5 * inward, stroke, "the border");
+        if !what.contains("controls") {
+            near(x + 3.5 * inward, fill, "the fill");
         }
+        let outside = x - 1.5 * inward;
+        near(outside, bare.get_pixel(outside as u32, y as u32).0, "the picture beside the panel");
+    };
+    for (i, p) in panels.iter().enumerate() {
+        let (r, y) = (p.rect, p.rect.center().y);
+        let name = ["info", "FPS", "controls"][i];
+        check(&shown, &bare, r.min.x, y, 1.0, &format!("copy, the {name} panel, left"));
+        check(&shown, &bare, r.max.x, y, -1.0, &format!("copy, the {name} panel, right"));
     }
+    h.key_press(Key::B);
+    h.run_steps(2);
+    let shown = image::DynamicImage::ImageRgba8(h.render().expect("render")).to_rgb8();
+    assert!(h.state().room().unwrap().backdrops().is_empty(), "egui paints the panels on the heat map");
+    let bare = whole_picture(&mut h);
+    let (info, controls) = (panels[0].rect, panels[2].rect);
+    check(&shown, &bare, info.min.x, info.center().y, 1.0, "egui, the info panel, left");
+    check(&shown, &bare, controls.max.x, controls.center().y, -1.0, "egui, the controls, right");
 }
