@@ -54,6 +54,7 @@ use renderlab_scene::sampling::{cosine_hemisphere, ggx_g1, ggx_visible_normal, r
 use renderlab_scene::{GBuffer, HybridScene, LightKind, ShadingPoint};
 use serde::Serialize;
 use std::f32::consts::PI;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The default roughness from which path regularisation applies (see the module's notes):
 /// below it a lobe is narrow enough to make fireflies from light sampling after a diffuse
@@ -93,9 +94,29 @@ impl PathTracer {
         spp: u32,
         seed: u64,
     ) -> Reference {
+        self.render_with_progress(scene, accel, camera, spp, seed, &|_| {})
+    }
+
+    /// [`Self::render`], calling `progress` with the fraction of the rows finished (about a
+    /// hundred times over the run, from the worker threads): a converged reference at
+    /// 1920×1080 takes many minutes. The result is the same as [`Self::render`]'s.
+    pub fn render_with_progress(
+        &self,
+        scene: &HybridScene,
+        accel: &Accel,
+        camera: &Camera,
+        spp: u32,
+        seed: u64,
+        progress: &(dyn Fn(f64) + Sync),
+    ) -> Reference {
         let half = spp.div_ceil(2).max(1);
         let g = GBuffer::empty(*camera);
         let n = g.opaque.len();
+        let w = camera.width.max(1) as usize;
+        // Rows of both halves, and how many finish between two reports.
+        let total_rows = 2 * n.div_ceil(w);
+        let every = total_rows.div_ceil(100).max(1);
+        let rows_done = AtomicUsize::new(0);
         let run = |stream: Stream| {
             let mut img = vec![Vec3::ZERO; n];
             let rays = par_pixels(&mut img, camera.width, |i, out| {
@@ -107,6 +128,12 @@ impl PathTracer {
                     sum += self.radiance(scene, accel, camera.position, dir, &mut rng, &mut rays);
                 }
                 *out = sum / half as f32;
+                if i % w == w - 1 {
+                    let done = rows_done.fetch_add(1, Ordering::Relaxed) + 1;
+                    if done.is_multiple_of(every) {
+                        progress(done as f64 / total_rows as f64);
+                    }
+                }
                 rays
             });
             (img, rays)

@@ -292,11 +292,23 @@ impl<'s> HybridRenderer<'s> {
     /// The path-traced reference of `camera` with `spp` paths per pixel (rounded up to an
     /// even number: two independent halves), seeded by `seed`.
     pub fn reference(&self, camera: &Camera, spp: u32, seed: u64) -> Result<Reference> {
+        self.reference_with_progress(camera, spp, seed, &|_| {})
+    }
+
+    /// [`Self::reference`], reporting the fraction of it done to `progress` (see
+    /// [`reference::PathTracer::render_with_progress`]).
+    pub fn reference_with_progress(
+        &self,
+        camera: &Camera,
+        spp: u32,
+        seed: u64,
+        progress: &(dyn Fn(f64) + Sync),
+    ) -> Result<Reference> {
         check_camera(camera)?;
         if spp == 0 || spp > 1 << 20 {
             return Err(HybridError::Config(format!("reference spp must lie in 1..=1048576, got {spp}")));
         }
-        Ok(self.path_tracer.render(self.scene, &self.accel, camera, spp, seed))
+        Ok(self.path_tracer.render_with_progress(self.scene, &self.accel, camera, spp, seed, progress))
     }
 }
 

@@ -134,3 +134,24 @@ fn the_noise_floor_falls_as_one_over_spp() {
         high.noise.variance.iter().map(|&v| v as f64).sum::<f64>() / high.noise.variance.len() as f64;
     assert!((mean_var / high.noise.mse_full - 1.0).abs() < 1e-3);
 }
+
+/// A long reference reports how far it is: the fraction of rows done climbs to exactly 1
+/// in about a hundred reports, and reporting changes nothing in the result.
+#[test]
+fn the_reference_reports_its_progress_and_the_same_result() {
+    let (scene, cam) = cornell(24);
+    let r = HybridRenderer::new(&scene).unwrap();
+    let plain = r.reference(&cam, 4, 5).unwrap();
+    let seen = std::sync::Mutex::new(Vec::new());
+    let reported = r.reference_with_progress(&cam, 4, 5, &|f| seen.lock().unwrap().push(f)).unwrap();
+    assert_eq!(plain.hdr, reported.hdr);
+    assert_eq!(plain.rays, reported.rays);
+    let mut seen = seen.into_inner().unwrap();
+    seen.sort_by(f64::total_cmp);
+    // 2 × 24 rows, reported every row: 48 reports, the last at 1.
+    assert_eq!(seen.len(), 2 * cam.height as usize, "{seen:?}");
+    assert!(seen[0] > 0.0);
+    assert_eq!(*seen.last().unwrap(), 1.0);
+    seen.dedup();
+    assert_eq!(seen.len(), 2 * cam.height as usize, "each report is a new fraction");
+}

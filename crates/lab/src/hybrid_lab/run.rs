@@ -82,8 +82,11 @@ pub fn run_hybrid_bench(cfg: &HybridBenchConfig, out: &Path, progress: Progress)
         }
         let r = &renderer.as_ref().expect("renderer").1;
         let camera = scenes::camera(r.scene(), &view.camera, cfg.width, cfg.height)?;
-        progress(done, total, &format!("{}: reference, {} spp", view.id, manifest.settings.reference_spp));
-        let reference = reference(&dir, view, r, &camera, &manifest.settings)?;
+        let spp = manifest.settings.reference_spp;
+        progress(done, total, &format!("{}: reference, {spp} spp", view.id));
+        let reference = reference(&dir, view, r, &camera, &manifest.settings, &|f| {
+            progress(done, total, &format!("{}: reference, {spp} spp, {:.0}%", view.id, 100.0 * f))
+        })?;
         for (id, _, row) in todo {
             progress(done, total, &format!("{}: {}", view.id, row.label()));
             let result = measure_row(&dir, id, view, row, r, &camera, &reference, cfg)?;
@@ -169,6 +172,7 @@ fn reference(
     r: &HybridRenderer,
     camera: &Camera,
     s: &Settings,
+    progress: &(dyn Fn(f64) + Sync),
 ) -> Result<Image<Vec3>> {
     let (exr, json) = (dir.ref_exr(view), dir.ref_json(view));
     if json.is_file() && exr.is_file() {
@@ -178,7 +182,12 @@ fn reference(
         }
     }
     let started = Instant::now();
-    let reference = r.reference(camera, s.reference_spp, s.seed.wrapping_add(REFERENCE_SEED_OFFSET))?;
+    let reference = r.reference_with_progress(
+        camera,
+        s.reference_spp,
+        s.seed.wrapping_add(REFERENCE_SEED_OFFSET),
+        progress,
+    )?;
     let seconds = started.elapsed().as_secs_f64();
     let image = |v: Vec<Vec3>| Image::from_vec(s.width, s.height, v);
     let (hdr, a, b) = (image(reference.hdr)?, image(reference.half_a)?, image(reference.half_b)?);
