@@ -42,10 +42,15 @@ fn shading(c: &mut Criterion) {
     let mat = ReliefMaterial::new(&m, &ComplexityParams::default(), false);
     let gs = groups();
     let mut g = c.benchmark_group("fused_shade_4096px");
-    for (name, shading) in [("unlit", Shading::Unlit), ("lit", Shading::Lit)] {
+    for (name, shading, pair) in [
+        ("unlit", Shading::Unlit, None),
+        ("lit", Shading::Lit, None),
+        ("lit_interleaved", Shading::Lit, mat.textures8.pair.as_deref()),
+    ] {
         let k = ShadeConsts {
             albedo: &mat.textures8.albedo,
             normal: &mat.textures8.normal,
+            pair,
             shading,
             ambient: 0.2,
             exponent: 32.0,

@@ -81,13 +81,21 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(400))]
 
     /// The AVX2 kernel and the scalar twin give the same pixels, bit for bit, lit and unlit,
-    /// with a whole and a fractional exponent, on odd-sized textures.
+    /// with a whole and a fractional exponent, on odd-sized textures, with the albedo and
+    /// normal texels fetched apart or interleaved.
     #[test]
-    fn vector_shading_equals_the_scalar_twin(p in lanes_strategy(), lit in any::<bool>(), whole in any::<bool>()) {
+    fn vector_shading_equals_the_scalar_twin(
+        p in lanes_strategy(),
+        lit in any::<bool>(),
+        whole in any::<bool>(),
+        interleaved in any::<bool>(),
+    ) {
         let tex = odd_textures();
+        prop_assert!(tex.pair.is_some(), "the odd textures have one shape");
         let k = ShadeConsts {
             albedo: &tex.albedo,
             normal: &tex.normal,
+            pair: if interleaved { tex.pair.as_deref() } else { None },
             shading: if lit { Shading::Lit } else { Shading::Unlit },
             ambient: 0.2,
             exponent: if whole { 32.0 } else { 17.3 },

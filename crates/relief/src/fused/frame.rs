@@ -3,7 +3,7 @@
 //! for the lab ([`render_fused_records`]).
 
 use super::lanes::{shade_scalar, ShadeConsts, ShadeLanes, LANES};
-use super::texture8::{Encoding, Texture8};
+use super::texture8::{interleave, Encoding, Texture8};
 use crate::error::ReliefError;
 use crate::kernel::Kernel;
 use crate::march::exact::exact_shadowed;
@@ -28,15 +28,17 @@ pub struct Textures8 {
     pub albedo: Texture8,
     /// Tangent-space normals, unorm-encoded (`rgba8unorm`).
     pub normal: Texture8,
+    /// Both interleaved, where they have the same shape ([`interleave`]).
+    pub pair: Option<Vec<u64>>,
 }
 
 impl Textures8 {
     /// Rounds `albedo` (linear colour) and `normal` (signed) pyramids to 8 bits.
     pub fn new(albedo: &renderlab_texture::Texture, normal: &renderlab_texture::Texture) -> Self {
-        Self {
-            albedo: Texture8::from_texture(albedo, Encoding::Srgb),
-            normal: Texture8::from_texture(normal, Encoding::SignedUnorm),
-        }
+        let albedo = Texture8::from_texture(albedo, Encoding::Srgb);
+        let normal = Texture8::from_texture(normal, Encoding::SignedUnorm);
+        let pair = interleave(&albedo, &normal);
+        Self { albedo, normal, pair }
     }
 }
 
@@ -179,6 +181,7 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
             .map(|m| ShadeConsts {
                 albedo: &m.textures8.albedo,
                 normal: &m.textures8.normal,
+                pair: m.textures8.pair.as_deref(),
                 shading: opt.shading,
                 ambient: scene.lighting.ambient,
                 exponent: scene.lighting.specular_exponent,

@@ -104,7 +104,8 @@ unsafe fn taps(tex: &Texture8, k: I, u: V, v: V) -> ([I; 4], V, V) {
 /// Bilinear RGB from `tex` at the taps `(idx, fx, fy)`.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn bilinear(tex: &Texture8, (idx, fx, fy): &([I; 4], V, V), decode: &[f32; 256]) -> [V; 3] {
+unsafe fn bilinear(tex: &Texture8, taps: &([I; 4], V, V), decode: &[f32; 256]) -> [V; 3] {
+    let (idx, ..) = taps;
     let base = tex.texels().as_ptr() as *const i32;
     let px = [
         _mm256_i32gather_epi32::<4>(base, idx[0]),
@@ -112,7 +113,48 @@ unsafe fn bilinear(tex: &Texture8, (idx, fx, fy): &([I; 4], V, V), decode: &[f32
         _mm256_i32gather_epi32::<4>(base, idx[2]),
         _mm256_i32gather_epi32::<4>(base, idx[3]),
     ];
-    let enc = tex.encoding();
+    filter(px, tex.encoding(), taps, decode)
+}
+
+/// The texels at `idx` of two textures interleaved in `pair` (the first's texel in the low
+/// half of each 64-bit entry): two 4-lane 64-bit gathers, then the halves sorted apart.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn gather_pair(pair: &[u64], idx: I) -> (I, I) {
+    let base = pair.as_ptr() as *const i64;
+    let lo = _mm256_castsi256_ps(_mm256_i32gather_epi64::<8>(base, _mm256_castsi256_si128(idx)));
+    let hi = _mm256_castsi256_ps(_mm256_i32gather_epi64::<8>(base, _mm256_extracti128_si256::<1>(idx)));
+    // lo = [a0 b0 a1 b1 | a2 b2 a3 b3], hi = [a4 b4 a5 b5 | a6 b6 a7 b7] (32-bit elements).
+    let a = _mm256_castps_si256(_mm256_shuffle_ps::<0b10_00_10_00>(lo, hi)); // [a0 a1 a4 a5 | a2 a3 a6 a7]
+    let b = _mm256_castps_si256(_mm256_shuffle_ps::<0b11_01_11_01>(lo, hi));
+    (_mm256_permute4x64_epi64::<0b11_01_10_00>(a), _mm256_permute4x64_epi64::<0b11_01_10_00>(b))
+}
+
+/// Bilinear RGB of the albedo and the normal map, interleaved in `pair`, at the taps.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn bilinear_pair(
+    k: &ShadeConsts,
+    pair: &[u64],
+    taps: &([I; 4], V, V),
+    decode: &[f32; 256],
+) -> ([V; 3], [V; 3]) {
+    let (idx, ..) = taps;
+    let t = [
+        gather_pair(pair, idx[0]),
+        gather_pair(pair, idx[1]),
+        gather_pair(pair, idx[2]),
+        gather_pair(pair, idx[3]),
+    ];
+    let a = filter(t.map(|p| p.0), k.albedo.encoding(), taps, decode);
+    let b = filter(t.map(|p| p.1), k.normal.encoding(), taps, decode);
+    (a, b)
+}
+
+/// Bilinear RGB of the four taps' texels `px` with the weights of `(idx, fx, fy)`.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn filter(px: [I; 4], enc: Encoding, (_, fx, fy): &([I; 4], V, V), decode: &[f32; 256]) -> [V; 3] {
     let mut out = [_mm256_setzero_ps(); 3];
     for (c, o) in out.iter_mut().enumerate() {
         let s = 8 * c as i32;
@@ -176,6 +218,17 @@ unsafe fn trilinear_pair(
     (a_rgb, b_rgb)
 }
 
+/// [`trilinear_pair`] from the interleaved texels `pair` of `k`'s albedo and normal map.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn trilinear_interleaved(k: &ShadeConsts, pair: &[u64], u: V, v: V, l: V) -> ([V; 3], [V; 3]) {
+    let (k0, k1, t) = levels(k.albedo, l);
+    let (t0, t1) = (taps(k.albedo, k0, u, v), taps(k.albedo, k1, u, v));
+    let (a0, b0) = bilinear_pair(k, pair, &t0, k.decode);
+    let (a1, b1) = bilinear_pair(k, pair, &t1, k.decode);
+    (blend(a0, a1, t), blend(b0, b1, t))
+}
+
 #[inline]
 #[target_feature(enable = "avx2")]
 unsafe fn dot(a: &[V; 3], b: &[V; 3]) -> V {
@@ -229,7 +282,9 @@ pub(crate) unsafe fn shade(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANE
         Shading::Unlit => trilinear(k.albedo, u, v, la, k.decode),
         Shading::Lit | Shading::LitShadowed => {
             let zero = _mm256_setzero_ps();
-            let (albedo, nu) = if k.albedo.same_shape(k.normal) {
+            let (albedo, nu) = if let Some(pair) = k.pair {
+                trilinear_interleaved(k, pair, u, v, la)
+            } else if k.albedo.same_shape(k.normal) {
                 trilinear_pair(k.albedo, k.normal, u, v, la, k.decode)
             } else {
                 (
