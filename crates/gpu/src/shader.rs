@@ -142,6 +142,21 @@ pub fn fullscreen_pipeline(
     module: &wgpu::ShaderModule,
     format: wgpu::TextureFormat,
 ) -> wgpu::RenderPipeline {
+    unblended_pipeline(device, label, layout, module, format, ("vs_main", "fs_main"))
+}
+
+/// A render pipeline without vertex buffers (the vertex shader makes its own vertices from
+/// their indices) whose entry points are `entries` (vertex, fragment), writing one `format`
+/// target without blending, over one bind group of `layout`: [`fullscreen_pipeline`], and
+/// the viewer's panel quads.
+pub fn unblended_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    module: &wgpu::ShaderModule,
+    format: wgpu::TextureFormat,
+    (vs, fs): (&str, &str),
+) -> wgpu::RenderPipeline {
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(label),
         bind_group_layouts: &[Some(layout)],
@@ -152,7 +167,7 @@ pub fn fullscreen_pipeline(
         layout: Some(&pipeline_layout),
         vertex: wgpu::VertexState {
             module,
-            entry_point: Some("vs_main"),
+            entry_point: Some(vs),
             compilation_options: Default::default(),
             buffers: &[],
         },
@@ -161,7 +176,7 @@ pub fn fullscreen_pipeline(
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {
             module,
-            entry_point: Some("fs_main"),
+            entry_point: Some(fs),
             compilation_options: Default::default(),
             targets: &[Some(wgpu::ColorTargetState {
                 format,

@@ -103,7 +103,15 @@ impl PictureBlit {
         });
         let pipeline =
             renderlab_gpu::shader::fullscreen_pipeline(device, "picture blit", &layout, &module, format);
-        let panel_pipeline = panel_pipeline(device, &layout, &module, format);
+        // The panels: instanced quads over the whole framebuffer, no blending.
+        let panel_pipeline = renderlab_gpu::shader::unblended_pipeline(
+            device,
+            "picture blit panels",
+            &layout,
+            &module,
+            format,
+            ("vs_panel", "fs_panel"),
+        );
         let panels = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("picture blit panels"),
             size: std::mem::size_of::<PanelsUniform>() as u64,
@@ -159,45 +167,6 @@ impl PictureBlit {
             },
         )
     }
-}
-
-/// The panels' pipeline: instanced quads over the whole framebuffer, no blending.
-fn panel_pipeline(
-    device: &wgpu::Device,
-    layout: &wgpu::BindGroupLayout,
-    module: &wgpu::ShaderModule,
-    format: wgpu::TextureFormat,
-) -> wgpu::RenderPipeline {
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some("picture blit panels"),
-        bind_group_layouts: &[Some(layout)],
-        immediate_size: 0,
-    });
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("picture blit panels"),
-        layout: Some(&pipeline_layout),
-        vertex: wgpu::VertexState {
-            module,
-            entry_point: Some("vs_panel"),
-            compilation_options: Default::default(),
-            buffers: &[],
-        },
-        primitive: Default::default(),
-        depth_stencil: None,
-        multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
-            module,
-            entry_point: Some("fs_panel"),
-            compilation_options: Default::default(),
-            targets: &[Some(wgpu::ColorTargetState {
-                format,
-                blend: None,
-                write_mask: wgpu::ColorWrites::ALL,
-            })],
-        }),
-        multiview_mask: None,
-        cache: None,
-    })
 }
 
 struct Blit {
