@@ -143,3 +143,30 @@ fn texture_names_with_spaces_and_options_and_skipped_lines() {
     assert_eq!(loaded.scene.triangle_count(), 0);
     assert!(loaded.warnings.iter().any(|w| w.contains("nothing to draw")), "{:?}", loaded.warnings);
 }
+
+/// The default camera of a file without one looks from the side that shows the most front
+/// faces: a closed cube from the front (+Z, every side shows as much), a room open toward −Z
+/// (its walls facing inward, as a Cornell box is modelled) through its opening, not through
+/// a wall that back-face culling would hide.
+#[test]
+fn the_default_camera_looks_into_an_open_room_through_its_opening() {
+    let camera_z = |obj: &str| {
+        let s = from_slice(obj.as_bytes(), "room", None, &LoadLimits::default()).unwrap().scene;
+        assert_eq!(s.cameras.len(), 1);
+        s.cameras[0].camera.position.z
+    };
+    // The room spans [0, 1]³; its walls face inward; the side at z = 0 is open.
+    let room = "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0 1 0\nv 1 1 0\nv 1 1 1\nv 0 1 1\n\
+                f 1 4 3 2\n\
+                f 5 6 7 8\n\
+                f 4 8 7 3\n\
+                f 1 5 8 4\n\
+                f 2 3 7 6\n";
+    let z = camera_z(room);
+    assert!(z < 0.0, "the camera is at z = {z}, behind the back wall (z = 1), not before the opening");
+    // The same room with its opening toward +Z is seen from the front, +Z.
+    let front = room.replace("f 4 8 7 3", "f 1 2 6 5");
+    assert!(camera_z(&front) > 1.0);
+    // A closed cube: the front.
+    assert!(camera_z(CUBE_OBJ) > 0.0);
+}

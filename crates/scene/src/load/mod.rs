@@ -180,9 +180,29 @@ pub(crate) fn finish(mut scene: HybridScene, warnings: &mut Vec<String>) -> Resu
     Ok(scene)
 }
 
-/// A 16:9 camera looking at the centre of the scene's bounds from the front, above.
+/// The directions (from the scene's centre toward the camera, before normalising) a default
+/// camera may look from: the front (+Z, glTF's convention), the back and the two sides, each
+/// from a little above.
+const VIEW_SIDES: [Vec3; 4] = [
+    Vec3::new(0.0, 0.35, 1.0),
+    Vec3::new(0.0, 0.35, -1.0),
+    Vec3::new(1.0, 0.35, 0.0),
+    Vec3::new(-1.0, 0.35, 0.0),
+];
+
+/// How much more front-facing area a later side of [`VIEW_SIDES`] must show to be chosen over
+/// an earlier one.
+const SIDE_MARGIN: f32 = 1.05;
+
+/// A 16:9 camera looking at the centre of the scene's bounds from above one of
+/// [`VIEW_SIDES`]: the one from which the triangles facing the camera cover the most area
+/// (their projected area), the front unless another side shows clearly more. A closed object
+/// shows the same area from every side and is seen from the front; a room modelled open on
+/// one side (a Cornell box) is seen through its opening rather than through a wall, which
+/// back-face culling would leave invisible.
 fn framing_camera(scene: &HybridScene) -> SceneCamera {
     let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+    let mut shown = [0.0f64; VIEW_SIDES.len()];
     for inst in &scene.instances {
         if let Some(mesh) = scene.meshes.get(inst.mesh as usize) {
             for v in &mesh.vertices {
@@ -190,15 +210,33 @@ fn framing_camera(scene: &HybridScene) -> SceneCamera {
                 lo = lo.min(p);
                 hi = hi.max(p);
             }
+            let at =
+                |i: u32| mesh.vertices.get(i as usize).map(|v| inst.transform.transform_point3(v.position));
+            for t in &mesh.triangles {
+                let (Some(a), Some(b), Some(c)) = (at(t[0]), at(t[1]), at(t[2])) else {
+                    continue;
+                };
+                // Twice the area, along the front face's normal.
+                let n = (b - a).cross(c - a);
+                for (s, d) in shown.iter_mut().zip(VIEW_SIDES) {
+                    let a = n.dot(d.normalize());
+                    if a.is_finite() && a > 0.0 {
+                        *s += f64::from(a);
+                    }
+                }
+            }
         }
     }
     if !(lo.is_finite() && hi.is_finite()) {
         (lo, hi) = (Vec3::splat(-1.0), Vec3::ONE);
     }
+    // The first side (front, back, then the sides) within the margin of the best.
+    let best = shown.iter().copied().fold(0.0, f64::max);
+    let side = shown.iter().position(|&s| s * f64::from(SIDE_MARGIN) >= best).unwrap_or(0);
     let centre = (lo + hi) * 0.5;
     let radius = ((hi - lo).length() * 0.5).max(1e-3);
     let distance = radius / (22.5f32.to_radians()).sin();
-    let position = centre + Vec3::new(0.0, 0.35, 1.0).normalize() * distance;
+    let position = centre + VIEW_SIDES[side].normalize() * distance;
     let mut camera = Camera::look_at(position, centre, 1920, 1080);
     camera.near = (distance * 1e-3).max(1e-4);
     camera.far = distance + 4.0 * radius;
