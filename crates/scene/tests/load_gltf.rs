@@ -439,3 +439,45 @@ fn a_malformed_animation_is_dropped_with_a_warning() {
     let err = from_slice(&d.gltf_embedded(), "a", None, &limits()).unwrap_err();
     assert!(matches!(err, Problem::Gltf(_)), "{err}");
 }
+
+/// `KHR_texture_transform` on a material's textures moves its primitives' UVs as the
+/// extension defines: scale, then rotation, then offset. The extension's own example (a
+/// quarter turn, scale ½, offset (0, 1)) takes the unit square to the image's lower-left
+/// quadrant; textures that disagree are warned about and the base colour's is used.
+#[test]
+fn khr_texture_transform_moves_the_uvs() {
+    let with_transform = |transforms: &[serde_json::Value]| {
+        let mut d = triangle();
+        let uv = d.vec2(&[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
+        d.meshes[0]["primitives"][0]["attributes"]["TEXCOORD_0"] = json!(uv);
+        let view = d.view(&png([[255, 255, 255, 255]; 4]));
+        d.images.push(json!({"bufferView": view, "mimeType": "image/png"}));
+        d.textures.push(json!({"source": 0}));
+        let info = |t: &serde_json::Value| json!({"index": 0, "extensions": {"KHR_texture_transform": t}});
+        let mut pbr = json!({"baseColorTexture": info(&transforms[0])});
+        if let Some(t) = transforms.get(1) {
+            pbr["metallicRoughnessTexture"] = info(t);
+        }
+        d.materials.push(json!({"pbrMetallicRoughness": pbr}));
+        d.meshes[0]["primitives"][0]["material"] = json!(0);
+        let loaded = from_slice(&d.glb(), "t", None, &limits()).unwrap();
+        let m = &loaded.scene.meshes[0];
+        // The UV of the corner at each position.
+        let at = |p: [f32; 3]| m.vertices.iter().find(|v| v.position == Vec3::from(p)).expect("corner").uv;
+        ([at([0.0, 0.0, 0.0]), at([1.0, 0.0, 0.0]), at([0.0, 1.0, 0.0])], loaded.warnings)
+    };
+    let close = |a: Vec2, b: [f32; 2]| (a - Vec2::from(b)).abs().max_element() < 1e-6;
+    let quarter = json!({"offset": [0.0, 1.0], "rotation": std::f32::consts::FRAC_PI_2, "scale": [0.5, 0.5]});
+    let (uv, warnings) = with_transform(std::slice::from_ref(&quarter));
+    for (got, want) in uv.iter().zip([[0.0, 1.0], [0.0, 0.5], [0.5, 1.0]]) {
+        assert!(close(*got, want), "{uv:?}");
+    }
+    assert!(warnings.iter().all(|w| !w.contains("KHR_texture_transform")), "{warnings:?}");
+    let (uv, _) = with_transform(&[json!({"offset": [0.25, 0.5], "scale": [2.0, 3.0]})]);
+    for (got, want) in uv.iter().zip([[0.25, 0.5], [2.25, 0.5], [0.25, 3.5]]) {
+        assert!(close(*got, want), "{uv:?}");
+    }
+    let (uv, warnings) = with_transform(&[quarter, json!({"scale": [4.0, 4.0]})]);
+    assert!(close(uv[1], [0.0, 0.5]), "the base colour's transform: {uv:?}");
+    assert!(warnings.iter().any(|w| w.contains("different KHR_texture_transforms")), "{warnings:?}");
+}

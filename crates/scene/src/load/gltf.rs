@@ -7,7 +7,9 @@
 //! included; COLOR_0 vertex colours, drawn through a texture baked for the primitive when
 //! its material has no texture of its own), metal–roughness materials with their
 //! base-colour (decoded from sRGB), metal–roughness and normal textures, emissive colour,
-//! `KHR_materials_transmission` and `KHR_materials_ior`, `KHR_lights_punctual` lights
+//! `KHR_texture_transform` (applied to the primitive's UVs: the scene's material has one UV
+//! map, so the base colour's transform serves all its textures, with a warning when they
+//! differ), `KHR_materials_transmission` and `KHR_materials_ior`, `KHR_lights_punctual` lights
 //! (pointing down their node's −Z) and perspective cameras (aspect from the file, else 16:9, at 1920 pixels wide). Animations,
 //! skins and morph targets are not read (the scene is drawn at rest); an `animations` array
 //! that does not parse is dropped with a warning.
@@ -395,7 +397,7 @@ impl Loader<'_> {
             }
             None => None,
         };
-        let uvs = match prim.get(&Semantic::TexCoords(0)) {
+        let uvs: Option<Vec<Vec2>> = match prim.get(&Semantic::TexCoords(0)) {
             Some(a) => {
                 check(&a, &[DataType::F32, DataType::U8, DataType::U16], Dimensions::Vec2, buffers, &label)?;
                 Some(
@@ -408,6 +410,10 @@ impl Loader<'_> {
                 )
             }
             None => None,
+        };
+        let uvs = match (uvs, self.uv_transform(&prim.material(), &label)) {
+            (Some(uvs), Some(t)) => Some(uvs.into_iter().map(|p| t.apply(p)).collect()),
+            (uvs, _) => uvs,
         };
         let colors = match prim.get(&Semantic::Colors(0)) {
             Some(a) => {
@@ -523,6 +529,37 @@ impl Loader<'_> {
         let index = (self.scene.materials.len() - 1) as u32;
         self.materials.insert(m.index(), index);
         Ok(index)
+    }
+
+    /// The `KHR_texture_transform` of `m`'s textures, applied to the primitive's UVs (the
+    /// scene's material has one UV map for all its textures): the base colour's, else the
+    /// metallic-roughness or emissive map's, with a warning when they differ. `None` without
+    /// one, or when its numbers are not finite (warned).
+    fn uv_transform(&mut self, m: &::gltf::Material, label: &str) -> Option<UvTransform> {
+        let pbr = m.pbr_metallic_roughness();
+        let found: Vec<UvTransform> =
+            [pbr.base_color_texture(), pbr.metallic_roughness_texture(), m.emissive_texture()]
+                .into_iter()
+                .flatten()
+                .filter_map(|info| info.texture_transform())
+                .map(|t| {
+                    if t.tex_coord().is_some_and(|c| c != 0) {
+                        self.uv_set(label, t.tex_coord().unwrap_or(0));
+                    }
+                    UvTransform::new(t.offset(), t.rotation(), t.scale())
+                })
+                .collect();
+        let first = *found.first()?;
+        if found.iter().any(|t| *t != first) {
+            self.warnings.push(format!(
+                "{label}: its textures have different KHR_texture_transforms; the first (base colour's) is used for all"
+            ));
+        }
+        if !first.is_finite() {
+            self.warnings.push(format!("{label}: KHR_texture_transform with non-finite numbers ignored"));
+            return None;
+        }
+        Some(first)
     }
 
     fn uv_set(&mut self, label: &str, set: u32) {
@@ -749,6 +786,33 @@ pub(crate) fn assemble(mode: ::gltf::mesh::Mode, idx: &[u32]) -> Vec<[u32; 3]> {
         }
         Mode::TriangleFan => (1..idx.len().saturating_sub(1)).map(|i| [idx[i], idx[i + 1], idx[0]]).collect(),
         _ => idx.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
+    }
+}
+
+/// A `KHR_texture_transform` as one affine map of the UVs: `uv' = m · uv + offset`, with
+/// the extension's order (scale, then rotation by `rotation` radians, then offset) and its
+/// rotation's sense: a rotation of π/2 with scale ½ and offset (0, 1) takes the unit square to
+/// the image's lower-left quadrant, as the extension's example says.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct UvTransform {
+    m: glam::Mat2,
+    offset: Vec2,
+}
+
+impl UvTransform {
+    fn new(offset: [f32; 2], rotation: f32, scale: [f32; 2]) -> Self {
+        let (sin, cos) = rotation.sin_cos();
+        let [sx, sy] = scale;
+        let m = glam::Mat2::from_cols(Vec2::new(cos * sx, -sin * sx), Vec2::new(sin * sy, cos * sy));
+        Self { m, offset: Vec2::from(offset) }
+    }
+
+    fn is_finite(&self) -> bool {
+        self.m.is_finite() && self.offset.is_finite()
+    }
+
+    fn apply(&self, uv: Vec2) -> Vec2 {
+        self.m * uv + self.offset
     }
 }
 
