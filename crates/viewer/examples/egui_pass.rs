@@ -9,7 +9,8 @@
 //! `cargo run --release -p renderlab-viewer --example egui_pass -- [technique] [camera]
 //! [hidden]` (defaults `adaptive` and `bench45`; `hidden` hides the interface, key H).
 //! `EGUI_PASS_KEYS=X,F1` presses those keys first (X hides the FPS readout, F1 shows the key
-//! help), to time the panels one by one; `EGUI_PASS_PNG=file.png` writes the frame measured.
+//! help), to time the panels one by one; `EGUI_PASS_PNG=file.png` writes the frame measured;
+//! `EGUI_PASS_SIZE=WxH` sets the window's size in points (default 1280x800).
 
 use egui_kittest::kittest::Queryable;
 use egui_kittest::wgpu::{create_render_state, WgpuTestRenderer};
@@ -50,10 +51,20 @@ fn run() -> Result<(), String> {
         return Err("the adapter has no timestamp queries".into());
     }
     let launch = Launch { technique: Some(technique), camera: Some(camera.clone()), ..Launch::default() };
+    let size = match std::env::var("EGUI_PASS_SIZE") {
+        Ok(v) => v
+            .split_once('x')
+            .and_then(|(w, h)| Some([w.parse::<f32>().ok()?, h.parse::<f32>().ok()?]))
+            .filter(|s| s.iter().all(|&d| (64.0..=8192.0).contains(&d)))
+            .ok_or_else(|| format!("EGUI_PASS_SIZE={v}: expected WxH, each 64 to 8192"))?,
+        Err(_) => [1280.0, 800.0],
+    };
     let mut h = Harness::builder()
-        .with_size([1280.0, 800.0])
+        .with_size(size)
         .renderer(WgpuTestRenderer::from_render_state(rs.clone()))
         .build_eframe(move |_cc| ViewerApp::new(Settings::default(), None, None, launch, Arc::default()));
+    // The picture without kittest's drawing of the pointer.
+    h.set_render_cursor(false);
     h.run_steps(2);
     h.get_by_label("Start").click();
     h.run_steps(WARM_FRAMES);
