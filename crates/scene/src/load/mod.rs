@@ -11,6 +11,7 @@
 pub mod geometry;
 pub mod gltf;
 pub mod obj;
+mod textures;
 
 use crate::error::SceneError;
 use crate::light::{Light, LightKind};

@@ -23,7 +23,7 @@
 //! warning; a missing texture is an error.
 
 use super::geometry::{clean, NormalRule, RawMesh};
-use super::gltf::{decode_image, vertex_colors};
+use super::textures::{decode_image, vertex_colors};
 use super::{finish, read_limited, resolve, LoadLimits, LoadedScene, Problem};
 use crate::material::{PbrMaterial, Texture};
 use crate::scene::{HybridScene, Instance};
