@@ -8,7 +8,7 @@
 
 use crate::controller::Player;
 use crate::launch::{light_angles, light_direction, BOOKMARKS};
-use crate::look_and_feel::Backdrops;
+use crate::look_and_feel::{Backdrops, Parts};
 use crate::room_view::RoomView;
 use crate::split::{self, SplitMode};
 use crate::stats::FrameStats;
@@ -154,18 +154,14 @@ pub fn show(ctx: &egui::Context, s: HudState<'_>) -> Changes {
     // A window's border is painted over its title bar, so egui keeps painting it; the copy
     // paints the fill.
     let frame = egui::Frame::window(&ctx.global_style()).shadow(egui::Shadow::NONE);
-    let claimed = s.backdrops.claim(frame).map(|_| frame.fill(egui::Color32::TRANSPARENT));
+    let claimed = s.backdrops.claim(frame, Parts::Fill);
     let shown = egui::Window::new("Controls")
         .frame(claimed.unwrap_or(frame))
         .anchor(egui::Align2::RIGHT_BOTTOM, [-8.0, -8.0])
         .default_open(false)
         .show(ctx, |ui| controls(ui, technique, s.controls, &mut changes));
     if let (Some(_), Some(shown)) = (claimed, shown) {
-        s.backdrops.record(
-            ctx,
-            shown.response.rect,
-            frame.stroke(egui::Stroke::new(frame.stroke.width, egui::Color32::TRANSPARENT)),
-        );
+        s.backdrops.record(ctx, shown.response.rect, frame, Parts::Fill);
     }
     dropped_files(ctx, s.controls);
     changes

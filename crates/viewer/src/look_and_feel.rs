@@ -35,6 +35,15 @@ pub struct Backdrop {
     pub stroke: (f32, egui::Color32),
 }
 
+/// Which parts of a panel's background the copy paints (egui paints the rest).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Parts {
+    /// The fill and the border: a HUD panel.
+    FillAndBorder,
+    /// The fill alone: a window, whose border egui paints over its title bar.
+    Fill,
+}
+
 #[derive(Debug, Default)]
 struct Frame {
     /// Whether the picture's copy runs this frame (so it can paint backgrounds).
@@ -76,30 +85,34 @@ impl Backdrops {
     /// the layout is the same either way (the border keeps its width, made transparent).
     pub fn panel<R>(&self, ui: &mut egui::Ui, add: impl FnOnce(&mut egui::Ui) -> R) -> R {
         let frame = panel_frame(ui.style());
-        let Some(bare) = self.claim(frame) else {
+        let Some(bare) = self.claim(frame, Parts::FillAndBorder) else {
             return frame.show(ui, add).inner;
         };
         let shown = bare.show(ui, add);
-        self.record(ui.ctx(), shown.response.rect, frame);
+        self.record(ui.ctx(), shown.response.rect, frame, Parts::FillAndBorder);
         shown.inner
     }
 
-    /// `frame` without its fill and border colour (the border keeps its width, so the layout
-    /// is the same) when the copy runs this frame and has room for one more panel; `None`
-    /// otherwise (egui paints the frame). After showing a claimed frame, [`Self::record`] its
-    /// rectangle.
-    pub fn claim(&self, frame: egui::Frame) -> Option<egui::Frame> {
+    /// `frame` without the `parts` the copy will paint (a border keeps its width, made
+    /// transparent, so the layout is the same) when the copy runs this frame and has room for
+    /// one more panel; `None` otherwise (egui paints the whole frame). After showing a claimed
+    /// frame, [`Self::record`] its rectangle with the same `parts`.
+    pub fn claim(&self, frame: egui::Frame, parts: Parts) -> Option<egui::Frame> {
         let f = self.lock();
         (f.active && f.panels.len() < MAX_BACKDROPS).then(|| {
-            frame
-                .fill(egui::Color32::TRANSPARENT)
-                .stroke(egui::Stroke::new(frame.stroke.width, egui::Color32::TRANSPARENT))
+            let bare = frame.fill(egui::Color32::TRANSPARENT);
+            match parts {
+                Parts::FillAndBorder => {
+                    bare.stroke(egui::Stroke::new(frame.stroke.width, egui::Color32::TRANSPARENT))
+                }
+                Parts::Fill => bare,
+            }
         })
     }
 
-    /// Records the background of `frame` (as egui would paint it) over `rect`, in points; a
-    /// transparent border (egui paints it) is left out.
-    pub fn record(&self, ctx: &egui::Context, rect: egui::Rect, frame: egui::Frame) {
+    /// Records the `parts` of `frame`'s background (as egui would paint them) over `rect`,
+    /// in points.
+    pub fn record(&self, ctx: &egui::Context, rect: egui::Rect, frame: egui::Frame, parts: Parts) {
         let ppp = ctx.pixels_per_point();
         // egui rounds a rectangle's corners to whole pixels before painting it; so does this.
         let rect = egui::Rect::from_min_max(
@@ -112,9 +125,9 @@ impl Backdrops {
                 rect,
                 radius: f32::from(frame.corner_radius.nw) * ppp,
                 fill: frame.fill,
-                stroke: match frame.stroke.color.a() {
-                    0 => (0.0, egui::Color32::TRANSPARENT),
-                    _ => (frame.stroke.width * ppp, frame.stroke.color),
+                stroke: match parts {
+                    Parts::FillAndBorder => (frame.stroke.width * ppp, frame.stroke.color),
+                    Parts::Fill => (0.0, egui::Color32::TRANSPARENT),
                 },
             });
         }

@@ -72,16 +72,7 @@ pub fn from_slice(
     }
     let materials = materials.unwrap_or_default();
 
-    let mut scene = HybridScene {
-        name: name.into(),
-        meshes: Vec::new(),
-        instances: Vec::new(),
-        materials: Vec::new(),
-        textures: Vec::new(),
-        lights: Vec::new(),
-        cameras: Vec::new(),
-        sky: Vec3::ZERO,
-    };
+    let mut scene = HybridScene::empty(name, Vec3::ZERO);
     let mut converted: HashMap<Option<usize>, u32> = HashMap::new();
     let mut textures: HashMap<(String, bool), u32> = HashMap::new();
     let (mut triangles, mut dropped) = (0usize, 0usize);
