@@ -2,7 +2,10 @@
 //! (1280×800, bricks 1024², 6 units from the wall, as the lab), median of 15 frames each:
 //! `cargo run --release -p renderlab-relief --example fused_frame -- [technique…]`. With
 //! `FUSED_ONLY=N` (and `FUSED_ANGLE=DEG`) it renders only the first technique's fused frame N
-//! times, for profilers.
+//! times, for profilers. With `FUSED_HEADLINE=1` it times the whole fused frame of each
+//! technique at the lab's four angles, the repetitions of the techniques interleaved, and
+//! prints each one's ratio to the first's (the relief lab's headline is `cone-newton` against
+//! `pom:32@scalar`). A technique may name its kernel: `pom:32@scalar`.
 
 use renderlab_core::scene::{bricks_wall, BRICKS_WALL_CENTRE};
 use renderlab_core::{Camera, Scene, SceneObject};
@@ -43,6 +46,44 @@ fn time(mut f: impl FnMut()) -> (f64, f64) {
     (wall, (cpu_ms() - cpu0) / 15.0)
 }
 
+/// Reads `TECH[@KERNEL]`.
+fn parse(spec: &str) -> (Technique, renderlab_relief::Kernel) {
+    let (name, kernel) = spec.split_once('@').unwrap_or((spec, "auto"));
+    let t = Technique::parse(name).expect("technique");
+    let choice: KernelChoice = kernel.parse().expect("kernel");
+    (t, t.kernel(choice).expect("kernel"))
+}
+
+/// The `FUSED_HEADLINE` mode (see the module documentation).
+fn headline(scene: &Scene, mats: &[ReliefMaterial], names: &[String]) {
+    let techs: Vec<_> = names.iter().map(|n| parse(n)).collect();
+    let mut means = vec![0.0; techs.len()];
+    for angle in [0.0, 45.0, 60.0, 80.0] {
+        let cam = Camera::orbit(BRICKS_WALL_CENTRE, 6.0, angle, 1280, 800);
+        let mut fused = FusedFrame::default();
+        let mut times = vec![Vec::new(); techs.len()];
+        for rep in 0..16 {
+            for (i, &(t, k)) in techs.iter().enumerate() {
+                let start = Instant::now();
+                render_fused(scene, &cam, mats, t, k, true, &mut fused).expect("renders");
+                if rep > 0 {
+                    times[i].push(start.elapsed().as_secs_f64() * 1e3);
+                }
+            }
+        }
+        let med: Vec<f64> = times.into_iter().map(median).collect();
+        let line: Vec<String> =
+            names.iter().zip(&med).map(|(n, m)| format!("{n} {m:.1} ms ({:.3})", m / med[0])).collect();
+        println!("{angle:>3}°: {}", line.join(", "));
+        for (s, m) in means.iter_mut().zip(&med) {
+            *s += m / med[0] / 4.0;
+        }
+    }
+    for (n, m) in names.iter().zip(&means) {
+        println!("{n}: mean ratio over the angles {m:.3}");
+    }
+}
+
 fn main() {
     let names: Vec<String> = std::env::args().skip(1).collect();
     let names =
@@ -52,12 +93,15 @@ fn main() {
     let mats = [ReliefMaterial::new(&m, &ComplexityParams::default(), cones)];
     let scene =
         Scene::new(vec![SceneObject { name: "wall2".into(), mesh: bricks_wall(), material: 0 }], vec![m]);
+    if std::env::var("FUSED_HEADLINE").is_ok() {
+        headline(&scene, &mats, &names);
+        return;
+    }
     if let Ok(n) = std::env::var("FUSED_ONLY") {
         // For profilers: only the fused frame, `n` times, at FUSED_ANGLE degrees (default 0).
         let angle = std::env::var("FUSED_ANGLE").ok().and_then(|a| a.parse().ok()).unwrap_or(0.0);
         let cam = Camera::orbit(BRICKS_WALL_CENTRE, 6.0, angle, 1280, 800);
-        let t = Technique::parse(&names[0]).expect("technique");
-        let k = t.kernel(KernelChoice::Auto).expect("kernel");
+        let (t, k) = parse(&names[0]);
         let mut fused = FusedFrame::default();
         for _ in 0..n.parse::<u32>().unwrap_or(50) {
             render_fused(&scene, &cam, &mats, t, k, true, &mut fused).expect("renders");
@@ -72,8 +116,7 @@ fn main() {
             std::hint::black_box(renderlab_raster::rasterize(&scene, &cam));
         });
         for name in &names {
-            let t = Technique::parse(name).expect("technique");
-            let k = t.kernel(KernelChoice::Auto).expect("kernel");
+            let (t, k) = parse(name);
             let mut frame = Frame::blank(1280, 800, scene.background);
             let float = time(|| {
                 render_into(input, &mats, t, k, scene.lighting, scene.background, false, &mut frame)

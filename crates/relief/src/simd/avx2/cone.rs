@@ -213,20 +213,24 @@ macro_rules! kernel {
                         done = _mm256_or_ps(done, _mm256_or_ps(_mm256_and_ps(conv, is_refine), last));
                     }
 
-                    grp.t = new_t;
-                    grp.a = new_a;
-                    grp.fa = new_fa;
-                    grp.b = new_b;
-                    grp.fb = new_fb;
-                    grp.k = new_k;
-                    grp.phase = new_phase;
-                    grp.side = new_side;
-
-                    let finished = _mm256_movemask_ps(done) as u32 & grp.ray.active;
+                    // Assembled and refilled as a value, stored once (see `cone_newton`).
+                    let mut ng = Group {
+                        ray: grp.ray,
+                        t: new_t,
+                        a: new_a,
+                        fa: new_fa,
+                        b: new_b,
+                        fb: new_fb,
+                        k: new_k,
+                        phase: new_phase,
+                        side: new_side,
+                    };
+                    let finished = _mm256_movemask_ps(done) as u32 & ng.ray.active;
                     if finished != 0 {
-                        grp.ray.write_hits(finished, result, cs.steps, &soa, out);
-                        next = refill(cs, grp, finished, next, n, &soa);
+                        ng.ray.write_hits(finished, result, cs.steps, &soa, out);
+                        next = refill(cs, &mut ng, finished, next, n, &soa);
                     }
+                    *grp = ng;
                 }
             }
             COLUMNS.set(soa);

@@ -455,19 +455,25 @@ macro_rules! kernel {
                         (cone_a, cone_fa, cone_b, cone_fb, cone_k, cone_phase, cone_done, cone_out)
                     };
 
-                    grp.t = new_t;
-                    grp.a = new_a;
-                    grp.fa = new_fa;
-                    grp.b = new_b;
-                    grp.fb = new_fb;
-                    grp.k = new_k;
-                    grp.phase = new_phase;
-
-                    let finished = _mm256_movemask_ps(done) as u32 & grp.ray.active;
+                    // The new state is assembled and refilled as a value and stored once:
+                    // blending into the stored group would become masked stores, which are
+                    // slow on some CPUs (AMD Zen).
+                    let mut ng = Group {
+                        ray: grp.ray,
+                        t: new_t,
+                        a: new_a,
+                        fa: new_fa,
+                        b: new_b,
+                        fb: new_fb,
+                        k: new_k,
+                        phase: new_phase,
+                    };
+                    let finished = _mm256_movemask_ps(done) as u32 & ng.ray.active;
                     if finished != 0 {
-                        grp.ray.write_hits(finished, result, fc.steps, &soa, out);
-                        next = refill(fc, grp, finished, next, n, &soa);
+                        ng.ray.write_hits(finished, result, fc.steps, &soa, out);
+                        next = refill(fc, &mut ng, finished, next, n, &soa);
                     }
+                    *grp = ng;
                 }
             }
             COLUMNS.set(soa);
