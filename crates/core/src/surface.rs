@@ -35,8 +35,11 @@ pub struct SurfacePoint {
 /// The part of a [`SurfacePoint`] that relief shading reads: texture coordinate, footprint,
 /// the view and light directions in tangent space and the material. Half the size of a
 /// surface point (52 bytes against 112 with its `Option`), so a streaming renderer that
-/// consumes a row of them while it is in cache moves half the bytes.
+/// consumes a row of them while it is in cache moves half the bytes. `repr(C)`: thirteen
+/// 32-bit fields in this order, so that a vector rasterizer can store a point's fields four
+/// at a time ([`SHADE_POINT_FIELDS`]).
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[repr(C)]
 pub struct ShadePoint {
     /// Texture coordinates (unwrapped).
     pub uv: Vec2,
@@ -51,6 +54,19 @@ pub struct ShadePoint {
     /// Index of the material.
     pub material: u32,
 }
+
+/// The number of 32-bit fields of a [`ShadePoint`], in declaration order: `uv` (2),
+/// `duv_dx` (2), `duv_dy` (2), `view_ts` (3), `light_ts` (3), `material` (1), with no padding.
+pub const SHADE_POINT_FIELDS: usize = 13;
+
+const _: () = {
+    assert!(std::mem::size_of::<ShadePoint>() == SHADE_POINT_FIELDS * 4);
+    assert!(std::mem::offset_of!(ShadePoint, duv_dx) == 8);
+    assert!(std::mem::offset_of!(ShadePoint, duv_dy) == 16);
+    assert!(std::mem::offset_of!(ShadePoint, view_ts) == 24);
+    assert!(std::mem::offset_of!(ShadePoint, light_ts) == 36);
+    assert!(std::mem::offset_of!(ShadePoint, material) == 48);
+};
 
 impl From<&SurfacePoint> for ShadePoint {
     fn from(p: &SurfacePoint) -> Self {

@@ -7,7 +7,7 @@
 
 use crate::resolve::FrameConstants;
 use crate::setup::{TriangleSetup, INV_W, PLANES, POSITION, UV};
-use glam::{Mat3, Vec2, Vec3};
+use glam::{Mat3, Vec3};
 use renderlab_core::ShadePoint;
 use std::arch::x86_64::*;
 
@@ -51,20 +51,21 @@ unsafe fn derivative(t: &[f64; PLANES], i: usize, a: __m256d, w: __m256d) -> __m
     _mm256_mul_pd(_mm256_sub_pd(_mm256_set1_pd(t[i]), _mm256_mul_pd(a, _mm256_set1_pd(t[INV_W]))), w)
 }
 
+/// Rows `a`, `b`, `c`, `d` of a 4 × 4 matrix to its columns: element `i` of the result is
+/// `[a[i], b[i], c[i], d[i]]`.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn narrow(a: __m256d) -> [f32; 4] {
-    let mut o = [0.0f32; 4];
-    _mm_storeu_ps(o.as_mut_ptr(), _mm256_cvtpd_ps(a));
-    o
-}
-
-#[inline]
-#[target_feature(enable = "avx2")]
-unsafe fn lanes(a: __m128) -> [f32; 4] {
-    let mut o = [0.0f32; 4];
-    _mm_storeu_ps(o.as_mut_ptr(), a);
-    o
+unsafe fn transpose(a: __m128, b: __m128, c: __m128, d: __m128) -> [__m128; 4] {
+    let ab_lo = _mm_unpacklo_ps(a, b);
+    let ab_hi = _mm_unpackhi_ps(a, b);
+    let cd_lo = _mm_unpacklo_ps(c, d);
+    let cd_hi = _mm_unpackhi_ps(c, d);
+    [
+        _mm_movelh_ps(ab_lo, cd_lo),
+        _mm_movehl_ps(cd_lo, ab_lo),
+        _mm_movelh_ps(ab_hi, cd_hi),
+        _mm_movehl_ps(cd_hi, ab_hi),
+    ]
 }
 
 /// Row `c` of `m · v` for four vectors `v`: `(m₀c·v.x + m₁c·v.y) + m₂c·v.z`, as glam's
@@ -78,8 +79,9 @@ unsafe fn mat_row(m: &Mat3, c: usize, v: &[__m128; 3]) -> __m128 {
     )
 }
 
-/// Pixels `x0 .. x0 + 4` of row `y` on triangle `s` (whose frame is constant): each lane's
-/// point, and a mask with bit `i` set where lane `i` has one (where the scalar resolve gives
+/// Pixels `x0 .. x0 + 4` of row `y` on triangle `s` (whose frame is constant): writes each
+/// lane's point into `out` (in place, so that a row's points are not copied again) and
+/// returns a mask with bit `i` set where lane `i` has one (where the scalar resolve gives
 /// `Some`; the other lanes' points are unspecified).
 ///
 /// # Safety
@@ -92,7 +94,8 @@ pub(crate) unsafe fn resolve_x4(
     x0: u32,
     y: u32,
     frame: &FrameConstants,
-) -> (u32, [ShadePoint; 4]) {
+    out: &mut [ShadePoint; 4],
+) -> u32 {
     let x = x0 as f64;
     let px = _mm256_add_pd(_mm256_set_pd(x + 3.0, x + 2.0, x + 1.0, x), _mm256_set1_pd(0.5));
     let py = _mm256_set1_pd(y as f64 + 0.5);
@@ -121,31 +124,34 @@ pub(crate) unsafe fn resolve_x4(
     let recip = _mm_div_ps(_mm_set1_ps(1.0), depth);
     let view = [_mm_mul_ps(to_eye[0], recip), _mm_mul_ps(to_eye[1], recip), _mm_mul_ps(to_eye[2], recip)];
     let t = &k.to_tangent;
-    let vt = [lanes(mat_row(t, 0, &view)), lanes(mat_row(t, 1, &view)), lanes(mat_row(t, 2, &view))];
-    let (u, v) = (narrow(u), narrow(v));
-    let (dudx, dvdx, dudy, dvdy) = (narrow(dudx), narrow(dvdx), narrow(dudy), narrow(dvdy));
-    let pos = [narrow(pos[0]), narrow(pos[1]), narrow(pos[2])];
-    let depth = lanes(depth);
-    let ok_q = _mm256_movemask_pd(valid_q);
-    let mut out = [ShadePoint::default(); 4];
-    let mut mask = 0;
+    let vt = [mat_row(t, 0, &view), mat_row(t, 1, &view), mat_row(t, 2, &view)];
+    let (u, v) = (_mm256_cvtpd_ps(u), _mm256_cvtpd_ps(v));
+    let (dudx, dvdx) = (_mm256_cvtpd_ps(dudx), _mm256_cvtpd_ps(dvdx));
+    let (dudy, dvdy) = (_mm256_cvtpd_ps(dudy), _mm256_cvtpd_ps(dvdy));
+    let pos = [_mm256_cvtpd_ps(pos[0]), _mm256_cvtpd_ps(pos[1]), _mm256_cvtpd_ps(pos[2])];
+    // Lanes where every value the scalar resolve checks is finite (|x| < ∞ is false for NaN).
+    let abs = _mm_castsi128_ps(_mm_set1_epi32(0x7fff_ffff));
+    let inf = _mm_set1_ps(f32::INFINITY);
+    let finite = [u, v, dudx, dvdx, dudy, dvdy, pos[0], pos[1], pos[2], vt[0], vt[1], vt[2], depth]
+        .into_iter()
+        .fold(_mm_castsi128_ps(_mm_set1_epi32(-1)), |all, x| {
+            _mm_and_ps(all, _mm_cmplt_ps(_mm_and_ps(x, abs), inf))
+        });
+    let mask = (_mm256_movemask_pd(valid_q) & _mm_movemask_ps(finite)) as u32;
+    // Four fields at a time, transposed from lanes to points: each point's thirteen fields
+    // are stored as three 16-byte blocks and the material.
+    let light = k.light_ts;
+    let (lx, ly, lz) = (_mm_set1_ps(light.x), _mm_set1_ps(light.y), _mm_set1_ps(light.z));
+    let blocks =
+        [transpose(u, v, dudx, dvdx), transpose(dudy, dvdy, vt[0], vt[1]), transpose(vt[2], lx, ly, lz)];
     for (i, p) in out.iter_mut().enumerate() {
-        *p = ShadePoint {
-            uv: Vec2::new(u[i], v[i]),
-            duv_dx: Vec2::new(dudx[i], dvdx[i]),
-            duv_dy: Vec2::new(dudy[i], dvdy[i]),
-            view_ts: Vec3::new(vt[0][i], vt[1][i], vt[2][i]),
-            light_ts: k.light_ts,
-            material: s.material,
-        };
-        let finite = ok_q & (1 << i) != 0
-            && p.uv.is_finite()
-            && p.duv_dx.is_finite()
-            && p.duv_dy.is_finite()
-            && Vec3::new(pos[0][i], pos[1][i], pos[2][i]).is_finite()
-            && p.view_ts.is_finite()
-            && depth[i].is_finite();
-        mask |= (finite as u32) << i;
+        let f = p as *mut ShadePoint as *mut f32;
+        // SAFETY: `ShadePoint` is `repr(C)` with thirteen `f32`-sized fields, the first twelve
+        // `f32`s in this order (checked at compile time in renderlab-core).
+        for (b, block) in blocks.iter().enumerate() {
+            _mm_storeu_ps(f.add(4 * b), block[i]);
+        }
+        p.material = s.material;
     }
-    (mask, out)
+    mask
 }

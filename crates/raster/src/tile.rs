@@ -158,12 +158,17 @@ impl Frame<'_> {
         let fragments = self.visibility(band, bin, scratch);
         let mut covered = 0u64;
         let vector = renderlab_core::kernel::has_avx2();
+        // Both buffers keep at least a row's length; `n` counts the row's covered pixels,
+        // written in place (no per-pixel growth checks, no copies of the resolved points).
+        if xs.len() < w {
+            xs.resize(w, 0);
+        }
+        if points.len() < w {
+            points.resize(w, ShadePoint::default());
+        }
         for (r, id_row) in scratch.id.chunks_exact(w).enumerate() {
             let y = y_start + r as u32;
-            xs.clear();
-            points.clear();
-            xs.reserve(w);
-            points.reserve(w);
+            let mut n = 0;
             let mut x = 0;
             while x < w {
                 let i = id_row[x];
@@ -178,18 +183,24 @@ impl Frame<'_> {
                 if let (true, Some(tbn)) = (vector, setup.flat_frame) {
                     let k = crate::resolve_x4::FlatConstants::new(tbn, constants);
                     while x + 4 <= end {
+                        // `n ≤ x`, so the four lanes fit in the row's buffer.
+                        let dst: &mut [ShadePoint; 4] =
+                            (&mut points[n..n + 4]).try_into().expect("four points");
                         // SAFETY: AVX2 is present (checked above).
-                        let (mask, lanes) =
-                            unsafe { crate::resolve_x4::resolve_x4(setup, &k, x as u32, y, constants) };
+                        let mask =
+                            unsafe { crate::resolve_x4::resolve_x4(setup, &k, x as u32, y, constants, dst) };
                         if mask == 0xf {
                             let x = x as u32;
-                            xs.extend_from_slice(&[x, x + 1, x + 2, x + 3]);
-                            points.extend_from_slice(&lanes);
+                            xs[n..n + 4].copy_from_slice(&[x, x + 1, x + 2, x + 3]);
+                            n += 4;
                         } else {
-                            for (l, p) in lanes.into_iter().enumerate().filter(|&(l, _)| mask & (1 << l) != 0)
-                            {
-                                xs.push((x + l) as u32);
-                                points.push(p);
+                            // Keep the lanes that have a point, in order (each moves down or
+                            // stays).
+                            let first = n;
+                            for l in (0..4).filter(|&l| mask & (1 << l) != 0) {
+                                points[n] = points[first + l];
+                                xs[n] = (x + l) as u32;
+                                n += 1;
                             }
                         }
                         x += 4;
@@ -197,14 +208,15 @@ impl Frame<'_> {
                 }
                 for px in x..end {
                     if let Some(p) = resolve_shade(setup, px as u32, y, constants) {
-                        xs.push(px as u32);
-                        points.push(p);
+                        xs[n] = px as u32;
+                        points[n] = p;
+                        n += 1;
                     }
                 }
                 x = end;
             }
-            covered += xs.len() as u64;
-            f(y, xs, points);
+            covered += n as u64;
+            f(y, &xs[..n], &points[..n]);
         }
         BandCounts { fragments, covered }
     }

@@ -90,7 +90,8 @@ pub trait ReliefTechnique: Sync {
     fn trace<C: Counter>(&self, inputs: &ReliefInputs, uv: Vec2, view_ts: Vec3, counter: &mut C)
         -> ReliefHit;
 
-    /// Traces a run of rays `(uv, view_ts)` into `out` (same length). The default traces them
+    /// Traces a run of rays `(uv, view_ts)` into `out` (same length), writing every entry
+    /// (callers hand in stale buffers). The default traces them
     /// one by one; techniques whose steps form a dependent chain may interleave several rays
     /// to overlap their fetches. Results must equal [`ReliefTechnique::trace`]'s.
     fn trace_row<C: Counter>(

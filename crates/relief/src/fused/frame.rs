@@ -271,7 +271,7 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
             let out_row = &mut out[r..r + w];
             out_row.fill(self.background);
             let rays = points.iter().map(|p| (p.uv, p.view_ts, p.material));
-            trace_rays(self.t, self.materials, rays, &mut worker.trace, counter);
+            trace_rays(self.t, self.materials, points.len(), rays, &mut worker.trace, counter);
             let hits = std::mem::take(&mut worker.trace.hits);
             let mut shadows = std::mem::take(&mut worker.shadows);
             self.shadows(&hits, points, &mut shadows, counter);

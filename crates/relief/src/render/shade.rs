@@ -156,9 +156,17 @@ fn shade_point<C: Counter>(
 pub(crate) struct RowScratch {
     rays: Vec<(Vec2, Vec3)>,
     bases: Vec<Vec2>,
-    materials: Vec<usize>,
+    /// Runs of pixels with one material: `(end, material)`, each starting where the last ended.
+    runs: Vec<(usize, usize)>,
     /// The row's hits, one per covered pixel in pixel order.
     pub(crate) hits: Vec<ReliefHit>,
+}
+
+/// Sets `v`'s length to `n`, writing only the entries it gains (the caller overwrites all `n`).
+#[inline]
+fn set_len<T: Copy + Default>(v: &mut Vec<T>, n: usize) {
+    v.truncate(n);
+    v.resize(n, T::default());
 }
 
 /// Traces every covered pixel of `row`, leaving one hit per covered pixel (in pixel order) in
@@ -172,35 +180,52 @@ pub(crate) fn trace_points<T: ReliefTechnique, C: Counter>(
     scratch: &mut RowScratch,
     counter: &mut C,
 ) {
+    let n = row.iter().flatten().count();
     let points = row.iter().flatten().map(|sp| (sp.uv, sp.view_ts, sp.material));
-    trace_rays(t, materials, points, scratch, counter)
+    trace_rays(t, materials, n, points, scratch, counter)
 }
 
-/// [`trace_points`] over the covered pixels' `(uv, view_ts, material)`, in pixel order.
+/// [`trace_points`] over the `n` covered pixels' `(uv, view_ts, material)`, in pixel order.
+///
+/// # Panics
+///
+/// If `points` does not yield exactly `n` items.
 pub(crate) fn trace_rays<T: ReliefTechnique, C: Counter>(
     t: &T,
     materials: &[ReliefMaterial],
+    n: usize,
     points: impl Iterator<Item = (Vec2, Vec3, u32)>,
     scratch: &mut RowScratch,
     counter: &mut C,
 ) {
-    let RowScratch { rays, bases, materials: ids, hits } = scratch;
-    rays.clear();
-    bases.clear();
-    ids.clear();
-    for (uv, view_ts, material) in points {
+    let RowScratch { rays, bases, runs, hits } = scratch;
+    set_len(rays, n);
+    set_len(bases, n);
+    set_len(hits, n);
+    runs.clear();
+    let last = materials.len() - 1;
+    let mut current = usize::MAX;
+    let mut count = 0;
+    for ((ray, b), (uv, view_ts, material)) in rays.iter_mut().zip(bases.iter_mut()).zip(points) {
         let base = floor2(uv);
         let base = if base.is_finite() { base } else { Vec2::ZERO };
-        rays.push((uv - base, view_ts));
-        bases.push(base);
-        ids.push((material as usize).min(materials.len() - 1));
+        *ray = (uv - base, view_ts);
+        *b = base;
+        let m = (material as usize).min(last);
+        if m != current {
+            if count > 0 {
+                runs.push((count, current));
+            }
+            current = m;
+        }
+        count += 1;
     }
-    hits.clear();
-    hits.resize(rays.len(), ReliefHit::default());
+    assert_eq!(count, n, "trace_rays: the row has another number of points");
+    if count > 0 {
+        runs.push((count, current));
+    }
     let mut start = 0;
-    while start < rays.len() {
-        let m = ids[start];
-        let end = start + ids[start..].iter().take_while(|&&i| i == m).count();
+    for &(end, m) in runs.iter() {
         t.trace_row(&materials[m].inputs(), &rays[start..end], &mut hits[start..end], counter);
         start = end;
     }
