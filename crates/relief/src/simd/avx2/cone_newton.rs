@@ -49,6 +49,9 @@ pub(crate) struct RaySoa {
     pub(crate) v0: Vec<f32>,
     pub(crate) du: Vec<f32>,
     pub(crate) dv: Vec<f32>,
+    /// Each ray's result depth, written by [`RayLanes::stage`] (entry `n`, past the last
+    /// ray, takes the writes of lanes without a ray).
+    pub(crate) t: Vec<f32>,
 }
 
 impl RaySoa {
@@ -101,6 +104,7 @@ pub(crate) unsafe fn setup_rays(
         &mut soa.v0,
         &mut soa.du,
         &mut soa.dv,
+        &mut soa.t,
     ] {
         c.clear();
         c.resize(len, 0.0);
@@ -238,9 +242,25 @@ impl RayLanes {
         self.tv = gather(self.tv, &soa.tv);
         self.s = gather(self.s, &soa.s);
         self.eps = gather(self.eps, &soa.eps);
-        self.owner = _mm256_blendv_epi8(self.owner, idx, take);
+        // Free lanes left without a ray point past the last ray, where `stage` may write.
+        let owner = _mm256_blendv_epi8(self.owner, _mm256_set1_epi32(n as i32), is_free);
+        self.owner = _mm256_blendv_epi8(owner, idx, take);
         self.active = (self.active & !free) | _mm256_movemask_ps(take_ps) as u32;
         (take, (next + free.count_ones() as usize).min(n))
+    }
+
+    /// Writes every lane's `result` to its ray's entry of `t` (without a branch per
+    /// finished lane): a ray's last write is its result, made in the step it finishes.
+    #[inline]
+    #[target_feature(enable = "avx2")]
+    pub(crate) unsafe fn stage(&self, result: __m256, t: &mut [f32]) {
+        let mut res = [0.0f32; LANES];
+        let mut own = [0i32; LANES];
+        _mm256_storeu_ps(res.as_mut_ptr(), result);
+        _mm256_storeu_si256(own.as_mut_ptr() as *mut __m256i, self.owner);
+        for (&o, &r) in own.iter().zip(&res) {
+            t[o as usize] = r;
+        }
     }
 
     /// Writes the hits of the lanes in `finished` (their depths in `result`) for their rays.
@@ -323,6 +343,7 @@ macro_rules! kernel {
                 k: _mm256_setzero_si256(),
                 phase: _mm256_setzero_si256(),
             };
+            let mut ts = std::mem::take(&mut soa.t);
             let mut groups = [empty; GROUPS];
             let mut next = 0usize;
             for g in groups.iter_mut() {
@@ -469,13 +490,17 @@ macro_rules! kernel {
                         phase: new_phase,
                     };
                     let finished = _mm256_movemask_ps(done) as u32 & ng.ray.active;
+                    ng.ray.stage(result, &mut ts);
                     if finished != 0 {
-                        ng.ray.write_hits(finished, result, fc.steps, &soa, out);
                         next = refill(fc, &mut ng, finished, next, n, &soa);
                     }
                     *grp = ng;
                 }
             }
+            for (i, (o, &t)) in out[..n].iter_mut().zip(&ts).enumerate() {
+                *o = soa.hit(i, t, fc.steps);
+            }
+            soa.t = ts;
             COLUMNS.set(soa);
         }
     };
