@@ -13,8 +13,11 @@ use renderlab_core::Image;
 /// treated as that angle, so offsets stay finite and every march stays bounded.
 pub const MIN_VIEW_Z: f32 = 1e-3;
 
-/// Where a relief technique decided the view ray meets the height field.
+/// Where a relief technique decided the view ray meets the height field. `repr(C)`: four
+/// 32-bit fields in this order, so that the fused frame's vector path loads a hit as one
+/// 16-byte block.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[repr(C)]
 pub struct ReliefHit {
     /// Displaced texture coordinate (unwrapped).
     pub uv: Vec2,
@@ -24,6 +27,11 @@ pub struct ReliefHit {
     /// techniques without layers.
     pub layers: u32,
 }
+
+const _: () = {
+    assert!(std::mem::size_of::<ReliefHit>() == 16);
+    assert!(std::mem::offset_of!(ReliefHit, depth) == 8);
+};
 
 /// Per-material data a technique may read, besides the height field.
 #[derive(Clone, Copy)]

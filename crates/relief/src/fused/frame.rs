@@ -276,9 +276,29 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
             let mut shadows = std::mem::take(&mut worker.shadows);
             self.shadows(&hits, points, &mut shadows, counter);
             let (mut n, mut cur) = (0, 0);
-            for (((&x, sp), hit), &shadow) in xs.iter().zip(points).zip(&hits).zip(&shadows) {
-                let x = x as usize;
-                let m = (sp.material as usize).min(last);
+            let material = |p: &ShadePoint| (p.material as usize).min(last);
+            let count = points.len().min(hits.len()).min(shadows.len()).min(xs.len());
+            let mut i = 0;
+            while i < count {
+                let (x, sp, hit, shadow) = (xs[i] as usize, &points[i], &hits[i], shadows[i]);
+                let m = material(sp);
+                // Eight pixels of one material at the start of a lane group, outside the lab's
+                // records: their lanes are filled in vector registers (the same values).
+                if n == 0
+                    && records.is_none()
+                    && self.vector
+                    && i + LANES <= count
+                    && points[i..i + LANES].iter().all(|p| material(p) == m)
+                    && crate::simd::load_lanes(&mut worker.lanes, &hits[i..], &points[i..], &shadows[i..])
+                {
+                    for (d, &x) in worker.xs.iter_mut().zip(&xs[i..i + LANES]) {
+                        *d = x as usize;
+                    }
+                    self.flush(worker, LANES, m, out_row);
+                    i += LANES;
+                    continue;
+                }
+                i += 1;
                 if n == LANES || (n > 0 && m != cur) {
                     self.flush(worker, n, cur, out_row);
                     n = 0;

@@ -147,6 +147,30 @@ pub fn shade_lanes(
     false
 }
 
+/// Fills all eight lanes of `lanes` from the first eight entries of `hits`, `points` and
+/// `shadows` (eight pixels of one material) in vector registers; `false` (and nothing
+/// filled) where the CPU lacks AVX2, so the caller fills them one by one (the same values).
+///
+/// # Panics
+///
+/// If a slice holds fewer than eight entries.
+#[inline]
+pub fn load_lanes(
+    lanes: &mut crate::fused::lanes::ShadeLanes,
+    hits: &[ReliefHit],
+    points: &[renderlab_core::ShadePoint],
+    shadows: &[f32],
+) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if crate::cpu::has_avx2() {
+        // SAFETY: the CPU supports AVX2.
+        unsafe { avx2::shade::load_lanes(lanes, hits, points, shadows) };
+        return true;
+    }
+    let _ = (lanes, hits, points, shadows);
+    false
+}
+
 /// Traces `rays` with parallax mapping's vector kernel on the packed map; `false` (and nothing
 /// traced) where it cannot run (the caller runs the scalar twin; the hits are bit-identical).
 #[inline]
