@@ -191,11 +191,24 @@ unsafe fn blend(s0: [V; 3], s1: [V; 3], t: V) -> [V; 3] {
     out
 }
 
+/// Whether no lane needs the second level: every blend weight is zero (magnified, or at the
+/// last level). The blend then gives the first level's value bit for bit — `s0 + (s1 − s0)·0`
+/// is `s0` for the finite, non-negative filtered values — so the second level's fetches are
+/// skipped without changing a pixel.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn one_level(t: V) -> bool {
+    _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_EQ_OQ>(t, _mm256_setzero_ps())) == 0xff
+}
+
 #[inline]
 #[target_feature(enable = "avx2")]
 unsafe fn trilinear(tex: &Texture8, u: V, v: V, l: V, decode: &[f32; 256]) -> [V; 3] {
     let (k0, k1, t) = levels(tex, l);
     let s0 = bilinear(tex, &taps(tex, k0, u, v), decode);
+    if one_level(t) {
+        return s0;
+    }
     let s1 = bilinear(tex, &taps(tex, k1, u, v), decode);
     blend(s0, s1, t)
 }
@@ -213,10 +226,13 @@ unsafe fn trilinear_pair(
     decode: &[f32; 256],
 ) -> ([V; 3], [V; 3]) {
     let (k0, k1, t) = levels(a, l);
-    let (t0, t1) = (taps(a, k0, u, v), taps(a, k1, u, v));
-    let a_rgb = blend(bilinear(a, &t0, decode), bilinear(a, &t1, decode), t);
-    let b_rgb = blend(bilinear(b, &t0, decode), bilinear(b, &t1, decode), t);
-    (a_rgb, b_rgb)
+    let t0 = taps(a, k0, u, v);
+    let (a0, b0) = (bilinear(a, &t0, decode), bilinear(b, &t0, decode));
+    if one_level(t) {
+        return (a0, b0);
+    }
+    let t1 = taps(a, k1, u, v);
+    (blend(a0, bilinear(a, &t1, decode), t), blend(b0, bilinear(b, &t1, decode), t))
 }
 
 /// [`trilinear_pair`] from the interleaved texels `pair` of `k`'s albedo and normal map.
@@ -224,9 +240,11 @@ unsafe fn trilinear_pair(
 #[target_feature(enable = "avx2")]
 unsafe fn trilinear_interleaved(k: &ShadeConsts, pair: &[u64], u: V, v: V, l: V) -> ([V; 3], [V; 3]) {
     let (k0, k1, t) = levels(k.albedo, l);
-    let (t0, t1) = (taps(k.albedo, k0, u, v), taps(k.albedo, k1, u, v));
-    let (a0, b0) = bilinear_pair(k, pair, &t0, k.decode);
-    let (a1, b1) = bilinear_pair(k, pair, &t1, k.decode);
+    let (a0, b0) = bilinear_pair(k, pair, &taps(k.albedo, k0, u, v), k.decode);
+    if one_level(t) {
+        return (a0, b0);
+    }
+    let (a1, b1) = bilinear_pair(k, pair, &taps(k.albedo, k1, u, v), k.decode);
     (blend(a0, a1, t), blend(b0, b1, t))
 }
 
