@@ -213,7 +213,10 @@ pub struct BenchArgs {
     /// default list runs the thesis's POM settings on scalar and the rest on auto.
     #[arg(long)]
     pub kernel: Option<KernelChoice>,
-    /// Timed repetitions per measurement (the median is reported).
+    /// Timed repetitions per measurement (the median is reported). At each angle the CPU
+    /// frames of the techniques are timed in turn, one repetition of each after another (and
+    /// each paired with its GPU frame under --backend both), so that a passing disturbance
+    /// does not fall on one technique alone.
     #[arg(long, default_value_t = 5)]
     pub reps: u32,
     /// Untimed warm-up renders per measurement.

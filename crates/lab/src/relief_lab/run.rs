@@ -11,7 +11,7 @@ use crate::fixtures::{benchmark_camera, benchmark_scene};
 use crate::lab::Progress;
 use crate::metrics::compare;
 use crate::results::{write_csv, write_json};
-use crate::timing::{measure, Timing};
+use crate::timing::{measure, measure_round_robin, Timing};
 use glam::Vec2;
 use rayon::prelude::*;
 use renderlab_core::io::save_color;
@@ -108,15 +108,35 @@ pub fn run_relief_bench(
         let mut gpu_runs: Vec<GpuRun> = Vec::new();
         // One framebuffer serves every timed frame, as a renderer reuses its own.
         let mut frame = FusedFrame::new(cfg.width, cfg.height);
+        // Each GPU shader is paired with its technique's fastest CPU kernel.
+        let paired = |i: usize, t: Technique| {
+            renderer.is_some()
+                && cfg.backend == Backend::Both
+                && on_gpu.contains(&t)
+                && paired_method(&methods, t) == Some(i)
+        };
+        // The CPU methods not paired with a shader are timed in turn, repetition after
+        // repetition, so that a passing disturbance does not fall on one method alone.
+        let alone: Vec<usize> =
+            (0..methods.len()).filter(|&i| cfg.backend.cpu() && !paired(i, methods[i].0)).collect();
+        let mut alone_times: Vec<Option<Timing>> = vec![None; methods.len()];
+        if !alone.is_empty() {
+            progress(done, total, &format!("{angle}°: {} CPU methods, timed in turn", alone.len()));
+            let times = measure_round_robin(cfg.warmup, cfg.reps, alone.len(), |k| {
+                let (t, kernel) = methods[alone[k]];
+                render_fused(&scene, &camera, mats, t, kernel, true, &mut frame)
+            })?;
+            for (&i, t) in alone.iter().zip(times) {
+                alone_times[i] = Some(t);
+            }
+        }
         for (i, &(t, kernel)) in methods.iter().enumerate().filter(|_| cfg.backend.cpu()) {
             progress(done, total, &format!("{angle}°: {}", label(t, kernel)));
             // The whole frame a user waits for: scene to 8-bit pixels, rasterization included.
             let mut cpu_pass = || render_fused(&scene, &camera, mats, t, kernel, true, &mut frame);
-            // Each GPU shader is paired with its technique's fastest CPU kernel.
-            let paired =
-                cfg.backend == Backend::Both && on_gpu.contains(&t) && paired_method(&methods, t) == Some(i);
-            let (pass, ratio) = match (&mut renderer, paired) {
-                (Some(r), true) => {
+            let (pass, ratio) = match (&mut renderer, alone_times[i]) {
+                (_, Some(pass)) => (pass, None),
+                (Some(r), None) => {
                     let (pass, gpu) = time_interleaved(r, &camera, t, cfg.warmup, cfg.reps, || {
                         cpu_pass().map_err(Into::into)
                     })?;
@@ -124,7 +144,9 @@ pub fn run_relief_bench(
                     done += 1;
                     (pass, Some(pass.median_ms / gpu.wall.median_ms))
                 }
-                _ => {
+                (None, None) => {
+                    // Not reached (every method without a shader is timed in turn above); kept
+                    // so that the timing never depends on that bookkeeping.
                     let (pass, rendered): (Timing, _) = measure(cfg.warmup, cfg.reps, &mut cpu_pass);
                     rendered?;
                     (pass, None)
