@@ -26,13 +26,6 @@ impl FlatConstants {
     }
 }
 
-/// Pixels `x0 .. x0 + 4` of row `y` on triangle `s` (whose frame is constant): each lane's
-/// point, and a mask with bit `i` set where lane `i` has one (where the scalar resolve gives
-/// `Some`; the other lanes' points are unspecified).
-///
-/// # Safety
-///
-/// The CPU must support AVX2.
 /// `a/w` planes at four pixels: `(∂x·px + ∂y·py) + c`.
 #[inline]
 #[target_feature(enable = "avx2")]
