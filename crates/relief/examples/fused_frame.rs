@@ -71,7 +71,12 @@ fn headline(scene: &Scene, mats: &[ReliefMaterial], names: &[String]) {
                 }
             }
         }
-        let med: Vec<f64> = times.into_iter().map(median).collect();
+        let stat = if std::env::var("FUSED_MIN").is_ok() {
+            |v: Vec<f64>| v.into_iter().fold(f64::INFINITY, f64::min)
+        } else {
+            median
+        };
+        let med: Vec<f64> = times.into_iter().map(stat).collect();
         let line: Vec<String> =
             names.iter().zip(&med).map(|(n, m)| format!("{n} {m:.1} ms ({:.3})", m / med[0])).collect();
         println!("{angle:>3}°: {}", line.join(", "));
@@ -93,6 +98,23 @@ fn main() {
     let mats = [ReliefMaterial::new(&m, &ComplexityParams::default(), cones)];
     let scene =
         Scene::new(vec![SceneObject { name: "wall2".into(), mesh: bricks_wall(), material: 0 }], vec![m]);
+    if std::env::var("FUSED_COUNT").is_ok() {
+        // Covered pixels and height fetches per covered pixel of each technique's frame.
+        for angle in [0.0, 45.0, 60.0, 80.0] {
+            let cam = Camera::orbit(BRICKS_WALL_CENTRE, 6.0, angle, 1280, 800);
+            for name in &names {
+                let (t, k) = parse(name);
+                let (_, rec) = renderlab_relief::fused::render_fused_records(&scene, &cam, &mats, t, k, true)
+                    .expect("renders");
+                let covered = rec.mask.iter().filter(|&&m| m).count();
+                println!(
+                    "{angle:>3}° {name:<14} covered {covered:>8} px, {:.2} fetches per covered pixel",
+                    rec.fetches as f64 / covered.max(1) as f64
+                );
+            }
+        }
+        return;
+    }
     if std::env::var("FUSED_HEADLINE").is_ok() {
         headline(&scene, &mats, &names);
         return;
