@@ -254,6 +254,12 @@ impl RayLanes {
 
     /// Writes every lane's `result` to its ray's entry of `t` (without a branch per
     /// finished lane): a ray's last write is its result, made in the step it finishes.
+    ///
+    /// # Safety
+    ///
+    /// Every lane's `owner` must index `t` (as [`RayLanes::refill`] sets them: a ray of the
+    /// row, or the entry past the last one, for a `t` of [`RaySoa`]'s padded length), and the
+    /// CPU must support AVX2.
     #[inline]
     #[target_feature(enable = "avx2")]
     pub(crate) unsafe fn stage(&self, result: __m256, t: &mut [f32]) {
@@ -262,7 +268,9 @@ impl RayLanes {
         _mm256_storeu_ps(res.as_mut_ptr(), result);
         _mm256_storeu_si256(own.as_mut_ptr() as *mut __m256i, self.owner);
         for (&o, &r) in own.iter().zip(&res) {
-            t[o as usize] = r;
+            debug_assert!((o as usize) < t.len());
+            // SAFETY: the caller's guarantee (no bounds check in the march's inner loop).
+            *t.get_unchecked_mut(o as usize) = r;
         }
     }
 
@@ -528,6 +536,8 @@ macro_rules! kernel {
                         phase: new_phase,
                     };
                     let finished = _mm256_movemask_ps(done) as u32 & ng.ray.active;
+                    // SAFETY: `refill` set every owner to a ray of the row or to `n`, and `ts`
+                    // has `RaySoa`'s padded length (more than `n` entries).
                     ng.ray.stage(result, &mut ts);
                     if finished != 0 {
                         next = refill(fc, &mut ng, finished, next, n, &soa);
