@@ -8,7 +8,7 @@ use crate::error::ReliefError;
 use crate::kernel::Kernel;
 use crate::march::exact::exact_shadowed;
 use crate::render::material::ReliefMaterial;
-use crate::render::shade::{trace_rays, Frame, RowScratch as TraceScratch, ShadeOptions, ShadowMode};
+use crate::render::shade::{trace_shade_points, Frame, RowScratch as TraceScratch, ShadeOptions, ShadowMode};
 use crate::render::{check, options};
 use crate::techniques::descriptor::WithTracer;
 use crate::techniques::Technique;
@@ -270,8 +270,7 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
             let r = (y as usize - y0) * w;
             let out_row = &mut out[r..r + w];
             out_row.fill(self.background);
-            let rays = points.iter().map(|p| (p.uv, p.view_ts, p.material));
-            trace_rays(self.t, self.materials, points.len(), rays, &mut worker.trace, counter);
+            trace_shade_points(self.t, self.materials, points, self.vector, &mut worker.trace, counter);
             let hits = std::mem::take(&mut worker.trace.hits);
             let mut shadows = std::mem::take(&mut worker.shadows);
             self.shadows(&hits, points, &mut shadows, counter);

@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use renderlab_core::counter::{Counter, NoCount, Tally};
 use renderlab_core::fastmath::floor2;
 use renderlab_core::scene::Lighting;
-use renderlab_core::{Image, SurfacePoint};
+use renderlab_core::{Image, ShadePoint, SurfacePoint};
 use renderlab_texture::filter::{lod, trilinear_at};
 use renderlab_texture::{Filter, Trilinear};
 
@@ -198,19 +198,15 @@ pub(crate) fn trace_rays<T: ReliefTechnique, C: Counter>(
     scratch: &mut RowScratch,
     counter: &mut C,
 ) {
-    let RowScratch { rays, bases, runs, hits } = scratch;
+    let RowScratch { rays, bases, runs, .. } = scratch;
     set_len(rays, n);
     set_len(bases, n);
-    set_len(hits, n);
     runs.clear();
     let last = materials.len() - 1;
     let mut current = usize::MAX;
     let mut count = 0;
     for ((ray, b), (uv, view_ts, material)) in rays.iter_mut().zip(bases.iter_mut()).zip(points) {
-        let base = floor2(uv);
-        let base = if base.is_finite() { base } else { Vec2::ZERO };
-        *ray = (uv - base, view_ts);
-        *b = base;
+        (*ray, *b) = split_ray(uv, view_ts);
         let m = (material as usize).min(last);
         if m != current {
             if count > 0 {
@@ -224,6 +220,63 @@ pub(crate) fn trace_rays<T: ReliefTechnique, C: Counter>(
     if count > 0 {
         runs.push((count, current));
     }
+    trace_runs(t, materials, scratch, counter);
+}
+
+/// A ray from `uv` moved into the first tile, and the tile's corner (zero for a non-finite
+/// `uv`, which then goes to the tracer as it is).
+#[inline(always)]
+pub(crate) fn split_ray(uv: Vec2, view_ts: Vec3) -> ((Vec2, Vec3), Vec2) {
+    let base = floor2(uv);
+    let base = if base.is_finite() { base } else { Vec2::ZERO };
+    ((uv - base, view_ts), base)
+}
+
+/// [`trace_rays`] for the fused frame's shade points of a row: with `vector` (and AVX2), the
+/// rays are split from their tiles eight at a time, with the same results.
+pub(crate) fn trace_shade_points<T: ReliefTechnique, C: Counter>(
+    t: &T,
+    materials: &[ReliefMaterial],
+    points: &[ShadePoint],
+    vector: bool,
+    scratch: &mut RowScratch,
+    counter: &mut C,
+) {
+    let n = points.len();
+    if !vector {
+        let rays = points.iter().map(|p| (p.uv, p.view_ts, p.material));
+        return trace_rays(t, materials, n, rays, scratch, counter);
+    }
+    let RowScratch { rays, bases, runs, .. } = scratch;
+    set_len(rays, n);
+    set_len(bases, n);
+    if !crate::simd::split_rays(points, rays, bases) {
+        for ((ray, b), p) in rays.iter_mut().zip(bases.iter_mut()).zip(points) {
+            (*ray, *b) = split_ray(p.uv, p.view_ts);
+        }
+    }
+    runs.clear();
+    let last = materials.len() - 1;
+    let mut start = 0;
+    while start < n {
+        let m = (points[start].material as usize).min(last);
+        let end = start + points[start..].iter().take_while(|p| (p.material as usize).min(last) == m).count();
+        runs.push((end, m));
+        start = end;
+    }
+    trace_runs(t, materials, scratch, counter);
+}
+
+/// Traces `scratch`'s rays run by run into `scratch.hits` and moves each hit back to its
+/// ray's tile.
+fn trace_runs<T: ReliefTechnique, C: Counter>(
+    t: &T,
+    materials: &[ReliefMaterial],
+    scratch: &mut RowScratch,
+    counter: &mut C,
+) {
+    let RowScratch { rays, bases, runs, hits } = scratch;
+    set_len(hits, rays.len());
     let mut start = 0;
     for &(end, m) in runs.iter() {
         t.trace_row(&materials[m].inputs(), &rays[start..end], &mut hits[start..end], counter);
@@ -333,4 +386,83 @@ pub fn trace_frame<T: ReliefTechnique>(input: FrameInput, materials: &[ReliefMat
             scratch.hits.iter().map(|h| (h.uv.x + h.uv.y + h.depth) as f64).sum::<f64>()
         })
         .sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn point(u: f32, v: f32, i: u32) -> ShadePoint {
+        let f = i as f32;
+        ShadePoint {
+            uv: Vec2::new(u, v),
+            duv_dx: Vec2::new(f, -f),
+            duv_dy: Vec2::new(0.5 * f, 2.0),
+            view_ts: Vec3::new(0.1 * f, -0.2, 0.9 + f),
+            light_ts: Vec3::new(f, f + 1.0, f + 2.0),
+            material: i % 3,
+        }
+    }
+
+    /// The vector split (where the CPU has one) against `split_ray`, bit for bit.
+    fn check(points: &[ShadePoint]) {
+        let n = points.len();
+        let (mut rays, mut bases) = (vec![(Vec2::ZERO, Vec3::ZERO); n], vec![Vec2::ZERO; n]);
+        if !crate::simd::split_rays(points, &mut rays, &mut bases) {
+            eprintln!("skipped: no vector unit for split_rays here");
+            return;
+        }
+        let bits2 = |v: Vec2| [v.x.to_bits(), v.y.to_bits()];
+        let bits3 = |v: Vec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
+        for (i, p) in points.iter().enumerate() {
+            let ((uv, view), base) = split_ray(p.uv, p.view_ts);
+            assert_eq!(bits2(rays[i].0), bits2(uv), "ray uv of {:?}", p.uv);
+            assert_eq!(bits3(rays[i].1), bits3(view), "view of point {i}");
+            assert_eq!(bits2(bases[i]), bits2(base), "base of {:?}", p.uv);
+        }
+    }
+
+    #[test]
+    fn vector_split_matches_the_scalar_one_on_edge_values() {
+        let edge = [
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0,
+            0.999_999_94,
+            -1e-30,
+            3.75,
+            -2.25,
+            1.0e7,
+            -1.0e7,
+            8_388_607.5,
+            1.0e30,
+            f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+        ];
+        // 17 × 17 points: whole vectors and a tail of one.
+        let points: Vec<_> = edge
+            .iter()
+            .flat_map(|&u| edge.iter().map(move |&v| (u, v)))
+            .enumerate()
+            .map(|(i, (u, v))| point(u, v, i as u32))
+            .collect();
+        check(&points);
+    }
+
+    proptest! {
+        #[test]
+        fn vector_split_matches_the_scalar_one(bits in proptest::collection::vec((any::<u32>(), any::<u32>()), 0..40)) {
+            let points: Vec<_> = bits
+                .iter()
+                .enumerate()
+                .map(|(i, &(u, v))| point(f32::from_bits(u), f32::from_bits(v), i as u32))
+                .collect();
+            check(&points);
+        }
+    }
 }

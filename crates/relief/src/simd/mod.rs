@@ -171,6 +171,29 @@ pub fn load_lanes(
     false
 }
 
+/// Splits eight shade points at a time into rays moved into the first tile and the tiles'
+/// corners, as [`crate::render::shade::split_ray`] does one by one (the same bits); `false`
+/// (and nothing written) without AVX2.
+///
+/// # Panics
+///
+/// If `rays` or `bases` is shorter than `points`.
+#[inline]
+pub(crate) fn split_rays(
+    points: &[renderlab_core::ShadePoint],
+    rays: &mut [(Vec2, Vec3)],
+    bases: &mut [Vec2],
+) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if crate::cpu::has_avx2() {
+        // SAFETY: the CPU supports AVX2.
+        unsafe { avx2::shade::split_rays(points, rays, bases) };
+        return true;
+    }
+    let _ = (points, rays, bases);
+    false
+}
+
 /// Traces `rays` with parallax mapping's vector kernel on the packed map; `false` (and nothing
 /// traced) where it cannot run (the caller runs the scalar twin; the hits are bit-identical).
 #[inline]
