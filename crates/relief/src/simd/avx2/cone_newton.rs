@@ -109,7 +109,9 @@ pub(crate) unsafe fn setup_rays(
         &mut soa.dv,
         &mut soa.t,
     ] {
-        c.clear();
+        // Only the entries gained are written: the loop below writes every entry up to the
+        // last whole vector, and the padding after it keeps the finite values of an earlier
+        // row, which `RayLanes::refill` loads but never gives to a lane.
         c.resize(len, 0.0);
     }
     let (w, h) = (inp.height.width() as f32, inp.height.height() as f32);
