@@ -5,7 +5,10 @@
 //! times, for profilers. With `FUSED_HEADLINE=1` it times the whole fused frame of each
 //! technique at the lab's four angles, the repetitions of the techniques interleaved, and
 //! prints each one's ratio to the first's (the relief lab's headline is `cone-newton` against
-//! `pom:32@scalar`). A technique may name its kernel: `pom:32@scalar`.
+//! `pom:32@scalar`); with `FUSED_MIN=1` as well, it keeps each technique's fastest repetition
+//! instead of the median (steadier on a shared machine, with `RAYON_NUM_THREADS=1`). With
+//! `FUSED_COUNT=1` it prints each technique's covered pixels and height fetches per covered
+//! pixel at the four angles. A technique may name its kernel: `pom:32@scalar`.
 
 use renderlab_core::scene::{bricks_wall, BRICKS_WALL_CENTRE};
 use renderlab_core::{Camera, Scene, SceneObject};
