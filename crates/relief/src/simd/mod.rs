@@ -187,7 +187,7 @@ pub(crate) fn split_rays(
     #[cfg(target_arch = "x86_64")]
     if crate::cpu::has_avx2() {
         // SAFETY: the CPU supports AVX2.
-        unsafe { avx2::shade::split_rays(points, rays, bases) };
+        unsafe { avx2::rays::split_rays(points, rays, bases) };
         return true;
     }
     let _ = (points, rays, bases);

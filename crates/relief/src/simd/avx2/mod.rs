@@ -10,6 +10,7 @@ pub(crate) mod gather;
 pub(crate) mod math;
 pub(crate) mod parallax;
 pub(crate) mod pom;
+pub(crate) mod rays;
 pub(crate) mod shade;
 pub(crate) mod shadow;
 
