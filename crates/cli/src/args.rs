@@ -34,18 +34,39 @@ fn techniques_syntax() -> String {
 }
 
 /// Parses the process's arguments. Every command accepts values that read as negative
-/// numbers (`--height-scale -1`), so that such a value reaches the flag's own range check
-/// instead of being taken for an unknown flag.
+/// numbers (`--height-scale -1`), and every number or size flag any value at all (`--angle
+/// -inf`, `--size -16x16`), so that such a value reaches the flag's own range check instead
+/// of being taken for an unknown flag.
 pub fn try_parse() -> Result<Cli, clap::Error> {
+    try_parse_from(std::env::args_os())
+}
+
+/// [`try_parse`] of the given arguments (the first is the program's name).
+pub fn try_parse_from<I, T>(args: I) -> Result<Cli, clap::Error>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
     let mut cmd = command();
-    let mut matches = cmd.try_get_matches_from_mut(std::env::args_os())?;
+    let mut matches = cmd.try_get_matches_from_mut(args)?;
     Cli::from_arg_matches_mut(&mut matches).map_err(|e| e.format(&mut cmd))
 }
 
-/// The command tree with negative numbers allowed as values at every level.
+/// The command tree with negative numbers allowed as values at every level, and any value
+/// after a flag that takes a float or a `WIDTHxHEIGHT` size.
 fn command() -> clap::Command {
+    fn numeric(arg: &clap::Arg) -> bool {
+        let t = arg.get_value_parser().type_id();
+        t == std::any::TypeId::of::<f32>() || t == std::any::TypeId::of::<(u32, u32)>()
+    }
     fn negative_numbers(cmd: clap::Command) -> clap::Command {
-        cmd.allow_negative_numbers(true).mut_subcommands(negative_numbers)
+        let numeric_ids: Vec<clap::Id> =
+            cmd.get_arguments().filter(|a| numeric(a)).map(|a| a.get_id().clone()).collect();
+        let mut cmd = cmd.allow_negative_numbers(true).mut_subcommands(negative_numbers);
+        for id in numeric_ids {
+            cmd = cmd.mut_arg(id, |a| a.allow_hyphen_values(true));
+        }
+        cmd
     }
     negative_numbers(Cli::command())
 }
@@ -135,9 +156,9 @@ pub enum ReliefCommand {
 /// Which material to use: a built-in one or the user's maps.
 #[derive(Args, Debug, Clone)]
 pub struct MaterialArgs {
-    /// Built-in material: bricks, sand_rocks, bark_willow or brick_pavement.
-    #[arg(long, default_value = "bricks")]
-    pub material: String,
+    /// Built-in material: bricks (the default), sand_rocks, bark_willow or brick_pavement.
+    #[arg(long, conflicts_with = "albedo")]
+    pub material: Option<String>,
     /// Size of the built-in material's maps in texels per side.
     #[arg(long, default_value_t = 1024)]
     pub texture_size: u32,
@@ -159,9 +180,11 @@ pub struct OwnMapsArgs {
     /// Your tangent-space normal map (optional; derived from the height map if absent).
     #[arg(long, requires = "albedo")]
     pub normal_map: Option<PathBuf>,
-    /// Relief depth in UV units per unit depth for your maps (the thesis's HeightScale).
-    #[arg(long, default_value_t = 0.05)]
-    pub height_scale: f32,
+    /// Relief depth in UV units per unit depth (the thesis's HeightScale), in [0, 1]: of your
+    /// maps (default 0.05) or, in `relief`, of the built-in materials (default: each one's
+    /// own, 0.03 to 0.08; their normal maps follow it).
+    #[arg(long)]
+    pub height_scale: Option<f32>,
 }
 
 /// Complexity-map parameters (the thesis code's defaults).
@@ -194,7 +217,7 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 800)]
     pub height: u32,
     /// Frame size as WxH (e.g. 1920x1080, 3840x2160), in place of --width and --height.
-    #[arg(long, conflicts_with_all = ["width", "height"], value_parser = parse_resolution)]
+    #[arg(long, value_name = "WxH", conflicts_with_all = ["width", "height"], value_parser = parse_size)]
     pub resolution: Option<(u32, u32)>,
     /// Renderers: cpu; gpu (the techniques' WGSL shaders on wgpu: a GPU, or Mesa's lavapipe on
     /// the CPU; an error when no adapter is found); or both, side by side, their frames timed
@@ -272,13 +295,23 @@ pub enum BenchBackend {
     Both,
 }
 
-/// Parses `WxH` (`1920x1080`; `×` and `X` are accepted too) into a width and a height.
-fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
+/// The one parser of every `WIDTHxHEIGHT` flag (`--resolution`, `--size`): two whole numbers
+/// joined by `x`, `X` or `×` (`1920x1080`, `16×9`). A side below 1 is refused by its range
+/// (`-16x16` reaches this parser, see [`try_parse`], and is named as out of range rather than
+/// taken for a flag); each command then checks its own largest size.
+pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let bad = || format!("'{s}' is not WIDTHxHEIGHT (e.g. 1920x1080)");
     let (w, h) = s.split_once(['x', 'X', '×']).ok_or_else(bad)?;
-    let w: u32 = w.trim().parse().map_err(|_| bad())?;
-    let h: u32 = h.trim().parse().map_err(|_| bad())?;
-    Ok((w, h))
+    let side = |v: &str| -> Result<i64, String> { v.trim().parse::<i64>().map_err(|_| bad()) };
+    let (w, h) = (side(w)?, side(h)?);
+    if w < 1 || h < 1 {
+        return Err(format!("{w}x{h}: each side must be at least 1 pixel"));
+    }
+    let max = i64::from(u32::MAX);
+    if w > max || h > max {
+        return Err(format!("{w}x{h}: a side is larger than {max} pixels"));
+    }
+    Ok((w as u32, h as u32))
 }
 
 /// Which scene `relief render` draws.
@@ -303,7 +336,8 @@ pub struct RenderArgs {
     /// Output PNG (or EXR) file.
     #[arg(long, short)]
     pub out: PathBuf,
-    /// Material (benchmark scene only).
+    /// Material (benchmark scene; the room has its four built-in materials, whose maps
+    /// --texture-size and --height-scale set).
     #[command(flatten)]
     pub material: MaterialArgs,
     /// Scene.
@@ -392,8 +426,8 @@ pub struct WaterArgs {
     #[arg(long, default_value_t = 24)]
     pub fps: u32,
     /// Frame size WIDTHxHEIGHT in pixels (each side 8..=8192).
-    #[arg(long, default_value = "640x360")]
-    pub size: String,
+    #[arg(long, value_name = "WxH", default_value = "640x360", value_parser = parse_size)]
+    pub size: (u32, u32),
     /// Noise seed.
     #[arg(long, default_value_t = 7)]
     pub seed: u32,
@@ -456,8 +490,8 @@ pub struct SmokeArgs {
     #[arg(long, default_value_t = 24)]
     pub fps: u32,
     /// Frame size WIDTHxHEIGHT in pixels (each side 8..=4096).
-    #[arg(long, default_value = "256x256")]
-    pub size: String,
+    #[arg(long, value_name = "WxH", default_value = "256x256", value_parser = parse_size)]
+    pub size: (u32, u32),
     /// Density-grid resolution per side (4..=256; the grid has N³ voxels).
     #[arg(long, default_value_t = 128)]
     pub grid: u32,
@@ -670,4 +704,32 @@ pub struct ShadersExportArgs {
 /// Reads one `--lang` value.
 fn parse_lang(s: &str) -> Result<renderlab_gpu::export::Lang, String> {
     renderlab_gpu::export::Lang::parse(s).map_err(|e| e.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_size_parser_takes_x_capital_x_and_times_and_refuses_by_range() {
+        for s in ["16x9", "16X9", "16×9", " 16 x 9 "] {
+            assert_eq!(parse_size(s), Ok((16, 9)), "{s}");
+        }
+        assert!(parse_size("-16x16").unwrap_err().contains("at least 1"));
+        assert!(parse_size("0x9").unwrap_err().contains("at least 1"));
+        assert!(parse_size("16y9").unwrap_err().contains("is not WIDTHxHEIGHT"));
+        assert!(parse_size("99999999999x9").unwrap_err().contains("larger than"));
+    }
+
+    #[test]
+    fn float_and_size_flags_take_values_that_start_with_a_hyphen() {
+        let parse = |args: &[&str]| try_parse_from([&["renderlab"], args].concat());
+        let cli = parse(&["relief", "render", "-o", "x.png", "--angle", "-inf"]).unwrap();
+        let Command::Relief(ReliefCommand::Render(r)) = cli.command else { panic!("relief render") };
+        assert_eq!(r.angle, f32::NEG_INFINITY);
+        let e = parse(&["water", "--out", "d", "--size", "-16x16"]).unwrap_err().to_string();
+        assert!(e.contains("at least 1") && !e.contains("unexpected argument"), "{e}");
+        // A path flag still refuses a flag as its value.
+        assert!(parse(&["water", "--out", "--size", "16x16"]).is_err());
+    }
 }

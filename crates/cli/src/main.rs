@@ -13,9 +13,13 @@ mod gpu;
 mod progress;
 
 fn main() {
+    // First, while the process has one thread: the environment may only be changed then.
+    gpu::quiet_device_select_layer();
     let cli = match args::try_parse() {
         Ok(cli) => cli,
         Err(e) if !e.use_stderr() => e.exit(), // --help, --version
+        // `renderlab` (or `renderlab relief`) alone: the help, and the usage-error status 2.
+        Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => e.exit(),
         Err(e) => {
             // Clap's own message, on one line like every other error: its lines before the
             // usage hint (the first names the flag and the value; a missing argument's name
@@ -32,10 +36,27 @@ fn main() {
             std::process::exit(1);
         }
     };
+    install_interrupt_handler();
     if let Err(e) = commands::run(cli) {
         // One line, naming the file or flag at fault.
         eprintln!("renderlab: error: {}", one_line(&e));
         std::process::exit(1);
+    }
+}
+
+/// On SIGINT, SIGTERM or SIGHUP: removes every temporary file of the writes in flight (the
+/// files already written stay whole, each having been renamed into place complete), says so
+/// in one line and exits with 130, as a shell reports an interrupted command. A resumed run
+/// then starts from the files that are there.
+fn install_interrupt_handler() {
+    let installed = ctrlc::set_handler(|| {
+        eprintln!("\nrenderlab: interrupted; temporary files removed");
+        renderlab_core::tempfiles::remove_all_and_exit(130);
+    });
+    if let Err(e) = installed {
+        eprintln!(
+            "renderlab: warning: cannot handle interrupts ({e}): an interrupt may leave temporary files"
+        );
     }
 }
 

@@ -179,3 +179,87 @@ fn outputs_are_checked_before_the_work() {
     let out = dir.path().join("missing").join("x.png");
     fails_with(&["hybrid", "render", "--scene", "showcase", "--out", out.to_str().unwrap()], "missing");
 }
+
+/// The temporary files (`.NAME.PID.N.tmp`) anywhere under `dir`.
+fn temporaries(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut out = Vec::new();
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            out.extend(temporaries(&p));
+        } else if p.to_string_lossy().ends_with(".tmp") {
+            out.push(p);
+        }
+    }
+    out
+}
+
+fn count_rows(dir: &std::path::Path) -> usize {
+    std::fs::read_dir(dir.join("rows")).map_or(0, |d| {
+        d.filter(|e| e.as_ref().unwrap().file_name().to_string_lossy().ends_with(".json")).count()
+    })
+}
+
+#[test]
+fn a_second_run_is_refused_and_an_interrupted_one_leaves_no_temporary_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = dir.path().join("run");
+    let r = run.to_str().unwrap();
+    // The thesis's 54 rows: long enough that the run is still at work when it is interrupted.
+    let args = [
+        "hybrid",
+        "bench",
+        "--out",
+        r,
+        "--scenes",
+        "showcase",
+        "--sweep",
+        "thesis",
+        "--resolution",
+        "96x54",
+        "--reference-spp",
+        "2",
+        "--reps",
+        "1",
+        "--warmup",
+        "0",
+    ];
+    let mut first = Command::new(env!("CARGO_BIN_EXE_renderlab"))
+        .args(args)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The run holds the directory's lock once its run.json is there; wait for a finished row.
+    while count_rows(&run) == 0 {
+        assert!(first.try_wait().unwrap().is_none(), "the first run ended early");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    // A second run (and a merge) into the same directory: refused in one line, naming the
+    // first run's process.
+    let pid = first.id().to_string();
+    fails_with(&args, &format!("is in use by another run (pid {pid})"));
+    let mut resume = args.to_vec();
+    resume.push("--resume");
+    fails_with(&resume, "in use by another run");
+
+    // Interrupted: exit code 130, no temporary file left, the lock released.
+    let killed = Command::new("kill").args(["-INT", &pid]).status().unwrap();
+    assert!(killed.success());
+    let out = first.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{err}");
+    assert!(err.contains("interrupted") && !err.contains("panicked"), "{err}");
+    assert!(temporaries(&run).is_empty(), "{:?}", temporaries(&run));
+    let done = count_rows(&run);
+    assert!((1..54).contains(&done), "{done} rows");
+
+    // A temporary a killed run left is removed by the resume, which finishes the run.
+    std::fs::write(run.join("img").join(".x.png.4242.0.tmp"), b"half").unwrap();
+    let out = renderlab(&resume);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(err.contains("resume: removed 1 temporary file left"), "{err}");
+    assert_eq!(count_rows(&run), 54);
+    assert!(temporaries(&run).is_empty(), "{:?}", temporaries(&run));
+}

@@ -153,7 +153,8 @@ impl ApngWriter {
         let werr = |source| CoreError::Write { path: self.path.clone(), source };
         self.file.sync_all().map_err(werr)?;
         std::fs::rename(&self.tmp, &self.path).map_err(werr)?;
-        // Renamed: nothing is left for `drop` to clean up.
+        // Renamed: nothing is left for `drop` or an interrupt's clean-up to remove.
+        crate::tempfiles::forget(&self.tmp);
         self.tmp = PathBuf::new();
         Ok(())
     }
@@ -165,6 +166,7 @@ impl Drop for ApngWriter {
         drop(self.png.take());
         if !self.tmp.as_os_str().is_empty() {
             let _ = std::fs::remove_file(&self.tmp);
+            crate::tempfiles::forget(&self.tmp);
         }
     }
 }

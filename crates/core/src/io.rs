@@ -7,6 +7,9 @@
 //! claiming 100000×100000 pixels is refused, not allocated), and the third-party decoders run
 //! under [`std::panic::catch_unwind`], so a panic inside one becomes a decode error.
 //!
+//! Every file is read through [`crate::fs::read_bounded`]: only regular files, and at most
+//! [`crate::fs::MAX_IMAGE_FILE_BYTES`] whatever size the file system reports.
+//!
 //! Every write goes to a temporary file in the target directory that is renamed into place,
 //! so an interrupted run never leaves a half-written image.
 
@@ -105,9 +108,12 @@ fn guarded<T>(path: &Path, decode: impl FnOnce() -> Result<T>) -> Result<T> {
     }
 }
 
+/// Reads and decodes an image file: a regular file of at most
+/// [`crate::fs::MAX_IMAGE_FILE_BYTES`] (a FIFO or device is refused before it is read).
 fn read_raw(path: &Path) -> Result<Raw> {
     let format = format_of(path)?;
-    let bytes = std::fs::read(path).map_err(|source| CoreError::Read { path: path.into(), source })?;
+    let bytes = crate::fs::read_bounded(path, crate::fs::MAX_IMAGE_FILE_BYTES)
+        .map_err(|source| CoreError::Read { path: path.into(), source })?;
     if bytes.is_empty() {
         return Err(decode_err(path, "file is empty"));
     }
@@ -315,6 +321,7 @@ impl Drop for TempFile<'_> {
         if !self.keep {
             let _ = std::fs::remove_file(self.path);
         }
+        crate::tempfiles::forget(self.path);
     }
 }
 
@@ -359,8 +366,12 @@ pub(crate) fn create_temp_beside(path: &Path) -> Result<(PathBuf, std::fs::File)
         std::process::id(),
         NEXT.fetch_add(1, Ordering::Relaxed)
     ));
-    // `create_new` never follows or clobbers something already at the temporary path.
-    let file = std::fs::OpenOptions::new().write(true).create_new(true).open(&tmp).map_err(werr)?;
+    // `create_new` never follows or clobbers something already at the temporary path. The
+    // file is registered, so that an interrupt removes it (`crate::tempfiles`).
+    let file = crate::tempfiles::create_registered(&tmp, |p| {
+        std::fs::OpenOptions::new().write(true).create_new(true).open(p)
+    })
+    .map_err(werr)?;
     Ok((tmp, file))
 }
 

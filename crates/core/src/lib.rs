@@ -13,6 +13,7 @@ pub mod color;
 pub mod counter;
 pub mod error;
 pub mod fastmath;
+pub mod fs;
 pub mod image;
 pub mod io;
 pub mod kernel;
@@ -21,6 +22,7 @@ pub mod mesh;
 pub mod scene;
 pub mod srgb8;
 pub mod surface;
+pub mod tempfiles;
 
 pub use camera::Camera;
 pub use error::{CoreError, Result};

@@ -72,6 +72,9 @@ impl GpuContext {
     /// `FLOAT32_FILTERABLE`, which the renderer needs (its maps are 32-bit float textures,
     /// filtered by the sampler as the CPU filters them).
     pub fn new() -> Result<Self> {
+        // Mesa's device-select layer, loaded with the instance, prints an XDG_RUNTIME_DIR error
+        // where there is no desktop session; the renderlab binary turns it off first thing in
+        // `main` (a library cannot: changing the environment once threads run is unsound).
         let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
         desc.backends = wgpu::Backends::VULKAN;
         let instance = wgpu::Instance::new(desc);

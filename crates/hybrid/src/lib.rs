@@ -24,6 +24,7 @@ pub mod accel;
 pub mod config;
 pub mod error;
 pub mod lighting;
+pub mod memory;
 pub mod reference;
 pub mod renderer;
 pub mod rng;

@@ -23,9 +23,9 @@ use serde::Serialize;
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
-/// The most pixels a frame may have (a 8192² image); larger cameras are refused rather than
-/// allocated.
-pub const MAX_PIXELS: u64 = 8192 * 8192;
+/// The most pixels a frame may have: what fits [`crate::memory::BUDGET`] (about 11.4
+/// Mpixel, e.g. 4096×2792); larger cameras are refused rather than allocated.
+pub const MAX_PIXELS: u64 = crate::memory::max_pixels(crate::memory::Run::Render);
 
 /// One value per pass of the frame.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]

@@ -1,6 +1,6 @@
 //! The loaders on mutated files (byte flips, insertions, truncations of valid `.glb`,
-//! `.gltf` and `.obj` documents): each call returns `Ok` or `Err`, never panics, and what
-//! it returns as `Ok` validates.
+//! `.gltf`, `.obj` and `.mtl` documents) and on random bytes: each call returns `Ok` or
+//! `Err`, never panics, and what it returns as `Ok` validates.
 //!
 //! `RENDERLAB_FUZZ_ITERS=N` runs a further N mutations per format from a fixed seed (a
 //! cargo-fuzz-free soak test); without it only the proptest cases run.
@@ -87,6 +87,49 @@ proptest! {
     #[test]
     fn mutated_files_never_panic(mutations in proptest::collection::vec((0u8..5, 0.0f64..1.0, any::<u8>()), 1..6)) {
         run_all(&mutations);
+    }
+}
+
+/// Loads the cube OBJ with its material library `mtl` (and a valid `red.png`, which the
+/// library names) from a folder, as a scene on disk is read.
+fn load_with_mtl(mtl: &[u8]) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("cube.mtl"), mtl).unwrap();
+    std::fs::write(dir.path().join("red.png"), png([[200, 10, 10, 255]; 4])).unwrap();
+    check(obj::from_slice(CUBE_OBJ.as_bytes(), "f", Some(dir.path()), &limits()));
+}
+
+/// A signature that gets random bytes past each parser's first check.
+fn with_prefix(prefix: u8, bytes: &[u8]) -> Vec<u8> {
+    let head: &[u8] = match prefix % 4 {
+        0 => b"",
+        1 => b"glTF\x02\x00\x00\x00",
+        2 => b"{\"asset\": {\"version\": \"2.0\"}, ",
+        _ => b"v 0 0 0\nv 1 0 0\nv 0 1 0\n",
+    };
+    [head, bytes].concat()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    #[test]
+    fn mutated_material_libraries_never_panic(
+        mutations in proptest::collection::vec((0u8..5, 0.0f64..1.0, any::<u8>()), 1..6),
+    ) {
+        let mut bytes = CUBE_MTL.as_bytes().to_vec();
+        for &(kind, at, byte) in &mutations {
+            bytes = mutate(bytes, kind, at, byte);
+        }
+        load_with_mtl(&bytes);
+    }
+
+    #[test]
+    fn random_bytes_never_panic(prefix in any::<u8>(), bytes in proptest::collection::vec(any::<u8>(), 0..1024)) {
+        let data = with_prefix(prefix, &bytes);
+        check(gltf::from_slice(&data, "f", None, &limits()));
+        check(obj::from_slice(&data, "f", None, &limits()));
+        load_with_mtl(&data);
     }
 }
 

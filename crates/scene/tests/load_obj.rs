@@ -170,3 +170,25 @@ fn the_default_camera_looks_into_an_open_room_through_its_opening() {
     // A closed cube: the front.
     assert!(camera_z(CUBE_OBJ) > 0.0);
 }
+
+/// `Kd 0.5` (one number: a grey, as the MTL format allows) used to panic inside the parser;
+/// it is a grey now, and a colour of two numbers is a warning and the default material.
+#[test]
+fn one_number_colours_are_greys_and_two_number_colours_do_not_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("cube.obj"), CUBE_OBJ).unwrap();
+    std::fs::write(dir.path().join("red.png"), png([[255, 128, 0, 255]; 4])).unwrap();
+    let grey = CUBE_MTL.replace("Kd 1 1 1", "Kd 0.5");
+    std::fs::write(dir.path().join("cube.mtl"), grey).unwrap();
+    let s = load(dir.path().join("cube.obj")).unwrap().scene;
+    let glass = s.materials.iter().find(|m| m.name == "glass").expect("the glass material");
+    assert_eq!(glass.base_color, Vec3::splat(0.5));
+    let two = CUBE_MTL.replace("Kd 1 1 1", "Kd 1 1");
+    std::fs::write(dir.path().join("cube.mtl"), two).unwrap();
+    let loaded = load(dir.path().join("cube.obj")).unwrap();
+    assert!(
+        loaded.warnings.iter().any(|w| w.contains("line 7: Kd needs one or three numbers")),
+        "{:?}",
+        loaded.warnings
+    );
+}

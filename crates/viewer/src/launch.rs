@@ -136,6 +136,18 @@ pub fn wgpu_setup() -> egui_wgpu::WgpuSetup {
     egui_wgpu::WgpuSetup::CreateNew(setup)
 }
 
+/// The reason a window could not be opened, for one line: where Vulkan lists no adapter at
+/// all (no driver installed, which wgpu reports as "Failed to create surface for any enabled
+/// backend"), that and what to install ([`renderlab_gpu::GpuError::NoAdapter`]); otherwise
+/// the window library's own `reason`. Only called on failure, so the second look at the
+/// adapters costs a successful start nothing.
+pub fn window_error(reason: &str) -> String {
+    match GpuContext::new() {
+        Err(e @ renderlab_gpu::GpuError::NoAdapter(_)) => e.to_string(),
+        _ => reason.to_string(),
+    }
+}
+
 /// The light direction (toward the light) at `azimuth_deg` around the vertical axis from +Z
 /// toward +X and `elevation_deg` above the horizon.
 pub fn light_direction(azimuth_deg: f32, elevation_deg: f32) -> Vec3 {

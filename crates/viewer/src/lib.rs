@@ -72,7 +72,7 @@ pub fn run(launch: Launch) -> Result<Option<ScriptReport>, ViewerError> {
             Ok(Box::new(ViewerApp::new(loaded.settings, path, loaded.message, launch, slot)))
         }),
     );
-    result.map_err(|e| ViewerError::Window(one_line(&e.to_string())))?;
+    result.map_err(|e| ViewerError::Window(launch::window_error(&one_line(&e.to_string()))))?;
     if !scripted {
         return Ok(None);
     }

@@ -4,10 +4,13 @@
 //!
 //! A file that cannot be read as this version's settings (corrupt JSON, another version,
 //! values out of range) is never fatal: the viewer starts on the defaults, moves the old file
-//! aside to `settings.json.bad` so that nothing the user wrote is lost, and says so on the
-//! menu. Writes are atomic (a temporary file, then a rename).
+//! aside to `settings.json.bad` (or `settings.json.bad.1`, `.bad.2` … when earlier ones are
+//! kept) so that nothing the user wrote is lost, and says so on the menu. Writes are atomic
+//! (a temporary file, then a rename).
 
+use renderlab_core::fs::read_bounded_to_string;
 use serde::{Deserialize, Serialize};
+use std::io::ErrorKind;
 use std::path::{Path, PathBuf};
 
 /// The version written into the file; a file of another version is set aside.
@@ -87,43 +90,83 @@ pub struct Loaded {
 }
 
 /// Reads the settings at `path`. No file gives the defaults silently; a file that cannot be
-/// used gives the defaults, is renamed to `<path>.bad`, and the message says why.
+/// used gives the defaults, is moved aside to the first free name of [`aside_path`] (so a
+/// second corrupt file never overwrites the first one kept), and the message says why.
+///
+/// The file is read through [`renderlab_core::fs::read_bounded_to_string`]: something that is
+/// not a regular file (a FIFO would block the viewer's start forever) is refused without
+/// being read or moved, and a file of more than [`MAX_SETTINGS_FILE_BYTES`] is set aside
+/// like any other corrupt one.
 pub fn load(path: &Path) -> Loaded {
-    let text = match std::fs::read_to_string(path) {
-        Ok(t) => t,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+    let defaults = |message: String| Loaded { settings: Settings::default(), message: Some(message) };
+    let problem = match read_bounded_to_string(path, MAX_SETTINGS_FILE_BYTES) {
+        Ok(text) => match serde_json::from_str::<Settings>(&text) {
+            Ok(s) => match s.problem() {
+                None => return Loaded { settings: s, message: None },
+                Some(p) => p,
+            },
+            Err(e) => format!("not valid settings JSON ({e})"),
+        },
+        Err(e) if e.kind() == ErrorKind::NotFound => {
             return Loaded { settings: Settings::default(), message: None }
         }
-        Err(e) => {
-            return Loaded {
-                settings: Settings::default(),
-                message: Some(format!("cannot read {}: {e}; using the defaults", path.display())),
-            }
-        }
+        // Contents that are not settings: too large, or not text.
+        Err(e) if matches!(e.kind(), ErrorKind::FileTooLarge | ErrorKind::InvalidData) => e.to_string(),
+        Err(e) => return defaults(format!("cannot read {}: {e}; using the defaults", path.display())),
     };
-    let problem = match serde_json::from_str::<Settings>(&text) {
-        Ok(s) => match s.problem() {
-            None => return Loaded { settings: s, message: None },
-            Some(p) => p,
-        },
-        Err(e) => format!("not valid settings JSON ({e})"),
-    };
-    let bad = aside_path(path);
-    let kept = match std::fs::rename(path, &bad) {
-        Ok(()) => format!("kept as {}", bad.display()),
+    let kept = match set_aside(path) {
+        Ok(bad) => format!("kept as {}", bad.display()),
         Err(e) => format!("could not be moved aside: {e}"),
     };
-    Loaded {
-        settings: Settings::default(),
-        message: Some(format!("{}: {problem}; using the defaults (the old file was {kept})", path.display())),
-    }
+    defaults(format!("{}: {problem}; using the defaults (the old file was {kept})", path.display()))
 }
 
-/// `settings.json` → `settings.json.bad`.
-pub fn aside_path(path: &Path) -> PathBuf {
+/// Largest settings file read: the settings take a few hundred bytes, so anything near this
+/// is not a settings file.
+pub const MAX_SETTINGS_FILE_BYTES: u64 = renderlab_core::fs::MAX_SETTINGS_FILE_BYTES;
+
+/// Most numbered names tried for a file set aside (`settings.json.bad.1` …) before giving
+/// up and leaving the file where it is.
+const MAX_ASIDE: u32 = 10_000;
+
+/// The `n`-th name a corrupt settings file is kept under: `settings.json.bad` for 0, then
+/// `settings.json.bad.1`, `settings.json.bad.2` …
+pub fn aside_path_numbered(path: &Path, n: u32) -> PathBuf {
     let mut s = path.as_os_str().to_owned();
     s.push(".bad");
+    if n > 0 {
+        s.push(format!(".{n}"));
+    }
     PathBuf::from(s)
+}
+
+/// `settings.json` → `settings.json.bad`: the first name a corrupt file is kept under
+/// (later ones are numbered, see [`aside_path_numbered`]).
+pub fn aside_path(path: &Path) -> PathBuf {
+    aside_path_numbered(path, 0)
+}
+
+/// Moves `path` to the first of its aside names that does not exist yet, and returns it.
+/// The move never replaces an existing file: a hard link claims the new name (failing if it
+/// exists) before the old name is removed; where hard links are not supported the name is
+/// checked first and the file renamed.
+fn set_aside(path: &Path) -> std::io::Result<PathBuf> {
+    for n in 0..MAX_ASIDE {
+        let bad = aside_path_numbered(path, n);
+        match std::fs::hard_link(path, &bad) {
+            Ok(()) => {
+                std::fs::remove_file(path)?;
+                return Ok(bad);
+            }
+            Err(e) if e.kind() == ErrorKind::AlreadyExists => continue,
+            Err(_) if std::fs::symlink_metadata(&bad).is_ok() => continue,
+            Err(_) => {
+                std::fs::rename(path, &bad)?;
+                return Ok(bad);
+            }
+        }
+    }
+    Err(std::io::Error::other(format!("{MAX_ASIDE} earlier copies are kept already")))
 }
 
 /// Writes `settings` to `path` atomically, creating its directory.

@@ -4,7 +4,7 @@ use crate::args::*;
 use crate::progress::Progress;
 use anyhow::{anyhow, bail, Context, Result};
 use renderlab_core::{io, Image};
-use renderlab_hybrid::HybridRenderer;
+use renderlab_hybrid::{memory, HybridRenderer};
 use renderlab_lab::hybrid_lab::{
     merge_runs, run_hybrid_bench, scenes, stages, Existing, HybridBenchConfig, HybridSummary, Shard,
     SweepKind,
@@ -13,23 +13,58 @@ use renderlab_lab::hybrid_lab::{
 /// The largest side `--resolution` accepts.
 const MAX_SIDE: u32 = 16384;
 
-/// Reads `--resolution WIDTHxHEIGHT`.
-fn resolution(s: &str) -> Result<(u32, u32)> {
-    let bad =
-        || anyhow!("--resolution {s:?}: expected WIDTHxHEIGHT, each side in 1..={MAX_SIDE} (e.g. 1920x1080)");
-    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
-    let (w, h) = (w.trim().parse::<u32>().map_err(|_| bad())?, h.trim().parse::<u32>().map_err(|_| bad())?);
-    if w == 0 || h == 0 || w > MAX_SIDE || h > MAX_SIDE {
-        return Err(bad());
+/// Checks a `--resolution` (parsed by [`parse_size`]): each side in 1..=[`MAX_SIDE`], and
+/// the frame within the renderer's memory budget (`bench`: a run's frame and reference at
+/// once), refused in one line before any work.
+fn resolution((w, h): (u32, u32), bench: bool) -> Result<(u32, u32)> {
+    if w > MAX_SIDE || h > MAX_SIDE {
+        bail!("--resolution {w}x{h}: each side must lie in 1..={MAX_SIDE}");
     }
+    check_memory("--resolution", w, h, bench)?;
     scenes::check_resolution(w, h).map_err(|e| anyhow!("--resolution: {e}"))?;
     Ok((w, h))
 }
 
+/// Refuses a frame whose estimated peak memory ([`memory::estimate`]) exceeds
+/// [`memory::BUDGET`], naming the largest frame of that aspect that fits.
+fn check_memory(what: &str, w: u32, h: u32, bench: bool) -> Result<()> {
+    let kind = if bench { memory::Run::Bench } else { memory::Run::Render };
+    let need = memory::estimate(kind, u64::from(w) * u64::from(h));
+    if need > memory::BUDGET {
+        let (fw, fh) = memory::largest_frame(kind, w, h);
+        bail!(
+            "{what} {w}x{h} needs about {:.1} GiB, over the {} GiB memory budget; the largest frame of this aspect is {fw}x{fh} ({} Mpixel at most)",
+            need as f64 / GIB,
+            memory::BUDGET >> 30,
+            memory::max_pixels(kind) / 1_000_000
+        );
+    }
+    Ok(())
+}
+
+/// Refuses a scene whose meshes' `triangles` and frame together exceed [`memory::BUDGET`]
+/// ([`memory::estimate_with_scene`]), once the scene is loaded and before the renderer
+/// builds anything for it.
+fn check_scene_memory(spec: &str, triangles: u64, w: u32, h: u32) -> Result<()> {
+    let need = memory::estimate_with_scene(memory::Run::Render, u64::from(w) * u64::from(h), triangles);
+    if need > memory::BUDGET {
+        bail!(
+            "{spec}: {triangles} triangles at {w}x{h} need about {:.1} GiB, over the {} GiB memory budget (about {} bytes per triangle); use a smaller frame or a lighter scene",
+            need as f64 / GIB,
+            memory::BUDGET >> 30,
+            memory::PER_TRIANGLE
+        );
+    }
+    Ok(())
+}
+
+/// Bytes per GiB.
+const GIB: f64 = (1u64 << 30) as f64;
+
 /// `renderlab hybrid render`: one image.
 pub(super) fn render(a: HybridRenderArgs) -> Result<()> {
-    io::check_output(&a.out)?;
-    let size = a.resolution.as_deref().map(resolution).transpose()?;
+    super::check_out_file("--out", &a.out)?;
+    let size = a.resolution.map(|s| resolution(s, false)).transpose()?;
     let config = stages::stage_config(
         a.shadows.as_deref(),
         a.reflections.as_deref(),
@@ -53,6 +88,9 @@ pub(super) fn render(a: HybridRenderArgs) -> Result<()> {
     };
     let own = scene.cameras.iter().find(|c| c.name == name).map(|c| (c.camera.width, c.camera.height));
     let (w, h) = size.or(own).unwrap_or((1, 1));
+    check_memory(&format!("camera {name:?} of {}:", a.scene), w, h, false)?;
+    let triangles: u64 = scene.meshes.iter().map(|m| m.triangles.len() as u64).sum();
+    check_scene_memory(&a.scene, triangles, w, h)?;
     let camera = scenes::camera(&scene, &name, w, h)?;
     let renderer = HybridRenderer::new(&scene)?;
     let started = std::time::Instant::now();
@@ -93,7 +131,8 @@ pub(super) fn render(a: HybridRenderArgs) -> Result<()> {
 
 /// `renderlab hybrid bench`: the sweeps.
 pub(super) fn bench(a: HybridBenchArgs) -> Result<()> {
-    let (width, height) = resolution(&a.resolution)?;
+    let (width, height) = resolution(a.resolution, true)?;
+    super::check_out_dir("--out", &a.out)?;
     let cfg = HybridBenchConfig {
         scenes: if a.scenes.is_empty() {
             scenes::BUILTIN.iter().map(|s| s.to_string()).collect()

@@ -1,9 +1,9 @@
 //! `noise`, `water` and `smoke`.
 
-use super::create_dir;
+use super::{check_out_dir, create_dir};
 use crate::args::*;
 use crate::progress::Progress;
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use glam::Vec3;
 use renderlab_core::Image;
 use renderlab_lab::frames::FrameSink;
@@ -39,6 +39,7 @@ fn noise_config(a: &NoiseArgs) -> Result<NoiseLabConfig> {
 /// `renderlab noise`: the noise lab with the given clouds.
 pub(super) fn noise(a: NoiseArgs) -> Result<()> {
     let cfg = noise_config(&a)?;
+    check_out_dir("--out", &a.out)?;
     create_dir(&a.out)?;
     let p = Progress::new("noise");
     let summary = run_noise_lab_with(&a.out, &cfg, &|d, t, m| p.update(d, t, m))?;
@@ -55,17 +56,6 @@ const MAX_WATER_FRAMES: u32 = 10_000;
 /// Most pixels (frames × width × height) `water` renders in one run, so that a typo cannot
 /// start a job of days.
 const MAX_WATER_PIXELS: u64 = 1 << 33;
-
-/// Parses `WIDTHxHEIGHT`.
-fn parse_size(flag: &str, s: &str) -> Result<(u32, u32)> {
-    let (w, h) = s
-        .split_once(['x', 'X'])
-        .with_context(|| format!("{flag}: '{s}' is not WIDTHxHEIGHT (e.g. 640x360)"))?;
-    let side = |v: &str| -> Result<u32> {
-        v.trim().parse::<u32>().with_context(|| format!("{flag}: '{s}' is not WIDTHxHEIGHT (e.g. 640x360)"))
-    };
-    Ok((side(w)?, side(h)?))
-}
 
 /// Maps a water-parameter error to the command-line flag that set the parameter.
 fn water_flag_error(e: renderlab_noise::NoiseError) -> anyhow::Error {
@@ -93,7 +83,7 @@ fn water_params(a: &WaterArgs) -> Result<renderlab_noise::WaterParams> {
     if a.frames == 0 || a.frames > MAX_WATER_FRAMES {
         bail!("--frames: {} must lie in 1..={MAX_WATER_FRAMES}", a.frames);
     }
-    let (width, height) = parse_size("--size", &a.size)?;
+    let (width, height) = a.size;
     if !(8..=renderlab_noise::water::MAX_WATER_SIDE).contains(&width)
         || !(8..=renderlab_noise::water::MAX_WATER_SIDE).contains(&height)
     {
@@ -140,10 +130,11 @@ fn write_sequence(
     flag_error: fn(renderlab_noise::NoiseError) -> anyhow::Error,
     render: impl FnOnce(&mut dyn FnMut(u32, Image<Vec3>) -> Result<()>) -> Result<()>,
 ) -> Result<f64> {
+    check_fps(fps)?;
+    check_out_dir("--out", out)?;
     create_dir(out)?;
     let p = Progress::new(name);
     let started = std::time::Instant::now();
-    check_fps(fps)?;
     let mut sink = FrameSink::new(out, width, height, frames, fps)?;
     render(&mut |i, img| {
         sink.push(i, &img)?;
@@ -233,7 +224,7 @@ fn smoke_params(a: &SmokeArgs) -> Result<renderlab_noise::SmokeParams> {
     if a.frames == 0 || a.frames > MAX_SMOKE_FRAMES {
         bail!("--frames: {} must lie in 1..={MAX_SMOKE_FRAMES}", a.frames);
     }
-    let (width, height) = parse_size("--size", &a.size)?;
+    let (width, height) = a.size;
     if !(8..=MAX_SMOKE_SIDE).contains(&width) || !(8..=MAX_SMOKE_SIDE).contains(&height) {
         bail!("--size: {width}x{height}: each side must lie in 8..={MAX_SMOKE_SIDE}");
     }

@@ -1,6 +1,6 @@
 //! `relief bench`, `relief render`, `complexity` and `materials`.
 
-use super::{create_dir, frame_size};
+use super::{check_out_dir, check_out_file, create_dir, frame_size};
 use crate::args::*;
 use crate::progress::Progress;
 use anyhow::{bail, Context, Result};
@@ -24,26 +24,135 @@ fn params(f: &ComplexityFlags) -> Result<ComplexityParams> {
     Ok(p)
 }
 
+/// The built-in material of `--material`'s default.
+const DEFAULT_MATERIAL: &str = "bricks";
+
+/// The largest `--texture-size`.
+const MAX_TEXTURE_SIZE: u32 = 8192;
+
+/// The relief depth of your own maps when `--height-scale` is not given.
+const OWN_HEIGHT_SCALE: f32 = 0.05;
+
+/// Checks `--height-scale` where it is given: the same range for your maps and the built-in
+/// materials, which it applies to alike.
+pub(crate) fn height_scale(own: &OwnMapsArgs) -> Result<Option<f32>> {
+    own.height_scale.map(|s| check_range("--height-scale", s, 0.0, 1.0)).transpose().map_err(Into::into)
+}
+
 /// The material of the user's own maps, if they gave them (`--height-scale` checked).
 pub(crate) fn load_own_material(own: &OwnMapsArgs) -> Result<Option<Material>> {
+    let scale = height_scale(own)?.unwrap_or(OWN_HEIGHT_SCALE);
     let (Some(a), Some(h)) = (&own.albedo, &own.height_map) else { return Ok(None) };
-    check_range("--height-scale", own.height_scale, 0.0, 1.0)?;
     let albedo = io::load_color(a)?;
     let height = io::load_height(h)?;
     let normal = own.normal_map.as_ref().map(io::load_normal_map).transpose()?;
     let name = a.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "user".into());
-    Ok(Some(Material::from_maps(name, albedo, height, normal, own.height_scale)?))
+    Ok(Some(Material::from_maps(name, albedo, height, normal, scale)?))
 }
 
-/// Loads the material the user asked for.
+/// A built-in material at `--height-scale` where it is given: its normal map is derived
+/// again from its height at that depth, as it is at its own.
+fn with_height_scale(m: Material, scale: Option<f32>) -> Result<Material> {
+    match scale {
+        Some(s) if s != m.height_scale => Ok(Material::from_maps(m.name, m.albedo, m.height, None, s)?),
+        _ => Ok(m),
+    }
+}
+
+/// Checks `--texture-size` against the built-in materials' range.
+fn check_texture_size(size: u32) -> Result<()> {
+    if !(16..=MAX_TEXTURE_SIZE).contains(&size) {
+        bail!("--texture-size: {size} must lie in 16..={MAX_TEXTURE_SIZE}");
+    }
+    Ok(())
+}
+
+/// Peak resident memory of a relief run, fitted as `FIXED + per texel · texels · materials +
+/// per pixel · pixels` to `/usr/bin/time -v` of the binary (BENCHMARKS.md, "Memory"); each
+/// measured slope has 7% added.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ReliefMemory {
+    /// Bytes per texel of one material's maps (the material, its pyramids, depth field,
+    /// complexity and 8-bit copies; on the GPU backend the device's copies too).
+    per_texel: u64,
+    /// Bytes per frame pixel.
+    per_pixel: u64,
+}
+
+impl ReliefMemory {
+    /// Everything but the maps and the frame.
+    const FIXED: u64 = 64 << 20;
+    /// `relief render` on the CPU: 120 B per texel, 196 per pixel measured.
+    pub(crate) const RENDER_CPU: Self = Self { per_texel: 128, per_pixel: 208 };
+    /// `relief render` on the GPU backend (lavapipe keeps the device's textures in host
+    /// memory): 215 B per texel measured.
+    pub(crate) const RENDER_GPU: Self = Self { per_texel: 232, per_pixel: 208 };
+    /// `relief bench` on the CPU: 127 B per texel, 411 per pixel measured (the reference,
+    /// the frames and images of every technique at an angle).
+    pub(crate) const BENCH_CPU: Self = Self { per_texel: 136, per_pixel: 440 };
+    /// `relief bench` with a GPU backend.
+    pub(crate) const BENCH_GPU: Self = Self { per_texel: 232, per_pixel: 440 };
+
+    /// The estimated peak bytes of `materials` materials of `size`² texels and a frame of
+    /// `pixels` pixels.
+    fn estimate(self, size: u32, materials: u64, pixels: u64) -> u64 {
+        let texels = u64::from(size) * u64::from(size) * materials;
+        Self::FIXED + self.per_texel * texels + self.per_pixel * pixels
+    }
+
+    /// Refuses a texture size and frame (`None`: a window's, not counted) whose estimate
+    /// exceeds the memory budget, in one line naming the largest texture size that fits.
+    pub(crate) fn check(self, size: u32, materials: u64, frame: Option<(u32, u32)>) -> Result<()> {
+        let budget = renderlab_hybrid::memory::BUDGET;
+        let (w, h) = frame.unwrap_or((0, 0));
+        let pixels = u64::from(w) * u64::from(h);
+        let need = self.estimate(size, materials, pixels);
+        if need <= budget {
+            return Ok(());
+        }
+        let rest = Self::FIXED + self.per_pixel * pixels;
+        let largest = if rest >= budget {
+            0
+        } else {
+            (((budget - rest) / (self.per_texel * materials)) as f64).sqrt() as u32
+        };
+        let gib = |b: u64| b as f64 / (1u64 << 30) as f64;
+        let what = if materials == 1 { String::new() } else { format!(" ({materials} materials)") };
+        if largest < 16 {
+            bail!(
+                "--width/--height {w}x{h}: the frame needs about {:.1} GiB, over the {} GiB memory budget",
+                gib(rest),
+                budget >> 30
+            );
+        }
+        let with = if frame.is_some() { format!(" with a {w}x{h} frame") } else { String::new() };
+        bail!(
+            "--texture-size {size}{what}{with} needs about {:.1} GiB, over the {} GiB memory budget; the largest texture size here is {}",
+            gib(need),
+            budget >> 30,
+            largest.min(MAX_TEXTURE_SIZE)
+        );
+    }
+}
+
+/// Loads the material the user asked for: your maps, or the built-in `--material` (an
+/// unknown name is refused before its maps are built).
 fn load_material(m: &MaterialArgs) -> Result<Material> {
     if let Some(own) = load_own_material(&m.own)? {
         return Ok(own);
     }
-    if m.texture_size > 8192 {
-        bail!("--texture-size: {} is larger than 8192", m.texture_size);
+    check_texture_size(m.texture_size)?;
+    let name = m.material.as_deref().unwrap_or(DEFAULT_MATERIAL);
+    check_material_name(name)?;
+    with_height_scale(builtin_material(name, m.texture_size)?, height_scale(&m.own)?)
+}
+
+/// Refuses an unknown `--material` in one line naming the flag.
+fn check_material_name(name: &str) -> Result<()> {
+    if !MATERIAL_NAMES.contains(&name) {
+        bail!("--material: '{name}' is not one of {}", MATERIAL_NAMES.join(", "));
     }
-    Ok(builtin_material(&m.material, m.texture_size)?)
+    Ok(())
 }
 
 /// The methods `relief bench` measures: the given techniques on `kernel` (default auto), or
@@ -98,6 +207,10 @@ pub(super) fn bench(a: BenchArgs) -> Result<()> {
         BenchBackend::Gpu => Backend::Gpu,
         BenchBackend::Both => Backend::Both,
     };
+    if !(16..=4096).contains(&a.cone_size) {
+        bail!("--cone-size: {} must lie in 16..=4096", a.cone_size);
+    }
+    check_out_dir("--out", &a.out)?;
     let cfg = ReliefBenchConfig {
         width,
         height,
@@ -112,11 +225,17 @@ pub(super) fn bench(a: BenchArgs) -> Result<()> {
         gpu_subset: None,
         gpu_required: true,
     };
-    if !(16..=4096).contains(&a.cone_size) {
-        bail!("--cone-size: {} must lie in 16..=4096", a.cone_size);
+    if a.material.own.albedo.is_none() {
+        check_texture_size(a.material.texture_size)?;
+        let memory = match backend {
+            Backend::Cpu => ReliefMemory::BENCH_CPU,
+            _ => ReliefMemory::BENCH_GPU,
+        };
+        memory.check(a.material.texture_size, 1, Some((width, height)))?;
     }
-    create_dir(&a.out)?;
+    // Every input is read before --out is created.
     let material = load_material(&a.material)?;
+    create_dir(&a.out)?;
     let p = Progress::new("relief");
     let summary = run_relief_bench(&material, &cfg, &a.out, &|d, t, m| p.update(d, t, m))?;
     p.finish();
@@ -131,18 +250,39 @@ pub(super) fn bench(a: BenchArgs) -> Result<()> {
 pub(super) fn render(a: RenderArgs) -> Result<()> {
     frame_size(a.width, a.height)?;
     check_range("--angle", a.angle, 0.0, 89.0)?;
-    io::check_output(&a.out)?;
+    check_out_file("--out", &a.out)?;
     let technique = a.technique;
     let kernel = technique.kernel(a.kernel)?;
     let cp = params(&a.complexity)?;
+    let memory = match a.backend {
+        crate::args::Backend::Cpu => ReliefMemory::RENDER_CPU,
+        crate::args::Backend::Gpu | crate::args::Backend::Auto => ReliefMemory::RENDER_GPU,
+    };
+    if a.material.own.albedo.is_none() {
+        let materials = if a.scene == SceneChoice::Room { 4 } else { 1 };
+        check_texture_size(a.material.texture_size)?;
+        memory.check(a.material.texture_size, materials, Some((a.width, a.height)))?;
+    }
     let (scene, camera) = match a.scene {
         SceneChoice::Bench => {
             let m = load_material(&a.material)?;
             (benchmark_scene(m), benchmark_camera(a.angle, a.width, a.height))
         }
         SceneChoice::Room => {
-            let size = a.material.texture_size.min(8192);
-            (thesis_room(size)?, room_camera(a.width, a.height))
+            if a.material.material.is_some() || a.material.own.albedo.is_some() {
+                bail!(
+                    "--material/--albedo: the room scene has its four built-in materials (use --scene bench)"
+                );
+            }
+            check_texture_size(a.material.texture_size)?;
+            let scale = height_scale(&a.material.own)?;
+            let mut room = thesis_room(a.material.texture_size)?;
+            if scale.is_some() {
+                for m in &mut room.materials {
+                    *m = with_height_scale(m.clone(), scale)?;
+                }
+            }
+            (room, room_camera(a.width, a.height))
         }
     };
     let mats: Vec<ReliefMaterial> =
@@ -182,7 +322,7 @@ pub(super) fn render(a: RenderArgs) -> Result<()> {
 /// `renderlab complexity`: a height map's complexity map.
 pub(super) fn complexity(a: ComplexityArgs) -> Result<()> {
     let p = params(&a.params)?;
-    io::check_output(&a.out)?;
+    check_out_file("OUT", &a.out)?;
     let h = io::load_height(&a.height)?;
     let c = complexity_map(&h, &p);
     io::save_gray(&a.out, &c, false)?;
@@ -192,6 +332,10 @@ pub(super) fn complexity(a: ComplexityArgs) -> Result<()> {
 
 /// `renderlab materials`: every built-in material's maps.
 pub(super) fn materials(a: MaterialsArgs) -> Result<()> {
+    if !(16..=MAX_TEXTURE_SIZE).contains(&a.size) {
+        bail!("--size: {} must lie in 16..={MAX_TEXTURE_SIZE}", a.size);
+    }
+    check_out_dir("--out", &a.out)?;
     create_dir(&a.out)?;
     for name in MATERIAL_NAMES {
         let m = builtin_material(name, a.size)?;

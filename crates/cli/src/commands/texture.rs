@@ -1,6 +1,6 @@
 //! `texture bench` and `texture render`.
 
-use super::create_dir;
+use super::{check_out_dir, check_out_file, create_dir};
 use crate::args::*;
 use crate::progress::Progress;
 use anyhow::{bail, Result};
@@ -69,6 +69,7 @@ fn sigma_study(a: &TextureBenchArgs, default: Option<SigmaStudy>) -> Result<Opti
 
 /// `renderlab texture bench`.
 pub(super) fn bench(a: TextureBenchArgs) -> Result<()> {
+    check_out_dir("--out", &a.out)?;
     let cfg = texture_config(&a)?;
     create_dir(&a.out)?;
     let p = Progress::new("texture");
@@ -104,7 +105,7 @@ pub(super) fn render(a: TextureRenderArgs) -> Result<()> {
     if a.samples == 0 || a.samples > 128 {
         bail!("--samples: {} must lie in 1..=128", a.samples);
     }
-    io::check_output(&a.out)?;
+    check_out_file("--out", &a.out)?;
     let kind = SceneKind::parse(&a.scene).map_err(|e| anyhow::anyhow!("--scene: {e}"))?;
     let choice = match a.filter.as_str() {
         "reference" | "reference-box" => None,

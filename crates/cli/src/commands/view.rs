@@ -26,8 +26,13 @@ pub(crate) fn view(a: ViewArgs) -> Result<()> {
     if !(8..=8192).contains(&a.texture_size) {
         bail!("--texture-size: {} is outside 8..=8192", a.texture_size);
     }
+    // The room's four materials, on the GPU.
+    super::relief::ReliefMemory::RENDER_GPU.check(a.texture_size, 4, None)?;
+    if a.own.height_scale.is_some() && a.own.albedo.is_none() {
+        bail!("--height-scale: the viewer applies it to your own maps only (give --albedo and --height-map)");
+    }
     if let Some(out) = &a.screenshot {
-        if io::check_output(out)? != io::Format::Png {
+        if super::check_out_file("--screenshot", out)? != io::Format::Png {
             bail!("--screenshot: {} must be a .png file", out.display());
         }
     }

@@ -30,6 +30,9 @@ pub struct HybridSummary {
     pub index: PathBuf,
     /// The first view's reference image, if written.
     pub headline_image: Option<PathBuf>,
+    /// What the run found damaged in the directory it resumed and repaired (one line each;
+    /// empty for a fresh run and a merge).
+    pub repairs: Vec<String>,
 }
 
 /// A view's reference as `results.json` lists it.
@@ -62,14 +65,14 @@ pub fn assemble(out: &Path) -> Result<HybridSummary> {
         .ok_or_else(|| LabError::Hybrid(format!("{}: no run.json: not a hybrid run", out.display())))?;
     let s = &manifest.settings;
     let all = s.rows();
-    let mut rows: Vec<RowResult> = Vec::new();
+    let mut rows: Vec<(RowResult, &View)> = Vec::new();
     let mut missing = 0;
-    for (i, (id, _, _)) in all.iter().enumerate() {
+    for (i, (id, view, row)) in all.iter().enumerate() {
         if !manifest.shard.owns(i) {
             continue;
         }
-        match dir.row(id)? {
-            Some(r) => rows.push(r),
+        match dir.row(id, view, row, s.write_images)? {
+            Some(r) => rows.push((r, view)),
             None => missing += 1,
         }
     }
@@ -81,16 +84,15 @@ pub fn assemble(out: &Path) -> Result<HybridSummary> {
         }
     }
     let mut records = Vec::with_capacity(rows.len());
-    for r in &rows {
-        let info = refs.iter().find(|(v, _)| v.scene == r.scene && v.camera == r.camera).map(|(_, i)| i);
+    for (r, view) in &rows {
+        let info = refs.iter().find(|(v, _)| v == view).map(|(_, i)| i);
         let info = info.ok_or_else(|| {
             LabError::Hybrid(format!("{}: row {} has no reference in refs/", out.display(), r.id))
         })?;
-        let baseline = rows
-            .iter()
-            .find(|b| b.scene == r.scene && b.camera == r.camera && b.row.stage == Stage::Baseline);
-        records.push(HybridRecord::new(r, baseline, s.width, s.height, info));
+        let baseline = rows.iter().find(|(b, v)| v == view && b.row.stage == Stage::Baseline).map(|(b, _)| b);
+        records.push(HybridRecord::new(r, view.camera_index, baseline, s.width, s.height, info));
     }
+    let rows: Vec<RowResult> = rows.into_iter().map(|(r, _)| r).collect();
     let results = Results {
         manifest: &manifest,
         error_space: ERROR_SPACE,
@@ -104,7 +106,16 @@ pub fn assemble(out: &Path) -> Result<HybridSummary> {
     let index = out.join("index.html");
     write_page(&index, &manifest, &refs, &rows, &records, &findings, missing)?;
     let headline_image = refs.first().map(|(_, i)| out.join(&i.image)).filter(|p| p.is_file());
-    Ok(HybridSummary { manifest, records, missing, findings, headline, index, headline_image })
+    Ok(HybridSummary {
+        manifest,
+        records,
+        missing,
+        findings,
+        headline,
+        index,
+        headline_image,
+        repairs: Vec::new(),
+    })
 }
 
 /// Per stage, over every view: the most expensive and the most accurate setting.

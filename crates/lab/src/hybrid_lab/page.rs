@@ -99,11 +99,8 @@ pub(super) fn write_page(
     let s = &manifest.settings;
     let mut views = Vec::new();
     for (view, info) in refs {
-        let pairs: Vec<(&RowResult, &HybridRecord)> = rows
-            .iter()
-            .zip(records)
-            .filter(|(r, _)| r.scene == view.scene && r.camera == view.camera)
-            .collect();
+        let pairs: Vec<(&RowResult, &HybridRecord)> =
+            rows.iter().zip(records).filter(|(r, _)| r.view == view.id).collect();
         let recs: Vec<&HybridRecord> = pairs.iter().map(|(_, r)| *r).collect();
         let mut figures =
             vec![Figure { path: info.image.clone(), caption: format!("reference, {} spp", info.spp) }];
@@ -114,7 +111,7 @@ pub(super) fn write_page(
                     .push(Figure { path: row.error_image.clone(), caption: format!("{}: FLIP", rec.label) });
             }
         }
-        let title = format!("{} {}", view.scene, view.camera);
+        let title = view.title();
         views.push(ViewPage {
             reference: vec![vec![
                 info.spp.to_string(),

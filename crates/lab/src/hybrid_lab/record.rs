@@ -12,6 +12,8 @@ use serde::{Deserialize, Serialize};
 pub struct RowResult {
     /// The row's identifier (its file name without `.json`).
     pub id: String,
+    /// The identifier of the row's view (`SCENE__INDEX_CAMERA`).
+    pub view: String,
     /// The scene spec (built-in name or file).
     pub scene: String,
     /// The camera's name.
@@ -55,6 +57,8 @@ pub struct HybridRecord {
     pub scene: String,
     /// Camera name.
     pub camera: String,
+    /// The camera's position in its scene (names may repeat; this does not).
+    pub camera_index: usize,
     /// Swept stage (`baseline`, `shadows`, `translucency`, `reflections`, `gi`, `ao`).
     pub stage: &'static str,
     /// Configuration label, e.g. `rt-reflections b4 r0.5`.
@@ -110,10 +114,11 @@ pub struct HybridRecord {
 }
 
 impl HybridRecord {
-    /// `row` measured against its view's `baseline` (its deltas are NaN without one: a
+    /// `row` (of camera number `camera_index` in its scene) measured against its view's `baseline` (its deltas are NaN without one: a
     /// shard whose baseline row another shard renders) and its reference's noise floor.
     pub fn new(
         row: &RowResult,
+        camera_index: usize,
         baseline: Option<&RowResult>,
         width: u32,
         height: u32,
@@ -125,6 +130,7 @@ impl HybridRecord {
         HybridRecord {
             scene: row.scene.clone(),
             camera: row.camera.clone(),
+            camera_index,
             stage: r.stage.name(),
             label: r.label(),
             count: r.count(),

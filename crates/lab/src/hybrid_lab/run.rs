@@ -1,13 +1,20 @@
 //! The run: for every view with rows in this shard, the reference (or its persisted copy),
 //! then every row not yet done: timed frames, error against the reference, images, and the
 //! row's file. The results are assembled from the persisted rows at the end.
+//!
+//! The run holds the directory's lock from before it reads anything there to the end. When
+//! it opens the directory it checks every stored row and reference ([`RunDir::check_row`],
+//! [`check_reference`]) and renders again what is damaged or incomplete, saying so on
+//! stderr, and removes the temporary files a killed run left.
 
 use super::assemble::{assemble, HybridSummary};
 use super::config::{Existing, HybridBenchConfig};
 use super::record::RefInfo;
 use super::record::RowResult;
 use super::scenes::{self, camera_names};
-use super::store::{view_id, Manifest, RunDir, Settings, View, FORMAT};
+use super::store::{
+    read_json, reference_image, row_images, view_id, Manifest, RowState, RunDir, Settings, View, FORMAT,
+};
 use super::sweep::{Stage, SweepRow};
 use crate::error::{LabError, Result};
 use crate::heatmap::{heat_image, with_legend};
@@ -50,24 +57,64 @@ pub fn run_hybrid_bench(cfg: &HybridBenchConfig, out: &Path, progress: Progress)
     };
     let manifest = Manifest { settings, shard: cfg.shard };
     let dir = RunDir::new(out);
+    // Held to the end of the run, whatever ends it: a second process on the same directory
+    // is refused before it reads or writes anything there.
+    let lock = dir.lock()?;
     prepare(&dir, &manifest, cfg.existing)?;
+    let mut repairs = Vec::new();
+    let stale = dir.remove_stale_temporaries(&lock)?;
+    if !stale.is_empty() {
+        repairs.push(format!(
+            "removed {} temporary file{} left by an interrupted run (e.g. {})",
+            stale.len(),
+            if stale.len() == 1 { "" } else { "s" },
+            stale[0].display()
+        ));
+    }
     dir.create()?;
     dir.write_manifest(&manifest)?;
 
-    let all = manifest.settings.rows();
+    let s = &manifest.settings;
+    let all = s.rows();
     let mine: Vec<usize> = (0..all.len()).filter(|&i| cfg.shard.owns(i)).collect();
     let total = mine.len();
+    // Every stored item is checked before any work: what is damaged is done again.
+    let mut plan: Vec<(&View, Vec<RunRow>, RefState)> = Vec::new();
     let mut done = 0;
-    let mut renderer: Option<(String, HybridRenderer)> = None;
-    for view in &manifest.settings.views {
-        let rows: Vec<&(String, &View, SweepRow)> =
-            mine.iter().map(|&i| &all[i]).filter(|(_, v, _)| *v == view).collect();
+    for view in &s.views {
+        let rows: Vec<RunRow> = mine.iter().map(|&i| &all[i]).filter(|(_, v, _)| *v == view).collect();
         if rows.is_empty() {
             continue;
         }
-        let todo: Vec<_> = rows.iter().filter(|(id, _, _)| !dir.row_path(id).is_file()).collect();
-        done += rows.len() - todo.len();
-        if todo.is_empty() {
+        let mut todo = Vec::new();
+        for entry in rows {
+            let (id, _, row) = entry;
+            match dir.check_row(id, view, row, s.write_images) {
+                RowState::Done(_) => done += 1,
+                RowState::Missing => todo.push(entry),
+                RowState::Bad(why) => {
+                    repairs.push(format!("row {id} was unusable ({why}), rendering it again"));
+                    todo.push(entry);
+                }
+            }
+        }
+        let state = check_reference(&dir, view, s)?;
+        match &state {
+            RefState::Bad(why) => {
+                repairs.push(format!("the reference of {} was unusable ({why}), rendering it again", view.id))
+            }
+            RefState::Repaired(what) => repairs.push(what.clone()),
+            RefState::Good | RefState::Missing => {}
+        }
+        plan.push((view, todo, state));
+    }
+    for r in &repairs {
+        eprintln!("resume: {r}");
+    }
+
+    let mut renderer: Option<(String, HybridRenderer)> = None;
+    for (view, todo, state) in plan {
+        if todo.is_empty() && matches!(state, RefState::Good | RefState::Repaired(_)) {
             continue;
         }
         if renderer.as_ref().is_none_or(|(s, _)| *s != view.scene) {
@@ -81,10 +128,11 @@ pub fn run_hybrid_bench(cfg: &HybridBenchConfig, out: &Path, progress: Progress)
             renderer = Some((view.scene.clone(), r));
         }
         let r = &renderer.as_ref().expect("renderer").1;
-        let camera = scenes::camera(r.scene(), &view.camera, cfg.width, cfg.height)?;
-        let spp = manifest.settings.reference_spp;
+        let camera = scenes::camera_at(r.scene(), view.camera_index, cfg.width, cfg.height)?;
+        let spp = s.reference_spp;
         progress(done, total, &format!("{}: reference, {spp} spp", view.id));
-        let reference = reference(&dir, view, r, &camera, &manifest.settings, &|f| {
+        let stored = matches!(state, RefState::Good | RefState::Repaired(_));
+        let reference = reference(&dir, view, r, &camera, s, stored, &|f| {
             progress(done, total, &format!("{}: reference, {spp} spp, {:.0}%", view.id, 100.0 * f))
         })?;
         for (id, _, row) in todo {
@@ -95,8 +143,14 @@ pub fn run_hybrid_bench(cfg: &HybridBenchConfig, out: &Path, progress: Progress)
         }
     }
     progress(total, total, "assembling results and report");
-    assemble(out)
+    let mut summary = assemble(out)?;
+    summary.repairs = repairs;
+    drop(lock);
+    Ok(summary)
 }
+
+/// A row of the run: identifier, view, sweep row.
+type RunRow<'a> = &'a (String, &'a View, SweepRow);
 
 /// Checks the directory against `existing` (and a resumed run's settings) before anything
 /// is written.
@@ -146,40 +200,109 @@ fn load_scenes(specs: &[String]) -> Result<Vec<(String, HybridScene)>> {
     Ok(out)
 }
 
-/// The views: every scene with the given cameras (each must exist in every scene), or with
-/// all of its own.
+/// The views: every scene with the given cameras (each name must exist in every scene; a
+/// name that several cameras share selects all of them), or with all of its own. A view is
+/// identified by its camera's index, so cameras whose names are equal or slug alike are
+/// distinct views with distinct files.
 fn views(scenes: &[(String, HybridScene)], cameras: &[String]) -> Result<Vec<View>> {
+    if let Some(twice) = cameras.iter().enumerate().find(|(i, c)| cameras[..*i].contains(c)).map(|x| x.1) {
+        return Err(LabError::Hybrid(format!("camera {twice:?} is given twice")));
+    }
     let mut out = Vec::new();
     for (spec, scene) in scenes {
-        let names = if cameras.is_empty() { camera_names(scene) } else { cameras.to_vec() };
-        for name in names {
-            if !scene.cameras.iter().any(|c| c.name == name) {
-                return Err(LabError::Hybrid(format!(
-                    "scene {spec} has no camera {name:?} (it has: {})",
-                    camera_names(scene).join(", ")
-                )));
+        let indices: Vec<usize> = if cameras.is_empty() {
+            (0..scene.cameras.len()).collect()
+        } else {
+            let mut picked = Vec::new();
+            for name in cameras {
+                let found: Vec<usize> =
+                    (0..scene.cameras.len()).filter(|&i| scene.cameras[i].name == *name).collect();
+                if found.is_empty() {
+                    return Err(LabError::Hybrid(format!(
+                        "scene {spec} has no camera {name:?} (it has: {})",
+                        camera_names(scene).join(", ")
+                    )));
+                }
+                picked.extend(found);
             }
-            out.push(View { scene: spec.clone(), id: view_id(spec, &name), camera: name });
+            picked
+        };
+        for i in indices {
+            let name = scene.cameras[i].name.clone();
+            out.push(View {
+                scene: spec.clone(),
+                id: view_id(spec, i, &name),
+                camera: name,
+                camera_index: i,
+            });
         }
     }
     Ok(out)
 }
 
-/// A view's reference: read back if persisted, else path-traced and persisted.
+/// A view's stored reference, as the run finds it when it opens the directory.
+#[derive(Debug)]
+enum RefState {
+    /// Whole: its noise floor parses and its EXR decodes at the run's size.
+    Good,
+    /// Whole after a repair that needed no rendering (the message says which).
+    Repaired(String),
+    /// Not there: never rendered.
+    Missing,
+    /// Damaged (why): it is rendered again.
+    Bad(String),
+}
+
+/// Checks `view`'s stored reference: `refs/VIEW.json` must parse and name this view's image
+/// and spp, `refs/VIEW.exr` must decode at the run's size. A missing reference PNG is
+/// written again from the EXR.
+fn check_reference(dir: &RunDir, view: &View, s: &Settings) -> Result<RefState> {
+    let (exr, json) = (dir.ref_exr(view), dir.ref_json(view));
+    let there = |p: &Path| std::fs::symlink_metadata(p).is_ok();
+    if !there(&exr) && !there(&json) {
+        return Ok(RefState::Missing);
+    }
+    let info: RefInfo = match read_json(&json) {
+        Ok(i) => i,
+        Err(e) => return Ok(RefState::Bad(e.to_string())),
+    };
+    if info.image != reference_image(view) || info.spp != s.reference_spp {
+        return Ok(RefState::Bad(format!("{} is another reference's", json.display())));
+    }
+    let img = match load_color(&exr) {
+        Ok(img) => img,
+        Err(e) => return Ok(RefState::Bad(e.to_string())),
+    };
+    if img.size() != (s.width, s.height) {
+        return Ok(RefState::Bad(format!("{} is {}x{}", exr.display(), img.width(), img.height())));
+    }
+    let png = dir.root.join(&info.image);
+    if std::fs::metadata(&png).map_or(true, |m| !m.is_file() || m.len() == 0) {
+        save_color(&png, &img)?;
+        return Ok(RefState::Repaired(format!(
+            "the reference image {} was missing, written again from {}",
+            png.display(),
+            exr.display()
+        )));
+    }
+    Ok(RefState::Good)
+}
+
+/// A view's reference: read back if `stored` (checked whole), else path-traced and
+/// persisted.
+#[allow(clippy::too_many_arguments)]
 fn reference(
     dir: &RunDir,
     view: &View,
     r: &HybridRenderer,
     camera: &Camera,
     s: &Settings,
+    stored: bool,
     progress: &(dyn Fn(f64) + Sync),
 ) -> Result<Image<Vec3>> {
     let (exr, json) = (dir.ref_exr(view), dir.ref_json(view));
-    if json.is_file() && exr.is_file() {
-        let img = load_color(&exr)?;
-        if img.size() == (s.width, s.height) {
-            return Ok(img);
-        }
+    if stored {
+        return Ok(load_color(&exr)?);
     }
     let started = Instant::now();
     let reference = r.reference_with_progress(
@@ -192,7 +315,7 @@ fn reference(
     let image = |v: Vec<Vec3>| Image::from_vec(s.width, s.height, v);
     let (hdr, a, b) = (image(reference.hdr)?, image(reference.half_a)?, image(reference.half_b)?);
     let halves = compare(&a, &b, None).metrics;
-    let rel = format!("img/{}__reference.png", view.id);
+    let rel = reference_image(view);
     save_color(dir.root.join(&rel), &hdr)?;
     save_exr(&exr, &hdr)?;
     let info = RefInfo {
@@ -250,16 +373,15 @@ fn measure_row(
     let rays = frame.rays.total();
     let image = Image::from_vec(frame.width, frame.height, frame.hdr)?;
     let cmp = compare(&image, reference, None);
-    let (mut rel, mut err_rel) = (String::new(), String::new());
+    let (rel, err_rel) = row_images(id, cfg.write_images);
     if cfg.write_images {
-        rel = format!("img/{id}.png");
-        err_rel = format!("img/{id}_flip.png");
         save_color(dir.root.join(&rel), &image)?;
         let heat = with_legend(&heat_image(&cmp.flip_map, 1.0, None), 1.0, "FLIP");
         save_rgb8(dir.root.join(&err_rel), &heat)?;
     }
     Ok(RowResult {
         id: id.to_string(),
+        view: view.id.clone(),
         scene: view.scene.clone(),
         camera: view.camera.clone(),
         row: *row,

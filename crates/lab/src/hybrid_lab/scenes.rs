@@ -110,6 +110,20 @@ pub fn camera(scene: &HybridScene, name: &str, width: u32, height: u32) -> Resul
     Ok(Camera { width, height, ..found.camera })
 }
 
+/// Camera number `index` of `scene` at `width`×`height` pixels (its field of view kept):
+/// the lookup of a run, where two cameras may share a name.
+pub fn camera_at(scene: &HybridScene, index: usize, width: u32, height: u32) -> Result<Camera> {
+    let found = scene.cameras.get(index).ok_or_else(|| {
+        LabError::Hybrid(format!(
+            "scene {} has no camera number {index} (it has {})",
+            scene.name,
+            scene.cameras.len()
+        ))
+    })?;
+    check_resolution(width, height)?;
+    Ok(Camera { width, height, ..found.camera })
+}
+
 /// Refuses an empty frame or one larger than the renderer accepts.
 pub fn check_resolution(width: u32, height: u32) -> Result<()> {
     let pixels = width as u64 * height as u64;

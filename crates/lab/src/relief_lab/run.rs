@@ -67,8 +67,6 @@ pub fn run_relief_bench(
 ) -> crate::Result<ReliefSummary> {
     cfg.complexity.validate()?;
     let (gpu_ctx, gpu_note) = gpu_side::open(cfg)?;
-    let img_dir = out.join("img");
-    std::fs::create_dir_all(&img_dir).map_err(|source| CoreError::Write { path: img_dir.clone(), source })?;
     let methods = resolve(&cfg.techniques)?;
     let needs_cone = methods.iter().any(|(t, _)| t.needs_map(Map::Cone));
     progress(0, 1, "preparing material (pyramids, complexity map, cone map)");
@@ -76,6 +74,9 @@ pub fn run_relief_bench(
     for &(t, kernel) in &methods {
         check(t, kernel, std::slice::from_ref(&mat))?;
     }
+    // The output directory is made only once every setting has been checked.
+    let img_dir = out.join("img");
+    std::fs::create_dir_all(&img_dir).map_err(|source| CoreError::Write { path: img_dir.clone(), source })?;
     let scene = benchmark_scene(material.clone());
     let mats = std::slice::from_ref(&mat);
     let mut renderer = match &gpu_ctx {

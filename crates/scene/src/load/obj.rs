@@ -43,25 +43,43 @@ pub fn from_slice(
     let options =
         tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
     let mtl_notes = std::cell::RefCell::new(Vec::new());
-    let (models, materials) = tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &options, |p| {
-        let loaded = p
-            .to_str()
-            .ok_or_else(|| Problem::Invalid("an MTL file name is not UTF-8".into()))
-            .and_then(|n| resolve(base, n))
-            .and_then(|path| read_limited(&path, limits));
-        match loaded {
-            Ok(text) => tobj::load_mtl_buf(&mut std::io::Cursor::new(text)).inspect_err(|e| {
-                mtl_notes.borrow_mut().push(format!("MTL file {}: {e}; default material used", p.display()));
-            }),
-            Err(e) => {
-                mtl_notes
-                    .borrow_mut()
-                    .push(format!("MTL file {} not loaded ({e}); default material used", p.display()));
-                Err(tobj::LoadError::OpenFileFailed)
+    // The parser indexes and unwraps on some malformed input (MTL colour statements are
+    // checked first, see `normalize_mtl`): a panic inside it is a malformed file, not a crash.
+    let parsed = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &options, |p| {
+            let loaded = p
+                .to_str()
+                .ok_or_else(|| Problem::Invalid("an MTL file name is not UTF-8".into()))
+                .and_then(|n| resolve(base, n))
+                .and_then(|path| read_limited(&path, limits));
+            match loaded.map(|text| normalize_mtl(&text)) {
+                Ok(Ok(text)) => tobj::load_mtl_buf(&mut std::io::Cursor::new(text)).inspect_err(|e| {
+                    mtl_notes
+                        .borrow_mut()
+                        .push(format!("MTL file {}: {e}; default material used", p.display()));
+                }),
+                Ok(Err(why)) => {
+                    mtl_notes
+                        .borrow_mut()
+                        .push(format!("MTL file {}: {why}; default material used", p.display()));
+                    Err(tobj::LoadError::MaterialParseError)
+                }
+                Err(e) => {
+                    mtl_notes
+                        .borrow_mut()
+                        .push(format!("MTL file {} not loaded ({e}); default material used", p.display()));
+                    Err(tobj::LoadError::OpenFileFailed)
+                }
             }
+        })
+    }))
+    .map_err(|_| Problem::Obj("the parser failed on malformed input".into()))?;
+    let (models, materials) = parsed.map_err(|e| match e {
+        tobj::LoadError::FaceColorOutOfBounds | tobj::LoadError::ColorParseError => {
+            Problem::Obj(vertex_colour_problem(bytes).unwrap_or_else(|| e.to_string()))
         }
-    })
-    .map_err(|e| Problem::Obj(e.to_string()))?;
+        e => Problem::Obj(e.to_string()),
+    })?;
     warnings.append(&mut mtl_notes.into_inner());
     let skipped = bytes
         .split(|&b| b == b'\n')
@@ -207,6 +225,36 @@ fn convert(
     Ok(out)
 }
 
+/// Checks an MTL file's colour statements (`Ka`, `Kd`, `Ks`, `Ke`) before the parser sees
+/// them: the format allows one number for a grey (`Kd 0.5` means `Kd 0.5 0.5 0.5`), which is
+/// written out as three, and the parser would panic on one or two; a statement with none or
+/// two is refused with its line number. Other lines are passed on as they are.
+pub fn normalize_mtl(text: &[u8]) -> Result<Vec<u8>, String> {
+    let mut out = Vec::with_capacity(text.len() + 64);
+    for (n, line) in text.split(|&b| b == b'\n').enumerate() {
+        if n > 0 {
+            out.push(b'\n');
+        }
+        let Ok(line_str) = std::str::from_utf8(line) else {
+            out.extend_from_slice(line);
+            continue;
+        };
+        let mut words = line_str.split_whitespace();
+        match words.next() {
+            Some(key @ ("Ka" | "Kd" | "Ks" | "Ke")) => {
+                let values: Vec<&str> = words.collect();
+                match values.as_slice() {
+                    [v] => out.extend_from_slice(format!("{key} {v} {v} {v}").as_bytes()),
+                    [_, _, _, ..] => out.extend_from_slice(line),
+                    _ => return Err(format!("line {}: {key} needs one or three numbers", n + 1)),
+                }
+            }
+            _ => out.extend_from_slice(line),
+        }
+    }
+    Ok(out)
+}
+
 /// The file name of an MTL texture statement's argument: the options that may precede it
 /// (`-bm 1.0`, `-o 0 0.5`, `-clamp on` …, each with its argument count) are skipped, and the
 /// rest, spaces included, is the name (exporters write names such as `wood floor.png`).
@@ -242,9 +290,62 @@ pub fn roughness_from_shininess(ns: f32) -> f32 {
     alpha.sqrt().clamp(0.0, 1.0)
 }
 
+/// What is wrong with the vertex colours (`v x y z r g b`) of an OBJ document that the
+/// parser refused for them (it says only "face vertex color index out of bounds"): the first
+/// vertex whose colour is not three numbers, or that lacks the colour its predecessors have
+/// (or has one they lack), by line and vertex number.
+fn vertex_colour_problem(bytes: &[u8]) -> Option<String> {
+    let text = String::from_utf8_lossy(bytes);
+    let mut first: Option<(usize, bool)> = None; // (line, has a colour) of the first vertex
+    let mut vertex = 0usize;
+    for (n, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        if words.next() != Some("v") {
+            continue;
+        }
+        vertex += 1;
+        let rest: Vec<&str> = words.collect();
+        let at = format!("line {}, vertex {vertex}", n + 1);
+        if rest.len() != 3 && rest.len() != 4 && rest.len() != 6 {
+            return Some(format!("{at}: {} values (x y z, x y z w or x y z r g b)", rest.len()));
+        }
+        let coloured = rest.len() == 6;
+        if coloured {
+            if let Some(bad) = rest[3..].iter().find(|w| !w.parse::<f32>().is_ok_and(f32::is_finite)) {
+                return Some(format!("{at}: vertex colour component '{bad}' is not a finite number"));
+            }
+        }
+        match first {
+            None => first = Some((n + 1, coloured)),
+            Some((l, c)) if c != coloured => {
+                let (this, that) = if coloured { ("a colour", "none") } else { ("no colour", "one") };
+                return Some(format!(
+                    "{at}: has {this} but vertex 1 (line {l}) has {that}; vertex colours must be given for every vertex or none"
+                ));
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_bad_vertex_colour_is_named_by_line_and_vertex() {
+        let limits = LoadLimits::default();
+        let obj = |text: &str| match from_slice(text.as_bytes(), "t", None, &limits) {
+            Err(e) => e.to_string(),
+            Ok(_) => "loaded".into(),
+        };
+        let e = obj("v 0 0 0 1 1 1\nv 1 0 0 1 nan? 1\nv 0 1 0 1 1 1\nf 1 2 3\n");
+        assert!(e.contains("line 2, vertex 2") && e.contains("'nan?'") && e.contains("finite"), "{e}");
+        let e = obj("v 0 0 0 1 1 1\nv 1 0 0\nv 0 1 0 1 1 1\nf 1 2 3\n");
+        assert!(e.contains("line 2, vertex 2") && e.contains("every vertex or none"), "{e}");
+        assert!(!e.contains("out of bounds"), "{e}");
+    }
 
     #[test]
     fn texture_names_keep_their_spaces_and_lose_their_options() {
@@ -254,6 +355,20 @@ mod tests {
         assert_eq!(texture_file_name("-o 0.1 0.2 -s 2 -clamp on my file.png"), "my file.png");
         assert_eq!(texture_file_name("-mm 0 1 a.png"), "a.png");
         assert_eq!(texture_file_name("-bm 2.png"), "2.png", "a name is never eaten as an argument");
+    }
+
+    #[test]
+    fn mtl_colours_of_one_number_are_greys_and_of_two_are_refused() {
+        let text = b"newmtl a\nKd 0.5\r\nKs 1 0 0\nKa 0.25 \nmap_Kd x.png";
+        let out = normalize_mtl(text).unwrap();
+        assert_eq!(out, b"newmtl a\nKd 0.5 0.5 0.5\nKs 1 0 0\nKa 0.25 0.25 0.25\nmap_Kd x.png");
+        let m = tobj::load_mtl_buf(&mut std::io::Cursor::new(out)).unwrap().0;
+        assert_eq!(m[0].diffuse, Some([0.5; 3]));
+        assert_eq!(
+            normalize_mtl(b"newmtl a\nKe 1 2\n").unwrap_err(),
+            "line 2: Ke needs one or three numbers"
+        );
+        assert!(normalize_mtl(b"Kd\n").is_err());
     }
 
     #[test]

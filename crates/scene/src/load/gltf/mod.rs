@@ -21,7 +21,9 @@
 //! Buffers and images are resolved here rather than by the `gltf` crate's importer, so that
 //! data URIs are decoded with `base64`, images with the workspace's `image` codecs, and
 //! every size is checked before anything is allocated. Each accessor is checked against its
-//! buffer before it is read.
+//! buffer before it is read, so that no count can ask for more than the file holds; an
+//! accessor without a buffer view (zeros but for its sparse elements) holds at most
+//! [`MAX_SPARSE_ONLY_ELEMENTS`].
 
 use super::geometry::{clean, NormalRule, RawMesh};
 use super::textures::vertex_colors;
@@ -37,10 +39,17 @@ use renderlab_core::Camera;
 use std::collections::HashMap;
 use std::path::Path;
 
-/// Deepest node nesting followed; deeper trees (or cycles) are refused.
 mod material;
 
+/// Deepest node nesting followed; deeper trees (or cycles) are refused.
 const MAX_DEPTH: usize = 256;
+
+/// Most elements of an accessor without a buffer view. Such an accessor is all zeros but
+/// for its sparse elements, so its `count` is bounded by nothing in the file: a few bytes of
+/// JSON could otherwise ask for gigabytes. 2^20 elements are 16 MiB as `VEC4` floats, more
+/// than any zero-filled attribute of a real model needs (sparse data is used for morph
+/// targets, which are not read; an attribute of a drawn mesh normally has a buffer view).
+pub const MAX_SPARSE_ONLY_ELEMENTS: usize = 1 << 20;
 
 /// Loads a glTF document from memory. `base` is the folder that relative URIs are
 /// resolved against (`None`: only embedded data is allowed).
@@ -369,6 +378,12 @@ impl Loader<'_> {
             return Ok(None);
         };
         check(&pos_acc, &[DataType::F32], Dimensions::Vec3, self.buffers, &label)?;
+        if prim.indices().is_none() && assembled_count(mode, pos_acc.count()) > self.limits.max_triangles {
+            return Err(Problem::Invalid(format!(
+                "{label}: more than {} triangles",
+                self.limits.max_triangles
+            )));
+        }
         let buffers = self.buffers;
         let reader = prim.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
         let unreadable =
@@ -432,6 +447,13 @@ impl Loader<'_> {
                     buffers,
                     &label,
                 )?;
+                // Refused before the indices are read and assembled, not after.
+                if assembled_count(mode, a.count()) > self.limits.max_triangles {
+                    return Err(Problem::Invalid(format!(
+                        "{label}: more than {} triangles",
+                        self.limits.max_triangles
+                    )));
+                }
                 let idx: Vec<u32> =
                     reader.read_indices().ok_or_else(|| unreadable("index"))?.into_u32().collect();
                 assemble(mode, &idx)
@@ -506,6 +528,12 @@ fn check(
             return bad("its elements lie outside the buffer".into())
         }
         None if a.sparse().is_none() => return bad("it has neither a buffer view nor sparse data".into()),
+        None if a.count() > MAX_SPARSE_ONLY_ELEMENTS => {
+            return bad(format!(
+                "{} elements without a buffer view (at most {MAX_SPARSE_ONLY_ELEMENTS} are read)",
+                a.count()
+            ))
+        }
         _ => {}
     }
     if let Some(sparse) = a.sparse() {
@@ -548,6 +576,15 @@ fn finite_or(x: f32, default: f32) -> f32 {
         x
     } else {
         default
+    }
+}
+
+/// How many triangles [`assemble`] makes of `n` vertices drawn in `mode`.
+fn assembled_count(mode: ::gltf::mesh::Mode, n: usize) -> usize {
+    use ::gltf::mesh::Mode;
+    match mode {
+        Mode::TriangleStrip | Mode::TriangleFan => n.saturating_sub(2),
+        _ => n / 3,
     }
 }
 
