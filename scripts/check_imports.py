@@ -1,12 +1,15 @@
 #!/usr/bin/env python3
-"""Lists pairs of files of a crate that import each other.
+"""Lists the import cycles, of any length, among the files of each crate.
 
-Usage: check_imports.py CRATE_SRC_DIR
+Usage: check_imports.py CRATE_SRC_DIR [CRATE_SRC_DIR ...]
 
-Unit-test modules (`#[cfg(test)] mod …`) are left out. Follows `use crate::…`, `use super::…`, `use self::…`, `use child::…` (from a module's own
-file) and `crate::…` paths in code (comments and doc links are ignored), resolving each to
-the file that defines the longest matching module path. Exits 1 when a pair imports each
-other, printing the pairs.
+Unit-test modules (`#[cfg(test)] mod …`) are left out. Follows `use crate::…`, `use super::…`,
+`use self::…`, `use child::…` (from a module's own file), and `crate::…`, `super::…`, `self::…`
+and `child::…` paths in code (comments and doc links are ignored), resolving each to
+the file that defines the longest matching module path. A cycle is a strongly connected
+component of more than one file in that graph (a file that reaches itself through others);
+each is printed with one closed path through all of its files. Exits 1 when any crate has
+one, so that `.ci/run` can hold every crate to arrows that point one way.
 """
 
 import pathlib
@@ -15,10 +18,84 @@ import sys
 
 
 def main() -> int:
-    if len(sys.argv) != 2:
-        print("usage: check_imports.py CRATE_SRC_DIR", file=sys.stderr)
+    if len(sys.argv) < 2:
+        print("usage: check_imports.py CRATE_SRC_DIR [CRATE_SRC_DIR ...]", file=sys.stderr)
         return 2
-    root = pathlib.Path(sys.argv[1])
+    found = 0
+    for arg in sys.argv[1:]:
+        found += check(pathlib.Path(arg))
+    return 1 if found else 0
+
+
+def cycles(edges):
+    """The strongly connected components of more than one file (Tarjan's algorithm, without
+    recursion), each sorted, in a stable order."""
+    index, low, on, stack, out = {}, {}, set(), [], []
+    counter = 0
+    for start in sorted(edges):
+        if start in index:
+            continue
+        work = [(start, iter(sorted(edges.get(start, ()))))]
+        index[start] = low[start] = counter
+        counter += 1
+        stack.append(start)
+        on.add(start)
+        while work:
+            v, it = work[-1]
+            advanced = False
+            for w in it:
+                if w not in index:
+                    index[w] = low[w] = counter
+                    counter += 1
+                    stack.append(w)
+                    on.add(w)
+                    work.append((w, iter(sorted(edges.get(w, ())))))
+                    advanced = True
+                    break
+                if w in on:
+                    low[v] = min(low[v], index[w])
+            if advanced:
+                continue
+            work.pop()
+            if work:
+                low[work[-1][0]] = min(low[work[-1][0]], low[v])
+            if low[v] == index[v]:
+                comp = []
+                while True:
+                    w = stack.pop()
+                    on.discard(w)
+                    comp.append(w)
+                    if w == v:
+                        break
+                if len(comp) > 1:
+                    out.append(sorted(comp))
+    return sorted(out)
+
+
+def closed_path(comp, edges):
+    """One path from the component's first file back to it, through the component (a
+    breadth-first search, so the shortest such path), for the message."""
+    inside = set(comp)
+    first = comp[0]
+    prev = {}
+    queue = [first]
+    while queue:
+        v = queue.pop(0)
+        for w in sorted(edges.get(v, ())):
+            if w not in inside:
+                continue
+            if w == first:
+                path = [v]
+                while path[-1] != first:
+                    path.append(prev[path[-1]])
+                return [first] + path[::-1][1:] + [first] if len(path) > 1 else [first, v, first]
+            if w not in prev:
+                prev[w] = v
+                queue.append(w)
+    return comp
+
+
+def check(root) -> int:
     files = {}
     for p in root.rglob("*.rs"):
         text = p.read_text()
@@ -97,12 +174,29 @@ def main() -> int:
             r = longest([], m.group(1).split("::"))
             if r and r not in (f, "lib.rs"):
                 deps.add(r)
+        # Paths in code relative to this module: `super::x::f(..)`, `self::x`, and a child
+        # module's items called without a `use` (`avx2::parallax::row(..)` in `simd/mod.rs`).
+        for m in re.finditer(r"(?<![\w:])(super|self|[a-z_][a-z0-9_]*)::([\w:]+)", src):
+            head, segs = m.group(1), m.group(2).split("::")
+            if head == "super":
+                base = me[:-1]
+            elif head == "self":
+                base = me
+            elif resolve(me + [head]):
+                base, segs = me, [head] + segs
+            else:
+                continue
+            r = longest(base, segs)
+            if r and r != f:
+                deps.add(r)
         edges[f] = deps
-    pairs = sorted((a, b) for a in edges for b in edges[a] if a < b and a in edges.get(b, ()))
-    for a, b in pairs:
-        print(f"{a} <-> {b}")
-    print(f"{len(files)} files, {sum(len(d) for d in edges.values())} imports, {len(pairs)} mutual pairs")
-    return 1 if pairs else 0
+    found = cycles(edges)
+    for comp in found:
+        print(f"{root}: cycle of {len(comp)} files: {' -> '.join(closed_path(comp, edges))}")
+        print(f"    files: {', '.join(comp)}")
+    imports = sum(len(d) for d in edges.values())
+    print(f"{root}: {len(files)} files, {imports} imports, {len(found)} cycles")
+    return len(found)
 
 
 if __name__ == "__main__":

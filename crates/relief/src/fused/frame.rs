@@ -3,7 +3,6 @@
 //! for the lab ([`render_fused_records`]).
 
 use super::lanes::{shade_scalar, ShadeConsts, ShadeLanes, LANES};
-use super::texture8::{interleave, Encoding, Texture8};
 use crate::error::ReliefError;
 use crate::kernel::Kernel;
 use crate::march::exact::exact_shadowed;
@@ -20,27 +19,6 @@ use renderlab_core::counter::{Counter, NoCount, Tally};
 use renderlab_core::srgb8::{encode_srgb8, srgb8_encode_table};
 use renderlab_core::{Camera, Image, Scene, ShadePoint};
 use renderlab_raster::{RowRaster, RowScratch, BAND_HEIGHT};
-
-/// A material's textures in the fused frame's 8-bit formats.
-#[derive(Clone, Debug)]
-pub struct Textures8 {
-    /// Albedo, sRGB-encoded (`rgba8unorm-srgb`).
-    pub albedo: Texture8,
-    /// Tangent-space normals, unorm-encoded (`rgba8unorm`).
-    pub normal: Texture8,
-    /// Both interleaved, where they have the same shape ([`interleave`]).
-    pub pair: Option<Vec<u64>>,
-}
-
-impl Textures8 {
-    /// Rounds `albedo` (linear colour) and `normal` (signed) pyramids to 8 bits.
-    pub fn new(albedo: &renderlab_texture::Texture, normal: &renderlab_texture::Texture) -> Self {
-        let albedo = Texture8::from_texture(albedo, Encoding::Srgb);
-        let normal = Texture8::from_texture(normal, Encoding::SignedUnorm);
-        let pair = interleave(&albedo, &normal);
-        Self { albedo, normal, pair }
-    }
-}
 
 /// A frame as a user sees it: 8-bit sRGB RGBA pixels, red in the low byte, row-major.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]

@@ -17,5 +17,5 @@ pub mod frame;
 pub mod lanes;
 pub mod texture8;
 
-pub use frame::{render_fused, render_fused_records, FusedFrame, FusedRecords, Textures8};
-pub use texture8::{Encoding, Texture8};
+pub use frame::{render_fused, render_fused_records, FusedFrame, FusedRecords};
+pub use texture8::{Encoding, Texture8, Textures8};

@@ -133,6 +133,27 @@ pub fn interleave(low: &Texture8, high: &Texture8) -> Option<Vec<u64>> {
     })
 }
 
+/// A material's textures in the fused frame's 8-bit formats.
+#[derive(Clone, Debug)]
+pub struct Textures8 {
+    /// Albedo, sRGB-encoded (`rgba8unorm-srgb`).
+    pub albedo: Texture8,
+    /// Tangent-space normals, unorm-encoded (`rgba8unorm`).
+    pub normal: Texture8,
+    /// Both interleaved, where they have the same shape ([`interleave`]).
+    pub pair: Option<Vec<u64>>,
+}
+
+impl Textures8 {
+    /// Rounds `albedo` (linear colour) and `normal` (signed) pyramids to 8 bits.
+    pub fn new(albedo: &Texture, normal: &Texture) -> Self {
+        let albedo = Texture8::from_texture(albedo, Encoding::Srgb);
+        let normal = Texture8::from_texture(normal, Encoding::SignedUnorm);
+        let pair = interleave(&albedo, &normal);
+        Self { albedo, normal, pair }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -11,3 +11,4 @@ pub mod cone_step;
 pub mod exact;
 pub mod layered;
 pub mod pom_lanes;
+pub mod ray;

@@ -1,7 +1,7 @@
 //! A material prepared for relief rendering: filtered textures, the depth field, the
 //! complexity map and (on request) the cone map.
 
-use crate::fused::Textures8;
+use crate::fused::texture8::Textures8;
 use crate::maps::complexity::{complexity_map, ComplexityParams};
 use crate::maps::cone::{ConeKind, ConeMap};
 use crate::maps::height::HeightField;

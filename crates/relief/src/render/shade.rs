@@ -3,28 +3,18 @@
 //! exact tracer, so differences between images are the technique's alone.
 
 use crate::march::exact::exact_shadowed;
+use crate::march::ray::split_ray;
 use crate::render::material::ReliefMaterial;
 use crate::render::shadow::soft_shadow;
+pub use crate::techniques::descriptor::ShadowMode;
 use crate::trace::{ReliefHit, ReliefTechnique, Shading};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use renderlab_core::counter::{Counter, NoCount, Tally};
-use renderlab_core::fastmath::floor2;
 use renderlab_core::scene::Lighting;
 use renderlab_core::{Image, ShadePoint, SurfacePoint};
 use renderlab_texture::filter::{lod, trilinear_at};
 use renderlab_texture::{Filter, Trilinear};
-
-/// How shadows are computed for [`Shading::LitShadowed`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ShadowMode {
-    /// No self-shadowing.
-    None,
-    /// Soft shadows with this many samples along the light ray.
-    Soft(u32),
-    /// The exact hard shadow (reference).
-    Exact,
-}
 
 /// The visible surface of a frame: `width × height` pixels, row-major, `None` for background.
 #[derive(Clone, Copy)]
@@ -221,15 +211,6 @@ pub(crate) fn trace_rays<T: ReliefTechnique, C: Counter>(
         runs.push((count, current));
     }
     trace_runs(t, materials, scratch, counter);
-}
-
-/// A ray from `uv` moved into the first tile, and the tile's corner (zero for a non-finite
-/// `uv`, which then goes to the tracer as it is).
-#[inline(always)]
-pub(crate) fn split_ray(uv: Vec2, view_ts: Vec3) -> ((Vec2, Vec3), Vec2) {
-    let base = floor2(uv);
-    let base = if base.is_finite() { base } else { Vec2::ZERO };
-    ((uv - base, view_ts), base)
 }
 
 /// [`trace_rays`] for the fused frame's shade points of a row: with `vector` (and AVX2), the

@@ -172,7 +172,7 @@ pub fn load_lanes(
 }
 
 /// Splits eight shade points at a time into rays moved into the first tile and the tiles'
-/// corners, as [`crate::render::shade::split_ray`] does one by one (the same bits); `false`
+/// corners, as [`crate::march::ray::split_ray`] does one by one (the same bits); `false`
 /// (and nothing written) without AVX2.
 ///
 /// # Panics

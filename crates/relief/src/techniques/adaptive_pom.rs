@@ -9,8 +9,7 @@ use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
 use renderlab_core::fastmath::pow_unit;
 
-/// Exponent of the view-angle factor (thesis: 0.8).
-pub const ANGLE_EXPONENT: f32 = 0.8;
+pub use crate::march::layered::ANGLE_EXPONENT;
 
 /// Adaptive POM with base layer range `min..max` (thesis: 4..32).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -5,8 +5,18 @@
 //! from these, so nothing about a technique is restated elsewhere.
 
 use crate::kernel::{Kernel, KernelChoice};
-use crate::render::shade::ShadowMode;
 use crate::trace::{Map, ReliefTechnique, Shading};
+
+/// How shadows are computed for [`crate::trace::Shading::LitShadowed`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShadowMode {
+    /// No self-shadowing.
+    None,
+    /// Soft shadows with this many samples along the light ray.
+    Soft(u32),
+    /// The exact hard shadow (reference).
+    Exact,
+}
 
 /// Largest layer or step count any technique accepts (bounds every march).
 pub const MAX_COUNT: u32 = 1024;

@@ -8,9 +8,9 @@
 
 pub mod descriptor;
 
+use self::descriptor::ShadowMode;
 use crate::error::ReliefError;
 use crate::kernel::{Kernel, KernelChoice};
-use crate::render::shade::ShadowMode;
 use crate::trace::{Map, Shading};
 use descriptor::{BenchSetting, Descriptor, Entry, WithTracer};
 use renderlab_core::CoreError;

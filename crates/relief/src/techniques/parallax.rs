@@ -3,6 +3,7 @@
 
 use super::descriptor::{Descriptor, Entry, WithTracer};
 use crate::kernel::Kernel;
+use crate::march::ray::packed_setup;
 use crate::trace::{uv_per_depth, ReliefHit, ReliefInputs, ReliefTechnique, Shading};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
@@ -19,16 +20,6 @@ impl ReliefTechnique for Parallax {
     }
 }
 
-/// Entry and offset per unit depth of one ray for the packed-map kernel (non-finite values
-/// replaced by zero, as in POM's packed-map kernel).
-#[inline(always)]
-pub(crate) fn setup(inp: &ReliefInputs, uv: Vec2, v: Vec3) -> (Vec2, Vec2) {
-    let dp = uv_per_depth(v, inp.height_scale);
-    let dp = if dp.is_finite() { dp } else { Vec2::ZERO };
-    let uv0 = if uv.is_finite() { uv } else { Vec2::ZERO };
-    (uv0, dp)
-}
-
 /// Parallax on the packed map for one ray: the scalar twin of the vector kernel (the depth
 /// is the packed map's 16-bit bilinear value, so it differs from [`Parallax`] only by that
 /// quantisation).
@@ -40,7 +31,7 @@ pub fn trace_packed<C: Counter>(
     v: Vec3,
     counter: &mut C,
 ) -> ReliefHit {
-    let (uv0, dp) = setup(inp, uv, v);
+    let (uv0, dp) = packed_setup(inp, uv, v);
     counter.count(1);
     let d = map.depth(uv0);
     ReliefHit { uv: uv0 + dp * d, depth: d, layers: 1 }

@@ -8,7 +8,7 @@
 use super::descriptor::{Descriptor, Entry, Param, WithTracer};
 use super::pom::{Pom, PomSimd};
 use crate::kernel::Kernel;
-use crate::render::shade::ShadowMode;
+use super::descriptor::ShadowMode;
 use crate::trace::Shading;
 
 /// POM with soft self-shadowing.

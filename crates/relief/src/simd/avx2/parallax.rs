@@ -6,7 +6,7 @@
 use super::gather::gather_cell;
 use super::LANES;
 use crate::maps::packed::{PackedRelief, DEPTH_STEP};
-use crate::techniques::parallax::setup;
+use crate::march::ray::packed_setup;
 use crate::trace::{ReliefHit, ReliefInputs};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
@@ -44,7 +44,7 @@ pub(crate) unsafe fn trace_row<C: Counter>(
         for l in 0..LANES {
             // Lanes past the row's end repeat its last ray (computed, not written).
             let (uv, view) = rays[start + l.min(m - 1)];
-            let (uv0, dp) = setup(inp, uv, view);
+            let (uv0, dp) = packed_setup(inp, uv, view);
             (u[l], v[l], du[l], dv[l]) = (uv0.x, uv0.y, dp.x, dp.y);
         }
         let (uu, vv) = (_mm256_loadu_ps(u.as_ptr()), _mm256_loadu_ps(v.as_ptr()));

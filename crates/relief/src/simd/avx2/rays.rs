@@ -1,6 +1,6 @@
 //! The fused frame's ray setup in AVX2 lanes: a row's shade points split into rays moved into
 //! the first tile and the tiles' corners, eight at a time, with the bits of the scalar
-//! [`crate::render::shade::split_ray`].
+//! [`crate::march::ray::split_ray`].
 
 use super::shade::{fields, finite};
 use super::LANES;
@@ -9,7 +9,7 @@ use renderlab_core::ShadePoint;
 use std::arch::x86_64::*;
 
 /// Splits `points` into rays moved into the first tile and the tiles' corners, eight at a
-/// time: [`crate::render::shade::split_ray`]'s operations in lanes (`floor` of a finite value
+/// time: [`crate::march::ray::split_ray`]'s operations in lanes (`floor` of a finite value
 /// is exact either way, and a non-finite UV gets the zero corner in both).
 ///
 /// # Safety
@@ -46,6 +46,6 @@ pub(crate) unsafe fn split_rays(points: &[ShadePoint], rays: &mut [(Vec2, Vec3)]
         i += LANES;
     }
     for ((ray, base), p) in rays[i..n].iter_mut().zip(&mut bases[i..n]).zip(&points[i..]) {
-        (*ray, *base) = crate::render::shade::split_ray(p.uv, p.view_ts);
+        (*ray, *base) = crate::march::ray::split_ray(p.uv, p.view_ts);
     }
 }
