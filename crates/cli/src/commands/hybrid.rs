@@ -63,7 +63,7 @@ const GIB: f64 = (1u64 << 30) as f64;
 
 /// `renderlab hybrid render`: one image.
 pub(super) fn render(a: HybridRenderArgs) -> Result<()> {
-    super::check_out_file("--out", &a.out)?;
+    super::checks::check_out_file("--out", &a.out)?;
     let size = a.resolution.map(|s| resolution(s, false)).transpose()?;
     let config = stages::stage_config(
         a.shadows.as_deref(),
@@ -132,7 +132,7 @@ pub(super) fn render(a: HybridRenderArgs) -> Result<()> {
 /// `renderlab hybrid bench`: the sweeps.
 pub(super) fn bench(a: HybridBenchArgs) -> Result<()> {
     let (width, height) = resolution(a.resolution, true)?;
-    super::check_out_dir("--out", &a.out)?;
+    super::checks::check_out_dir("--out", &a.out)?;
     let cfg = HybridBenchConfig {
         scenes: if a.scenes.is_empty() {
             scenes::BUILTIN.iter().map(|s| s.to_string()).collect()

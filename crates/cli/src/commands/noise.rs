@@ -1,6 +1,6 @@
 //! `noise`, `water` and `smoke`.
 
-use super::{check_out_dir, create_dir};
+use super::checks::{check_out_dir, create_dir};
 use crate::args::*;
 use crate::progress::Progress;
 use anyhow::{bail, Result};

@@ -1,6 +1,6 @@
 //! `relief bench`, `relief render`, `complexity` and `materials`.
 
-use super::{check_out_dir, check_out_file, create_dir, frame_size};
+use super::checks::{check_out_dir, check_out_file, create_dir, frame_size};
 use crate::args::*;
 use crate::progress::Progress;
 use anyhow::{bail, Context, Result};

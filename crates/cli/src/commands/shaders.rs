@@ -10,7 +10,7 @@ pub fn export(a: ShadersExportArgs) -> Result<()> {
         // Checked here rather than by clap, whose message for a missing flag spans lines.
         bail!("--lang: give at least one language: wgsl, glsl, hlsl, msl, spv");
     }
-    super::check_out_dir("--out", &a.out)?;
+    super::checks::check_out_dir("--out", &a.out)?;
     let shaders = export::shaders(&a.technique)?;
     let written = export::export(&a.out, &a.lang, &shaders)?;
     let langs: Vec<&str> = a.lang.iter().map(|l| l.name()).collect();

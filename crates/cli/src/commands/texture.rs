@@ -1,6 +1,6 @@
 //! `texture bench` and `texture render`.
 
-use super::{check_out_dir, check_out_file, create_dir};
+use super::checks::{check_out_dir, check_out_file, create_dir};
 use crate::args::*;
 use crate::progress::Progress;
 use anyhow::{bail, Result};

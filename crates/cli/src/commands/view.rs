@@ -32,7 +32,7 @@ pub(crate) fn view(a: ViewArgs) -> Result<()> {
         bail!("--height-scale: the viewer applies it to your own maps only (give --albedo and --height-map)");
     }
     if let Some(out) = &a.screenshot {
-        if super::check_out_file("--screenshot", out)? != io::Format::Png {
+        if super::checks::check_out_file("--screenshot", out)? != io::Format::Png {
             bail!("--screenshot: {} must be a .png file", out.display());
         }
     }

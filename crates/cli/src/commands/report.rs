@@ -1,0 +1,27 @@
+//! `renderlab report`: the suite of labs on the built-in scenes.
+
+use super::checks::check_out_dir;
+use crate::args::ReportArgs;
+use crate::progress::LabBars;
+use anyhow::Result;
+use renderlab_lab::suite::{run_report, Preset};
+
+/// `renderlab report`: every lab, one progress bar each.
+pub(super) fn report(a: ReportArgs) -> Result<()> {
+    check_out_dir("--out", &a.out)?;
+    let preset = if a.quick { Preset::Quick } else { Preset::Report };
+    let bars = LabBars::default();
+    let suite = run_report(&a.out, preset, &|lab, d, t, m| bars.update(lab, d, t, m));
+    bars.finish();
+    let suite = suite?;
+    for lab in &suite.labs {
+        for f in &lab.summary.findings {
+            println!("{f}");
+        }
+    }
+    for lab in &suite.labs {
+        println!("{} lab: {:.1} s", lab.name, lab.summary.seconds);
+    }
+    println!("wrote {} in {:.1} s", suite.index.display(), suite.seconds);
+    Ok(())
+}
