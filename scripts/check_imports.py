@@ -4,7 +4,7 @@
 Usage: check_imports.py CRATE_SRC_DIR [CRATE_SRC_DIR ...]
 
 Unit-test modules (`#[cfg(test)] mod …`) are left out. Follows `use crate::…`, `use super::…`,
-`use self::…`, `use child::…` (from a module's own file), and `crate::…`, `super::…`, `self::…`
+`use self::…`, `use child::…` (from the file of a module with children), and `crate::…`, `super::…`, `self::…`
 and `child::…` paths in code (comments and doc links are ignored), resolving each to
 the file that defines the longest matching module path. A cycle is a strongly connected
 component of more than one file in that graph (a file that reaches itself through others);
@@ -163,7 +163,7 @@ def check(root) -> int:
                     base, segs = me[:-1], segs[1:]
                 elif segs[0] == "self":
                     base, segs = me, segs[1:]
-                elif resolve(me + segs[:1]) and (f.endswith("mod.rs") or f == "lib.rs"):
+                elif resolve(me + segs[:1]):
                     base = me
                 else:
                     continue

@@ -24,7 +24,7 @@
 // `!(x >= t)` is deliberate: it also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-use super::{trilinear_at, Filter, Trilinear};
+use super::basic::{trilinear_at, Filter, Trilinear};
 use crate::ellipse::Jacobian;
 use crate::kernel::PixelFilter;
 use crate::mip::Texture;

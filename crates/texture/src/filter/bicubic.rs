@@ -7,7 +7,7 @@
 //! reproduces polynomials up to degree 2 (the B-spline only degree 1 and blurs by a third of
 //! a texel). The price is a small overshoot (negative lobes) at sharp edges.
 
-use super::{finite, Filter};
+use super::basic::{finite, Filter};
 use crate::mip::{Texture, Wrap};
 use glam::{Vec2, Vec4};
 use renderlab_core::counter::Counter;

@@ -12,7 +12,10 @@
 //! * `ewa[:sigma=S][:cut=C][:ecc=E][:texels=T]`: Heckbert's EWA with the model's σ and cut,
 //!   eccentricity clamp E (1..=64) and texel budget T (16..=4096).
 
-use super::{Anisotropic, Bicubic, Bilinear, Ewa, Filter, Nearest, Trilinear};
+use super::aniso::Anisotropic;
+use super::basic::{Bilinear, Filter, Nearest, Trilinear};
+use super::bicubic::Bicubic;
+use super::ewa::Ewa;
 use crate::kernel::PixelFilter;
 use std::fmt;
 use std::str::FromStr;

@@ -36,7 +36,7 @@
 // `!(x >= t)` is deliberate: it also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-use super::{finite, Filter};
+use super::basic::{finite, Filter};
 use crate::ellipse::{Ellipse, Jacobian};
 use crate::kernel::PixelFilter;
 use crate::mip::{Texture, Wrap};
@@ -469,7 +469,12 @@ impl Ewa {
         if wsum > 0.0 {
             acc / wsum
         } else {
-            super::bilinear_level(tex, level, (fp.centre + 0.5) / Vec2::new(w as f32, h as f32), counter)
+            super::basic::bilinear_level(
+                tex,
+                level,
+                (fp.centre + 0.5) / Vec2::new(w as f32, h as f32),
+                counter,
+            )
         }
     }
 }

@@ -6,7 +6,7 @@
 //! with patches of greenish lichen.
 
 use super::noise::{lerp, perlin, smoothstep, Fbm};
-use super::{srgb, Detail, Texel};
+use super::texel::{srgb, Detail, Texel};
 use glam::Vec3;
 
 /// Relief depth in texture units per unit of height: deep furrows.

@@ -10,7 +10,7 @@
 //! pattern tiles with `n` chevron columns per tile.
 
 use super::noise::{cellular, floor, hash2, lerp, perlin, rand, rounded_box, smoothstep, Fbm};
-use super::{srgb, Detail, Texel};
+use super::texel::{srgb, Detail, Texel};
 use glam::{Vec2, Vec3};
 
 /// Relief depth in texture units per unit of height.

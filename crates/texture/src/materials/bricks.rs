@@ -4,7 +4,7 @@
 //! height and tilt, a mottled and pitted face, darker burnt ends on some bricks.
 
 use super::noise::{cellular, floor, lerp, perlin, rand, rounded_box, smoothstep, Fbm};
-use super::{srgb, Detail, Texel};
+use super::texel::{srgb, Detail, Texel};
 use glam::{Vec2, Vec3};
 
 /// Relief depth in texture units per unit of height: a brick face stands 3 % of a tile above

@@ -15,10 +15,12 @@ mod brick_pavement;
 mod bricks;
 mod noise;
 mod sand_rocks;
+mod texel;
 
 use glam::Vec3;
 use renderlab_core::image::{check_dimensions, Image};
 use renderlab_core::{CoreError, Material, Result};
+use texel::{Detail, Texel};
 
 /// Names of the built-in materials, in the order the thesis's scene uses them.
 pub const MATERIAL_NAMES: [&str; 4] = ["bricks", "sand_rocks", "bark_willow", "brick_pavement"];
@@ -64,26 +66,6 @@ fn sampler(name: &str) -> Result<(Sampler, f32)> {
     })
 }
 
-/// What a material computes for one texel: linear albedo and raw height (roughly in [0, 1];
-/// [`render`] stretches it to exactly [0, 1]).
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Texel {
-    pub albedo: Vec3,
-    pub height: f32,
-}
-
-/// The sampling limits of the texture being built, so that materials can keep their finest
-/// detail above one texel.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Detail {
-    /// Texture size in texels (square).
-    pub size: u32,
-    /// Size of one texel in texture space (1 / size).
-    pub texel: f32,
-    /// Finest noise lattice (cells per unit) worth evaluating: half the texture size.
-    pub max_cells: u32,
-}
-
 /// Evaluates `texel` at every texel centre `((x + ½)/size, (y + ½)/size)` in parallel and
 /// splits the result into an albedo and a height map normalised to exactly [0, 1].
 fn render(detail: &Detail, texel: impl Fn(f32, f32, &Detail) -> Texel + Sync) -> (Image<Vec3>, Image<f32>) {
@@ -103,12 +85,6 @@ fn normalize(img: Image<f32>) -> Image<f32> {
     }
     let s = 1.0 / (hi - lo);
     img.map(|h| ((h - lo) * s).clamp(0.0, 1.0))
-}
-
-/// A colour given as 8-bit sRGB codes (as picked from a photograph), in linear light.
-pub(crate) fn srgb(r: u8, g: u8, b: u8) -> Vec3 {
-    let t = renderlab_core::color::srgb8_to_linear_table();
-    Vec3::new(t[r as usize], t[g as usize], t[b as usize])
 }
 
 #[cfg(test)]

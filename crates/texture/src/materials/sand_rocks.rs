@@ -6,7 +6,7 @@
 //! and darkens the sand around its base.
 
 use super::noise::{for_each_feature, hash, hash2, lerp, perlin, rand, smoothstep, unit, Fbm};
-use super::{srgb, Detail, Texel};
+use super::texel::{srgb, Detail, Texel};
 use glam::{Vec2, Vec3};
 
 /// Relief depth in texture units per unit of height.
