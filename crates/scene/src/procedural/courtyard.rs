@@ -4,9 +4,9 @@
 //! paved floor. 101,000 triangles, 5 lights (sun, an area panel under the gallery, a
 //! lantern, a spot and a corner lamp).
 
+use super::builder::{place_at, relief_maps, SceneBuilder, COOL, SUN, WARM};
 use super::parts::{bowl, column, vase};
 use super::shapes::{arch, cuboid, cylinder, lathe, sphere, translated};
-use super::{place_at, relief_maps, SceneBuilder, COOL, SUN, WARM};
 use crate::material::PbrMaterial;
 use crate::scene::HybridScene;
 use glam::{Affine3A, Vec2, Vec3};

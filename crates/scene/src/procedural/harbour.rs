@@ -6,9 +6,9 @@
 //! triangles, 10 lights (sun, two area panels, four lamp posts and the lighthouse as point
 //! lights, two spots).
 
+use super::builder::{place_at, relief_maps, SceneBuilder, COOL, SUN, WARM};
 use super::parts::{bollard, hull, lamp_post, vase};
 use super::shapes::{arch, cuboid, cylinder, lathe, sphere, stairs, translated, water_slab};
-use super::{place_at, relief_maps, SceneBuilder, COOL, SUN, WARM};
 use crate::material::PbrMaterial;
 use crate::scene::HybridScene;
 use glam::{Affine3A, Quat, Vec2, Vec3};

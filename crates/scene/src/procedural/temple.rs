@@ -4,9 +4,9 @@
 //! terrain. 547,800 triangles, 15 lights (sun, two area panels, six braziers as point
 //! lights, six spots).
 
+use super::builder::{place_at, relief_maps, SceneBuilder, COOL, SUN, WARM};
 use super::parts::{bowl, column, vase};
 use super::shapes::{arch, cuboid, cylinder, sphere, stairs, torus, translated};
-use super::{place_at, relief_maps, SceneBuilder, COOL, SUN, WARM};
 use crate::material::PbrMaterial;
 use crate::scene::HybridScene;
 use glam::{Affine3A, Quat, Vec2, Vec3};

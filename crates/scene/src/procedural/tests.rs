@@ -2,7 +2,11 @@
 
 use super::shapes::{cuboid, cylinder, lathe, signed_volume, sphere, torus, water_slab};
 use super::*;
+use crate::light::{Light, LightKind};
+use crate::material::PbrMaterial;
 use glam::Vec4Swizzles;
+use glam::{Vec2, Vec3};
+use renderlab_core::Mesh;
 use std::collections::HashMap;
 
 /// Every edge of a closed mesh, with vertices identified by (rounded) position, is shared
