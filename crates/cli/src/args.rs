@@ -7,8 +7,12 @@ use renderlab_texture::reference::PixelFilter;
 use std::path::PathBuf;
 
 mod hybrid;
+mod own_maps;
+mod size;
 mod view;
 pub use hybrid::*;
+pub use own_maps::OwnMapsArgs;
+pub use size::parse_size;
 pub use view::*;
 
 /// Reads one technique name for clap (the error names the problem; clap adds the flag).
@@ -167,26 +171,6 @@ pub struct MaterialArgs {
     pub own: OwnMapsArgs,
 }
 
-/// A material from the user's own maps (`relief` and `view` take the same flags).
-#[derive(Args, Debug, Clone)]
-pub struct OwnMapsArgs {
-    /// Your albedo map (PNG, JPEG, TGA or EXR); use with --height-map in place of the built-in
-    /// material.
-    #[arg(long, requires = "height_map")]
-    pub albedo: Option<PathBuf>,
-    /// Your height map (first channel, 8 or 16 bit; white = top).
-    #[arg(long, requires = "albedo")]
-    pub height_map: Option<PathBuf>,
-    /// Your tangent-space normal map (optional; derived from the height map if absent).
-    #[arg(long, requires = "albedo")]
-    pub normal_map: Option<PathBuf>,
-    /// Relief depth in UV units per unit depth (the thesis's HeightScale), in [0, 1]: of your
-    /// maps (default 0.05) or, in `relief`, of the built-in materials (default: each one's
-    /// own, 0.03 to 0.08; their normal maps follow it).
-    #[arg(long)]
-    pub height_scale: Option<f32>,
-}
-
 /// Complexity-map parameters (the thesis code's defaults).
 #[derive(Args, Debug, Clone)]
 pub struct ComplexityFlags {
@@ -293,25 +277,6 @@ pub enum BenchBackend {
     Gpu,
     /// Both, their frames timed in turn, with the ratio of their whole-frame times.
     Both,
-}
-
-/// The one parser of every `WIDTHxHEIGHT` flag (`--resolution`, `--size`): two whole numbers
-/// joined by `x`, `X` or `×` (`1920x1080`, `16×9`). A side below 1 is refused by its range
-/// (`-16x16` reaches this parser, see [`try_parse`], and is named as out of range rather than
-/// taken for a flag); each command then checks its own largest size.
-pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let bad = || format!("'{s}' is not WIDTHxHEIGHT (e.g. 1920x1080)");
-    let (w, h) = s.split_once(['x', 'X', '×']).ok_or_else(bad)?;
-    let side = |v: &str| -> Result<i64, String> { v.trim().parse::<i64>().map_err(|_| bad()) };
-    let (w, h) = (side(w)?, side(h)?);
-    if w < 1 || h < 1 {
-        return Err(format!("{w}x{h}: each side must be at least 1 pixel"));
-    }
-    let max = i64::from(u32::MAX);
-    if w > max || h > max {
-        return Err(format!("{w}x{h}: a side is larger than {max} pixels"));
-    }
-    Ok((w as u32, h as u32))
 }
 
 /// Which scene `relief render` draws.

@@ -31,7 +31,7 @@ pub struct HybridRenderArgs {
     #[arg(long)]
     pub camera: Option<String>,
     /// Frame size WIDTHxHEIGHT (default: the camera's own).
-    #[arg(long, value_name = "WxH", value_parser = super::parse_size)]
+    #[arg(long, value_name = "WxH", value_parser = super::size::parse_size)]
     pub resolution: Option<(u32, u32)>,
     #[arg(long, help = help("shadows"))]
     /// Shadows.
@@ -83,7 +83,7 @@ pub struct HybridBenchArgs {
     #[arg(long, value_delimiter = ',')]
     pub cameras: Vec<String>,
     /// Frame size WIDTHxHEIGHT (the thesis: 1920x1080).
-    #[arg(long, value_name = "WxH", default_value = "320x180", value_parser = super::parse_size)]
+    #[arg(long, value_name = "WxH", default_value = "320x180", value_parser = super::size::parse_size)]
     pub resolution: (u32, u32),
     /// Paths per pixel of each view's reference (rounded up to even: two halves).
     #[arg(long, default_value_t = 64)]

@@ -1,6 +1,6 @@
 //! Arguments of `renderlab view`.
 
-use super::OwnMapsArgs;
+use super::own_maps::OwnMapsArgs;
 use clap::Args;
 use renderlab_relief::Technique;
 use renderlab_viewer::split::SplitMode;
