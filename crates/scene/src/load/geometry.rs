@@ -3,7 +3,7 @@
 //! missing or broken normals computed (flat, as glTF asks, or smooth, as OBJ files expect),
 //! missing UVs set to zero, missing tangents computed from the UVs.
 
-use super::Problem;
+use super::common::Problem;
 use glam::{Vec2, Vec3, Vec4};
 use renderlab_core::{Mesh, Vertex};
 

@@ -22,9 +22,9 @@
 //! framing camera, with warnings. A missing MTL file gives the default material and a
 //! warning; a missing texture is an error.
 
+use super::common::{finish, read_limited, resolve, LoadLimits, LoadedScene, Problem};
 use super::geometry::{clean, NormalRule, RawMesh};
 use super::textures::{decode_image, vertex_colors};
-use super::{finish, read_limited, resolve, LoadLimits, LoadedScene, Problem};
 use crate::material::{PbrMaterial, Texture};
 use crate::scene::{HybridScene, Instance};
 use glam::{Affine3A, Vec2, Vec3, Vec4};

@@ -1,7 +1,7 @@
 //! What both loaders need for textures: image decoding within the limits, and vertex
 //! colours drawn through a baked texture.
 
-use super::LoadLimits;
+use super::common::LoadLimits;
 use crate::material::Texture;
 use crate::scene::HybridScene;
 use glam::{Vec3, Vec4};

@@ -25,9 +25,9 @@
 //! accessor without a buffer view (zeros but for its sparse elements) holds at most
 //! [`MAX_SPARSE_ONLY_ELEMENTS`].
 
+use super::common::{finish, read_limited, resolve, LoadLimits, LoadedScene, Problem};
 use super::geometry::{clean, NormalRule, RawMesh};
 use super::textures::vertex_colors;
-use super::{finish, read_limited, resolve, LoadLimits, LoadedScene, Problem};
 use crate::light::{Light, LightKind};
 use crate::scene::{HybridScene, Instance, SceneCamera};
 use ::gltf::accessor::{DataType, Dimensions};
