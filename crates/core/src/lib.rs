@@ -18,6 +18,7 @@ pub mod image;
 pub mod io;
 pub mod kernel;
 pub mod material;
+pub mod memory;
 pub mod mesh;
 pub mod scene;
 pub mod srgb8;

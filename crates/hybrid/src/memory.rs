@@ -9,9 +9,8 @@
 //! sizes (BENCHMARKS.md, "Memory"). A frame whose estimate exceeds [`BUDGET`] is refused
 //! before any work instead of aborting in an allocation halfway.
 
-/// The memory budget of one run: the estimated peak of a frame (or of a bench run) must stay
-/// within it. 8 GiB leaves room on a 16 GB machine for the system and the page cache.
-pub const BUDGET: u64 = 8 << 30;
+/// The budget every run is held to (8 GiB), re-exported where the hybrid estimates are.
+pub use renderlab_core::memory::BUDGET;
 
 /// What runs: one frame (`hybrid render`, a frame or its reference) or a bench run (which
 /// also keeps the view's reference, its halves and the image-metric buffers while it renders

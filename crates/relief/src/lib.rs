@@ -20,6 +20,7 @@ pub mod fused;
 pub mod kernel;
 pub mod maps;
 pub mod march;
+pub mod memory;
 pub mod render;
 pub mod simd;
 pub mod techniques;

@@ -34,7 +34,7 @@ fn check_memory(what: &str, w: u32, h: u32, bench: bool) -> Result<()> {
         let (fw, fh) = memory::largest_frame(kind, w, h);
         bail!(
             "{what} {w}x{h} needs about {:.1} GiB, over the {} GiB memory budget; the largest frame of this aspect is {fw}x{fh} ({} Mpixel at most)",
-            need as f64 / GIB,
+            renderlab_core::memory::gib(need),
             memory::BUDGET >> 30,
             memory::max_pixels(kind) / 1_000_000
         );
@@ -50,16 +50,13 @@ fn check_scene_memory(spec: &str, triangles: u64, w: u32, h: u32) -> Result<()> 
     if need > memory::BUDGET {
         bail!(
             "{spec}: {triangles} triangles at {w}x{h} need about {:.1} GiB, over the {} GiB memory budget (about {} bytes per triangle); use a smaller frame or a lighter scene",
-            need as f64 / GIB,
+            renderlab_core::memory::gib(need),
             memory::BUDGET >> 30,
             memory::PER_TRIANGLE
         );
     }
     Ok(())
 }
-
-/// Bytes per GiB.
-const GIB: f64 = (1u64 << 30) as f64;
 
 /// `renderlab hybrid render`: one image.
 pub(super) fn render(a: HybridRenderArgs) -> Result<()> {

@@ -6,6 +6,7 @@ use crate::progress::Progress;
 use anyhow::{bail, Context, Result};
 use glam::Vec3;
 use renderlab_core::error::check_range;
+use renderlab_core::memory::{gib, BUDGET};
 use renderlab_core::{io, Material};
 use renderlab_lab::fixtures::{benchmark_camera, benchmark_scene, room_camera, thesis_room};
 use renderlab_lab::relief_lab::{
@@ -13,6 +14,7 @@ use renderlab_lab::relief_lab::{
     View,
 };
 use renderlab_relief::maps::complexity::{complexity_map, ComplexityParams};
+use renderlab_relief::memory::ReliefMemory;
 use renderlab_relief::render::render as render_frame;
 use renderlab_relief::{KernelChoice, Map, ReliefMaterial, Technique};
 use renderlab_texture::materials::{material as builtin_material, MATERIAL_NAMES};
@@ -67,72 +69,37 @@ fn check_texture_size(size: u32) -> Result<()> {
     Ok(())
 }
 
-/// Peak resident memory of a relief run, fitted as `FIXED + per texel · texels · materials +
-/// per pixel · pixels` to `/usr/bin/time -v` of the binary (BENCHMARKS.md, "Memory"); each
-/// measured slope has 7% added.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct ReliefMemory {
-    /// Bytes per texel of one material's maps (the material, its pyramids, depth field,
-    /// complexity and 8-bit copies; on the GPU backend the device's copies too).
-    per_texel: u64,
-    /// Bytes per frame pixel.
-    per_pixel: u64,
-}
-
-impl ReliefMemory {
-    /// Everything but the maps and the frame.
-    const FIXED: u64 = 64 << 20;
-    /// `relief render` on the CPU: 120 B per texel, 196 per pixel measured.
-    pub(crate) const RENDER_CPU: Self = Self { per_texel: 128, per_pixel: 208 };
-    /// `relief render` on the GPU backend (lavapipe keeps the device's textures in host
-    /// memory): 215 B per texel measured.
-    pub(crate) const RENDER_GPU: Self = Self { per_texel: 232, per_pixel: 208 };
-    /// `relief bench` on the CPU: 127 B per texel, 411 per pixel measured (the reference,
-    /// the frames and images of every technique at an angle).
-    pub(crate) const BENCH_CPU: Self = Self { per_texel: 136, per_pixel: 440 };
-    /// `relief bench` with a GPU backend.
-    pub(crate) const BENCH_GPU: Self = Self { per_texel: 232, per_pixel: 440 };
-
-    /// The estimated peak bytes of `materials` materials of `size`² texels and a frame of
-    /// `pixels` pixels.
-    fn estimate(self, size: u32, materials: u64, pixels: u64) -> u64 {
-        let texels = u64::from(size) * u64::from(size) * materials;
-        Self::FIXED + self.per_texel * texels + self.per_pixel * pixels
+/// Refuses a texture size of `materials` materials and a frame (`None`: a window's, not
+/// counted) whose estimated peak memory ([`ReliefMemory`]) exceeds the budget, in one line
+/// naming the largest texture size that fits.
+pub(crate) fn check_memory(
+    fit: ReliefMemory,
+    size: u32,
+    materials: u64,
+    frame: Option<(u32, u32)>,
+) -> Result<()> {
+    let (w, h) = frame.unwrap_or((0, 0));
+    let pixels = u64::from(w) * u64::from(h);
+    let need = fit.estimate(size, materials, pixels);
+    if need <= BUDGET {
+        return Ok(());
     }
-
-    /// Refuses a texture size and frame (`None`: a window's, not counted) whose estimate
-    /// exceeds the memory budget, in one line naming the largest texture size that fits.
-    pub(crate) fn check(self, size: u32, materials: u64, frame: Option<(u32, u32)>) -> Result<()> {
-        let budget = renderlab_hybrid::memory::BUDGET;
-        let (w, h) = frame.unwrap_or((0, 0));
-        let pixels = u64::from(w) * u64::from(h);
-        let need = self.estimate(size, materials, pixels);
-        if need <= budget {
-            return Ok(());
-        }
-        let rest = Self::FIXED + self.per_pixel * pixels;
-        let largest = if rest >= budget {
-            0
-        } else {
-            (((budget - rest) / (self.per_texel * materials)) as f64).sqrt() as u32
-        };
-        let gib = |b: u64| b as f64 / (1u64 << 30) as f64;
-        let what = if materials == 1 { String::new() } else { format!(" ({materials} materials)") };
-        if largest < 16 {
-            bail!(
-                "--width/--height {w}x{h}: the frame needs about {:.1} GiB, over the {} GiB memory budget",
-                gib(rest),
-                budget >> 30
-            );
-        }
-        let with = if frame.is_some() { format!(" with a {w}x{h} frame") } else { String::new() };
+    let largest = fit.largest_texture(materials, pixels);
+    let what = if materials == 1 { String::new() } else { format!(" ({materials} materials)") };
+    if largest < 16 {
         bail!(
-            "--texture-size {size}{what}{with} needs about {:.1} GiB, over the {} GiB memory budget; the largest texture size here is {}",
-            gib(need),
-            budget >> 30,
-            largest.min(MAX_TEXTURE_SIZE)
+            "--width/--height {w}x{h}: the frame needs about {:.1} GiB, over the {} GiB memory budget",
+            gib(fit.frame(pixels)),
+            BUDGET >> 30
         );
     }
+    let with = if frame.is_some() { format!(" with a {w}x{h} frame") } else { String::new() };
+    bail!(
+        "--texture-size {size}{what}{with} needs about {:.1} GiB, over the {} GiB memory budget; the largest texture size here is {}",
+        gib(need),
+        BUDGET >> 30,
+        largest.min(MAX_TEXTURE_SIZE)
+    );
 }
 
 /// Loads the material the user asked for: your maps, or the built-in `--material` (an
@@ -231,7 +198,7 @@ pub(super) fn bench(a: BenchArgs) -> Result<()> {
             Backend::Cpu => ReliefMemory::BENCH_CPU,
             _ => ReliefMemory::BENCH_GPU,
         };
-        memory.check(a.material.texture_size, 1, Some((width, height)))?;
+        check_memory(memory, a.material.texture_size, 1, Some((width, height)))?;
     }
     // Every input is read before --out is created.
     let material = load_material(&a.material)?;
@@ -261,7 +228,7 @@ pub(super) fn render(a: RenderArgs) -> Result<()> {
     if a.material.own.albedo.is_none() {
         let materials = if a.scene == SceneChoice::Room { 4 } else { 1 };
         check_texture_size(a.material.texture_size)?;
-        memory.check(a.material.texture_size, materials, Some((a.width, a.height)))?;
+        check_memory(memory, a.material.texture_size, materials, Some((a.width, a.height)))?;
     }
     let (scene, camera) = match a.scene {
         SceneChoice::Bench => {

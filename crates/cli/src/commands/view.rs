@@ -27,7 +27,7 @@ pub(crate) fn view(a: ViewArgs) -> Result<()> {
         bail!("--texture-size: {} is outside 8..=8192", a.texture_size);
     }
     // The room's four materials, on the GPU.
-    super::relief::ReliefMemory::RENDER_GPU.check(a.texture_size, 4, None)?;
+    super::relief::check_memory(renderlab_relief::memory::ReliefMemory::RENDER_GPU, a.texture_size, 4, None)?;
     if a.own.height_scale.is_some() && a.own.albedo.is_none() {
         bail!("--height-scale: the viewer applies it to your own maps only (give --albedo and --height-map)");
     }
