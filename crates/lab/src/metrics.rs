@@ -228,9 +228,15 @@ fn ssim_values(test: &Image<Vec3>, reference: &Image<Vec3>, mask: Option<&Image<
             }
             let inv = 1.0 / m[0];
             let (mu_a, mu_b) = (m[1] * inv, m[2] * inv);
-            let var_a = m[3] * inv - mu_a * mu_a;
-            let var_b = m[4] * inv - mu_b * mu_b;
-            let cov = m[5] * inv - mu_a * mu_b;
+            // The moments' differences round: a flat window's variance can come out a little
+            // below zero and its covariance a little off, which put SSIM above 1 (1 + 6e-5 on
+            // a 1x1 image). Clamp both to what they can be (variances ≥ 0, |cov| within the
+            // Cauchy-Schwarz bound), so SSIM stays within [-1, 1] and identical windows give
+            // exactly 1.
+            let var_a = (m[3] * inv - mu_a * mu_a).max(0.0);
+            let var_b = (m[4] * inv - mu_b * mu_b).max(0.0);
+            let bound = (var_a * var_b).sqrt();
+            let cov = (m[5] * inv - mu_a * mu_b).clamp(-bound, bound);
             let num = (2.0 * (mu_a * mu_b) + SSIM_C1) * (2.0 * cov + SSIM_C2);
             let den = (mu_a * mu_a + mu_b * mu_b + SSIM_C1) * (var_a + var_b + SSIM_C2);
             *o = num / den;
