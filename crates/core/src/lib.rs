@@ -22,6 +22,7 @@ pub mod memory;
 pub mod mesh;
 pub mod scene;
 pub mod srgb8;
+pub mod stats;
 pub mod surface;
 pub mod tempfiles;
 

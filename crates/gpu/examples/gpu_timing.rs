@@ -12,7 +12,7 @@
 //! at the thesis's four view angles.
 
 use renderlab_gpu::{FilterRenderer, GpuContext, GpuFilter, GpuTiming, ReliefRenderer};
-use renderlab_lab::fixtures::{benchmark_camera, benchmark_scene};
+use renderlab_measure::fixtures::{benchmark_camera, benchmark_scene};
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::{Map, ReliefMaterial, Technique};
 use renderlab_texture::materials;

@@ -86,16 +86,5 @@ impl PassTimer {
     }
 }
 
-/// The median of `v` (the mean of the middle two for an even count); NaN when empty.
-pub fn median(v: &mut [f64]) -> f64 {
-    if v.is_empty() {
-        return f64::NAN;
-    }
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
-}
+/// The median of timing samples (re-exported from the core crate, which every crate shares).
+pub use renderlab_core::stats::median;

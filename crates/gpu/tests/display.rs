@@ -7,7 +7,7 @@ mod common;
 
 use common::context;
 use renderlab_gpu::{read_rgba8, DisplayRegion, GpuContext, ReliefRenderer};
-use renderlab_lab::fixtures::{benchmark_camera, benchmark_scene};
+use renderlab_measure::fixtures::{benchmark_camera, benchmark_scene};
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::{ReliefMaterial, Technique};
 use renderlab_texture::materials;

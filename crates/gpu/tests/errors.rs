@@ -6,7 +6,7 @@ mod common;
 use common::context;
 use renderlab_core::Scene;
 use renderlab_gpu::{shader, GpuError, ReliefRenderer};
-use renderlab_lab::fixtures::{benchmark_camera, benchmark_scene};
+use renderlab_measure::fixtures::{benchmark_camera, benchmark_scene};
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::techniques::DESCRIPTORS;
 use renderlab_relief::{ReliefMaterial, Technique};

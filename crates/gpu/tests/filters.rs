@@ -48,7 +48,7 @@ use glam::{Vec2, Vec3};
 use renderlab_core::counter::NoCount;
 use renderlab_core::Image;
 use renderlab_gpu::{FilterRenderer, GpuError, GpuFilter};
-use renderlab_lab::metrics::psnr;
+use renderlab_measure::metrics::psnr;
 use renderlab_texture::filter::{bilinear_level, lod};
 use renderlab_texture::scene::{SceneKind, Surface, TestScene};
 use renderlab_texture::{FilterSpec, Texture};

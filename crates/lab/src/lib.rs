@@ -12,8 +12,9 @@
 //! - draws cost-against-error charts with [`plot`] and renders each lab's self-contained HTML
 //!   page from its template with [`report`], linked from an index page.
 //!
-//! The labs' fixtures (the thesis's benchmark cameras and scenes, the furnished room) are in
-//! [`fixtures`].
+//! The metrics, the heat maps and the labs' fixtures (the thesis's benchmark cameras and
+//! scenes, the furnished room) come from `renderlab-measure`, below the GPU renderer and the
+//! viewer, which use them too; they are re-exported here under their old paths.
 //!
 //! Every lab has one shape, the [`Lab`] trait (settings with a full and a quick preset, a run
 //! that hands back a [`LabSummary`]); [`suite`] runs them all and writes the report's index.
@@ -21,13 +22,9 @@
 #![warn(missing_docs)]
 
 pub mod error;
-pub mod fixtures;
 pub mod frames;
-mod glyphs;
-pub mod heatmap;
 pub mod hybrid_lab;
 pub mod lab;
-pub mod metrics;
 pub mod noise_lab;
 pub mod plot;
 pub mod relief_lab;
@@ -40,4 +37,7 @@ pub mod timing;
 pub use error::{LabError, Result};
 pub use lab::{Lab, LabSummary, Progress};
 pub use metrics::{Comparison, FlipResult, Metrics};
+/// The image metrics, heat maps and benchmark fixtures every lab uses, from the crate below
+/// the GPU renderer and the viewer that they share.
+pub use renderlab_measure::{fixtures, heatmap, metrics};
 pub use timing::{measure, Timing};

@@ -28,9 +28,8 @@ impl Timing {
             return None;
         }
         let mut s = samples_ms.to_vec();
-        s.sort_by(f64::total_cmp);
+        let median_ms = renderlab_core::stats::median(&mut s);
         let n = s.len();
-        let median_ms = if n % 2 == 1 { s[n / 2] } else { 0.5 * (s[n / 2 - 1] + s[n / 2]) };
         Some(Timing { median_ms, min_ms: s[0], max_ms: s[n - 1], reps: n as u32 })
     }
 

@@ -15,6 +15,7 @@
 use egui_kittest::kittest::Queryable;
 use egui_kittest::wgpu::{create_render_state, WgpuTestRenderer};
 use egui_kittest::Harness;
+use renderlab_core::stats::median;
 use renderlab_gpu::{GpuContext, PassTimer};
 use renderlab_relief::Technique;
 use renderlab_viewer::launch::wgpu_setup;
@@ -32,11 +33,6 @@ fn main() {
         eprintln!("error: {e}");
         std::process::exit(1);
     }
-}
-
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
 }
 
 fn run() -> Result<(), String> {

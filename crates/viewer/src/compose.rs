@@ -5,11 +5,11 @@
 //! `metrics::per_pixel_abs_error`), and [`HEAT_MAX`] and above is the hot end of the lab's
 //! ramp (`renderlab_core::color::heat_color`, sampled into a table at start, so that the
 //! colours are the lab's by construction); pixels no surface covers are the lab's
-//! `heatmap::MASKED_OUT` grey. The CPU twin is `renderlab_lab::heatmap::heat_image` over
+//! `heatmap::MASKED_OUT` grey. The CPU twin is `renderlab_measure::heatmap::heat_image` over
 //! `per_pixel_abs_error`; a test holds the two together.
 
 use renderlab_core::color::heat_color;
-use renderlab_lab::heatmap::MASKED_OUT;
+use renderlab_measure::heatmap::MASKED_OUT;
 use wgpu::util::DeviceExt;
 
 /// The error at the hot end of the ramp: a quarter of the code range, the texture lab's

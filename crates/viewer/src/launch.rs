@@ -8,7 +8,7 @@ use crate::split::SplitMode;
 use glam::Vec3;
 use renderlab_core::{Camera, Material};
 use renderlab_gpu::GpuContext;
-use renderlab_lab::fixtures::{benchmark_camera, room_camera, BENCH_ANGLES_DEG};
+use renderlab_measure::fixtures::{benchmark_camera, room_camera, BENCH_ANGLES_DEG};
 use renderlab_relief::Technique;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};

@@ -19,7 +19,8 @@ use crate::stats::FrameStats;
 use crate::techniques;
 use egui::Key;
 use renderlab_core::io;
-use renderlab_lab::fixtures::thesis_room;
+use renderlab_core::stats::median;
+use renderlab_measure::fixtures::thesis_room;
 use renderlab_relief::Technique;
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
@@ -595,9 +596,4 @@ impl RoomScreen {
             self.message = Some(e.to_string());
         }
     }
-}
-
-/// The median of `v` (NaN when empty).
-fn median(v: &mut [f64]) -> f64 {
-    renderlab_gpu::timing::median(v)
 }

@@ -9,7 +9,7 @@ use egui::Key;
 use egui_kittest::kittest::Queryable;
 use renderlab_core::color::linear_to_srgb8;
 use renderlab_gpu::ReliefRenderer;
-use renderlab_lab::fixtures::thesis_room;
+use renderlab_measure::fixtures::thesis_room;
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::{ReliefMaterial, Technique};
 use renderlab_viewer::app::Screen;

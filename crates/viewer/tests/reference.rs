@@ -9,7 +9,7 @@ mod common;
 use common::adapter;
 use glam::Vec2;
 use renderlab_gpu::ReliefRenderer;
-use renderlab_lab::fixtures::{benchmark_camera, benchmark_scene, thesis_room};
+use renderlab_measure::fixtures::{benchmark_camera, benchmark_scene, thesis_room};
 use renderlab_raster::rasterize;
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::render::render_reference;

@@ -8,7 +8,7 @@
 //! or clearing the rest: the viewer's split screen draws two techniques into the two halves
 //! of one texture, each pass timed on its own.
 
-use super::{Output, ReliefRenderer};
+use super::renderer::{Output, ReliefRenderer};
 use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
 use crate::readback::read_texture;

@@ -1,6 +1,6 @@
 use super::*;
 use proptest::prelude::*;
-use renderlab_lab::fixtures::{benchmark_camera, thesis_room, BENCH_ANGLES_DEG};
+use renderlab_measure::fixtures::{benchmark_camera, thesis_room, BENCH_ANGLES_DEG};
 
 fn room() -> Room {
     Room::from_scene(&thesis_room(16).unwrap())
@@ -39,7 +39,7 @@ fn bookmarks_give_back_the_thesis_cameras() {
         .iter()
         .map(|a| a.to_string())
         .chain(["room".into()])
-        .zip(cameras.into_iter().chain([renderlab_lab::fixtures::room_camera(64, 40)]))
+        .zip(cameras.into_iter().chain([renderlab_measure::fixtures::room_camera(64, 40)]))
     {
         let back = Player::from_camera(&r, &c).camera(64, 40);
         assert!(back.position.distance(c.position) < 1e-4, "{angle}: {} vs {}", back.position, c.position);

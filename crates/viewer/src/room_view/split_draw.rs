@@ -7,19 +7,14 @@
 //! second one, then the error pass ([`crate::compose`]) writes the display texture: the
 //! technique left of the split, the heat map right of it. No picture crosses the CPU.
 
-use super::{display_texture, RoomView, DISPLAY_FORMAT};
+use super::targets::{display_texture, Scratch, DISPLAY_FORMAT};
+use super::view::RoomView;
 use crate::compose::ErrorCompose;
 use crate::error::ViewerError;
 use crate::split::{self, SplitMode, SplitTimes};
 use renderlab_core::Camera;
 use renderlab_gpu::DisplayRegion;
 use renderlab_relief::Technique;
-
-/// The error mode's two pictures: (texture, view to draw into, view of codes) each.
-pub(super) struct Scratch {
-    technique: (wgpu::Texture, wgpu::TextureView, wgpu::TextureView),
-    reference: (wgpu::Texture, wgpu::TextureView, wgpu::TextureView),
-}
 
 impl RoomView {
     /// Draws the split screen of `mode` (not [`SplitMode::Off`]) from `camera`, split at

@@ -14,9 +14,9 @@
 //! - the test and reference images (and the mask) must have the same size; a mismatch is a
 //!   bug in the calling experiment and panics with both sizes in the message;
 //! - a mask with no pixel set leaves nothing to measure: the scalar metrics return `NaN`
-//!   (written as `null` in JSON and `nan` in CSV by [`crate::results`]);
-//! - PSNR of identical images is `f64::INFINITY`; reports should print it with
-//!   [`crate::report::format_number`], which renders `∞` and `–` (NaN) sensibly;
+//!   (the lab's results files write it as `null` in JSON and `nan` in CSV);
+//! - PSNR of identical images is `f64::INFINITY`; reports should print it as `∞`
+//!   (and NaN as `–`), as the lab's report does;
 //! - sums are formed per row in parallel and the row sums added in a fixed order, so results
 //!   are bit-identical for any thread count.
 
@@ -103,7 +103,7 @@ fn masked_mean(map: &Image<f32>, mask: Option<&Image<bool>>) -> f64 {
 /// pixel (peak value 1).
 ///
 /// Identical images (MSE = 0) give `f64::INFINITY`; an empty mask gives `NaN`. Reports must
-/// print both sensibly (see [`crate::report::format_number`]).
+/// print both sensibly (the lab's report writes `∞` and `–`).
 ///
 /// # Panics
 /// If the images or the mask differ in size.

@@ -2,8 +2,9 @@
 //! its camera six units from the bricks wall, the wall alone as the scene) and the thesis's
 //! room furnished with the built-in materials, with a view over it.
 //!
-//! They live with the experiments that use them; the crates below hold only what they are
-//! built from, with explicit parameters ([`Camera::orbit`], [`Scene::new`],
+//! The relief lab, the GPU renderer's tests and the viewer all render them, so they sit in
+//! this crate below all three; the crates below hold only what they are built from, with
+//! explicit parameters ([`Camera::orbit`], [`Scene::new`],
 //! [`Scene::thesis_room`], [`bricks_wall`]).
 
 use glam::Vec3;

@@ -2,13 +2,13 @@
 //! PSNR are ours (rayon, separable filtering), FLIP is NVIDIA's C++ through `nv-flip`.
 //!
 //! ```text
-//! cargo bench -p renderlab-lab --bench metrics -- --warm-up-time 1 --measurement-time 3
+//! cargo bench -p renderlab-measure --bench metrics -- --warm-up-time 1 --measurement-time 3
 //! ```
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use glam::Vec3;
 use renderlab_core::Image;
-use renderlab_lab::metrics::{flip, psnr, ssim, ssim_map};
+use renderlab_measure::metrics::{flip, psnr, ssim, ssim_map};
 use std::hint::black_box;
 
 const W: u32 = 1280;
