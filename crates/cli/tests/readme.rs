@@ -1,17 +1,70 @@
-//! The README names every technique and every texture filter of the catalogues, so that a
-//! new entry without its line in the README fails here rather than going unnoticed.
+//! The README's catalogue tables are generated from the registries: each table sits between
+//! `<!-- catalogue:NAME -->` and `<!-- /catalogue:NAME -->` and must equal what the registry
+//! gives today, so a new entry (technique, filter, ...) without its row fails here rather than
+//! going unnoticed. `RENDERLAB_BLESS=1 cargo test -p renderlab --test readme -- catalogue` rewrites the
+//! tables in place from the registries.
 
 use renderlab_relief::techniques::DESCRIPTORS;
 use renderlab_texture::filter::FILTERS;
 
-fn readme() -> String {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md");
-    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("reading {path}: {e}"))
+const README: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md");
+
+/// Every generated table: its marker name and its markdown.
+fn tables() -> Vec<(&'static str, String)> {
+    let mut relief = String::from("| technique | what it does | kernels |\n|---|---|---|\n");
+    for d in DESCRIPTORS {
+        let kernels: Vec<&str> = d.kernels.iter().map(|k| k.name()).collect();
+        relief.push_str(&format!(
+            "| `{}` | {} | {} |\n",
+            cell(&d.syntax()),
+            cell(d.summary),
+            kernels.join(", ")
+        ));
+    }
+    let mut filters = String::from("| filter | what it does |\n|---|---|\n");
+    for f in FILTERS {
+        filters.push_str(&format!("| `{}` | {} |\n", cell(f.syntax), cell(f.description)));
+    }
+    vec![("relief", relief), ("filters", filters)]
+}
+
+/// Text made safe for one markdown table cell.
+fn cell(s: &str) -> String {
+    s.split_whitespace().collect::<Vec<_>>().join(" ").replace('|', "\\|")
+}
+
+/// `text` with the block between the markers of `name` replaced by `table`; `None` where the
+/// markers are missing.
+fn with_table(text: &str, name: &str, table: &str) -> Option<String> {
+    let (open, close) = (format!("<!-- catalogue:{name} -->\n"), format!("<!-- /catalogue:{name} -->"));
+    let start = text.find(&open)? + open.len();
+    let end = start + text[start..].find(&close)?;
+    Some(format!("{}{}{}", &text[..start], table, &text[end..]))
+}
+
+#[test]
+fn readme_catalogue_tables_match_the_registries() {
+    let text = std::fs::read_to_string(README).unwrap_or_else(|e| panic!("reading {README}: {e}"));
+    let mut updated = text.clone();
+    for (name, table) in tables() {
+        updated = with_table(&updated, name, &table).unwrap_or_else(|| {
+            panic!("README.md has no <!-- catalogue:{name} --> … <!-- /catalogue:{name} --> block")
+        });
+    }
+    if std::env::var_os("RENDERLAB_BLESS").is_some() {
+        std::fs::write(README, &updated).expect("writing README.md");
+        return;
+    }
+    assert!(
+        updated == text,
+        "README.md's catalogue tables differ from the registries; run \
+         RENDERLAB_BLESS=1 cargo test -p renderlab --test readme -- catalogue to regenerate them"
+    );
 }
 
 #[test]
 fn readme_names_every_relief_technique_with_its_syntax() {
-    let text = readme();
+    let text = std::fs::read_to_string(README).expect("README.md");
     for d in DESCRIPTORS {
         let syntax = d.syntax();
         assert!(text.contains(&format!("`{syntax}`")), "README.md does not list `{syntax}`");
@@ -20,7 +73,7 @@ fn readme_names_every_relief_technique_with_its_syntax() {
 
 #[test]
 fn readme_names_every_texture_filter() {
-    let text = readme();
+    let text = std::fs::read_to_string(README).expect("README.md");
     for f in FILTERS {
         assert!(text.contains(f.name), "README.md does not name the filter {}", f.name);
     }

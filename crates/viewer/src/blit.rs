@@ -1,16 +1,16 @@
 //! Showing the room's picture: a paint callback inside egui's pass that copies the display
 //! texture pixel for pixel (`blit.wgsl`: a load per pixel, no filtering, no blending) instead
-//! of egui's textured quad. Measured with pass-level timestamps on lavapipe at 1280×800
-//! (`examples/egui_pass.rs`), egui's quad alone took 36 ms, half the relief pass: its shader
-//! filters, multiplies by the vertex colour and blends every pixel.
+//! of egui's textured quad, whose shader filters, multiplies by the vertex colour and blends
+//! every pixel (on a software adapter the quad cost about half a relief pass: measured with
+//! `examples/egui_pass.rs`, figures in BENCHMARKS.md, "Viewer").
 //!
 //! The picture is the display texture at exactly the picture's size in pixels, so the copy
 //! is exact. Its 8-bit codes go to the window as they are: through the code view into a
 //! linear target (the window holds sRGB codes, as egui writes them), or through the sRGB view
 //! into an sRGB target (decoded on load, encoded on store).
 //!
-//! The copy also paints the HUD panels' backgrounds ([`crate::look_and_feel::Backdrops`]):
-//! on lavapipe that took egui's pass from 8.9 to about 5.2 ms with the HUD shown.
+//! The copy also paints the HUD panels' backgrounds ([`crate::look_and_feel::Backdrops`]),
+//! so that egui's pass draws only their text.
 
 use crate::look_and_feel::{Backdrop, Backdrops, MAX_BACKDROPS};
 use egui_wgpu::{CallbackResources, CallbackTrait, ScreenDescriptor};

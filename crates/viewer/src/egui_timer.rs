@@ -7,10 +7,9 @@
 //! later still, so each reading is two frames old.
 //!
 //! Not on a software adapter: lavapipe records such a timestamp when it bins the pass's
-//! draws, before it rasterizes them, so the pair misses nearly all the work (measured at
-//! 1280×800 with the picture drawn as egui's textured quad and the HUD hidden: 0.2 ms between
-//! the marks in the window against 36 ms for the same pass with pass-level timestamps in
-//! `examples/egui_pass.rs`, which times egui's pass whole on any adapter).
+//! draws, before it rasterizes them, so the pair misses nearly all the work (a small fraction
+//! of what pass-level timestamps read for the same pass; `examples/egui_pass.rs` times egui's
+//! pass whole on any adapter, and BENCHMARKS.md, "Viewer", has both readings).
 
 use egui_wgpu::{CallbackResources, CallbackTrait, ScreenDescriptor};
 use renderlab_gpu::{GpuContext, PassTimer};

@@ -2,10 +2,10 @@
 //! paints their backgrounds.
 //!
 //! A panel's background is a rounded rectangle with a one-pixel border. egui draws it as a
-//! blended, textured mesh; on a software adapter (lavapipe, 1280×800) the HUD's backgrounds
-//! took 3.7 ms of egui's 8.9 ms pass (`examples/egui_pass.rs`), for about a tenth of the
-//! window's pixels. When the room's picture is copied into egui's pass ([`crate::blit`]), the
-//! copy already visits every pixel, so it paints the backgrounds instead: a few rounded-box
+//! blended, textured mesh, a large share of its pass on a software adapter for about a tenth
+//! of the window's pixels (measured with `examples/egui_pass.rs`; figures in BENCHMARKS.md,
+//! "Viewer"). When the room's picture is copied into egui's pass ([`crate::blit`]), the copy
+//! already visits every pixel, so it paints the backgrounds instead: a few rounded-box
 //! distance tests per pixel in a shader that is already running. egui then draws the text
 //! alone. [`Backdrops`] carries the panels' rectangles from the HUD to the copy.
 
@@ -15,9 +15,8 @@ use std::sync::{Arc, Mutex, PoisonError};
 pub const MAX_BACKDROPS: usize = 8;
 
 /// The HUD's panel frame: egui's popup frame without its shadow. The shadow is a wide,
-/// feathered mesh around each panel; on a software adapter (lavapipe, 1280×800) the HUD's
-/// shadows took 9.3 ms of GPU time a frame, three quarters of what the panels themselves took
-/// then (`examples/egui_pass.rs`).
+/// feathered mesh around each panel that cost a software adapter most of what the panels
+/// themselves cost (`examples/egui_pass.rs`; BENCHMARKS.md, "Viewer").
 pub fn panel_frame(style: &egui::Style) -> egui::Frame {
     egui::Frame::popup(style).shadow(egui::Shadow::NONE)
 }

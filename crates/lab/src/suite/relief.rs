@@ -25,11 +25,11 @@ impl Lab for ReliefLab {
     const NAME: &'static str = "relief";
     const TITLE: &'static str = "Relief surfaces (thesis 000)";
 
-    /// Bricks at the built-in size, the lab's defaults with five timed repetitions (medians:
-    /// with three, adaptive POM's ratio at 60° once read 1.05× where more repetitions read
-    /// 0.91–0.95×), and the CPU renderer against the GPU's shaders for the methods issue 10 names (basic, POM-32,
-    /// adaptive and the fastest, cone-newton, at 0° and 60°; about 20 s on lavapipe) where an
-    /// adapter exists; without one the page says the GPU was skipped.
+    /// Bricks at the built-in size, the lab's defaults with five timed repetitions (medians of
+    /// three proved too noisy for the adaptive ratio; BENCHMARKS.md, "Relief lab"), and the
+    /// CPU renderer against the GPU's shaders for the four methods the headline compares
+    /// (basic, POM-32, adaptive and the fastest, cone-newton, at 0° and 60°) where an adapter
+    /// exists; without one the page says the GPU was skipped.
     fn report_preset() -> Result<Self> {
         let material = materials::material("bricks", materials::DEFAULT_SIZE)?;
         let techniques = vec![
