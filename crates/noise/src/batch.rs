@@ -24,7 +24,8 @@ use rayon::prelude::*;
 
 use crate::error::{NoiseError, Result};
 use crate::fractal::{final_scale, salt, shape, Fractal, FractalKind};
-use crate::perlin::{fade, gradient, split, NoWrap, Wrap, TABLE_SIZE};
+use crate::perlin::{fade, gradient, split, TABLE_SIZE};
+use crate::wrap::{NoWrap, Wrap};
 
 /// Checks the grid and the output slice; returns the sample count.
 fn check_grid<const N: usize>(

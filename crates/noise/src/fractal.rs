@@ -28,7 +28,8 @@
 //! `Fbm` with frequency 3, lacunarity 2, gain ½, times its amplitude sum 1.875.
 
 use crate::error::{NoiseError, Result};
-use crate::perlin::{NoWrap, PeriodWrap, Perlin, TABLE_SIZE};
+use crate::perlin::{Perlin, TABLE_SIZE};
+use crate::wrap::{NoWrap, PeriodWrap};
 
 /// Most octaves any sum accepts.
 pub const MAX_OCTAVES: u32 = 32;

@@ -16,7 +16,8 @@
 //! [`Perlin`]: crate::Perlin
 
 use crate::periodic::MAX_PERIOD;
-use crate::perlin::{eval2_lerp, Lattice2, NearWrap};
+use crate::perlin::{eval2_lerp, Lattice2};
+use crate::wrap::NearWrap;
 
 /// A 32-bit integer hash with good avalanche (the "lowbias32" finaliser by Chris Wellons):
 /// the lattice hash of [`HashedPerlin`], public so that code built around the noise (cell

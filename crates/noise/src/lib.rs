@@ -49,6 +49,7 @@ pub mod periodic;
 pub mod perlin;
 pub mod smoke;
 pub mod water;
+mod wrap;
 
 pub use error::{NoiseError, Result};
 pub use fractal::{normalize_min_max, Fractal, FractalKind, FractalParams, MAX_FREQUENCY, MAX_OCTAVES};

@@ -6,7 +6,8 @@
 //! seamlessly. For tileable fractal sums see [`crate::FractalParams::with_period`].
 
 use crate::error::{NoiseError, Result};
-use crate::perlin::{eval, PeriodWrap, Perlin};
+use crate::perlin::{eval, Perlin};
+use crate::wrap::PeriodWrap;
 
 /// Largest accepted period, in lattice cells (keeps `i32` index arithmetic exact).
 pub const MAX_PERIOD: u32 = 1 << 24;
