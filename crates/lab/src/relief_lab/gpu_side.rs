@@ -11,7 +11,7 @@
 use super::config::ReliefBenchConfig;
 use super::device::device_label;
 use super::page::ImageSet;
-use super::record::{label, slug, RecordBackend, ReliefRecord};
+use super::record::{label, slug, Measured, RecordBackend, ReliefRecord};
 use super::uv_error::{mean_and_p95, uv_error_map, write_frame_images, FrameImages};
 use crate::metrics::{compare, psnr};
 use crate::timing::Timing;
@@ -172,36 +172,26 @@ impl GpuAnalysis<'_> {
             psnr(&frame.image, image, Some(&both))
         });
         let r = self.report;
+        let measured = Measured {
+            technique,
+            kernel: Kernel::Scalar,
+            angle_deg: angle,
+            frame: times.wall,
+            metrics: cmp.metrics,
+            mean_layers,
+            uv_error: (uv_mean, uv_p95),
+            covered_pixels: covered,
+        };
         let rec = ReliefRecord {
-            backend: RecordBackend::Gpu,
-            device: device_label(r),
             adapter: Some(r.name.clone()),
             driver: Some(format!("{} {}", r.driver, r.driver_info).trim().to_string()),
             software: Some(r.software),
             gpu_timestamps: Some(r.timestamps),
-            technique,
-            family: technique.family(),
-            kernel: Kernel::Scalar,
-            layers: technique.layers(),
-            angle_deg: angle,
-            time_ms: times.wall.median_ms,
-            trace_ms: f64::NAN,
             gpu_ms: times.gpu_ms,
             gpu_fps: times.gpu_ms.map(|ms| 1000.0 / ms),
             cpu_over_gpu: cpu.map(|(_, _, cpu_ms)| cpu_ms / times.wall.median_ms),
             psnr_vs_cpu_db,
-            time_min_ms: times.wall.min_ms,
-            time_max_ms: times.wall.max_ms,
-            fps_equivalent: 1000.0 / times.wall.median_ms,
-            samples_per_pixel: f64::NAN,
-            mean_layers,
-            psnr_db: cmp.metrics.psnr_db,
-            psnr_vs_float_db: None,
-            ssim: cmp.metrics.ssim,
-            flip: cmp.metrics.flip,
-            uv_error_texels: uv_mean,
-            uv_error_p95_texels: uv_p95,
-            covered_pixels: covered,
+            ..ReliefRecord::measured(RecordBackend::Gpu, device_label(r), measured)
         };
         if !self.cfg.write_images {
             return Ok((rec, None));

@@ -1,5 +1,7 @@
 //! One measurement, and how records are named and looked up.
 
+use crate::metrics::Metrics;
+use crate::timing::Timing;
 use renderlab_relief::{Kernel, Technique};
 use serde::Serialize;
 use std::path::PathBuf;
@@ -91,6 +93,66 @@ pub struct ReliefRecord {
     pub uv_error_p95_texels: f64,
     /// Pixels showing the surface.
     pub covered_pixels: usize,
+}
+
+/// What every record of one technique at one angle holds whichever renderer drew it: its
+/// whole-frame timing and its error against the reference.
+#[derive(Clone, Copy, Debug)]
+pub struct Measured {
+    /// The technique.
+    pub technique: Technique,
+    /// The kernel it ran on.
+    pub kernel: Kernel,
+    /// View angle from the wall normal, degrees.
+    pub angle_deg: f32,
+    /// The whole frame's repetitions.
+    pub frame: Timing,
+    /// PSNR, SSIM and FLIP against the reference over the covered pixels.
+    pub metrics: Metrics,
+    /// Mean planned layer count per covered pixel.
+    pub mean_layers: f64,
+    /// Mean and 95th percentile of the UV error, texels.
+    pub uv_error: (f64, f64),
+    /// Pixels showing the surface.
+    pub covered_pixels: usize,
+}
+
+impl ReliefRecord {
+    /// A record of `backend` on `device` with the fields every renderer measures from `m`;
+    /// what only one renderer measures is left NaN or `None`, for the caller to fill in.
+    pub fn measured(backend: RecordBackend, device: String, m: Measured) -> Self {
+        ReliefRecord {
+            backend,
+            device,
+            adapter: None,
+            driver: None,
+            software: None,
+            gpu_timestamps: None,
+            technique: m.technique,
+            family: m.technique.family(),
+            kernel: m.kernel,
+            layers: m.technique.layers(),
+            angle_deg: m.angle_deg,
+            time_ms: m.frame.median_ms,
+            trace_ms: f64::NAN,
+            gpu_ms: None,
+            gpu_fps: None,
+            cpu_over_gpu: None,
+            psnr_vs_cpu_db: None,
+            time_min_ms: m.frame.min_ms,
+            time_max_ms: m.frame.max_ms,
+            fps_equivalent: 1000.0 / m.frame.median_ms,
+            samples_per_pixel: f64::NAN,
+            mean_layers: m.mean_layers,
+            psnr_db: m.metrics.psnr_db,
+            psnr_vs_float_db: None,
+            ssim: m.metrics.ssim,
+            flip: m.metrics.flip,
+            uv_error_texels: m.uv_error.0,
+            uv_error_p95_texels: m.uv_error.1,
+            covered_pixels: m.covered_pixels,
+        }
+    }
 }
 
 /// What a finished run hands back to its caller.

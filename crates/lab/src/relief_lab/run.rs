@@ -4,7 +4,7 @@ use super::config::{resolve, Backend, ReliefBenchConfig};
 use super::gpu_side::{self, time_gpu, time_interleaved, GpuAnalysis, GpuTimes};
 use super::gpu_tables::gpu_findings;
 use super::page::{write_report, GpuPart, ImageSet};
-use super::record::{label, slug, RecordBackend, ReliefRecord, ReliefSummary};
+use super::record::{label, slug, Measured, RecordBackend, ReliefRecord, ReliefSummary};
 use super::uv_error::{mean_and_p95, uv_error_map, write_frame_images, FrameImages};
 use super::verdicts::{findings, headline};
 use crate::fixtures::{benchmark_camera, benchmark_scene};
@@ -295,36 +295,26 @@ impl Analysis<'_> {
         } else {
             frame.layers.pixels().iter().map(|&l| l as f64).sum::<f64>() / covered as f64
         };
-        let rec = ReliefRecord {
-            backend: RecordBackend::Cpu,
-            device: format!("CPU ({} threads)", rayon::current_num_threads()),
-            adapter: None,
-            driver: None,
-            software: None,
-            gpu_timestamps: None,
+        let measured = Measured {
             technique: t,
-            family: t.family(),
             kernel,
-            layers: t.layers(),
             angle_deg: angle,
-            time_ms: pass.median_ms,
-            trace_ms: trace.median_ms,
-            gpu_ms: None,
-            gpu_fps: None,
-            cpu_over_gpu,
-            psnr_vs_cpu_db: None,
-            time_min_ms: pass.min_ms,
-            time_max_ms: pass.max_ms,
-            fps_equivalent: 1000.0 / pass.median_ms,
-            samples_per_pixel: frame.fetches_per_pixel(),
+            frame: pass,
+            metrics: cmp.metrics,
             mean_layers,
-            psnr_db: cmp.metrics.psnr_db,
-            psnr_vs_float_db: Some(psnr_vs_float),
-            ssim: cmp.metrics.ssim,
-            flip: cmp.metrics.flip,
-            uv_error_texels: uv_mean,
-            uv_error_p95_texels: uv_p95,
+            uv_error: (uv_mean, uv_p95),
             covered_pixels: covered,
+        };
+        let rec = ReliefRecord {
+            trace_ms: trace.median_ms,
+            cpu_over_gpu,
+            samples_per_pixel: frame.fetches_per_pixel(),
+            psnr_vs_float_db: Some(psnr_vs_float),
+            ..ReliefRecord::measured(
+                RecordBackend::Cpu,
+                format!("CPU ({} threads)", rayon::current_num_threads()),
+                measured,
+            )
         };
         if !self.cfg.write_images {
             return Ok((rec, None, keep.then_some(frame)));
