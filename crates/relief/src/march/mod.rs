@@ -4,6 +4,7 @@
 //! reference. Each is written once; the techniques in [`crate::techniques`] choose and
 //! parameterise them.
 
+pub mod adaptive;
 pub mod bisect;
 pub mod cone_lanes;
 pub mod cone_newton;

@@ -7,6 +7,7 @@
 //! defaults, and the canonical name ([`Technique::name`]) writes them all.
 
 pub mod descriptor;
+pub mod lanes;
 
 use self::descriptor::ShadowMode;
 use crate::error::ReliefError;
