@@ -61,7 +61,6 @@ impl PackedMarch for ConeStep {
     }
 }
 
-
 /// The refinements in parameter order (the index is the parameter's value).
 const REFINEMENTS: [Refinement; 2] = [Refinement::Binary, Refinement::Secant];
 

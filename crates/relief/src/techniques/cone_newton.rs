@@ -72,7 +72,6 @@ impl PackedMarch for NewtonCone {
     }
 }
 
-
 impl Entry for ConeNewton {
     const DESCRIPTOR: Descriptor = Descriptor {
         name: "cone-newton",
