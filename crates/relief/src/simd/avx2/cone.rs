@@ -5,7 +5,7 @@
 //! the scalar twin's operations in its order, so the hits are bit-identical to it.
 
 use super::gather::{gather_cell, packed_sample};
-use super::lanes::{interp_v, refill, setup_rays, Group, RayLanes, COLUMNS};
+use super::lanes::{interp_v, lane_group, setup_rays, RayLanes, RaySoa, COLUMNS};
 use crate::maps::packed::PackedRelief;
 use crate::march::cone_lanes::MIN_STEP;
 use crate::march::cone_step::{
@@ -18,6 +18,8 @@ use std::arch::x86_64::*;
 
 /// Vectors of rays stepped in turn, so that one's gathers overlap the other's arithmetic.
 const GROUPS: usize = 2;
+
+lane_group!(ConeStep, lane_start, side);
 
 macro_rules! kernel {
     ($name:ident, $features:literal) => {
@@ -45,11 +47,12 @@ macro_rules! kernel {
             let stride = map.stride() as i32;
             let z = _mm256_setzero_ps();
             let zi = _mm256_setzero_si256();
-            let empty = Group::<__m256i>::empty();
+            let empty =
+                Group { ray: RayLanes::empty(), t: z, a: z, fa: z, b: z, fb: z, k: zi, phase: zi, side: zi };
             let mut groups = [empty; GROUPS];
             let mut next = 0usize;
             for g in groups.iter_mut() {
-                next = refill(lane_start(cs), g, 0xff, next, n, &soa);
+                next = refill(cs, g, 0xff, next, n, &soa);
             }
 
             let ps = _mm256_set1_ps;
@@ -190,7 +193,7 @@ macro_rules! kernel {
                     let finished = _mm256_movemask_ps(done) as u32 & ng.ray.active;
                     if finished != 0 {
                         ng.ray.write_hits(finished, result, cs.steps, &soa, out);
-                        next = refill(lane_start(cs), &mut ng, finished, next, n, &soa);
+                        next = refill(cs, &mut ng, finished, next, n, &soa);
                     }
                     *grp = ng;
                 }

@@ -7,7 +7,7 @@
 //! bit-identical to the scalar kernel's.
 
 use super::gather::{gather_cell, packed_sample};
-use super::lanes::{interp_v, refill, setup_rays, Group, RayLanes, COLUMNS};
+use super::lanes::{interp_v, lane_group, setup_rays, RayLanes, RaySoa, COLUMNS};
 use crate::maps::packed::{PackedRelief, DEPTH_STEP};
 use crate::march::cone_newton::{
     start, NewtonCone, CONE, MAX_EPS, MIN_SLOPE, MIN_STEP, REFINE_0, REFINE_A, REFINE_B,
@@ -48,6 +48,8 @@ impl Fetched {
     }
 }
 
+lane_group!(NewtonCone, start);
+
 /// Stamps out the kernel for a set of target features (the same intrinsics; with AVX-512
 /// the compiler has 32 vector registers, so the lanes' state need not spill).
 macro_rules! kernel {
@@ -70,12 +72,21 @@ macro_rules! kernel {
             let mut soa = COLUMNS.take();
             setup_rays(fc.tol, MAX_EPS, inp, &rays[..n], &mut soa);
             let zero = _mm256_setzero_ps();
-            let empty = Group::<()>::empty();
+            let empty = Group {
+                ray: RayLanes::empty(),
+                t: zero,
+                a: zero,
+                fa: zero,
+                b: zero,
+                fb: zero,
+                k: _mm256_setzero_si256(),
+                phase: _mm256_setzero_si256(),
+            };
             let mut ts = std::mem::take(&mut soa.t);
             let mut groups = [empty; GROUPS];
             let mut next = 0usize;
             for g in groups.iter_mut() {
-                next = refill(start(fc), g, 0xff, next, n, &soa);
+                next = refill(fc, g, 0xff, next, n, &soa);
             }
 
             let ps = |x: f32| _mm256_set1_ps(x);
@@ -227,14 +238,13 @@ macro_rules! kernel {
                         fb: new_fb,
                         k: new_k,
                         phase: new_phase,
-                        side: (),
                     };
                     let finished = _mm256_movemask_ps(done) as u32 & ng.ray.active;
                     // SAFETY: `refill` set every owner to a ray of the row or to `n`, and `ts`
                     // has `RaySoa`'s padded length (more than `n` entries).
                     ng.ray.stage(result, &mut ts);
                     if finished != 0 {
-                        next = refill(start(fc), &mut ng, finished, next, n, &soa);
+                        next = refill(fc, &mut ng, finished, next, n, &soa);
                     }
                     *grp = ng;
                 }

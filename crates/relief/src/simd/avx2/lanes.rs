@@ -1,11 +1,11 @@
 //! The lanes of the two cone kernels on the packed map (relaxed cone stepping and
 //! cone-newton): the rays of a row as columns ([`RaySoa`], set up eight at a time by
-//! [`setup_rays`]), eight rays' constants in one vector ([`RayLanes`]), eight rays' state
-//! ([`Group`], [`crate::march::cone_lanes::State`] in lanes) and the refill that gives a
-//! finished lane the row's next ray with a fresh state ([`refill`]).
+//! [`setup_rays`]), eight rays' constants in one vector ([`RayLanes`]), and eight rays'
+//! state ([`crate::march::cone_lanes::State`] in lanes) with the refill that gives a
+//! finished lane the row's next ray in a fresh state (`lane_group!`).
 
 use super::{LANES, RANKS};
-use crate::march::cone_lanes::{Ray, State};
+use crate::march::cone_lanes::Ray;
 use crate::trace::{ReliefHit, ReliefInputs, MIN_VIEW_Z};
 use glam::{Vec2, Vec3};
 use std::arch::x86_64::*;
@@ -273,101 +273,54 @@ impl RayLanes {
     }
 }
 
-/// One vector of rays: the constants of each lane's ray and its variable state (the fields
-/// of [`State`]; `side` is relaxed cone stepping's Illinois memory, `()` for cone-newton,
-/// which keeps it in its phase).
-#[derive(Clone, Copy)]
-pub(crate) struct Group<S> {
-    /// The lanes' rays.
-    pub(crate) ray: RayLanes,
-    pub(crate) t: __m256,
-    pub(crate) a: __m256,
-    pub(crate) fa: __m256,
-    pub(crate) b: __m256,
-    pub(crate) fb: __m256,
-    pub(crate) k: __m256i,
-    pub(crate) phase: __m256i,
-    pub(crate) side: S,
+/// Declares, in a cone kernel's file, `Group` (one vector of rays: the constants of each
+/// lane's ray and its variable state, the fields of [`State`], with `side` where the march
+/// keeps Illinois's memory there) and `refill(march, group, free, next, n, columns)`, which
+/// loads the next rays (from `next` on, at most `n`) into the lanes set in `free` (a bit per
+/// lane), each in the state `start(march)`, leaves lanes without a ray inactive and returns
+/// the new `next`. Stamped into each kernel's file (as the kernels are for each build), so
+/// that each kernel's code is compiled as if written there.
+macro_rules! lane_group {
+    ($march:ty, $start:path $(, $side:ident)?) => {
+        /// One vector of rays: the constants of each lane's ray and its variable state
+        /// ([`crate::march::cone_lanes::State`]).
+        #[derive(Clone, Copy)]
+        struct Group {
+            /// The lanes' rays.
+            ray: RayLanes,
+            t: __m256,
+            a: __m256,
+            fa: __m256,
+            b: __m256,
+            fb: __m256,
+            k: __m256i,
+            phase: __m256i,
+            $($side: __m256i,)?
+        }
+
+        /// Loads the next rays (from `next` on, at most `n`) into the lanes of `g` set in
+        /// `free` (a bit per lane), with a fresh state; lanes left without a ray become
+        /// inactive. Returns the new `next`.
+        #[inline]
+        #[target_feature(enable = "avx2")]
+        unsafe fn refill(m: &$march, g: &mut Group, free: u32, next: usize, n: usize, soa: &RaySoa) -> usize {
+            if free == 0 {
+                return next;
+            }
+            let (take, next) = g.ray.refill(free, next, n, soa);
+            let take_ps = _mm256_castsi256_ps(take);
+            let st = $start(m);
+            let set = |old: __m256, v: f32| _mm256_blendv_ps(old, _mm256_set1_ps(v), take_ps);
+            g.t = set(g.t, st.t);
+            g.a = set(g.a, st.a);
+            g.fa = set(g.fa, st.fa);
+            g.b = set(g.b, st.b);
+            g.fb = set(g.fb, st.fb);
+            g.k = _mm256_blendv_epi8(g.k, _mm256_set1_epi32(st.k), take);
+            g.phase = _mm256_blendv_epi8(g.phase, _mm256_set1_epi32(st.phase), take);
+            $(g.$side = _mm256_blendv_epi8(g.$side, _mm256_set1_epi32(st.$side), take);)?
+            next
+        }
+    };
 }
-
-/// The lanes of [`State::side`] in a [`Group`]: a vector, or nothing where the march keeps
-/// no such memory.
-pub(crate) trait Side: Copy {
-    /// Zero in every lane.
-    ///
-    /// # Safety
-    ///
-    /// The CPU must support AVX2.
-    unsafe fn zero() -> Self;
-
-    /// `v` in the lanes set in `take` (all bits set in each), the old value elsewhere.
-    ///
-    /// # Safety
-    ///
-    /// The CPU must support AVX2.
-    unsafe fn reset(self, v: i32, take: __m256i) -> Self;
-}
-
-impl Side for () {
-    #[inline(always)]
-    unsafe fn zero() {}
-
-    #[inline(always)]
-    unsafe fn reset(self, _: i32, _: __m256i) {}
-}
-
-impl Side for __m256i {
-    #[inline]
-    #[target_feature(enable = "avx2")]
-    unsafe fn zero() -> Self {
-        _mm256_setzero_si256()
-    }
-
-    #[inline]
-    #[target_feature(enable = "avx2")]
-    unsafe fn reset(self, v: i32, take: __m256i) -> Self {
-        _mm256_blendv_epi8(self, _mm256_set1_epi32(v), take)
-    }
-}
-
-impl<S: Side> Group<S> {
-    /// No rays.
-    #[inline]
-    #[target_feature(enable = "avx2")]
-    pub(crate) unsafe fn empty() -> Self {
-        let z = _mm256_setzero_ps();
-        let zi = _mm256_setzero_si256();
-        Group { ray: RayLanes::empty(), t: z, a: z, fa: z, b: z, fb: z, k: zi, phase: zi, side: S::zero() }
-    }
-}
-
-/// Loads the next rays (from `next` on, at most `n`) into the lanes of `g` set in `free`
-/// (a bit per lane), each starting in state `st`; lanes left without a ray become inactive.
-/// Returns the new `next`.
-#[inline]
-#[target_feature(enable = "avx2")]
-pub(crate) unsafe fn refill<S: Side>(
-    st: State,
-    g: &mut Group<S>,
-    free: u32,
-    next: usize,
-    n: usize,
-    soa: &RaySoa,
-) -> usize {
-    if free == 0 {
-        return next;
-    }
-    let (take, next) = g.ray.refill(free, next, n, soa);
-    let take_ps = _mm256_castsi256_ps(take);
-    let set = |old: __m256, v: f32| _mm256_blendv_ps(old, _mm256_set1_ps(v), take_ps);
-    let set_i = |old: __m256i, v: i32| _mm256_blendv_epi8(old, _mm256_set1_epi32(v), take);
-    g.t = set(g.t, st.t);
-    g.a = set(g.a, st.a);
-    g.fa = set(g.fa, st.fa);
-    g.b = set(g.b, st.b);
-    g.fb = set(g.fb, st.fb);
-    g.k = set_i(g.k, st.k);
-    g.phase = set_i(g.phase, st.phase);
-    g.side = g.side.reset(st.side, take);
-    next
-}
+pub(crate) use lane_group;
