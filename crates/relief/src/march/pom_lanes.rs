@@ -150,8 +150,9 @@ fn layer_uv(uv0: Vec2, step: Vec2, i: u32) -> Vec2 {
     }
 }
 
-/// The result once the march stopped at layer `i` (interpolated when `rule` says so) with depth-map values `map` there and
-/// `prev_map` one layer up (as [`crate::march::layered::interpolate`] finishes the march).
+/// The result once the march stopped at layer `i` (interpolated when `rule` says so), with
+/// depth-map values `map` there and `prev_map` one layer up (as
+/// [`crate::march::layered::interpolate`] finishes the march).
 #[inline(always)]
 pub(crate) fn finish<R: LayerRule>(
     rule: &R,

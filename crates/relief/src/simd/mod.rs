@@ -82,7 +82,10 @@ pub fn cone_newton_row<C: Counter>(
     vector: bool,
     counter: &mut C,
 ) {
-    backend!(cone_newton::trace_row(fc, inp, map, rays, out, counter) if vector && usable(map), avx512 trace_row_avx512)
+    backend!(
+        cone_newton::trace_row(fc, inp, map, rays, out, counter) if vector && usable(map),
+        avx512 trace_row_avx512
+    )
 }
 
 /// Traces `rays` with relaxed cone stepping's march on the packed map (16-bit depths and the
@@ -97,7 +100,10 @@ pub fn cone_row<C: Counter>(
     vector: bool,
     counter: &mut C,
 ) {
-    backend!(cone::trace_row(cs, inp, map, rays, out, counter) if vector && usable(map), avx512 trace_row_avx512)
+    backend!(
+        cone::trace_row(cs, inp, map, rays, out, counter) if vector && usable(map),
+        avx512 trace_row_avx512
+    )
 }
 
 /// Traces `rays` with the layered march of `pom`'s rule on the packed map (then, for relief
@@ -113,7 +119,11 @@ pub fn pom_row<R: LayerRule, C: Counter>(
     vector: bool,
     counter: &mut C,
 ) {
-    backend!(pom::trace_row(pom, inp, map, rays, out, counter) if vector && usable(map), avx512 trace_row_avx512, twin twin_row)
+    backend!(
+        pom::trace_row(pom, inp, map, rays, out, counter) if vector && usable(map),
+        avx512 trace_row_avx512,
+        twin twin_row
+    )
 }
 
 /// Traces `rays` with parallax mapping on the packed map, eight rays per vector where
@@ -151,7 +161,10 @@ pub fn soft_shadow_row<C: Counter>(
         }
         return;
     };
-    backend!(shadow::soft_shadow_row(map, hs, samples, hits, points, out, counter) if vector && usable(map), avx512 soft_shadow_row_avx512)
+    backend!(
+        shadow::soft_shadow_row(map, hs, samples, hits, points, out, counter) if vector && usable(map),
+        avx512 soft_shadow_row_avx512
+    )
 }
 
 /// Adaptive POM's layer count of each ray of `rays` (as `f32`) into `out`, for the base layer
