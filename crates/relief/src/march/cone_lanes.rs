@@ -1,9 +1,9 @@
 //! What the two cone marches on the packed map (relaxed cone stepping's `simd` kernel and
-//! cone-newton) share: a ray's constants ([`Ray`]), its variable state ([`State`]), the
-//! false-position estimate ([`interp`]) and minima and maxima written as the SSE instructions
-//! define them ([`mn`], [`mx`]). Each march's scalar twin (`crate::simd`'s scalar backend)
-//! steps a [`State`] one fetch at a time; the vector kernels keep eight of them in lanes and
-//! refill a finished lane from [`State`]'s start, so both perform the same IEEE operations in
+//! cone-newton) share: a ray's constants (`Ray`), its variable state (`State`), the
+//! false-position estimate (`interp`) and minima and maxima written as the SSE instructions
+//! define them (`mn`, `mx`). Each march's scalar twin (`crate::simd`'s scalar backend)
+//! steps a `State` one fetch at a time; the vector kernels keep eight of them in lanes and
+//! refill a finished lane from `State`'s start, so both perform the same IEEE operations in
 //! the same order.
 
 use crate::trace::{uv_per_depth, ReliefHit, ReliefInputs};

@@ -1,5 +1,5 @@
-//! The kernels, one folder per backend: [`avx2`] (the vector kernels; the marches also built
-//! for AVX-512 F and VL) and [`scalar`] (their twins, one ray or pixel at a time), the scalar
+//! The kernels, one folder per backend: `avx2` (the vector kernels; the marches also built
+//! for AVX-512 F and VL) and `scalar` (their twins, one ray or pixel at a time), the scalar
 //! folder mirroring the AVX2 one file by file, every twin bit-identical to its vector kernel.
 //! Intrinsics live only in the backend folders.
 //!
