@@ -8,10 +8,11 @@ use renderlab_core::color::srgb8_to_linear_table;
 use renderlab_core::scene::{bricks_wall, BRICKS_WALL_CENTRE};
 use renderlab_core::srgb8::srgb8_encode_table;
 use renderlab_core::{Camera, Scene, SceneObject};
-use renderlab_relief::fused::lanes::{shade_scalar, ShadeConsts, ShadeLanes, LANES};
+use renderlab_relief::fused::lanes::{ShadeConsts, ShadeLanes, LANES};
 use renderlab_relief::fused::{render_fused, FusedFrame};
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::render::render_into;
+use renderlab_relief::simd::shade_lanes;
 use renderlab_relief::{Frame, FrameInput, KernelChoice, ReliefMaterial, Shading, Technique};
 use renderlab_texture::materials;
 use std::hint::black_box;
@@ -63,7 +64,7 @@ fn shading(c: &mut Criterion) {
                 let mut acc = 0u32;
                 let mut out = [0u32; LANES];
                 for p in &gs {
-                    renderlab_relief::simd::shade_lanes(black_box(p), &k, &mut out);
+                    shade_lanes(black_box(p), &k, &mut out, true);
                     acc = acc.wrapping_add(out[0]);
                 }
                 acc
@@ -74,7 +75,7 @@ fn shading(c: &mut Criterion) {
                 let mut acc = 0u32;
                 let mut out = [0u32; LANES];
                 for p in &gs {
-                    shade_scalar(black_box(p), &k, &mut out);
+                    shade_lanes(black_box(p), &k, &mut out, false);
                     acc = acc.wrapping_add(out[0]);
                 }
                 acc

@@ -3,10 +3,14 @@
 //! complexity map, and the exact height-field intersection used as ground truth.
 //!
 //! Layout: [`maps`] holds the precomputed maps (depth field, complexity, cone map, packed
-//! map); [`march`] the marches, each written once; [`simd`] their vector kernels, selected
-//! at run time by [`cpu`]; [`techniques`] the catalogue of user-facing techniques, one file
-//! each, from which parsing and help are derived; [`render`] the frame renderer and its
-//! reference. [`trace`] is the interface between them.
+//! map); [`march`] the marches, each written once, with what their kernels share (ray
+//! set-up, layer rules, the cone marches' lane state); [`simd`] the kernels, one folder per
+//! backend (`scalar`, and `avx2` selected at run time by [`cpu`]), each entry point choosing
+//! its backend; [`techniques`] the catalogue of user-facing techniques, one file each, from
+//! which parsing and help are derived; [`render`] the float frame renderer and its
+//! reference; [`fused`] the fused frame, from the scene to 8-bit pixels in one pass.
+//! [`trace`] is the interface between the techniques and the renderers; [`kernel`] names
+//! the kernel a technique runs on.
 //!
 //! Conventions: techniques work on the *depth* map `1 − height` (0 at the top surface), in
 //! tangent space where `view_ts` points from the surface toward the eye. A ray entering the

@@ -12,11 +12,12 @@ use renderlab_core::srgb8::srgb8_encode_table;
 use renderlab_core::ShadePoint;
 use renderlab_core::{Camera, Image, Scene, SceneObject};
 use renderlab_raster::rasterize;
-use renderlab_relief::fused::lanes::{shade_scalar, ShadeConsts, ShadeLanes, LANES};
+use renderlab_relief::fused::lanes::{ShadeConsts, ShadeLanes, LANES};
 use renderlab_relief::fused::{render_fused, render_fused_records, FusedFrame, Textures8};
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::render::render;
 use renderlab_relief::render::shadow::soft_shadow;
+use renderlab_relief::simd::shade_lanes;
 use renderlab_relief::ReliefHit;
 use renderlab_relief::{FrameInput, Kernel, KernelChoice, ReliefMaterial, Shading, Technique};
 use renderlab_texture::{Texture, Wrap};
@@ -115,9 +116,10 @@ proptest! {
             encode: srgb8_encode_table(),
         };
         let mut scalar = [0u32; LANES];
-        shade_scalar(&p, &k, &mut scalar);
+        shade_lanes(&p, &k, &mut scalar, false);
         let mut vector = [0u32; LANES];
-        if renderlab_relief::simd::shade_lanes(&p, &k, &mut vector) {
+        if renderlab_relief::cpu::has_avx2() {
+            shade_lanes(&p, &k, &mut vector, true);
             prop_assert_eq!(scalar, vector);
         } else {
             eprintln!("skipped: no AVX2 here");

@@ -2,7 +2,7 @@
 //! and encoded while it is in cache ([`render_fused`]); the same pass with per-pixel records
 //! for the lab ([`render_fused_records`]).
 
-use super::lanes::{shade_scalar, ShadeConsts, ShadeLanes, LANES};
+use super::lanes::{ShadeConsts, ShadeLanes, LANES};
 use crate::error::ReliefError;
 use crate::kernel::Kernel;
 use crate::march::exact::exact_shadowed;
@@ -177,9 +177,7 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
     fn flush(&self, w: &mut Worker, n: usize, m: usize, row: &mut [u32]) {
         w.lanes.pad(n);
         let mut px = [0u32; LANES];
-        if !(self.vector && crate::simd::shade_lanes(&w.lanes, &self.consts[m], &mut px)) {
-            shade_scalar(&w.lanes, &self.consts[m], &mut px);
-        }
+        crate::simd::shade_lanes(&w.lanes, &self.consts[m], &mut px, self.vector);
         for (&x, &p) in w.xs[..n].iter().zip(&px) {
             row[x] = p;
         }
@@ -266,8 +264,8 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
                     && self.vector
                     && i + LANES <= count
                     && points[i..i + LANES].iter().all(|p| material(p) == m)
-                    && crate::simd::load_lanes(&mut worker.lanes, &hits[i..], &points[i..], &shadows[i..])
                 {
+                    crate::simd::load_lanes(&mut worker.lanes, &hits[i..], &points[i..], &shadows[i..]);
                     for (d, &x) in worker.xs.iter_mut().zip(&xs[i..i + LANES]) {
                         *d = x as usize;
                     }
@@ -298,50 +296,6 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
             worker.shadows = shadows;
         });
         worker.raster = raster;
-    }
-}
-
-impl ShadeLanes {
-    /// Lane `i` from a traced pixel.
-    #[inline]
-    fn set(&mut self, i: usize, hit: &ReliefHit, sp: &ShadePoint, shadow: f32) {
-        self.u[i] = hit.uv.x;
-        self.v[i] = hit.uv.y;
-        self.dudx[i] = sp.duv_dx.x;
-        self.dvdx[i] = sp.duv_dx.y;
-        self.dudy[i] = sp.duv_dy.x;
-        self.dvdy[i] = sp.duv_dy.y;
-        self.lx[i] = sp.light_ts.x;
-        self.ly[i] = sp.light_ts.y;
-        self.lz[i] = sp.light_ts.z;
-        self.vx[i] = sp.view_ts.x;
-        self.vy[i] = sp.view_ts.y;
-        self.vz[i] = sp.view_ts.z;
-        self.shadow[i] = shadow;
-    }
-
-    /// Fills lanes `n..` with lane `n − 1` (a partial group computes valid values there,
-    /// which are not written out).
-    #[inline]
-    fn pad(&mut self, n: usize) {
-        for a in [
-            &mut self.u,
-            &mut self.v,
-            &mut self.dudx,
-            &mut self.dvdx,
-            &mut self.dudy,
-            &mut self.dvdy,
-            &mut self.lx,
-            &mut self.ly,
-            &mut self.lz,
-            &mut self.vx,
-            &mut self.vy,
-            &mut self.vz,
-            &mut self.shadow,
-        ] {
-            let last = a[n - 1];
-            a[n..].fill(last);
-        }
     }
 }
 

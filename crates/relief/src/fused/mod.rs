@@ -9,8 +9,8 @@
 //! debug targets; the lab measures the fused frame's precision cost against it.
 //!
 //! - [`texture8`]: the 8-bit textures and their mip pyramids.
-//! - [`lanes`]: the shading kernel's inputs, constants and scalar twin (the vector kernel is
-//!   in `crate::simd`).
+//! - [`lanes`]: the shading kernel's inputs and constants (the kernels, scalar and vector,
+//!   are `crate::simd`'s).
 //! - [`frame`]: the frame driver, its output and the lab's per-pixel records.
 
 pub mod frame;

@@ -1,49 +1,102 @@
-//! Relaxed cone stepping on the packed map, the march of the `cone` technique's `simd` kernel:
-//! the steps, the fallback tail and the refinements of [`crate::march::cone_step`], with the
-//! depth and the cone ratio read by one fetch of the packed map (16-bit depths, and ratios
-//! rounded down and pooled over each bilinear cell, so a cone is never wider than the one
-//! built). Non-finite inputs count as zero, as in cone-newton's kernels.
-//!
-//! Each ray is a small state machine that makes exactly one fetch per step
-//! (`step_scalar`), so that the vector kernel ([`crate::simd`]) can step eight rays in
-//! lockstep, each lane performing the same IEEE operations in the same order: the two give
-//! the same bits (minima and maxima are written as the SSE instructions define them).
+//! What the two cone marches on the packed map (relaxed cone stepping's `simd` kernel and
+//! cone-newton) share: a ray's constants (`Ray`), its variable state (`State`), the
+//! false-position estimate (`interp`) and minima and maxima written as the SSE instructions
+//! define them (`mn`, `mx`). Each march's scalar twin (`crate::simd`'s scalar backend)
+//! steps a `State` one fetch at a time; the vector kernels keep eight of them in lanes and
+//! refill a finished lane from `State`'s start, so both perform the same IEEE operations in
+//! the same order.
 
-use crate::maps::packed::PackedRelief;
-use crate::march::cone_newton::{interp, mn, mx, Ray};
-use crate::march::cone_step::{ConeStep, Refinement, TAIL, TOLERANCE_TEXELS};
-use crate::trace::{ReliefHit, ReliefInputs};
+use crate::trace::{uv_per_depth, ReliefHit, ReliefInputs};
 use glam::{Vec2, Vec3};
-use renderlab_core::counter::Counter;
 
-/// Largest stopping tolerance of the secant refinement, in depth (as the `f32` march's).
-pub const MAX_EPS: f32 = 1e-3;
-
-/// Smallest depth advance of a cone step (as the `f32` march's).
+/// Smallest depth advance of a cone step (bounds the work where cones are degenerate).
 pub const MIN_STEP: f32 = 1e-4;
 
-/// Phase: cone stepping.
-pub(crate) const CONE: i32 = 0;
-/// Phase: out of cone steps, the linear tail toward the bottom.
-pub(crate) const TAIL_PHASE: i32 = 1;
-/// Phase: refining the bracket.
-pub(crate) const REFINE: i32 = 2;
-
-/// One ray's constants: the entry and direction of [`Ray`], its stopping tolerance (0 for
-/// bisection, which never stops early).
+/// `a < b ? a : b`, as `minps` computes it.
 #[inline(always)]
-pub(crate) fn ray(cs: &ConeStep, inp: &ReliefInputs, uv: Vec2, v: Vec3) -> Ray {
-    let mut r = Ray::with_tolerance(TOLERANCE_TEXELS, MAX_EPS, inp, uv, v);
-    if cs.refine != Refinement::Secant {
-        r.eps = 0.0;
+pub(crate) fn mn(a: f32, b: f32) -> f32 {
+    if a < b {
+        a
+    } else {
+        b
     }
-    r
+}
+
+/// `a > b ? a : b`, as `maxps` computes it.
+#[inline(always)]
+pub(crate) fn mx(a: f32, b: f32) -> f32 {
+    if a > b {
+        a
+    } else {
+        b
+    }
+}
+
+/// The false-position estimate inside the bracket.
+#[inline(always)]
+pub(crate) fn interp(a: f32, fa: f32, b: f32, fb: f32) -> f32 {
+    let den = fb - fa;
+    if den > 1e-12 {
+        mn(mx((a * fb - b * fa) / den, a), b)
+    } else {
+        0.5 * (a + b)
+    }
+}
+
+/// One ray's constants.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Ray {
+    /// Entry UV and UV per unit depth (for the result).
+    pub(crate) uv0: Vec2,
+    pub(crate) dp: Vec2,
+    /// Entry in texel coordinates (`uv · size − ½`) and texels per unit depth.
+    pub(crate) px: f32,
+    pub(crate) py: f32,
+    pub(crate) tu: f32,
+    pub(crate) tv: f32,
+    /// UV length per unit depth.
+    pub(crate) s: f32,
+    /// Stopping tolerance in depth.
+    pub(crate) eps: f32,
+}
+
+impl Ray {
+    /// The ray with a stopping tolerance of `tol` texels along the surface, at most `max_eps`
+    /// in depth.
+    #[inline(always)]
+    pub(crate) fn with_tolerance(tol: f32, max_eps: f32, inp: &ReliefInputs, uv: Vec2, v: Vec3) -> Ray {
+        let dp = uv_per_depth(v, inp.height_scale);
+        let dp = if dp.is_finite() { dp } else { Vec2::ZERO };
+        let uv0 = if uv.is_finite() { uv } else { Vec2::ZERO };
+        let (w, h) = (inp.height.width() as f32, inp.height.height() as f32);
+        // Far-away entries move into the first tiles (the field repeats), so texel
+        // coordinates stay small enough for exact float-to-int conversion.
+        let fold = |p: f32, n: f32| if p.abs() > 1.0e6 { p.rem_euclid(n) } else { p };
+        let s = dp.length();
+        let texels_per_depth = s * w.max(h);
+        Ray {
+            uv0,
+            dp,
+            px: fold(uv0.x * w - 0.5, w),
+            py: fold(uv0.y * h - 0.5, h),
+            tu: dp.x * w,
+            tv: dp.y * h,
+            s,
+            eps: (tol / texels_per_depth.max(1e-3)).clamp(1e-6, max_eps),
+        }
+    }
+
+    /// The hit at depth `t`.
+    #[inline(always)]
+    pub(crate) fn hit(&self, t: f32, layers: u32) -> ReliefHit {
+        ReliefHit { uv: self.uv0 + self.dp * t, depth: t, layers }
+    }
 }
 
 /// One ray's variable state.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct State {
-    /// Next depth of the cone phase; the tail's start depth in the tail.
+    /// Next depth of the cone phase (cone stepping's tail: the tail's start depth).
     pub(crate) t: f32,
     /// Last depth known above the surface and `f = t − D` there (negative).
     pub(crate) a: f32,
@@ -51,152 +104,19 @@ pub(crate) struct State {
     /// First depth known at or below the surface and `f` there (non-negative).
     pub(crate) b: f32,
     pub(crate) fb: f32,
-    /// Steps taken in the phase (cone steps; tail samples less one; refinements).
+    /// Steps taken in the phase.
     pub(crate) k: i32,
+    /// The march's phase (each march numbers its own).
     pub(crate) phase: i32,
     /// Illinois's memory: which end the last refinement moved (−1: `b`, 1: `a`, 0: none).
+    /// Cone stepping's; cone-newton keeps it in its phase and leaves this 0.
     pub(crate) side: i32,
 }
 
 impl State {
+    /// The state a ray starts in: at the top, nothing bracketed, in phase `phase`.
     #[inline(always)]
-    pub(crate) fn new(cs: &ConeStep) -> State {
-        State {
-            t: 0.0,
-            a: 0.0,
-            fa: -1.0,
-            b: 1.0,
-            fb: 0.0,
-            k: 0,
-            phase: if cs.steps == 0 { TAIL_PHASE } else { CONE },
-            side: 0,
-        }
-    }
-}
-
-/// Where the refinement samples (and where it ends): the midpoint or the false position.
-#[inline(always)]
-fn refine_point(cs: &ConeStep, st: &State) -> f32 {
-    match cs.refine {
-        Refinement::Binary => 0.5 * (st.a + st.b),
-        Refinement::Secant => interp(st.a, st.fa, st.b, st.fb),
-    }
-}
-
-/// Once a bracket is found: the result when there is nothing to refine, or the refinement's
-/// start.
-#[inline(always)]
-fn bracketed(cs: &ConeStep, st: &mut State) -> Option<f32> {
-    if st.b <= 0.0 {
-        Some(0.0)
-    } else if cs.refine_steps == 0 {
-        Some(st.b)
-    } else {
-        st.phase = REFINE;
-        st.k = 0;
-        st.side = 0;
-        None
-    }
-}
-
-/// One step of one ray (one fetch); the final depth when it is finished.
-#[inline(always)]
-pub(crate) fn step_scalar(cs: &ConeStep, map: &PackedRelief, ray: &Ray, st: &mut State) -> Option<f32> {
-    let c = match st.phase {
-        CONE => st.t,
-        TAIL_PHASE => st.t + (1.0 - st.t) * st.k as f32 / TAIL as f32,
-        _ => refine_point(cs, st),
-    };
-    let smp = map.sample_texel(ray.px + ray.tu * c, ray.py + ray.tv * c);
-    let f = c - smp.depth;
-    let secant = cs.refine == Refinement::Secant;
-    match st.phase {
-        CONE => {
-            if f >= 0.0 {
-                (st.b, st.fb) = (c, f);
-                return bracketed(cs, st);
-            }
-            let gap = smp.depth - c;
-            if gap <= ray.eps {
-                return Some(c);
-            }
-            (st.a, st.fa) = (c, f);
-            let r = smp.ratio;
-            let step = if ray.s > 0.0 { r * gap / (ray.s + r) } else { gap };
-            st.t = mn(c + mx(step, MIN_STEP), 1.0);
-            st.k += 1;
-            if st.k >= cs.steps as i32 {
-                st.phase = TAIL_PHASE;
-                st.k = 0;
-            }
-            None
-        }
-        TAIL_PHASE => {
-            if f >= 0.0 || st.k + 1 > TAIL as i32 {
-                (st.b, st.fb) = (c, mx(f, 0.0));
-                return bracketed(cs, st);
-            }
-            (st.a, st.fa) = (c, f);
-            st.k += 1;
-            None
-        }
-        _ => {
-            if secant && f.abs() <= ray.eps {
-                return Some(c);
-            }
-            if f >= 0.0 {
-                (st.b, st.fb) = (c, f);
-                if secant && st.side == -1 {
-                    st.fa *= 0.5;
-                }
-                st.side = -1;
-            } else {
-                (st.a, st.fa) = (c, f);
-                if secant && st.side == 1 {
-                    st.fb *= 0.5;
-                }
-                st.side = 1;
-            }
-            st.k += 1;
-            if st.k >= cs.refine_steps as i32 {
-                return Some(refine_point(cs, st));
-            }
-            None
-        }
-    }
-}
-
-/// Traces one ray with the scalar twin of the vector kernel.
-#[inline(always)]
-pub fn trace_scalar<C: Counter>(
-    cs: &ConeStep,
-    inp: &ReliefInputs,
-    map: &PackedRelief,
-    uv: Vec2,
-    v: Vec3,
-    counter: &mut C,
-) -> ReliefHit {
-    let ray = ray(cs, inp, uv, v);
-    let mut st = State::new(cs);
-    loop {
-        counter.count(1);
-        if let Some(t) = step_scalar(cs, map, &ray, &mut st) {
-            return ray.hit(t, cs.steps);
-        }
-    }
-}
-
-/// [`trace_scalar`] for each ray of a row.
-#[inline(always)]
-pub fn scalar_row<C: Counter>(
-    cs: &ConeStep,
-    inp: &ReliefInputs,
-    map: &PackedRelief,
-    rays: &[(Vec2, Vec3)],
-    out: &mut [ReliefHit],
-    counter: &mut C,
-) {
-    for (o, &(uv, v)) in out.iter_mut().zip(rays) {
-        *o = trace_scalar(cs, inp, map, uv, v, counter);
+    pub(crate) fn start(phase: i32) -> State {
+        State { t: 0.0, a: 0.0, fa: -1.0, b: 1.0, fb: 0.0, k: 0, phase, side: 0 }
     }
 }

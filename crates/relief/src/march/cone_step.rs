@@ -5,6 +5,7 @@
 //! pins it down.
 
 use crate::maps::cone::ConeMap;
+use crate::march::cone_lanes::{Ray, State};
 use crate::trace::{uv_per_depth, ReliefHit, ReliefInputs, ReliefTechnique};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::{Counter, NoCount};
@@ -258,4 +259,32 @@ impl ReliefTechnique for ConeStep {
             }
         }
     }
+}
+
+/// Largest stopping tolerance of the secant refinement on the packed map, in depth (as the
+/// `f32` march's).
+pub const MAX_EPS: f32 = 1e-3;
+
+/// Packed-map phase: cone stepping.
+pub(crate) const CONE: i32 = 0;
+/// Packed-map phase: out of cone steps, the linear tail toward the bottom.
+pub(crate) const TAIL_PHASE: i32 = 1;
+/// Packed-map phase: refining the bracket.
+pub(crate) const REFINE: i32 = 2;
+
+/// One ray's constants on the packed map: the entry and direction of [`Ray`], its stopping
+/// tolerance (0 for bisection, which never stops early).
+#[inline(always)]
+pub(crate) fn lane_ray(cs: &ConeStep, inp: &ReliefInputs, uv: Vec2, v: Vec3) -> Ray {
+    let mut r = Ray::with_tolerance(TOLERANCE_TEXELS, MAX_EPS, inp, uv, v);
+    if cs.refine != Refinement::Secant {
+        r.eps = 0.0;
+    }
+    r
+}
+
+/// The state a ray starts in on the packed map (straight to the tail without cone steps).
+#[inline(always)]
+pub(crate) fn lane_start(cs: &ConeStep) -> State {
+    State::start(if cs.steps == 0 { TAIL_PHASE } else { CONE })
 }

@@ -10,11 +10,6 @@ use crate::trace::uv_per_depth;
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
 
-/// Exponent of adaptive POM's view-angle factor `(1 − |V·N|)^e` (thesis: 0.8): the
-/// layer-count rule of `crate::techniques::adaptive_pom` and of its vector kernel, kept here,
-/// below both.
-pub const ANGLE_EXPONENT: f32 = 0.8;
-
 /// A depth map that a march fetches from, one counted fetch per sample.
 pub trait DepthSource {
     /// The depth at `uv` (repeat wrap), counting one fetch through `counter`.

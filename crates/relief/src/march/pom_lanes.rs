@@ -1,16 +1,14 @@
 //! POM on the packed map, the march of POM's `simd` kernel: the layered march, its bound and
 //! its interpolation are the thesis's (see [`crate::march::layered`]); only the depths are
 //! the packed map's 16-bit ones. Non-finite inputs count as zero (as in cone-newton's
-//! kernels). This file holds the scalar twin and the per-ray set-up and result that the
-//! vector kernel ([`crate::simd`]) shares with it. The same lanes run steep parallax (no
-//! interpolation) and relief mapping (the march, then a bisection of the last layer's
-//! bracket, [`refine`]).
+//! kernels). This file holds the layer rules ([`LayerRule`]) and the per-ray set-up and
+//! result that the scalar and vector kernels ([`crate::simd`]) share. The same lanes run
+//! steep parallax (no interpolation) and relief mapping (the march, then a bisection of the
+//! last layer's bracket).
 
-use crate::maps::packed::PackedRelief;
-use crate::march::layered::{interpolate, layered_march, DepthSource, March};
+use crate::march::layered::{interpolate, March};
 use crate::trace::{uv_per_depth, ReliefHit, ReliefInputs};
 use glam::{Vec2, Vec3};
-use renderlab_core::counter::Counter;
 
 /// POM with `layers` layers on the packed map.
 #[derive(Clone, Copy, Debug)]
@@ -111,45 +109,6 @@ impl LayerRule for PomLanes {
     }
 }
 
-/// One ray with the scalar twin of the vector kernel, `rule` giving its layer count.
-#[inline(always)]
-pub fn trace_lanes_scalar<R: LayerRule, C: Counter>(
-    rule: &R,
-    inp: &ReliefInputs,
-    map: &PackedRelief,
-    uv: Vec2,
-    v: Vec3,
-    counter: &mut C,
-) -> ReliefHit {
-    let layers = rule.layer_count(inp, uv, v);
-    let (uv0, step) = setup(inp, layers, uv, v);
-    let m = layered_march(map, uv0, step, layers, counter);
-    if !rule.interpolates() {
-        let hit = ReliefHit { uv: m.uv, depth: m.layer, layers };
-        return match rule.bisect_steps() {
-            Some(steps) => refine(inp, map, uv, v, hit, steps, counter),
-            None => hit,
-        };
-    }
-    let (uv, depth) = interpolate(&m);
-    ReliefHit { uv, depth, layers }
-}
-
-/// [`trace_lanes_scalar`] for each ray of a row.
-#[inline(always)]
-pub fn scalar_row<R: LayerRule, C: Counter>(
-    rule: &R,
-    inp: &ReliefInputs,
-    map: &PackedRelief,
-    rays: &[(Vec2, Vec3)],
-    out: &mut [ReliefHit],
-    counter: &mut C,
-) {
-    for (o, &(uv, v)) in out.iter_mut().zip(rays) {
-        *o = trace_lanes_scalar(rule, inp, map, uv, v, counter);
-    }
-}
-
 /// Entry and per-layer step of one ray (non-finite values replaced by zero).
 #[inline(always)]
 pub(crate) fn setup(inp: &ReliefInputs, layers: u32, uv: Vec2, v: Vec3) -> (Vec2, Vec2) {
@@ -181,36 +140,6 @@ pub(crate) fn bracket(
     Some((uv0, dp, hit.depth - layer_depth, hit.depth))
 }
 
-/// Relief mapping's second phase on the packed map: `steps` bisections of the bracket of
-/// `hit` (from the last layer above the surface to the first below), the midpoint of the
-/// last one the result, as
-/// [`crate::march::bisect::bisect`] does on the `f32` field.
-#[inline(always)]
-pub fn refine<C: Counter>(
-    inp: &ReliefInputs,
-    map: &PackedRelief,
-    uv: Vec2,
-    v: Vec3,
-    hit: ReliefHit,
-    steps: u32,
-    counter: &mut C,
-) -> ReliefHit {
-    let Some((uv0, dp, mut a, mut b)) = bracket(inp, uv, v, &hit) else {
-        return hit;
-    };
-    for _ in 0..steps {
-        let mid = 0.5 * (a + b);
-        let depth = map.fetch(uv0 + dp * mid, counter);
-        if mid >= depth {
-            b = mid;
-        } else {
-            a = mid;
-        }
-    }
-    let t = 0.5 * (a + b);
-    ReliefHit { uv: uv0 + dp * t, depth: t, layers: hit.layers }
-}
-
 /// The UV of layer `i`, as the layered march computes it.
 #[inline(always)]
 fn layer_uv(uv0: Vec2, step: Vec2, i: u32) -> Vec2 {
@@ -221,8 +150,9 @@ fn layer_uv(uv0: Vec2, step: Vec2, i: u32) -> Vec2 {
     }
 }
 
-/// The result once the march stopped at layer `i` (interpolated when `rule` says so) with depth-map values `map` there and
-/// `prev_map` one layer up (as [`crate::march::layered::interpolate`] finishes the march).
+/// The result once the march stopped at layer `i` (interpolated when `rule` says so), with
+/// depth-map values `map` there and `prev_map` one layer up (as
+/// [`crate::march::layered::interpolate`] finishes the march).
 #[inline(always)]
 pub(crate) fn finish<R: LayerRule>(
     rule: &R,
@@ -249,32 +179,4 @@ pub(crate) fn finish<R: LayerRule>(
     };
     let (uv, depth) = interpolate(&m);
     ReliefHit { uv, depth, layers }
-}
-
-impl PomLanes {
-    /// Traces one ray with the scalar twin of the vector kernel.
-    #[inline(always)]
-    pub fn trace_scalar<C: Counter>(
-        &self,
-        inp: &ReliefInputs,
-        map: &PackedRelief,
-        uv: Vec2,
-        v: Vec3,
-        counter: &mut C,
-    ) -> ReliefHit {
-        trace_lanes_scalar(self, inp, map, uv, v, counter)
-    }
-
-    /// [`PomLanes::trace_scalar`] for each ray of a row.
-    #[inline(always)]
-    pub fn scalar_row<C: Counter>(
-        &self,
-        inp: &ReliefInputs,
-        map: &PackedRelief,
-        rays: &[(Vec2, Vec3)],
-        out: &mut [ReliefHit],
-        counter: &mut C,
-    ) {
-        scalar_row(self, inp, map, rays, out, counter)
-    }
 }

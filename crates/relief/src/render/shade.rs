@@ -231,11 +231,7 @@ pub(crate) fn trace_shade_points<T: ReliefTechnique, C: Counter>(
     let RowScratch { rays, bases, runs, .. } = scratch;
     set_len(rays, n);
     set_len(bases, n);
-    if !crate::simd::split_rays(points, rays, bases) {
-        for ((ray, b), p) in rays.iter_mut().zip(bases.iter_mut()).zip(points) {
-            (*ray, *b) = split_ray(p.uv, p.view_ts);
-        }
-    }
+    crate::simd::split_rays(points, rays, bases);
     runs.clear();
     let last = materials.len() - 1;
     let mut start = 0;
@@ -390,10 +386,11 @@ mod tests {
     fn check(points: &[ShadePoint]) {
         let n = points.len();
         let (mut rays, mut bases) = (vec![(Vec2::ZERO, Vec3::ZERO); n], vec![Vec2::ZERO; n]);
-        if !crate::simd::split_rays(points, &mut rays, &mut bases) {
+        if !crate::cpu::has_avx2() {
             eprintln!("skipped: no vector unit for split_rays here");
             return;
         }
+        crate::simd::split_rays(points, &mut rays, &mut bases);
         let bits2 = |v: Vec2| [v.x.to_bits(), v.y.to_bits()];
         let bits3 = |v: Vec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
         for (i, p) in points.iter().enumerate() {

@@ -7,51 +7,8 @@ use crate::march::layered::{interpolate, layer_step, layered_march};
 use crate::trace::{ReliefHit, ReliefInputs, ReliefTechnique, Shading};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
-use renderlab_core::fastmath::pow_unit;
 
-pub use crate::march::layered::ANGLE_EXPONENT;
-
-/// Adaptive POM with base layer range `min..max` (thesis: 4..32).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct AdaptivePom {
-    /// Base minimum layer count.
-    pub min: u32,
-    /// Base maximum layer count.
-    pub max: u32,
-}
-
-/// `a + (b − a)·t`, GLSL's `mix`.
-#[inline]
-fn mix(a: f32, b: f32, t: f32) -> f32 {
-    a + (b - a) * t
-}
-
-impl AdaptivePom {
-    /// The view-angle factor `F = (1 − |V·N|)^0.8` with N = (0,0,1) in tangent space. The
-    /// power is [`pow_unit`] (within 2·10⁻⁶ of `powf`, and what a vector unit can run), so
-    /// the layer count is one a vector kernel can compute for eight rays at once.
-    #[inline]
-    pub fn angle_factor(view_ts: Vec3) -> f32 {
-        let v = view_ts.normalize_or_zero();
-        pow_unit((1.0 - v.z.abs()).max(0.0), ANGLE_EXPONENT)
-    }
-
-    /// The angle-dependent range `(N_min, N_max) = (mix(Min, Max/2, F), mix(Min, Max, F))`,
-    /// before truncation (the thesis's Table 2.2 shows these truncated).
-    #[inline]
-    pub fn layer_range(&self, view_ts: Vec3) -> (f32, f32) {
-        let f = Self::angle_factor(view_ts);
-        let (min, max) = (self.min as f32, self.max as f32);
-        (mix(min, max / 2.0, f), mix(min, max, f))
-    }
-
-    /// The layer count `int(mix(N_min, N_max, C))` for complexity `c` (at least 1).
-    #[inline]
-    pub fn layers(&self, view_ts: Vec3, c: f32) -> u32 {
-        let (lo, hi) = self.layer_range(view_ts);
-        (mix(lo, hi, c.clamp(0.0, 1.0)) as u32).max(1)
-    }
-}
+pub use crate::march::adaptive::{AdaptivePom, ANGLE_EXPONENT};
 
 impl ReliefTechnique for AdaptivePom {
     #[inline]
@@ -71,16 +28,14 @@ impl crate::march::pom_lanes::LayerRule for AdaptivePom {
 
     /// Eight rays at a time in vector lanes where the CPU has them (the same counts).
     fn layer_counts(&self, inp: &ReliefInputs, rays: &[(Vec2, Vec3)], out: &mut [f32]) {
-        if !crate::simd::adaptive_layer_counts(self.min, self.max, inp, rays, out) {
-            crate::march::pom_lanes::scalar_layer_counts(self, inp, rays, out)
-        }
+        crate::simd::adaptive_layer_counts(self.min, self.max, inp, rays, out)
     }
 }
 
 /// Adaptive POM's `simd` kernel: the per-ray layer count as on the scalar kernel, then POM's
 /// packed-map march in vector lanes with a count per lane. It differs from `scalar` only by
 /// the 16-bit depths, as POM's kernels do.
-pub type AdaptiveSimd = super::pom::LaneTracer<AdaptivePom>;
+pub type AdaptiveSimd = super::lanes::LaneTracer<AdaptivePom>;
 
 impl Entry for AdaptivePom {
     const DESCRIPTOR: Descriptor = Descriptor {

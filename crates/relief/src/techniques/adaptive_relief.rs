@@ -73,7 +73,7 @@ impl crate::march::pom_lanes::LayerRule for AdaptiveRelief {
 }
 
 /// Adaptive relief mapping's `simd` kernel.
-pub type AdaptiveReliefSimd = super::pom::LaneTracer<AdaptiveRelief>;
+pub type AdaptiveReliefSimd = super::lanes::LaneTracer<AdaptiveRelief>;
 
 impl Entry for AdaptiveRelief {
     const DESCRIPTOR: Descriptor = Descriptor {

@@ -3,13 +3,15 @@
 //! position (secant steps, with a tolerance stop) — the refinement is a parameter.
 //!
 //! Kernels: `scalar` on the `f32` depth field and cone map; `simd` on the packed map in vector
-//! lanes ([`crate::march::cone_lanes`]): the same steps, with 16-bit depths and the packed,
+//! lanes ([`crate::simd::cone_row`]): the same steps, with 16-bit depths and the packed,
 //! conservatively pooled cone ratios.
 
 use super::descriptor::{BenchSetting, Descriptor, Entry, Param, WithTracer};
+use super::lanes::{LaneTracer, PackedMarch};
 use crate::kernel::{Kernel, KernelChoice};
 use crate::march::cone_step::{ConeStep, Refinement};
-use crate::trace::{Map, ReliefHit, ReliefInputs, ReliefTechnique, Shading};
+use crate::maps::packed::PackedRelief;
+use crate::trace::{Map, ReliefHit, ReliefInputs, Shading};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
 
@@ -25,36 +27,37 @@ pub struct ConeStepping {
 }
 
 /// The `simd` kernel of relaxed cone stepping: rows in vector lanes on the packed map where
-/// the CPU allows (`lanes`), in the bit-identical scalar twin otherwise. Panics on inputs
-/// without the packed cone ratios (the checked entry points refuse them with an error).
-#[derive(Clone, Copy, Debug)]
-pub struct ConeSimd {
-    /// The march.
-    pub march: ConeStep,
-    /// Whether rows may run in vector lanes (off: the scalar twin, for comparisons).
-    pub lanes: bool,
-}
+/// the CPU allows (`lanes`), in the bit-identical scalar twin otherwise.
+pub type ConeSimd = LaneTracer<ConeStep>;
 
-/// The message of the panic when a caller skipped the map check.
-const NO_PACKED_CONES: &str = "cone's simd kernel needs the cone ratios in the packed map (checked by render)";
+impl PackedMarch for ConeStep {
+    const CONES: bool = true;
+    const MISSING: &'static str =
+        "cone's simd kernel needs the cone ratios in the packed map (checked by render)";
 
-impl ReliefTechnique for ConeSimd {
-    fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
-        let map = inp.packed.filter(|m| m.has_cones()).expect(NO_PACKED_CONES);
-        crate::march::cone_lanes::trace_scalar(&self.march, inp, map, uv, v, counter)
-    }
-
-    fn trace_row<C: Counter>(
+    #[inline]
+    fn trace_packed<C: Counter>(
         &self,
         inp: &ReliefInputs,
+        map: &PackedRelief,
+        uv: Vec2,
+        v: Vec3,
+        counter: &mut C,
+    ) -> ReliefHit {
+        crate::simd::scalar::cone::trace_one(self, inp, map, uv, v, counter)
+    }
+
+    #[inline]
+    fn trace_packed_row<C: Counter>(
+        &self,
+        inp: &ReliefInputs,
+        map: &PackedRelief,
         rays: &[(Vec2, Vec3)],
         out: &mut [ReliefHit],
+        vector: bool,
         counter: &mut C,
     ) {
-        let map = inp.packed.filter(|m| m.has_cones()).expect(NO_PACKED_CONES);
-        if !(self.lanes && crate::simd::cone_row(&self.march, inp, map, rays, out, counter)) {
-            crate::march::cone_lanes::scalar_row(&self.march, inp, map, rays, out, counter);
-        }
+        crate::simd::cone_row(self, inp, map, rays, out, vector, counter)
     }
 }
 

@@ -6,9 +6,11 @@
 //! map and give bit-identical results.
 
 use super::descriptor::{Descriptor, Entry, Param, WithTracer};
+use super::lanes::{LaneTracer, PackedMarch};
 use crate::kernel::Kernel;
-use crate::march::cone_newton::{scalar_row, NewtonCone, JUMP};
-use crate::trace::{Map, ReliefHit, ReliefInputs, ReliefTechnique, Shading};
+use crate::maps::packed::PackedRelief;
+use crate::march::cone_newton::{NewtonCone, JUMP};
+use crate::trace::{Map, ReliefHit, ReliefInputs, Shading};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
 
@@ -36,36 +38,37 @@ impl ConeNewton {
 }
 
 /// The tracer: rows in vector lanes where allowed (`lanes`, and the CPU and map permit),
-/// otherwise the scalar kernel. Panics on inputs without the cone ratios in the packed map
-/// (the checked entry points refuse them with an error naming the map).
-#[derive(Clone, Copy, Debug)]
-pub struct ConeNewtonTracer {
-    /// The march.
-    pub march: NewtonCone,
-    /// Whether rows may run in vector lanes.
-    pub lanes: bool,
-}
+/// otherwise the scalar kernel.
+pub type ConeNewtonTracer = LaneTracer<NewtonCone>;
 
-/// The message of the panic when a caller skipped the map check.
-const NO_CONE_MAP: &str = "cone-newton needs the relaxed cone map in the packed map (checked by render)";
+impl PackedMarch for NewtonCone {
+    const CONES: bool = true;
+    const MISSING: &'static str =
+        "cone-newton needs the relaxed cone map in the packed map (checked by render)";
 
-impl ReliefTechnique for ConeNewtonTracer {
-    fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
-        let map = inp.packed.filter(|m| m.has_cones()).expect(NO_CONE_MAP);
-        self.march.trace_scalar(inp, map, uv, v, counter)
-    }
-
-    fn trace_row<C: Counter>(
+    #[inline]
+    fn trace_packed<C: Counter>(
         &self,
         inp: &ReliefInputs,
+        map: &PackedRelief,
+        uv: Vec2,
+        v: Vec3,
+        counter: &mut C,
+    ) -> ReliefHit {
+        crate::simd::scalar::cone_newton::trace_one(self, inp, map, uv, v, counter)
+    }
+
+    #[inline]
+    fn trace_packed_row<C: Counter>(
+        &self,
+        inp: &ReliefInputs,
+        map: &PackedRelief,
         rays: &[(Vec2, Vec3)],
         out: &mut [ReliefHit],
+        vector: bool,
         counter: &mut C,
     ) {
-        let map = inp.packed.filter(|m| m.has_cones()).expect(NO_CONE_MAP);
-        if !(self.lanes && crate::simd::cone_newton_row(&self.march, inp, map, rays, out, counter)) {
-            scalar_row(&self.march, inp, map, rays, out, counter);
-        }
+        crate::simd::cone_newton_row(self, inp, map, rays, out, vector, counter)
     }
 }
 

@@ -1,12 +1,14 @@
 //! The catalogue of relief techniques: one file per technique, each with one
 //! [`Descriptor`] and one [`Entry`] implementation, and one line per technique in the
 //! `registry!` below. Parsing, canonical names, families, help texts, the lab's defaults and
-//! the property tests all come from here.
+//! the property tests all come from here. [`lanes`] holds the `simd` kernel's tracer that
+//! every technique marching the packed map shares ([`lanes::LaneTracer`]).
 //!
 //! A technique is written `NAME[:P1[:P2…]]`; parameters left out from the end take their
 //! defaults, and the canonical name ([`Technique::name`]) writes them all.
 
 pub mod descriptor;
+pub mod lanes;
 
 use self::descriptor::ShadowMode;
 use crate::error::ReliefError;

@@ -2,8 +2,9 @@
 //! limiting (as in the thesis).
 
 use super::descriptor::{Descriptor, Entry, WithTracer};
+use super::lanes::{LaneTracer, PackedMarch};
 use crate::kernel::Kernel;
-use crate::march::ray::packed_setup;
+use crate::maps::packed::PackedRelief;
 use crate::trace::{uv_per_depth, ReliefHit, ReliefInputs, ReliefTechnique, Shading};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
@@ -20,52 +21,38 @@ impl ReliefTechnique for Parallax {
     }
 }
 
-/// Parallax on the packed map for one ray: the scalar twin of the vector kernel (the depth
-/// is the packed map's 16-bit bilinear value, so it differs from [`Parallax`] only by that
-/// quantisation).
-#[inline]
-pub fn trace_packed<C: Counter>(
-    inp: &ReliefInputs,
-    map: &crate::maps::packed::PackedRelief,
-    uv: Vec2,
-    v: Vec3,
-    counter: &mut C,
-) -> ReliefHit {
-    let (uv0, dp) = packed_setup(inp, uv, v);
-    counter.count(1);
-    let d = map.depth(uv0);
-    ReliefHit { uv: uv0 + dp * d, depth: d, layers: 1 }
-}
-
 /// Parallax's `simd` kernel: the packed map, eight rays per vector where the CPU and the map
-/// allow it (`lanes`), its bit-identical scalar twin otherwise.
-#[derive(Clone, Copy, Debug)]
-pub struct ParallaxSimd {
-    /// Whether rows may run in vector lanes (off: the scalar twin, for comparisons).
-    pub lanes: bool,
-}
+/// allow it (`lanes`), its bit-identical scalar twin otherwise (the depth is the packed map's
+/// 16-bit bilinear value, so it differs from [`Parallax`] only by that quantisation).
+pub type ParallaxSimd = LaneTracer<Parallax>;
 
-/// The message of the panic when a caller skipped the map check.
-const NO_PACKED_MAP: &str = "parallax's simd kernel needs the packed depth map (checked by render)";
+impl PackedMarch for Parallax {
+    const CONES: bool = false;
+    const MISSING: &'static str = "parallax's simd kernel needs the packed depth map (checked by render)";
 
-impl ReliefTechnique for ParallaxSimd {
-    fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
-        trace_packed(inp, inp.packed.expect(NO_PACKED_MAP), uv, v, counter)
-    }
-
-    fn trace_row<C: Counter>(
+    #[inline]
+    fn trace_packed<C: Counter>(
         &self,
         inp: &ReliefInputs,
+        map: &PackedRelief,
+        uv: Vec2,
+        v: Vec3,
+        counter: &mut C,
+    ) -> ReliefHit {
+        crate::simd::scalar::parallax::trace_one(inp, map, uv, v, counter)
+    }
+
+    #[inline]
+    fn trace_packed_row<C: Counter>(
+        &self,
+        inp: &ReliefInputs,
+        map: &PackedRelief,
         rays: &[(Vec2, Vec3)],
         out: &mut [ReliefHit],
+        vector: bool,
         counter: &mut C,
     ) {
-        let map = inp.packed.expect(NO_PACKED_MAP);
-        if !(self.lanes && crate::simd::parallax_row(inp, map, rays, out, counter)) {
-            for (o, &(uv, v)) in out.iter_mut().zip(rays) {
-                *o = trace_packed(inp, map, uv, v, counter);
-            }
-        }
+        crate::simd::parallax_row(inp, map, rays, out, vector, counter)
     }
 }
 
@@ -92,7 +79,7 @@ impl Entry for Parallax {
     fn dispatch<A: WithTracer>(&self, kernel: Kernel, action: A) -> A::Output {
         match kernel {
             Kernel::Scalar => action.run(self),
-            Kernel::Simd => action.run(&ParallaxSimd { lanes: true }),
+            Kernel::Simd => action.run(&ParallaxSimd { march: Parallax, lanes: true }),
         }
     }
 }

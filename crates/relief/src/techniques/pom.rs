@@ -8,7 +8,9 @@
 use super::descriptor::{BenchSetting, Descriptor, Entry, Param, WithTracer};
 use crate::kernel::{Kernel, KernelChoice};
 use crate::march::layered::{interpolate, layer_step, layered_march};
-use crate::march::pom_lanes::{LayerRule, PomLanes};
+use crate::march::pom_lanes::PomLanes;
+
+use super::lanes::LaneTracer;
 use crate::trace::{ReliefHit, ReliefInputs, ReliefTechnique, Shading};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
@@ -30,43 +32,8 @@ impl ReliefTechnique for Pom {
     }
 }
 
-/// A packed-map march in vector lanes, its layer count and finish given by `march` (POM,
-/// adaptive POM, steep parallax): rows run in the AVX2 lanes where the CPU and the map allow
-/// it (`lanes`), in the bit-identical scalar twin otherwise and for single rays. Panics on
-/// inputs without the packed map (the checked entry points refuse them with an error).
-#[derive(Clone, Copy, Debug)]
-pub struct LaneTracer<R> {
-    /// The march's layer rule.
-    pub march: R,
-    /// Whether rows may run in vector lanes (off: the scalar twin, for comparisons).
-    pub lanes: bool,
-}
-
 /// POM's `simd` kernel.
 pub type PomSimd = LaneTracer<PomLanes>;
-
-/// The message of the panic when a caller skipped the map check.
-const NO_PACKED_MAP: &str = "a simd kernel needs the packed depth map (checked by render)";
-
-impl<R: LayerRule> ReliefTechnique for LaneTracer<R> {
-    fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
-        let map = inp.packed.expect(NO_PACKED_MAP);
-        crate::march::pom_lanes::trace_lanes_scalar(&self.march, inp, map, uv, v, counter)
-    }
-
-    fn trace_row<C: Counter>(
-        &self,
-        inp: &ReliefInputs,
-        rays: &[(Vec2, Vec3)],
-        out: &mut [ReliefHit],
-        counter: &mut C,
-    ) {
-        let map = inp.packed.expect(NO_PACKED_MAP);
-        if !(self.lanes && crate::simd::pom_row(&self.march, inp, map, rays, out, counter)) {
-            crate::simd::pom_twin_row(&self.march, inp, map, rays, out, counter);
-        }
-    }
-}
 
 impl Entry for Pom {
     const DESCRIPTOR: Descriptor = Descriptor {

@@ -10,7 +10,7 @@ use crate::kernel::Kernel;
 use crate::march::bisect::bisect;
 use crate::march::layered::{layer_step, layered_march};
 use crate::march::pom_lanes::ReliefLanes;
-use crate::techniques::pom::LaneTracer;
+use crate::techniques::lanes::LaneTracer;
 use crate::trace::{uv_per_depth, ReliefHit, ReliefInputs, ReliefTechnique, Shading};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;

@@ -27,7 +27,7 @@ impl ReliefTechnique for Steep {
 
 /// Steep parallax's `simd` kernel: POM's packed-map lanes without the final interpolation. It
 /// differs from `scalar` only by the 16-bit depths.
-pub type SteepSimd = super::pom::LaneTracer<SteepLanes>;
+pub type SteepSimd = super::lanes::LaneTracer<SteepLanes>;
 
 impl Entry for Steep {
     const DESCRIPTOR: Descriptor = Descriptor {

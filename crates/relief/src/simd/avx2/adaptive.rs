@@ -5,7 +5,7 @@
 
 use super::math::pow_unit;
 use super::LANES;
-use crate::march::layered::ANGLE_EXPONENT;
+use crate::march::adaptive::ANGLE_EXPONENT;
 use crate::trace::ReliefInputs;
 use glam::{Vec2, Vec3};
 use std::arch::x86_64::*;

@@ -2,8 +2,8 @@
 //! ([`super::pom`]) left each ray's hit at the first layer at or below the surface, the
 //! brackets of a row are bisected sixteen rays at a time (two vectors, so that one vector's
 //! gathers overlap the other's arithmetic). Every ray takes the same number of steps, so the
-//! lanes never diverge. Each lane performs [`crate::march::pom_lanes::refine`]'s operations in
-//! its order: the hits are bit-identical to it.
+//! lanes never diverge. Each lane performs the scalar twin's operations
+//! (`simd::scalar::bisect`) in its order: the hits are bit-identical to it.
 
 use super::gather::{gather_cell, packed_depth, packed_sample, DepthConsts};
 use super::LANES;

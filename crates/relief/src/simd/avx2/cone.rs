@@ -1,14 +1,16 @@
-//! The vector kernel of relaxed cone stepping on the packed map
-//! ([`crate::march::cone_lanes`]): eight rays per vector, two vectors in turn, each lane a ray
+//! The vector kernel of relaxed cone stepping on the packed map (the scalar twin is
+//! `simd::scalar::cone`): eight rays per vector, two vectors in turn, each lane a ray
 //! in one of the three phases (cone steps, the fallback tail, the refinement), one gather per
 //! step for all of them. A finished lane takes the row's next ray at once. Each lane performs
 //! the scalar twin's operations in its order, so the hits are bit-identical to it.
 
-use super::cone_newton::{interp_v, setup_rays, RayLanes, RaySoa, COLUMNS};
 use super::gather::{gather_cell, packed_sample};
+use super::lanes::{interp_v, lane_group, setup_rays, RayLanes, RaySoa, COLUMNS};
 use crate::maps::packed::PackedRelief;
-use crate::march::cone_lanes::{State, CONE, MAX_EPS, MIN_STEP, REFINE, TAIL_PHASE};
-use crate::march::cone_step::{ConeStep, Refinement, TAIL, TOLERANCE_TEXELS};
+use crate::march::cone_lanes::MIN_STEP;
+use crate::march::cone_step::{
+    lane_start, ConeStep, Refinement, CONE, MAX_EPS, REFINE, TAIL, TAIL_PHASE, TOLERANCE_TEXELS,
+};
 use crate::trace::{ReliefHit, ReliefInputs};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
@@ -17,44 +19,7 @@ use std::arch::x86_64::*;
 /// Vectors of rays stepped in turn, so that one's gathers overlap the other's arithmetic.
 const GROUPS: usize = 2;
 
-/// One vector of rays: each lane's ray constants and state ([`State`]).
-#[derive(Clone, Copy)]
-struct Group {
-    /// The lanes' rays.
-    ray: RayLanes,
-    t: __m256,
-    a: __m256,
-    fa: __m256,
-    b: __m256,
-    fb: __m256,
-    k: __m256i,
-    phase: __m256i,
-    side: __m256i,
-}
-
-/// Loads the next rays (from `next` on, at most `n`) into the lanes of `g` set in `free`, with
-/// a fresh state; lanes left without a ray become inactive. Returns the new `next`.
-#[inline]
-#[target_feature(enable = "avx2")]
-unsafe fn refill(cs: &ConeStep, g: &mut Group, free: u32, next: usize, n: usize, soa: &RaySoa) -> usize {
-    if free == 0 {
-        return next;
-    }
-    let (take, next) = g.ray.refill(free, next, n, soa);
-    let take_ps = _mm256_castsi256_ps(take);
-    let st = State::new(cs);
-    let set = |old: __m256, v: f32| _mm256_blendv_ps(old, _mm256_set1_ps(v), take_ps);
-    let set_i = |old: __m256i, v: i32| _mm256_blendv_epi8(old, _mm256_set1_epi32(v), take);
-    g.t = set(g.t, st.t);
-    g.a = set(g.a, st.a);
-    g.fa = set(g.fa, st.fa);
-    g.b = set(g.b, st.b);
-    g.fb = set(g.fb, st.fb);
-    g.k = set_i(g.k, st.k);
-    g.phase = set_i(g.phase, st.phase);
-    g.side = set_i(g.side, st.side);
-    next
-}
+lane_group!(ConeStep, lane_start, side);
 
 macro_rules! kernel {
     ($name:ident, $features:literal) => {
@@ -74,7 +39,7 @@ macro_rules! kernel {
             let mut soa = COLUMNS.take();
             setup_rays(TOLERANCE_TEXELS, MAX_EPS, inp, &rays[..n], &mut soa);
             if !secant {
-                // Bisection never stops early (`cone_lanes::ray`).
+                // Bisection never stops early (`cone_step::lane_ray`).
                 soa.eps.iter_mut().for_each(|e| *e = 0.0);
             }
             let (mxk, myk) = map.masks().expect("power-of-two map");

@@ -1,12 +1,17 @@
-//! The AVX2 backend (compiled a second time with AVX-512 F and VL where the CPU has them, for
-//! 32 vector registers): the packed-map gather and the kernels built on it. Every kernel
-//! gives results bit-identical to its scalar twin.
+//! The AVX2 backend (the marches compiled a second time with AVX-512 F and VL where the CPU
+//! has them, for 32 vector registers): the packed-map gather and the kernels built on it.
+//! Every kernel gives results bit-identical to its scalar twin, the file of the same name in
+//! [`super::scalar`]. Three files are this backend's own helpers, with no twin: [`gather`]
+//! (the scalar kernels read `PackedRelief::sample_texel`), [`math`] (the scalar kernels use
+//! `renderlab_core::fastmath`) and [`lanes`] (the cone kernels' lanes; the scalar kernels
+//! step one [`crate::march::cone_lanes::State`]).
 
 pub(crate) mod adaptive;
 pub(crate) mod bisect;
 pub(crate) mod cone;
 pub(crate) mod cone_newton;
 pub(crate) mod gather;
+pub(crate) mod lanes;
 pub(crate) mod math;
 pub(crate) mod parallax;
 pub(crate) mod pom;

@@ -1,7 +1,7 @@
 //! The vector kernel of parallax mapping on the packed map: eight rays per vector, one
 //! bilinear depth fetch each (the packed map's 64-bit gathers), the offset `uv + dp · depth`.
-//! Each lane performs the scalar twin's operations ([`crate::techniques::parallax::trace_packed`])
-//! in the same order, so the hits are bit-identical to it.
+//! Each lane performs the scalar twin's operations (`simd::scalar::parallax`) in the same
+//! order, so the hits are bit-identical to it.
 
 use super::gather::gather_cell;
 use super::LANES;

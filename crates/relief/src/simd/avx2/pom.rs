@@ -1,4 +1,5 @@
-//! The vector kernel of POM on the packed map ([`crate::march::pom_lanes`]): eight rays per
+//! The vector kernel of POM on the packed map ([`crate::march::pom_lanes`], scalar twin
+//! `simd::scalar::pom`): eight rays per
 //! vector in AVX2 lanes, two vectors in turn, a finished lane taking the row's next ray at
 //! once. Each lane performs the scalar twin's operations in the same order, so the results
 //! are bit-identical to it.
@@ -6,7 +7,7 @@
 use super::gather::{gather_cell, packed_sample};
 use super::{LANES, RANKS};
 use crate::maps::packed::PackedRelief;
-use crate::march::pom_lanes::{finish, scalar_row, LayerRule};
+use crate::march::pom_lanes::{finish, LayerRule};
 use crate::trace::{ReliefHit, ReliefInputs, MIN_VIEW_Z};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
@@ -198,14 +199,45 @@ macro_rules! kernel {
     };
 }
 
-kernel!(trace_row, "avx2");
+kernel!(march_row, "avx2");
 
 thread_local! {
     /// Each thread's ray columns (entry, step, layer depth and count), reused from row to
     /// row so that a frame allocates nothing.
     static COLUMNS: std::cell::Cell<[Vec<f32>; 6]> = const { std::cell::Cell::new([const { Vec::new() }; 6]) };
 }
-kernel!(trace_row_avx512, "avx2,avx512f,avx512vl");
+kernel!(march_row_avx512, "avx2,avx512f,avx512vl");
+
+/// Stamps out the whole trace of a row for one build of the kernels: the layered march in
+/// lanes, then, for relief mapping's rules, the bisection pass ([`super::bisect`]). Without
+/// target features of its own, so that each pass stays the function it is compiled as.
+macro_rules! trace {
+    ($name:ident, $march:ident, $refine:ident) => {
+        /// Traces `rays` into `out`: the march, then the bisection where the rule asks for it.
+        ///
+        /// # Safety
+        ///
+        /// The CPU must support the build's features and the map must have power-of-two sides
+        /// (`masks()`).
+        #[inline]
+        pub(crate) unsafe fn $name<R: LayerRule, C: Counter>(
+            rule: &R,
+            inp: &ReliefInputs,
+            map: &PackedRelief,
+            rays: &[(Vec2, Vec3)],
+            out: &mut [ReliefHit],
+            counter: &mut C,
+        ) {
+            $march(rule, inp, map, rays, out, counter);
+            if let Some(steps) = rule.bisect_steps() {
+                super::bisect::$refine(steps, inp, map, rays, out, counter);
+            }
+        }
+    };
+}
+
+trace!(trace_row, march_row, refine_row);
+trace!(trace_row_avx512, march_row_avx512, refine_row_avx512);
 
 /// The scalar twin, compiled with AVX2 and SSE4.1 (a single instruction for each `floor`):
 /// what runs where the lanes cannot; results are the same as without the features.
@@ -218,5 +250,5 @@ pub(crate) fn twin_row<R: LayerRule, C: Counter>(
     out: &mut [ReliefHit],
     counter: &mut C,
 ) {
-    scalar_row(rule, inp, map, rays, out, counter)
+    crate::simd::scalar::pom::trace_row(rule, inp, map, rays, out, counter)
 }

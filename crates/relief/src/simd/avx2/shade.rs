@@ -1,7 +1,7 @@
-//! The vector twin of the fused frame's shading kernel ([`crate::fused::lanes`]): eight
-//! pixels per call in AVX2 lanes, texels fetched by gathers, every arithmetic step in the
-//! scalar twin's order (no fused multiply-add), so that the pixels are bit-identical to
-//! [`crate::fused::lanes::shade_scalar`]'s.
+//! The vector kernel of the fused frame's shading ([`crate::fused::lanes`]): eight pixels
+//! per call in AVX2 lanes, texels fetched by gathers, every arithmetic step in the scalar
+//! twin's order (no fused multiply-add), so that the pixels are bit-identical to the scalar
+//! twin's (`simd::scalar::shade`).
 
 use super::math::log2;
 use crate::fused::lanes::{ShadeConsts, ShadeLanes, LANES};
