@@ -11,17 +11,13 @@
 //! pixel at the four angles. A technique may name its kernel: `pom:32@scalar`.
 
 use renderlab_core::scene::{bricks_wall, BRICKS_WALL_CENTRE};
+use renderlab_core::stats::median;
 use renderlab_core::{Camera, Scene, SceneObject};
 use renderlab_relief::fused::{render_fused, FusedFrame};
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::render::render_into;
 use renderlab_relief::{Frame, FrameInput, KernelChoice, ReliefMaterial, Technique};
 use std::time::Instant;
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
 
 /// The process's user + system CPU time so far, in ms (from `/proc/self/stat`, 10 ms ticks;
 /// 0 where that file does not exist).
@@ -37,15 +33,14 @@ fn cpu_ms() -> f64 {
 fn time(mut f: impl FnMut()) -> (f64, f64) {
     f();
     let cpu0 = cpu_ms();
-    let wall = median(
-        (0..15)
-            .map(|_| {
-                let t = Instant::now();
-                f();
-                t.elapsed().as_secs_f64() * 1e3
-            })
-            .collect(),
-    );
+    let mut samples: Vec<f64> = (0..15)
+        .map(|_| {
+            let t = Instant::now();
+            f();
+            t.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    let wall = median(&mut samples);
     (wall, (cpu_ms() - cpu0) / 15.0)
 }
 
@@ -77,7 +72,7 @@ fn headline(scene: &Scene, mats: &[ReliefMaterial], names: &[String]) {
         let stat = if std::env::var("FUSED_MIN").is_ok() {
             |v: Vec<f64>| v.into_iter().fold(f64::INFINITY, f64::min)
         } else {
-            median
+            |mut v: Vec<f64>| median(&mut v)
         };
         let med: Vec<f64> = times.into_iter().map(stat).collect();
         let line: Vec<String> =
