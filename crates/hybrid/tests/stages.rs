@@ -5,7 +5,7 @@ mod common;
 use common::{cornell, mse, project};
 use glam::Vec3;
 use renderlab_core::Camera;
-use renderlab_hybrid::rng::{Rng, Stream};
+use renderlab_hybrid::rng::Rng;
 use renderlab_hybrid::shapes::{cuboid, light, quad, showcase, uv_sphere, SceneBuilder};
 use renderlab_hybrid::stages::{ao, shadows, translucency};
 use renderlab_hybrid::{Ao, Gi, HybridRenderer, Reflections, Shadows, StageConfig, Translucency};
@@ -167,7 +167,7 @@ fn a_glass_slab_displaces_a_ray_by_the_analytic_offset() {
     let expected = d * (theta - theta_t).sin() / theta_t.cos();
     let mut checked = 0;
     for seed in 0..20 {
-        let mut rng = Rng::new(seed, 0, Stream::Translucency);
+        let mut rng = Rng::new(seed, 0, translucency::STREAM);
         let mut rays = 0;
         let end = translucency::follow(r.scene(), r.accel(), &sp, -dir, params, &mut rng, &mut rays);
         let (o, out) = end.last_ray.unwrap();
