@@ -1,10 +1,10 @@
 //! The visibility-buffer rasterizer (the hybrid crate's geometry pass and shadow maps draw
-//! with it): world-space meshes seen through any projection (the camera's perspective, a light's perspective or orthographic view)
-//! rasterized into, per pixel, the nearest triangle's id and depth key, or the nearest few
+//! with it): world-space meshes seen through any projection (the camera's perspective, a
+//! light's perspective or orthographic view) rasterized into, per pixel, the nearest triangle's id and depth key, or the nearest few
 //! (the translucent layers). It reuses the crate's clipping, fixed-point edge functions,
 //! fill rule and band binning; only the per-triangle setup differs: instead of every
-//! attribute's plane it keeps the three rows of `M⁻¹` (see [`crate::setup`]), from which
-//! the perspective-correct barycentrics at a pixel centre follow exactly:
+//! attribute's plane it keeps the three rows of `M⁻¹` (see the crate's `setup` module),
+//! from which the perspective-correct barycentrics at a pixel centre follow exactly:
 //! `qᵢ = rowᵢ · (x, y, 1) = λᵢ / w`, `λᵢ = qᵢ / Σ q`.
 //!
 //! The depth key is `1 − Z/W` (the reversed NDC depth), a plane in screen space for

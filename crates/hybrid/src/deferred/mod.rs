@@ -1,9 +1,9 @@
-//! The rasterized deferred pipeline of the hybrid frame, over a [`HybridScene`](renderlab_scene::HybridScene),
-//! writing the scene crate's stage contract ([`GBuffer`](renderlab_scene::GBuffer),
-//! [`LightingTerms`](renderlab_scene::LightingTerms)): the passes every frame runs, whatever
-//! its stages choose. The raster choice of each switchable stage lives in that stage's file
-//! under [`crate::stages`] and is re-exported here, so that the whole raster pipeline is
-//! reachable from one place.
+//! The rasterized deferred pipeline of the hybrid frame, over a
+//! [`HybridScene`](renderlab_scene::HybridScene), writing the scene crate's stage contract
+//! ([`GBuffer`](renderlab_scene::GBuffer), [`LightingTerms`](renderlab_scene::LightingTerms)):
+//! the passes every frame runs, whatever its stages choose. The raster choice of each
+//! switchable stage lives in that stage's file under [`crate::stages`] and is re-exported
+//! here, so that the whole raster pipeline is reachable from one place.
 //!
 //! # Passes, each callable alone
 //!
@@ -15,7 +15,7 @@
 //! | ambient | [`ambient_diffuse`], [`ssao`] | `terms.diffuse_indirect`, `terms.ambient_occlusion` |
 //! | reflections | [`screen_space_reflections`] of [`lit_opaque`] | `terms.specular_indirect` |
 //! | translucency | [`forward_translucent`] over `terms.compose(..)` | the final linear image |
-//! | display | [`tonemap`] | 8-bit sRGB |
+//! | display | [`tonemap()`] | 8-bit sRGB |
 //!
 //! [`render`] runs them in that order and times each. A ray-traced stage replaces one row:
 //! a shadow stage implements [`Visibility`] (it is asked, per light sample, whether the

@@ -153,7 +153,10 @@ impl Entry for Translucency {
 
     /// 3 and 10 refraction rays at max roughness 1.
     fn in_report_sweep(&self) -> bool {
-        matches!(*self, Translucency::RayTraced { max_refraction_rays: 3 | 10, max_roughness } if max_roughness == 1.0)
+        matches!(
+            *self,
+            Translucency::RayTraced { max_refraction_rays: 3 | 10, max_roughness } if max_roughness == 1.0
+        )
     }
 
     fn sweep_count(&self) -> Option<u32> {
