@@ -148,6 +148,13 @@ macro_rules! registry {
                 }
             }
 
+            /// Sets stage `id` to its choice in `other`.
+            pub fn set_stage(&mut self, id: StageId, other: &StageConfig) {
+                match id {
+                    $(StageId::$variant => self.$module = other.$module,)*
+                }
+            }
+
             /// Whether stage `id` differs from its baseline choice.
             pub fn differs(&self, id: StageId) -> bool {
                 let base = Self::all_raster();
