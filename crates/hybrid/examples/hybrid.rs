@@ -5,9 +5,9 @@
 //! `cargo run --release -p renderlab-hybrid --example hybrid -- OUT_DIR [SPP]`
 
 use renderlab_core::io::save_rgb8;
+use renderlab_hybrid::deferred::{tonemap, ToneMap};
 use renderlab_hybrid::shapes::showcase;
 use renderlab_hybrid::{Ao, Gi, HybridRenderer, Reflections, Shadows, StageConfig, Translucency};
-use renderlab_raster::deferred::{tonemap, ToneMap};
 use std::path::PathBuf;
 
 fn main() {
@@ -25,13 +25,12 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     let scene = showcase();
     let r = HybridRenderer::new(&scene)?;
     let cam = scene.cameras[0].camera;
-    let all_rt = StageConfig {
-        shadows: Shadows::RayTraced { samples_per_light: 4 },
-        reflections: Reflections::RayTraced { max_bounces: 4, max_roughness: 0.5 },
-        translucency: Translucency::RayTraced { max_refraction_rays: 10, max_roughness: 0.5 },
-        gi: Gi::RayTraced { samples_per_pixel: 8 },
-        ao: Ao::RayTraced { samples_per_pixel: 4, radius: 0.5 },
-    };
+    let mut all_rt = StageConfig::all_raster();
+    all_rt.shadows = Shadows::RayTraced { samples_per_light: 4 };
+    all_rt.reflections = Reflections::RayTraced { max_bounces: 4, max_roughness: 0.5 };
+    all_rt.translucency = Translucency::RayTraced { max_refraction_rays: 10, max_roughness: 0.5 };
+    all_rt.gi = Gi::RayTraced { samples_per_pixel: 8 };
+    all_rt.ao = Ao::RayTraced { samples_per_pixel: 4, radius: 0.5 };
     let save = |name: &str, hdr: &[glam::Vec3]| {
         save_rgb8(out.join(name), &tonemap(hdr, cam.width, cam.height, 1.0, ToneMap::AcesFitted))
     };

@@ -4,15 +4,18 @@
 //!
 //! * [`HybridRenderer::new`] validates a [`HybridScene`](renderlab_scene::HybridScene) and
 //!   builds its BVH once; [`HybridRenderer::render`] renders a frame with a [`StageConfig`]
-//!   (one choice per stage) into a [`HybridFrame`] with per-stage times and ray counts;
-//!   [`HybridRenderer::reference`] path-traces the same view in two independent halves and
-//!   estimates the reference's own noise floor ([`Reference`]).
-//! * [`stages`] holds the ray-traced stages, one file each, every one writing one slot of
-//!   the scene crate's `LightingTerms` (translucency: the final image); [`mod@reference`] holds
-//!   the path tracer; [`lighting`] the shading they share; [`accel`] the BVH as they query it.
-//! * The raster choices of every stage are `renderlab_raster::deferred`'s stage functions
-//!   (geometry pass, shadow maps, SSR, SSAO, ambient, sorted forward translucency), called
-//!   one by one so that any of them can be replaced.
+//!   (one choice per stage) into a [`HybridFrame`] with per-stage times and ray counts
+//!   ([`PerStage`]); [`HybridRenderer::reference`] path-traces the same view in two
+//!   independent halves and estimates the reference's own noise floor ([`Reference`]).
+//! * [`stages`] is the stage catalogue: one file per stage holding both its choices (raster
+//!   and ray traced) with its flag syntax, parsing, label, validation, random stream, sweep
+//!   and place in the frame, and one `registry!` line per stage from which [`StageConfig`],
+//!   [`PerStage`] and the stage keys ([`StageId`]) are generated.
+//! * [`deferred`] holds the passes every frame runs whatever its stages choose (the geometry
+//!   pass into the G-buffer, the lighting pass, composition, tone mapping, the settings) and
+//!   re-exports the raster choices of the stages: the whole raster pipeline in one place.
+//! * [`mod@reference`] holds the path tracer; [`lighting`] the shading the ray-traced
+//!   stages and the path tracer share; [`accel`] the BVH as they query it.
 //! * [`shapes`] builds the small meshes and scenes of the tests and benchmarks.
 //!
 //! Every stage draws its random numbers from a per-pixel stream seeded by `(seed, pixel,
@@ -21,7 +24,7 @@
 #![warn(missing_docs)]
 
 pub mod accel;
-pub mod config;
+pub mod deferred;
 pub mod error;
 pub mod lighting;
 pub mod memory;
@@ -32,7 +35,8 @@ pub mod shapes;
 pub mod stages;
 
 pub use accel::Accel;
-pub use config::{Ao, Gi, Reflections, Shadows, StageConfig, Translucency};
 pub use error::{HybridError, Result};
 pub use reference::{NoiseFloor, PathTracer, Reference};
-pub use renderer::{HybridFrame, HybridRenderer, PerStage};
+pub use renderer::{HybridFrame, HybridRenderer};
+pub use stages::choices::*;
+pub use stages::{PerStage, StageConfig, StageId};

@@ -1,12 +1,12 @@
 //! Shading shared by the ray-traced stages and the path tracer: direct light with shadow
-//! rays, and the raster pipeline's specular and diffuse weights and ambient term (called from
-//! `renderlab_raster::deferred`, so that a ray-traced stage and the raster stage it replaces
+//! rays, and the raster pipeline's specular and diffuse weights and ambient term (from
+//! [`crate::deferred::weights`], so that a ray-traced stage and the raster stage it replaces
 //! weight the light they gather alike).
 
 use crate::accel::Accel;
+use crate::deferred::weights;
 use crate::rng::{stratified, Rng};
 use glam::{Vec2, Vec3};
-use renderlab_raster::deferred;
 use renderlab_scene::brdf::eval;
 use renderlab_scene::{HybridScene, ShadingPoint};
 
@@ -83,18 +83,18 @@ pub fn unshadowed_direct(scene: &HybridScene, sp: &ShadingPoint, v: Vec3, n: u32
 }
 
 /// The weight of the indirect specular term, the raster SSR's own
-/// ([`deferred::specular_weight`]: Karis's analytic fit of the split-sum DFG, `F0·A + B`).
+/// ([`weights::specular_weight`]: Karis's analytic fit of the split-sum DFG, `F0·A + B`).
 /// Radiance gathered along the lobe (by SSR or by a reflected ray) times this weight
 /// estimates the specular reflection of indirect light.
 pub fn specular_weight(sp: &ShadingPoint, v: Vec3) -> Vec3 {
-    deferred::specular_weight(sp, sp.normal.dot(v))
+    weights::specular_weight(sp, sp.normal.dot(v))
 }
 
 /// `kd · base_colour` with `kd = (1 − F(n·v))(1 − metal)(1 − transmission)`
-/// ([`deferred::diffuse_albedo`]): the factor the cosine-weighted mean of incident radiance
+/// ([`weights::diffuse_albedo`]): the factor the cosine-weighted mean of incident radiance
 /// is multiplied by to give the diffuse reflection.
 pub fn diffuse_albedo(sp: &ShadingPoint, v: Vec3) -> Vec3 {
-    deferred::diffuse_albedo(sp, v)
+    weights::diffuse_albedo(sp, v)
 }
 
 /// The raster pipeline's ambient ("GI off") term: the sky radiance times the diffuse albedo,

@@ -1,7 +1,7 @@
 //! How much memory a frame takes, measured, and the budget frames are held to.
 //!
 //! A hybrid frame keeps a deep per-pixel state at once: the G-buffer (an opaque surface
-//! point and up to [`renderlab_raster::deferred::RasterSettings`]'s translucent layers per
+//! point and up to [`crate::deferred::RasterSettings`]'s translucent layers per
 //! pixel), five lighting terms, the lit and composed images, and the path tracer's two
 //! halves of the reference. Its peak memory is therefore linear in the pixel count; the
 //! coefficients below are fitted to peak resident sizes (`/usr/bin/time -v`, "Maximum

@@ -46,7 +46,7 @@
 use crate::accel::{resolve, Accel};
 use crate::lighting::direct_light_from;
 use crate::rng::{Rng, Stream};
-use crate::stages::par_pixels;
+use crate::stages::context::par_pixels;
 use glam::Vec3;
 use renderlab_core::Camera;
 use renderlab_scene::brdf::{alpha, d_ggx, eval, f0, fresnel_schlick};
@@ -138,8 +138,8 @@ impl PathTracer {
             });
             (img, rays)
         };
-        let (half_a, rays_a) = run(Stream::ReferenceA);
-        let (half_b, rays_b) = run(Stream::ReferenceB);
+        let (half_a, rays_a) = run(Stream::REFERENCE_A);
+        let (half_b, rays_b) = run(Stream::REFERENCE_B);
         let hdr = half_a.iter().zip(&half_b).map(|(a, b)| (*a + *b) * 0.5).collect();
         let noise = NoiseFloor::from_halves(&half_a, &half_b);
         Reference {

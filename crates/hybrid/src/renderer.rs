@@ -9,51 +9,22 @@
 //! it traces.
 
 use crate::accel::Accel;
-use crate::config::{Ao, Gi, Reflections, Shadows, StageConfig, Translucency};
+use crate::deferred::geometry::{geometry_pass, PreparedScene};
+use crate::deferred::settings::RasterSettings;
 use crate::error::{HybridError, Result};
 use crate::reference::{self, Reference};
-use crate::stages;
+use crate::stages::context::StageContext;
+use crate::stages::entry::Phase;
+use crate::stages::shadows::maps::ShadowMapCache;
+use crate::stages::{PerStage, StageConfig};
 use glam::Vec3;
 use renderlab_core::Camera;
-use renderlab_raster::deferred::{
-    self, PreparedScene, RasterSettings, ShadowMaps, ShadowQuery, ShadowSettings, Visibility,
-};
 use renderlab_scene::{GBuffer, HybridScene, LightingTerms};
-use serde::Serialize;
-use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 /// The most pixels a frame may have: what fits [`crate::memory::BUDGET`] (about 11.4
 /// Mpixel, e.g. 4096×2792); larger cameras are refused rather than allocated.
 pub const MAX_PIXELS: u64 = crate::memory::max_pixels(crate::memory::Run::Render);
-
-/// One value per pass of the frame.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
-pub struct PerStage<T> {
-    /// The geometry pass (G-buffer).
-    pub geometry: T,
-    /// The shadow stage with the lighting pass (`direct`).
-    pub shadows: T,
-    /// The reflection stage (`specular_indirect`).
-    pub reflections: T,
-    /// The translucency stage.
-    pub translucency: T,
-    /// The GI stage (`diffuse_indirect`).
-    pub gi: T,
-    /// The AO stage (`ambient_occlusion`).
-    pub ao: T,
-    /// Composition of the terms into the opaque image.
-    pub compose: T,
-}
-
-impl<T: Copy + std::iter::Sum<T>> PerStage<T> {
-    /// The sum over passes.
-    pub fn total(&self) -> T {
-        [self.geometry, self.shadows, self.reflections, self.translucency, self.gi, self.ao, self.compose]
-            .into_iter()
-            .sum()
-    }
-}
 
 /// A rendered frame.
 #[derive(Clone, Debug)]
@@ -82,15 +53,13 @@ pub struct HybridRenderer<'s> {
     accel: Accel,
     /// Parameters of the raster stages (shadow-map resolution, SSR march, SSAO bias,
     /// translucent layers, area-light samples); the SSAO samples and radius come from
-    /// [`Ao::ScreenSpace`] instead.
+    /// [`Ao::ScreenSpace`](crate::Ao::ScreenSpace) instead.
     pub raster: RasterSettings,
     /// Path-tracer settings of [`HybridRenderer::reference`].
     pub path_tracer: reference::PathTracer,
-    /// The shadow maps of the last raster-shadowed frame, with the settings they were built
-    /// for. The lights and the scene are static, so the maps are built once and reused, as
-    /// an engine caches the shadow maps of static lights; a frame rebuilds them only when
-    /// [`HybridRenderer::raster`]'s shadow settings have changed.
-    shadow_maps: Mutex<Option<(ShadowSettings, Arc<ShadowMaps>)>>,
+    /// The shadow maps of the last raster-shadowed frame: built once and reused while
+    /// [`HybridRenderer::raster`]'s shadow settings stay the same.
+    shadow_maps: ShadowMapCache,
 }
 
 impl std::fmt::Debug for HybridRenderer<'_> {
@@ -100,22 +69,6 @@ impl std::fmt::Debug for HybridRenderer<'_> {
             .field("raster", &self.raster)
             .field("path_tracer", &self.path_tracer)
             .finish_non_exhaustive()
-    }
-}
-
-/// The ray-traced visibility of a light sample, for the raster passes that take a
-/// [`Visibility`] (the forward translucent pass, when shadows are ray traced).
-struct RayTracedVisibility<'a>(&'a Accel);
-
-impl Visibility for RayTracedVisibility<'_> {
-    fn visibility(&self, q: &ShadowQuery) -> f32 {
-        let s = q.light_sample;
-        let blocked = self.0.occluded(q.point.offset_origin(s.to_light), s.to_light, s.distance);
-        if blocked {
-            0.0
-        } else {
-            1.0
-        }
     }
 }
 
@@ -132,7 +85,7 @@ impl<'s> HybridRenderer<'s> {
             accel,
             raster: RasterSettings::default(),
             path_tracer: reference::PathTracer::default(),
-            shadow_maps: Mutex::new(None),
+            shadow_maps: ShadowMapCache::default(),
         })
     }
 
@@ -141,25 +94,12 @@ impl<'s> HybridRenderer<'s> {
     /// timing frames, so that no frame's shadow stage includes the one-off build.
     pub fn prepare_shadow_maps(&self) -> f64 {
         let clock = Instant::now();
-        let (_, built) = self.cached_shadow_maps(&self.raster.shadows);
+        let (_, built) = self.shadow_maps.get(&self.prepared, &self.raster.shadows);
         if built {
             lap(clock)
         } else {
             0.0
         }
-    }
-
-    /// The cached maps for `settings`, building them if needed (`true` when built now).
-    fn cached_shadow_maps(&self, settings: &ShadowSettings) -> (Arc<ShadowMaps>, bool) {
-        let mut cache = self.shadow_maps.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some((s, maps)) = cache.as_ref() {
-            if s == settings {
-                return (maps.clone(), false);
-            }
-        }
-        let maps = Arc::new(ShadowMaps::build(&self.prepared, settings));
-        *cache = Some((settings.clone(), maps.clone()));
-        (maps, true)
     }
 
     /// The scene.
@@ -183,108 +123,43 @@ impl<'s> HybridRenderer<'s> {
         check_camera(camera)?;
         config.validate().map_err(HybridError::Config)?;
         let mut raster = self.raster.clone();
-        if let Ao::ScreenSpace { samples, radius } = config.ao {
-            raster.ssao.samples = samples;
-            raster.ssao.radius = radius;
-        }
+        config.adjust_raster(&mut raster);
         raster.validate().map_err(HybridError::Config)?;
-        let (scene, accel) = (self.scene, &self.accel);
         let mut ms = PerStage::<f64>::default();
         let mut rays = PerStage::<u64>::default();
 
         let clock = Instant::now();
-        let geometry = deferred::geometry_pass(&self.prepared, camera, raster.translucent_layers);
-        let g = &geometry.gbuffer;
+        let geometry = geometry_pass(&self.prepared, camera, raster.translucent_layers);
         ms.geometry = lap(clock);
-        let mut terms = LightingTerms::zero(g.opaque.len());
 
-        let clock = Instant::now();
-        let maps = match config.shadows {
-            Shadows::Raster => {
-                let (maps, _) = self.cached_shadow_maps(&raster.shadows);
-                terms.direct = deferred::direct_lighting(scene, g, maps.as_ref(), raster.area_samples);
-                Some(maps)
-            }
-            Shadows::RayTraced { samples_per_light } => {
-                rays.shadows =
-                    stages::shadows::run(scene, accel, g, samples_per_light, seed, &mut terms.direct);
-                None
-            }
-        };
-        ms.shadows = lap(clock);
-
-        let clock = Instant::now();
-        match config.gi {
-            Gi::Off => terms.diffuse_indirect = deferred::ambient_diffuse(g, scene.sky),
-            Gi::RayTraced { samples_per_pixel } => {
-                rays.gi =
-                    stages::gi::run(scene, accel, g, samples_per_pixel, seed, &mut terms.diffuse_indirect)
-            }
-        }
-        ms.gi = lap(clock);
-
-        let clock = Instant::now();
-        match config.ao {
-            Ao::Off => {}
-            Ao::ScreenSpace { .. } => terms.ambient_occlusion = deferred::ssao(g, &raster.ssao),
-            Ao::RayTraced { samples_per_pixel, radius } => {
-                rays.ao =
-                    stages::ao::run(accel, g, samples_per_pixel, radius, seed, &mut terms.ambient_occlusion)
-            }
-        }
-        ms.ao = lap(clock);
-
-        let clock = Instant::now();
-        let lit = deferred::lit_opaque(g, &terms, scene.sky);
-        terms.specular_indirect = deferred::screen_space_reflections(g, &lit, scene.sky, &raster.ssr);
-        if let Reflections::RayTraced { max_bounces, max_roughness } = config.reflections {
-            rays.reflections = stages::reflections::run(
-                scene,
-                accel,
-                g,
-                max_bounces,
-                max_roughness,
+        // The stages borrow the geometry pass; their context ends before it moves.
+        let (hdr, terms) = {
+            let mut ctx = StageContext::new(
+                self.scene,
+                &self.accel,
+                &self.prepared,
+                &geometry,
+                &raster,
+                &self.shadow_maps,
                 seed,
-                &mut terms.specular_indirect,
             );
-        }
-        ms.reflections = lap(clock);
+            config.render_phase(Phase::Terms, &mut ctx, &mut ms, &mut rays);
+            config.render_phase(Phase::Lit, &mut ctx, &mut ms, &mut rays);
 
-        let clock = Instant::now();
-        let opaque = terms.compose(g, scene.sky);
-        ms.compose = lap(clock);
+            let clock = Instant::now();
+            ctx.image = ctx.terms.compose(&geometry.gbuffer, self.scene.sky);
+            ms.compose = lap(clock);
 
-        let clock = Instant::now();
-        let traced_visibility = RayTracedVisibility(accel);
-        let visibility: &dyn Visibility = match &maps {
-            Some(maps) => maps.as_ref(),
-            None => &traced_visibility,
+            config.render_phase(Phase::Over, &mut ctx, &mut ms, &mut rays);
+            (ctx.image, ctx.terms)
         };
-        let forward = |opaque: &[Vec3]| {
-            deferred::forward_translucent(scene, &geometry, opaque, visibility, raster.area_samples)
-        };
-        let hdr = match config.translucency {
-            Translucency::Raster => forward(&opaque),
-            Translucency::RayTraced { max_refraction_rays, max_roughness } => {
-                let rough = g.translucent.iter().flatten().any(|sp| sp.roughness > max_roughness);
-                let fallback = if rough { forward(&opaque) } else { Vec::new() };
-                let mut hdr = opaque;
-                let params = stages::translucency::Params { max_refraction_rays, max_roughness };
-                rays.translucency =
-                    stages::translucency::run(scene, accel, g, params, seed, &fallback, &mut hdr);
-                hdr
-            }
-        };
-        ms.translucency = lap(clock);
-
-        let gbuffer = geometry.gbuffer;
         Ok(HybridFrame {
             hdr,
             width: camera.width,
             height: camera.height,
             stage_ms: ms,
             rays,
-            gbuffer,
+            gbuffer: geometry.gbuffer,
             terms,
         })
     }

@@ -6,24 +6,17 @@
 
 use glam::Vec2;
 
-/// Which consumer a stream belongs to (part of the seed, so stages never share numbers).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[repr(u64)]
-pub enum Stream {
-    /// Ray-traced shadows.
-    Shadows = 1,
-    /// Ray-traced reflections.
-    Reflections = 2,
-    /// Ray-traced translucency.
-    Translucency = 3,
-    /// Ray-traced GI.
-    Gi = 4,
-    /// Ray-traced AO.
-    Ao = 5,
+/// Which consumer a stream belongs to (part of the seed, so consumers never share numbers).
+/// Each stage names its own in its descriptor (`stages::NAME::STREAM`); the
+/// registry's test checks that no two consumers share one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Stream(pub u64);
+
+impl Stream {
     /// The path tracer's first half.
-    ReferenceA = 6,
+    pub const REFERENCE_A: Stream = Stream(6);
     /// The path tracer's second half.
-    ReferenceB = 7,
+    pub const REFERENCE_B: Stream = Stream(7);
 }
 
 /// SplitMix64's finaliser: a bijective avalanche of 64 bits.
@@ -43,7 +36,7 @@ pub struct Rng {
 impl Rng {
     /// The stream of `pixel` in `stream` for the frame seed `seed`.
     pub fn new(seed: u64, pixel: u64, stream: Stream) -> Self {
-        let s = mix(seed ^ mix(pixel.wrapping_add(0x9e37_79b9_7f4a_7c15)) ^ mix((stream as u64) << 56));
+        let s = mix(seed ^ mix(pixel.wrapping_add(0x9e37_79b9_7f4a_7c15)) ^ mix(stream.0 << 56));
         Self { state: s }
     }
 
@@ -85,14 +78,22 @@ mod tests {
 
     #[test]
     fn streams_differ_and_repeat() {
-        let a: Vec<u64> =
-            (0..4).map(|_| 0).scan(Rng::new(1, 2, Stream::Gi), |r, _| Some(r.next_u64())).collect();
-        let b: Vec<u64> =
-            (0..4).map(|_| 0).scan(Rng::new(1, 2, Stream::Gi), |r, _| Some(r.next_u64())).collect();
-        let c: Vec<u64> =
-            (0..4).map(|_| 0).scan(Rng::new(1, 2, Stream::Ao), |r, _| Some(r.next_u64())).collect();
-        let d: Vec<u64> =
-            (0..4).map(|_| 0).scan(Rng::new(1, 3, Stream::Gi), |r, _| Some(r.next_u64())).collect();
+        let a: Vec<u64> = (0..4)
+            .map(|_| 0)
+            .scan(Rng::new(1, 2, crate::stages::gi::STREAM), |r, _| Some(r.next_u64()))
+            .collect();
+        let b: Vec<u64> = (0..4)
+            .map(|_| 0)
+            .scan(Rng::new(1, 2, crate::stages::gi::STREAM), |r, _| Some(r.next_u64()))
+            .collect();
+        let c: Vec<u64> = (0..4)
+            .map(|_| 0)
+            .scan(Rng::new(1, 2, crate::stages::ao::STREAM), |r, _| Some(r.next_u64()))
+            .collect();
+        let d: Vec<u64> = (0..4)
+            .map(|_| 0)
+            .scan(Rng::new(1, 3, crate::stages::gi::STREAM), |r, _| Some(r.next_u64()))
+            .collect();
         assert_eq!(a, b);
         assert_ne!(a, c);
         assert_ne!(a, d);
@@ -100,7 +101,7 @@ mod tests {
 
     #[test]
     fn uniform_numbers_have_the_right_mean_and_range() {
-        let mut r = Rng::new(7, 0, Stream::Shadows);
+        let mut r = Rng::new(7, 0, crate::stages::shadows::STREAM);
         let n = 100_000;
         let mut sum = 0.0f64;
         for _ in 0..n {

@@ -5,10 +5,10 @@ mod common;
 use common::{cornell, mse, project};
 use glam::Vec3;
 use renderlab_core::Camera;
-use renderlab_hybrid::rng::{Rng, Stream};
+use renderlab_hybrid::rng::Rng;
 use renderlab_hybrid::shapes::{cuboid, light, quad, showcase, uv_sphere, SceneBuilder};
 use renderlab_hybrid::stages::{ao, shadows, translucency};
-use renderlab_hybrid::{Ao, Gi, HybridRenderer, Reflections, Shadows, StageConfig, Translucency};
+use renderlab_hybrid::{Ao, Gi, HybridRenderer, Reflections, Shadows, StageConfig, StageId, Translucency};
 use renderlab_scene::brdf::eval;
 use renderlab_scene::{GBuffer, LightKind, PbrMaterial, ShadingPoint};
 
@@ -167,7 +167,7 @@ fn a_glass_slab_displaces_a_ray_by_the_analytic_offset() {
     let expected = d * (theta - theta_t).sin() / theta_t.cos();
     let mut checked = 0;
     for seed in 0..20 {
-        let mut rng = Rng::new(seed, 0, Stream::Translucency);
+        let mut rng = Rng::new(seed, 0, translucency::STREAM);
         let mut rays = 0;
         let end = translucency::follow(r.scene(), r.accel(), &sp, -dir, params, &mut rng, &mut rays);
         let (o, out) = end.last_ray.unwrap();
@@ -304,13 +304,17 @@ fn frames_are_bit_identical_for_any_thread_count() {
     let scene = showcase();
     let r = HybridRenderer::new(&scene).unwrap();
     let cam = Camera { width: 40, height: 24, ..scene.cameras[0].camera };
-    let cfg = StageConfig {
-        shadows: Shadows::RayTraced { samples_per_light: 2 },
-        reflections: Reflections::RayTraced { max_bounces: 2, max_roughness: 0.6 },
-        translucency: Translucency::RayTraced { max_refraction_rays: 4, max_roughness: 0.5 },
-        gi: Gi::RayTraced { samples_per_pixel: 2 },
-        ao: Ao::RayTraced { samples_per_pixel: 2, radius: 0.5 },
-    };
+    // Every stage of the registry ray traced (its first thesis setting), these five as set.
+    let mut cfg = StageConfig::all_raster();
+    for &id in StageId::ALL {
+        cfg.set_stage(id, &StageConfig::thesis_sweep(id)[0]);
+    }
+    cfg.shadows = Shadows::RayTraced { samples_per_light: 2 };
+    cfg.reflections = Reflections::RayTraced { max_bounces: 2, max_roughness: 0.6 };
+    cfg.translucency = Translucency::RayTraced { max_refraction_rays: 4, max_roughness: 0.5 };
+    cfg.gi = Gi::RayTraced { samples_per_pixel: 2 };
+    cfg.ao = Ao::RayTraced { samples_per_pixel: 2, radius: 0.5 };
+    assert!(StageId::ALL.iter().all(|&id| cfg.differs(id)));
     let run = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| {

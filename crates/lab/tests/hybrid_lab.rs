@@ -2,7 +2,7 @@
 //! equals an uninterrupted one, and bad merges are refused before anything is written.
 
 use renderlab_lab::hybrid_lab::{
-    merge_runs, run_hybrid_bench, Existing, HybridBenchConfig, Shard, SweepKind,
+    merge_runs, run_hybrid_bench, Existing, HybridBenchConfig, RunSettings, Shard, SweepKind,
 };
 use serde_json::Value;
 use std::path::{Path, PathBuf};
@@ -11,12 +11,15 @@ use std::path::{Path, PathBuf};
 fn tiny() -> HybridBenchConfig {
     HybridBenchConfig {
         scenes: vec!["showcase".into()],
-        width: 32,
-        height: 18,
-        sweep: SweepKind::Report,
-        reference_spp: 4,
-        warmup: 0,
-        reps: 1,
+        run: RunSettings {
+            width: 32,
+            height: 18,
+            sweep: SweepKind::Report,
+            reference_spp: 4,
+            warmup: 0,
+            reps: 1,
+            ..RunSettings::default()
+        },
         ..HybridBenchConfig::default()
     }
 }
@@ -111,7 +114,11 @@ fn shards_merged_equal_one_run_and_resume_completes_a_run() {
 
     // Resuming with other settings is refused.
     let e = run_hybrid_bench(
-        &HybridBenchConfig { existing: Existing::Resume, seed: 9, ..tiny() },
+        &HybridBenchConfig {
+            existing: Existing::Resume,
+            run: RunSettings { seed: 9, ..tiny().run },
+            ..tiny()
+        },
         &resumed,
         &quiet,
     )
@@ -135,7 +142,14 @@ fn bad_merges(tmp: &Path, parts: &[PathBuf]) {
     expect(vec![parts[0].clone(), parts[1].clone()], "missing shards: 3/3");
     expect(vec![parts[0].clone(), parts[0].clone(), parts[1].clone(), parts[2].clone()], "overlapping");
     let other = tmp.join("other");
-    run(&HybridBenchConfig { shard: Shard { index: 3, count: 3 }, seed: 5, ..tiny() }, &other);
+    run(
+        &HybridBenchConfig {
+            shard: Shard { index: 3, count: 3 },
+            run: RunSettings { seed: 5, ..tiny().run },
+            ..tiny()
+        },
+        &other,
+    );
     expect(vec![parts[0].clone(), parts[1].clone(), other.clone()], "different settings");
     let old = tmp.join("old");
     std::fs::create_dir(&old).unwrap();

@@ -4,7 +4,7 @@
 //! is refused.
 
 use renderlab_lab::hybrid_lab::{
-    merge_runs, run_hybrid_bench, Existing, HybridBenchConfig, Shard, SweepKind,
+    merge_runs, run_hybrid_bench, Existing, HybridBenchConfig, RunSettings, Shard, SweepKind,
 };
 use serde_json::Value;
 use std::path::{Path, PathBuf};
@@ -15,12 +15,15 @@ fn quiet(_: usize, _: usize, _: &str) {}
 fn tiny(scene: &str) -> HybridBenchConfig {
     HybridBenchConfig {
         scenes: vec![scene.into()],
-        width: 16,
-        height: 9,
-        sweep: SweepKind::Report,
-        reference_spp: 2,
-        warmup: 0,
-        reps: 1,
+        run: RunSettings {
+            width: 16,
+            height: 9,
+            sweep: SweepKind::Report,
+            reference_spp: 2,
+            warmup: 0,
+            reps: 1,
+            ..RunSettings::default()
+        },
         ..HybridBenchConfig::default()
     }
 }

@@ -3,9 +3,10 @@
 //! perspective-correct UV, its exact screen-space Jacobian (Heckbert's footprint), the
 //! tangent frame, world position, distance and object/material ids.
 //!
-//! The [`deferred`] module reuses its clipping, fixed-point scan conversion and binning for
-//! the hybrid lab's rasterized deferred pipeline over a `renderlab_scene::HybridScene`
-//! (visibility-buffer G-buffer, shadow maps, lighting, SSR, SSAO, translucency, tone mapping).
+//! The [`visibility`] module reuses its clipping, fixed-point scan conversion and binning for
+//! a visibility buffer of world-space meshes under any projection (instance, triangle and
+//! perspective-correct barycentrics per pixel, or the nearest few layers): the hybrid crate's
+//! deferred pipeline draws its G-buffer and its shadow maps with it.
 //!
 //! # Pipeline
 //!
@@ -44,7 +45,6 @@
 
 mod bin;
 mod clip;
-pub mod deferred;
 mod frame;
 mod gbuffer;
 mod resolve;
@@ -54,6 +54,7 @@ mod setup;
 mod tile;
 mod triangle;
 mod viewport;
+pub mod visibility;
 
 pub use bin::BAND_HEIGHT;
 pub use gbuffer::GBuffer;

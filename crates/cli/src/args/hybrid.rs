@@ -1,8 +1,9 @@
-//! Arguments of `renderlab hybrid render|bench` and `renderlab merge`. The stage flags' help
-//! comes from the lab's stage registry (`renderlab_lab::hybrid_lab::stages`).
+//! Arguments of `renderlab hybrid render|bench` and `renderlab merge`. The stage flags (one
+//! per stage, with its help, and the flags `--reference` excludes) come from the hybrid
+//! crate's stage registry (`renderlab_hybrid::stages`).
 
-use clap::{Args, Subcommand, ValueEnum};
-use renderlab_lab::hybrid_lab::stages::help;
+use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches, Subcommand, ValueEnum};
+use renderlab_hybrid::stages::{DESCRIPTORS, NAMES};
 use renderlab_lab::hybrid_lab::Shard;
 use std::path::PathBuf;
 
@@ -33,24 +34,12 @@ pub struct HybridRenderArgs {
     /// Frame size WIDTHxHEIGHT (default: the camera's own).
     #[arg(long, value_name = "WxH", value_parser = super::size::parse_size)]
     pub resolution: Option<(u32, u32)>,
-    #[arg(long, help = help("shadows"))]
-    /// Shadows.
-    pub shadows: Option<String>,
-    #[arg(long, help = help("reflections"))]
-    /// Reflections.
-    pub reflections: Option<String>,
-    #[arg(long, help = help("translucency"))]
-    /// Translucency.
-    pub translucency: Option<String>,
-    #[arg(long, help = help("gi"))]
-    /// Global illumination.
-    pub gi: Option<String>,
-    #[arg(long, help = help("ao"))]
-    /// Ambient occlusion.
-    pub ao: Option<String>,
+    /// One flag per stage.
+    #[command(flatten)]
+    pub stages: StageFlags,
     /// Render the path-traced reference with SPP paths per pixel instead (two independent
     /// halves; their difference gives the reference's noise floor, printed).
-    #[arg(long, value_name = "SPP", conflicts_with_all = ["shadows", "reflections", "translucency", "gi", "ao"])]
+    #[arg(long, value_name = "SPP", conflicts_with_all = NAMES)]
     pub reference: Option<u32>,
     /// Seed of the stages' (or the reference's) random numbers.
     #[arg(long, default_value_t = 1)]
@@ -58,6 +47,53 @@ pub struct HybridRenderArgs {
     /// Output PNG (or EXR, linear radiance) file.
     #[arg(long, short)]
     pub out: PathBuf,
+}
+
+/// The stage flags of `hybrid render`: `--NAME VALUE` for every stage of the registry, its
+/// help the stage's own (what it does, its syntax, its default).
+#[derive(Clone, Debug, Default)]
+pub struct StageFlags {
+    /// The flags given, as (stage name, value).
+    pub values: Vec<(&'static str, String)>,
+}
+
+impl StageFlags {
+    /// The value given for stage `name`, if any.
+    pub fn get(&self, name: &str) -> Option<&str> {
+        self.values.iter().find(|(n, _)| *n == name).map(|(_, v)| v.as_str())
+    }
+}
+
+impl FromArgMatches for StageFlags {
+    fn from_arg_matches(m: &ArgMatches) -> Result<Self, clap::Error> {
+        let values = NAMES.iter().filter_map(|&n| m.get_one::<String>(n).map(|v| (n, v.clone()))).collect();
+        Ok(Self { values })
+    }
+
+    fn update_from_arg_matches(&mut self, m: &ArgMatches) -> Result<(), clap::Error> {
+        *self = Self::from_arg_matches(m)?;
+        Ok(())
+    }
+}
+
+impl Args for StageFlags {
+    fn augment_args(cmd: Command) -> Command {
+        DESCRIPTORS.iter().fold(cmd, |cmd, d| {
+            // The value's placeholder is the flag's name in capitals, as clap's derive writes it.
+            let value_name: &'static str = Box::leak(d.name.to_uppercase().into_boxed_str());
+            cmd.arg(
+                Arg::new(d.name)
+                    .long(d.name)
+                    .value_name(value_name)
+                    .action(ArgAction::Set)
+                    .help(d.help_text()),
+            )
+        })
+    }
+
+    fn augment_args_for_update(cmd: Command) -> Command {
+        Self::augment_args(cmd)
+    }
 }
 
 /// Which rows `hybrid bench` renders per view.

@@ -4,9 +4,9 @@ use crate::args::*;
 use crate::progress::Progress;
 use anyhow::{anyhow, bail, Context, Result};
 use renderlab_core::{io, Image};
-use renderlab_hybrid::{memory, HybridRenderer};
+use renderlab_hybrid::{memory, HybridRenderer, StageConfig};
 use renderlab_lab::hybrid_lab::{
-    merge_runs, run_hybrid_bench, scenes, stages, Existing, HybridBenchConfig, HybridSummary, Shard,
+    merge_runs, run_hybrid_bench, scenes, Existing, HybridBenchConfig, HybridSummary, RunSettings, Shard,
     SweepKind,
 };
 
@@ -62,14 +62,7 @@ fn check_scene_memory(spec: &str, triangles: u64, w: u32, h: u32) -> Result<()> 
 pub(super) fn render(a: HybridRenderArgs) -> Result<()> {
     super::checks::check_out_file("--out", &a.out)?;
     let size = a.resolution.map(|s| resolution(s, false)).transpose()?;
-    let config = stages::stage_config(
-        a.shadows.as_deref(),
-        a.reflections.as_deref(),
-        a.translucency.as_deref(),
-        a.gi.as_deref(),
-        a.ao.as_deref(),
-    )
-    .map_err(|e| anyhow!(e))?;
+    let config = StageConfig::from_flags(|name| a.stages.get(name)).map_err(|e| anyhow!(e))?;
     if let Some(spp) = a.reference {
         if !(1..=1 << 20).contains(&spp) {
             bail!("--reference: {spp} must lie in 1..=1048576");
@@ -102,19 +95,9 @@ pub(super) fn render(a: HybridRenderArgs) -> Result<()> {
         }
         None => {
             let f = renderer.render(&camera, &config, a.seed)?;
-            let ms = &f.stage_ms;
-            let what = format!(
-                "{}: {} rays; ms: geometry {:.1}, shadows {:.1}, gi {:.1}, ao {:.1}, reflections {:.1}, compose {:.1}, translucency {:.1}",
-                config.label(),
-                f.rays.total(),
-                ms.geometry,
-                ms.shadows,
-                ms.gi,
-                ms.ao,
-                ms.reflections,
-                ms.compose,
-                ms.translucency
-            );
+            let ms: Vec<String> =
+                f.stage_ms.in_frame_order().iter().map(|(pass, ms)| format!("{pass} {ms:.1}")).collect();
+            let what = format!("{}: {} rays; ms: {}", config.label(), f.rays.total(), ms.join(", "));
             (f.hdr, what)
         }
     };
@@ -137,19 +120,21 @@ pub(super) fn bench(a: HybridBenchArgs) -> Result<()> {
             a.scenes.clone()
         },
         cameras: a.cameras.clone(),
-        width,
-        height,
-        sweep: match a.sweep {
-            SweepChoice::Thesis => SweepKind::Thesis,
-            SweepChoice::Report => SweepKind::Report,
+        run: RunSettings {
+            width,
+            height,
+            sweep: match a.sweep {
+                SweepChoice::Thesis => SweepKind::Thesis,
+                SweepChoice::Report => SweepKind::Report,
+            },
+            reference_spp: a.reference_spp,
+            warmup: a.warmup,
+            reps: a.reps,
+            seed: a.seed,
+            write_images: !a.no_images,
         },
-        reference_spp: a.reference_spp,
-        warmup: a.warmup,
-        reps: a.reps,
-        seed: a.seed,
         shard: a.shard.unwrap_or(Shard::WHOLE),
         existing: if a.resume { Existing::Resume } else { Existing::Refuse },
-        write_images: !a.no_images,
     };
     // Settings are checked (and scenes loaded) before anything is written.
     cfg.validate().context("hybrid bench")?;

@@ -1,4 +1,13 @@
-//! Ray-traced global illumination: one diffuse bounce.
+//! The global-illumination stage: the indirect diffuse term `diffuse_indirect`, which the
+//! composition multiplies by AO.
+//!
+//! # off: the raster ambient term
+//!
+//! A uniform sky of radiance `L` gives a Lambertian surface the irradiance `π L`, so
+//! `diffuse_indirect = L · kd · base_color` ([`diffuse_albedo`]): the raster pipeline's
+//! ambient estimate, as if the sky were seen over the whole hemisphere.
+//!
+//! # rt: one diffuse bounce
 //!
 //! From every opaque pixel, `samples_per_pixel` cosine-distributed rays (stratified, with a
 //! random rotation per pixel) find the nearest surface; its outgoing radiance toward the
@@ -11,14 +20,131 @@
 //! Only one bounce: light that reaches the hit point indirectly is left out, so converged
 //! GI equals a path tracer limited to paths of two segments (and no refraction).
 
-use crate::lighting::{diffuse_albedo, direct_light};
+use super::context::{par_pixels, StageContext};
+use super::entry::{Descriptor, Entry, Phase};
+use super::syntax::{check_count, count, split, unknown};
+use crate::accel::Accel;
+use crate::deferred::weights::diffuse_albedo;
+use crate::lighting::direct_light;
 use crate::reference::REGULARIZE_ROUGHNESS;
 use crate::rng::{stratified, Rng, Stream};
-use crate::stages::par_pixels;
-use crate::Accel;
 use glam::Vec3;
+use rayon::prelude::*;
 use renderlab_scene::sampling::{cosine_hemisphere, Frame};
 use renderlab_scene::{GBuffer, HybridScene};
+use serde::{Deserialize, Serialize};
+
+/// The stage's random stream.
+pub const STREAM: Stream = Stream(4);
+
+/// Ray-traced GI's default samples per pixel (the thesis's smallest setting).
+pub const DEFAULT_GI_SPP: u32 = 4;
+/// The thesis's GI samples per pixel.
+pub const THESIS_GI_SPP: [u32; 4] = [4, 8, 16, 32];
+
+/// The global-illumination stage's choice.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Gi {
+    /// No GI: the raster pipeline's ambient estimate (sky radiance times the diffuse albedo).
+    Off,
+    /// One diffuse bounce, `samples_per_pixel` cosine-distributed rays per pixel.
+    RayTraced {
+        /// Rays per pixel.
+        samples_per_pixel: u32,
+    },
+}
+
+impl Entry for Gi {
+    const DESCRIPTOR: Descriptor = Descriptor {
+        name: "gi",
+        syntax: "off|rt[:SPP]",
+        default: "off",
+        help: "Indirect diffuse light. off: the raster ambient term (sky radiance times the \
+               diffuse albedo). rt: one diffuse bounce with SPP cosine-distributed rays per \
+               pixel (default 4).",
+        phase: Phase::Terms,
+        sweep_position: 3,
+        stream: STREAM,
+    };
+
+    const BASELINE: Self = Gi::Off;
+
+    fn parse(value: &str) -> Result<Self, String> {
+        let d = &Self::DESCRIPTOR;
+        let (name, p) = split(d, value, 1)?;
+        match name {
+            "off" if p.is_empty() => Ok(Gi::Off),
+            "rt" => Ok(Gi::RayTraced { samples_per_pixel: count(d, "SPP", &p, 0, DEFAULT_GI_SPP)? }),
+            _ => Err(unknown(d, value)),
+        }
+    }
+
+    fn flag_value(&self) -> String {
+        match self {
+            Gi::Off => "off".into(),
+            Gi::RayTraced { samples_per_pixel } => format!("rt:{samples_per_pixel}"),
+        }
+    }
+
+    /// `gi-off` or `rt-gi {samples_per_pixel}spp`.
+    fn label(&self) -> String {
+        match self {
+            Gi::Off => "gi-off".into(),
+            Gi::RayTraced { samples_per_pixel } => format!("rt-gi {samples_per_pixel}spp"),
+        }
+    }
+
+    fn is_ray_traced(&self) -> bool {
+        matches!(self, Gi::RayTraced { .. })
+    }
+
+    fn validate(&self) -> Result<(), String> {
+        match *self {
+            Gi::Off => Ok(()),
+            Gi::RayTraced { samples_per_pixel } => check_count("GI samples per pixel", samples_per_pixel),
+        }
+    }
+
+    /// [`THESIS_GI_SPP`].
+    fn thesis_sweep() -> Vec<Self> {
+        THESIS_GI_SPP.iter().map(|&samples_per_pixel| Gi::RayTraced { samples_per_pixel }).collect()
+    }
+
+    /// 4 spp.
+    fn in_report_sweep(&self) -> bool {
+        matches!(self, Gi::RayTraced { samples_per_pixel: 4 })
+    }
+
+    fn sweep_count(&self) -> Option<u32> {
+        match *self {
+            Gi::RayTraced { samples_per_pixel } => Some(samples_per_pixel),
+            Gi::Off => None,
+        }
+    }
+
+    fn render(&self, ctx: &mut StageContext) -> u64 {
+        let g = ctx.gbuffer();
+        match *self {
+            Gi::Off => {
+                ctx.terms.diffuse_indirect = ambient_diffuse(g, ctx.scene.sky);
+                0
+            }
+            Gi::RayTraced { samples_per_pixel } => {
+                run(ctx.scene, ctx.accel, g, samples_per_pixel, ctx.seed, &mut ctx.terms.diffuse_indirect)
+            }
+        }
+    }
+}
+
+/// `diffuse_indirect`: the sky's radiance times each opaque pixel's diffuse albedo.
+pub fn ambient_diffuse(gbuffer: &GBuffer, sky: Vec3) -> Vec<Vec3> {
+    gbuffer
+        .opaque
+        .par_iter()
+        .enumerate()
+        .map(|(i, sp)| sp.as_ref().map_or(Vec3::ZERO, |sp| sky * diffuse_albedo(sp, -gbuffer.view_dir(i))))
+        .collect()
+}
 
 /// Writes the one-bounce diffuse indirect light of every opaque pixel; returns the rays
 /// traced (bounce rays and their shadow rays).
@@ -38,7 +164,7 @@ pub fn run(
             *out = Vec3::ZERO;
             return 0;
         }
-        let mut rng = Rng::new(seed, i as u64, Stream::Gi);
+        let mut rng = Rng::new(seed, i as u64, STREAM);
         let frame = Frame::new(sp.normal);
         let shift = rng.vec2();
         let n = samples_per_pixel.max(1);

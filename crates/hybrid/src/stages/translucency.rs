@@ -1,4 +1,24 @@
-//! Ray-traced translucency: refraction through the translucent layer.
+//! The translucency stage: the translucent layer drawn over the composed opaque image.
+//!
+//! # raster: sorted forward blending
+//!
+//! The forward translucent pass: the translucent layers of each pixel (kept by the geometry
+//! pass, nearest first, front and back faces alike) blended over the composed opaque image
+//! from back to front — sorting per pixel, so that intersecting and overlapping surfaces
+//! come out in the right order from any side.
+//!
+//! Each layer is lit like an opaque surface (the same direct lighting and shadows, the
+//! ambient diffuse term) plus a Fresnel reflection of the sky, and blended with the
+//! premultiplied "over" operator:
+//!
+//! `c ← layer + (1 − α) · base_color · c`, `α = 1 − transmission · (1 − F)`,
+//! `layer = emitted + direct + sky · kd · base_color + F · sky`,
+//!
+//! with `F` Schlick's Fresnel at `n·v` (its channel mean in α). The light behind passes
+//! straight through, tinted by the base colour: no refraction, the raster limitation the
+//! thesis describes, which the ray-traced translucency stage removes.
+//!
+//! # rt: refraction through the translucent layer
 //!
 //! For every pixel whose nearest visible surface is translucent, one path follows the
 //! light through it: at each translucent surface the path gathers the surface's emission
@@ -18,15 +38,210 @@
 //! `max_roughness` keep the raster result; at later surfaces rougher glass is treated as
 //! smooth (no perturbation).
 
+use super::context::{par_pixels, StageContext};
+use super::entry::{Descriptor, Entry, Phase, THESIS_ROUGHNESS};
+use super::syntax::{check_count, check_roughness, count, number, split, unknown};
 use crate::accel::resolve;
+use crate::accel::Accel;
+use crate::deferred::geometry::GeometryPass;
+use crate::deferred::lighting::{shade_direct, Visibility};
+use crate::deferred::weights::diffuse_albedo;
 use crate::lighting::{ambient, direct_light};
 use crate::rng::{Rng, Stream};
-use crate::stages::par_pixels;
-use crate::Accel;
 use glam::Vec3;
-use renderlab_scene::brdf::{alpha, f0_dielectric, fresnel_schlick};
+use rayon::prelude::*;
+use renderlab_scene::brdf::{self, alpha, f0_dielectric, fresnel_schlick};
 use renderlab_scene::sampling::{ggx_visible_normal, reflect, refract, Frame};
 use renderlab_scene::{GBuffer, HybridScene, ShadingPoint};
+use serde::{Deserialize, Serialize};
+
+/// The stage's random stream.
+pub const STREAM: Stream = Stream(3);
+
+/// Ray-traced translucency's default max refraction rays (the thesis's smallest setting).
+pub const DEFAULT_REFRACTION_RAYS: u32 = 3;
+/// Default max roughness of ray-traced translucency (every surface traced).
+pub const DEFAULT_MAX_ROUGHNESS: f32 = 1.0;
+/// The thesis's refraction-ray counts.
+pub const THESIS_REFRACTION_RAYS: [u32; 6] = [3, 10, 20, 30, 40, 50];
+
+/// The translucency stage's choice.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Translucency {
+    /// Sorted forward blending without refraction.
+    Raster,
+    /// Refraction through translucent surfaces with Snell's law, Fresnel and total internal
+    /// reflection, at most `max_refraction_rays` rays per path (an exhausted path is black).
+    RayTraced {
+        /// Rays traced from translucent surfaces per path (the thesis's Max Refraction Rays).
+        max_refraction_rays: u32,
+        /// Roughness above which a translucent pixel keeps the raster result.
+        max_roughness: f32,
+    },
+}
+
+impl Entry for Translucency {
+    const DESCRIPTOR: Descriptor = Descriptor {
+        name: "translucency",
+        syntax: "raster|rt[:RAYS[:MAXROUGH]]",
+        default: "raster",
+        help: "Translucent surfaces. raster: sorted forward blending without refraction. rt: \
+               refraction with Snell's law, Fresnel and total internal reflection, at most RAYS \
+               refraction rays per path (default 3; an exhausted path is black), on surfaces \
+               no rougher than MAXROUGH (default 1).",
+        phase: Phase::Over,
+        sweep_position: 1,
+        stream: STREAM,
+    };
+
+    const BASELINE: Self = Translucency::Raster;
+
+    fn parse(value: &str) -> Result<Self, String> {
+        let d = &Self::DESCRIPTOR;
+        let (name, p) = split(d, value, 2)?;
+        match name {
+            "raster" if p.is_empty() => Ok(Translucency::Raster),
+            "rt" => Ok(Translucency::RayTraced {
+                max_refraction_rays: count(d, "RAYS", &p, 0, DEFAULT_REFRACTION_RAYS)?,
+                max_roughness: number(d, "MAXROUGH", &p, 1, (0.0, 1.0), DEFAULT_MAX_ROUGHNESS)?,
+            }),
+            _ => Err(unknown(d, value)),
+        }
+    }
+
+    fn flag_value(&self) -> String {
+        match self {
+            Translucency::Raster => "raster".into(),
+            Translucency::RayTraced { max_refraction_rays, max_roughness } => {
+                format!("rt:{max_refraction_rays}:{max_roughness}")
+            }
+        }
+    }
+
+    /// `raster-translucency` or `rt-translucency n{max_refraction_rays} r{max_roughness}`.
+    fn label(&self) -> String {
+        match self {
+            Translucency::Raster => "raster-translucency".into(),
+            Translucency::RayTraced { max_refraction_rays, max_roughness } => {
+                format!("rt-translucency n{max_refraction_rays} r{max_roughness}")
+            }
+        }
+    }
+
+    fn is_ray_traced(&self) -> bool {
+        matches!(self, Translucency::RayTraced { .. })
+    }
+
+    fn validate(&self) -> Result<(), String> {
+        if let Translucency::RayTraced { max_refraction_rays, max_roughness } = *self {
+            check_count("max refraction rays", max_refraction_rays)?;
+            check_roughness("translucency max roughness", max_roughness)?;
+        }
+        Ok(())
+    }
+
+    /// [`THESIS_REFRACTION_RAYS`] × [`THESIS_ROUGHNESS`].
+    fn thesis_sweep() -> Vec<Self> {
+        let mut out = Vec::new();
+        for &max_refraction_rays in &THESIS_REFRACTION_RAYS {
+            for &max_roughness in &THESIS_ROUGHNESS {
+                out.push(Translucency::RayTraced { max_refraction_rays, max_roughness });
+            }
+        }
+        out
+    }
+
+    /// 3 and 10 refraction rays at max roughness 1.
+    fn in_report_sweep(&self) -> bool {
+        matches!(
+            *self,
+            Translucency::RayTraced { max_refraction_rays: 3 | 10, max_roughness } if max_roughness == 1.0
+        )
+    }
+
+    fn sweep_count(&self) -> Option<u32> {
+        match *self {
+            Translucency::RayTraced { max_refraction_rays, .. } => Some(max_refraction_rays),
+            Translucency::Raster => None,
+        }
+    }
+
+    fn sweep_roughness(&self) -> Option<f32> {
+        match *self {
+            Translucency::RayTraced { max_roughness, .. } => Some(max_roughness),
+            Translucency::Raster => None,
+        }
+    }
+
+    /// The raster choice blends the layers over `ctx.image`; the ray-traced one runs the
+    /// forward pass too where some translucent pixel is rougher than its limit (its
+    /// fallback), then follows refracted paths.
+    fn render(&self, ctx: &mut StageContext) -> u64 {
+        let (scene, geometry, g) = (ctx.scene, ctx.geometry, ctx.gbuffer());
+        let area_samples = ctx.raster.area_samples;
+        let forward = |opaque: &[Vec3], visibility: &dyn Visibility| {
+            forward_translucent(scene, geometry, opaque, visibility, area_samples)
+        };
+        match *self {
+            Translucency::Raster => {
+                ctx.image = forward(&ctx.image, ctx.visibility.as_ref());
+                0
+            }
+            Translucency::RayTraced { max_refraction_rays, max_roughness } => {
+                let rough = g.translucent.iter().flatten().any(|sp| sp.roughness > max_roughness);
+                let fallback = if rough { forward(&ctx.image, ctx.visibility.as_ref()) } else { Vec::new() };
+                let params = Params { max_refraction_rays, max_roughness };
+                run(scene, ctx.accel, g, params, ctx.seed, &fallback, &mut ctx.image)
+            }
+        }
+    }
+}
+
+/// Radiance a translucent layer adds and the fraction `1 − α` of the light behind it that it
+/// lets through (before tinting).
+pub fn layer_radiance(
+    scene: &HybridScene,
+    sp: &ShadingPoint,
+    v: Vec3,
+    pixel: usize,
+    visibility: &dyn Visibility,
+    area_samples: u32,
+) -> (Vec3, f32) {
+    let f = brdf::fresnel_schlick(sp.normal.dot(v).max(0.0), brdf::f0(sp));
+    let transmitted = sp.transmission * (1.0 - (f.x + f.y + f.z) / 3.0);
+    let radiance = sp.emissive
+        + shade_direct(scene, sp, v, pixel, visibility, area_samples)
+        + scene.sky * diffuse_albedo(sp, v)
+        + f * scene.sky;
+    (radiance, transmitted)
+}
+
+/// The final linear image: `opaque` (the composed opaque image) with every pixel's
+/// translucent layers blended over it, back to front.
+pub fn forward_translucent(
+    scene: &HybridScene,
+    geometry: &GeometryPass,
+    opaque: &[Vec3],
+    visibility: &dyn Visibility,
+    area_samples: u32,
+) -> Vec<Vec3> {
+    let g = &geometry.gbuffer;
+    opaque
+        .par_iter()
+        .enumerate()
+        .map(|(i, &behind)| {
+            let layers = &geometry.translucent_layers[i * geometry.layers..(i + 1) * geometry.layers];
+            if layers[0].is_none() {
+                return behind;
+            }
+            let v = -g.view_dir(i);
+            layers.iter().rev().flatten().fold(behind, |c, sp| {
+                let (radiance, transmitted) = layer_radiance(scene, sp, v, i, visibility, area_samples);
+                radiance + sp.base_color * transmitted * c
+            })
+        })
+        .collect()
+}
 
 /// Parameters of the stage.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -97,7 +312,7 @@ pub fn run(
             *out = fallback[i];
             return 0;
         }
-        let mut rng = Rng::new(seed, i as u64, Stream::Translucency);
+        let mut rng = Rng::new(seed, i as u64, STREAM);
         let mut rays = 0;
         let end = follow(scene, accel, sp, -g.view_dir(i), params, &mut rng, &mut rays);
         *out = end.radiance;

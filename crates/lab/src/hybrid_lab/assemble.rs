@@ -71,7 +71,7 @@ pub fn assemble(out: &Path) -> Result<HybridSummary> {
         if !manifest.shard.owns(i) {
             continue;
         }
-        match dir.row(id, view, row, s.write_images)? {
+        match dir.row(id, view, row, s.run.write_images)? {
             Some(r) => rows.push((r, view)),
             None => missing += 1,
         }
@@ -90,7 +90,7 @@ pub fn assemble(out: &Path) -> Result<HybridSummary> {
             LabError::Hybrid(format!("{}: row {} has no reference in refs/", out.display(), r.id))
         })?;
         let baseline = rows.iter().find(|(b, v)| v == view && b.row.stage == Stage::Baseline).map(|(b, _)| b);
-        records.push(HybridRecord::new(r, view.camera_index, baseline, s.width, s.height, info));
+        records.push(HybridRecord::new(r, view.camera_index, baseline, s.run.width, s.run.height, info));
     }
     let rows: Vec<RowResult> = rows.into_iter().map(|(r, _)| r).collect();
     let results = Results {
@@ -121,7 +121,7 @@ pub fn assemble(out: &Path) -> Result<HybridSummary> {
 /// Per stage, over every view: the most expensive and the most accurate setting.
 fn findings(records: &[HybridRecord]) -> Vec<String> {
     let mut out = Vec::new();
-    for stage in [Stage::Shadows, Stage::Translucency, Stage::Reflections, Stage::Gi, Stage::Ao] {
+    for stage in Stage::swept() {
         let rs: Vec<&HybridRecord> = records.iter().filter(|r| r.stage == stage.name()).collect();
         if rs.is_empty() {
             continue;
@@ -157,8 +157,8 @@ fn headline(records: &[HybridRecord], m: &Manifest) -> String {
         "{} rows over {} views at {}×{} against {}-spp path-traced references; the all-raster baseline's mean PSNR is {psnr} dB.",
         records.len(),
         m.settings.views.len(),
-        m.settings.width,
-        m.settings.height,
-        m.settings.reference_spp,
+        m.settings.run.width,
+        m.settings.run.height,
+        m.settings.run.reference_spp,
     )
 }

@@ -66,13 +66,11 @@ pub enum Existing {
     Replace,
 }
 
-/// Settings of one hybrid run.
-#[derive(Clone, Debug)]
-pub struct HybridBenchConfig {
-    /// Scene specs: built-in names or scene files.
-    pub scenes: Vec<String>,
-    /// Camera names to render in every scene; empty: each scene's own cameras, all of them.
-    pub cameras: Vec<String>,
+/// The numbers of a run that decide its results: as the command line gives them (in
+/// [`HybridBenchConfig`]) and as the run directory records them (`run.json`, flattened into
+/// [`Settings`](super::Settings), with the reference's spp rounded up to even).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RunSettings {
     /// Frame width in pixels.
     pub width: u32,
     /// Frame height in pixels.
@@ -87,21 +85,15 @@ pub struct HybridBenchConfig {
     pub reps: u32,
     /// Seed of every stage's and the reference's random numbers.
     pub seed: u64,
-    /// Which part of the rows this process renders.
-    pub shard: Shard,
-    /// What to do with rows already there.
-    pub existing: Existing,
     /// Whether to write each row's image and error image (the reference is always written).
     pub write_images: bool,
 }
 
-impl Default for HybridBenchConfig {
-    /// Every built-in scene and camera at 320×180, the thesis's sweeps, a 64-spp reference,
-    /// one warm-up and three timed frames.
+impl Default for RunSettings {
+    /// 320×180, the thesis's sweeps, a 64-spp reference, one warm-up and three timed
+    /// frames, seed 1, images written.
     fn default() -> Self {
         Self {
-            scenes: super::scenes::BUILTIN.iter().map(|s| s.to_string()).collect(),
-            cameras: Vec::new(),
             width: 320,
             height: 180,
             sweep: SweepKind::Thesis,
@@ -109,9 +101,36 @@ impl Default for HybridBenchConfig {
             warmup: 1,
             reps: 3,
             seed: 1,
+            write_images: true,
+        }
+    }
+}
+
+/// Settings of one hybrid run.
+#[derive(Clone, Debug)]
+pub struct HybridBenchConfig {
+    /// Scene specs: built-in names or scene files.
+    pub scenes: Vec<String>,
+    /// Camera names to render in every scene; empty: each scene's own cameras, all of them.
+    pub cameras: Vec<String>,
+    /// Resolution, sweep, reference, timing, seed and images.
+    pub run: RunSettings,
+    /// Which part of the rows this process renders.
+    pub shard: Shard,
+    /// What to do with rows already there.
+    pub existing: Existing,
+}
+
+impl Default for HybridBenchConfig {
+    /// Every built-in scene and camera with the default [`RunSettings`], the whole run,
+    /// refusing a directory that holds rows.
+    fn default() -> Self {
+        Self {
+            scenes: super::scenes::BUILTIN.iter().map(|s| s.to_string()).collect(),
+            cameras: Vec::new(),
+            run: RunSettings::default(),
             shard: Shard::WHOLE,
             existing: Existing::Refuse,
-            write_images: true,
         }
     }
 }
@@ -120,18 +139,19 @@ impl HybridBenchConfig {
     /// Checks the numbers (the scenes and cameras are checked when they are loaded).
     pub fn validate(&self) -> Result<()> {
         let bad = |m: String| Err(LabError::Hybrid(m));
-        super::scenes::check_resolution(self.width, self.height)?;
+        let r = &self.run;
+        super::scenes::check_resolution(r.width, r.height)?;
         if self.scenes.is_empty() {
             return bad("give at least one scene".into());
         }
-        if !(2..=1 << 20).contains(&self.reference_spp) {
-            return bad(format!("reference spp {} must lie in 2..=1048576", self.reference_spp));
+        if !(2..=1 << 20).contains(&r.reference_spp) {
+            return bad(format!("reference spp {} must lie in 2..=1048576", r.reference_spp));
         }
-        if !(1..=1000).contains(&self.reps) {
-            return bad(format!("reps {} must lie in 1..=1000", self.reps));
+        if !(1..=1000).contains(&r.reps) {
+            return bad(format!("reps {} must lie in 1..=1000", r.reps));
         }
-        if self.warmup > 100 {
-            return bad(format!("warm-up {} must lie in 0..=100", self.warmup));
+        if r.warmup > 100 {
+            return bad(format!("warm-up {} must lie in 0..=100", r.warmup));
         }
         Ok(())
     }
@@ -161,9 +181,12 @@ mod tests {
     fn bad_settings_are_refused() {
         assert!(HybridBenchConfig::default().validate().is_ok());
         for cfg in [
-            HybridBenchConfig { width: 0, ..Default::default() },
-            HybridBenchConfig { reference_spp: 1, ..Default::default() },
-            HybridBenchConfig { reps: 0, ..Default::default() },
+            HybridBenchConfig { run: RunSettings { width: 0, ..Default::default() }, ..Default::default() },
+            HybridBenchConfig {
+                run: RunSettings { reference_spp: 1, ..Default::default() },
+                ..Default::default()
+            },
+            HybridBenchConfig { run: RunSettings { reps: 0, ..Default::default() }, ..Default::default() },
             HybridBenchConfig { scenes: vec![], ..Default::default() },
         ] {
             assert!(cfg.validate().is_err(), "{cfg:?}");

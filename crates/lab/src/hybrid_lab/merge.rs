@@ -117,10 +117,10 @@ pub fn merge_runs(parts: &[PathBuf], out: &Path) -> Result<HybridSummary> {
     for (id, view, row) in &all {
         let src = owner[id.as_str()];
         let r = src
-            .row(id, view, row, s.write_images)?
+            .row(id, view, row, s.run.write_images)?
             .ok_or_else(|| LabError::Hybrid(format!("{}: row {id} vanished", src.root.display())))?;
         if !refs.iter().any(|(_, v)| v == view) {
-            check_reference(src, view, s.width, s.height)?;
+            check_reference(src, view, s.run.width, s.run.height)?;
             refs.push((src, view));
         }
         rows.push((src, r));

@@ -20,12 +20,11 @@ mod page;
 mod record;
 mod run;
 pub mod scenes;
-pub mod stages;
 mod store;
 pub mod sweep;
 
 pub use assemble::{assemble, HybridSummary};
-pub use config::{Existing, HybridBenchConfig, Shard};
+pub use config::{Existing, HybridBenchConfig, RunSettings, Shard};
 pub use merge::merge_runs;
 pub use record::{HybridRecord, RowResult};
 pub use run::run_hybrid_bench;

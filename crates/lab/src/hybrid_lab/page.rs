@@ -143,13 +143,13 @@ pub(super) fn write_page(
         });
     }
     let page = Page {
-        width: s.width,
-        height: s.height,
-        reference_spp: s.reference_spp,
-        reps: s.reps,
-        warmup: s.warmup,
+        width: s.run.width,
+        height: s.run.height,
+        reference_spp: s.run.reference_spp,
+        reps: s.run.reps,
+        warmup: s.run.warmup,
         threads: rayon::current_num_threads(),
-        sweep: format!("{:?}", s.sweep).to_lowercase(),
+        sweep: format!("{:?}", s.run.sweep).to_lowercase(),
         shard: manifest.shard.to_string(),
         missing,
         error_space: ERROR_SPACE,

@@ -8,7 +8,7 @@
 //! stderr, and removes the temporary files a killed run left.
 
 use super::assemble::{assemble, HybridSummary};
-use super::config::{Existing, HybridBenchConfig};
+use super::config::{Existing, HybridBenchConfig, RunSettings};
 use super::record::RefInfo;
 use super::record::RowResult;
 use super::scenes::{self, camera_names};
@@ -45,14 +45,7 @@ pub fn run_hybrid_bench(cfg: &HybridBenchConfig, out: &Path, progress: Progress)
     let settings = Settings {
         format: FORMAT,
         version: env!("CARGO_PKG_VERSION").to_string(),
-        width: cfg.width,
-        height: cfg.height,
-        sweep: cfg.sweep,
-        reference_spp: cfg.reference_spp + cfg.reference_spp % 2,
-        warmup: cfg.warmup,
-        reps: cfg.reps,
-        seed: cfg.seed,
-        write_images: cfg.write_images,
+        run: RunSettings { reference_spp: cfg.run.reference_spp + cfg.run.reference_spp % 2, ..cfg.run },
         views,
     };
     let manifest = Manifest { settings, shard: cfg.shard };
@@ -89,7 +82,7 @@ pub fn run_hybrid_bench(cfg: &HybridBenchConfig, out: &Path, progress: Progress)
         let mut todo = Vec::new();
         for entry in rows {
             let (id, _, row) = entry;
-            match dir.check_row(id, view, row, s.write_images) {
+            match dir.check_row(id, view, row, s.run.write_images) {
                 RowState::Done(_) => done += 1,
                 RowState::Missing => todo.push(entry),
                 RowState::Bad(why) => {
@@ -128,8 +121,8 @@ pub fn run_hybrid_bench(cfg: &HybridBenchConfig, out: &Path, progress: Progress)
             renderer = Some((view.scene.clone(), r));
         }
         let r = &renderer.as_ref().expect("renderer").1;
-        let camera = scenes::camera_at(r.scene(), view.camera_index, cfg.width, cfg.height)?;
-        let spp = s.reference_spp;
+        let camera = scenes::camera_at(r.scene(), view.camera_index, cfg.run.width, cfg.run.height)?;
+        let spp = s.run.reference_spp;
         progress(done, total, &format!("{}: reference, {spp} spp", view.id));
         let stored = matches!(state, RefState::Good | RefState::Repaired(_));
         let reference = reference(&dir, view, r, &camera, s, stored, &|f| {
@@ -266,14 +259,14 @@ fn check_reference(dir: &RunDir, view: &View, s: &Settings) -> Result<RefState> 
         Ok(i) => i,
         Err(e) => return Ok(RefState::Bad(e.to_string())),
     };
-    if info.image != reference_image(view) || info.spp != s.reference_spp {
+    if info.image != reference_image(view) || info.spp != s.run.reference_spp {
         return Ok(RefState::Bad(format!("{} is another reference's", json.display())));
     }
     let img = match load_color(&exr) {
         Ok(img) => img,
         Err(e) => return Ok(RefState::Bad(e.to_string())),
     };
-    if img.size() != (s.width, s.height) {
+    if img.size() != (s.run.width, s.run.height) {
         return Ok(RefState::Bad(format!("{} is {}x{}", exr.display(), img.width(), img.height())));
     }
     let png = dir.root.join(&info.image);
@@ -307,12 +300,12 @@ fn reference(
     let started = Instant::now();
     let reference = r.reference_with_progress(
         camera,
-        s.reference_spp,
-        s.seed.wrapping_add(REFERENCE_SEED_OFFSET),
+        s.run.reference_spp,
+        s.run.seed.wrapping_add(REFERENCE_SEED_OFFSET),
         progress,
     )?;
     let seconds = started.elapsed().as_secs_f64();
-    let image = |v: Vec<Vec3>| Image::from_vec(s.width, s.height, v);
+    let image = |v: Vec<Vec3>| Image::from_vec(s.run.width, s.run.height, v);
     let (hdr, a, b) = (image(reference.hdr)?, image(reference.half_a)?, image(reference.half_b)?);
     let halves = compare(&a, &b, None).metrics;
     let rel = reference_image(view);
@@ -337,11 +330,7 @@ fn stage_cost(stage: Stage, f: &HybridFrame) -> (f64, u64) {
     let (ms, rays) = (&f.stage_ms, &f.rays);
     match stage {
         Stage::Baseline => (ms.total(), rays.total()),
-        Stage::Shadows => (ms.shadows, rays.shadows),
-        Stage::Translucency => (ms.translucency, rays.translucency),
-        Stage::Reflections => (ms.reflections, rays.reflections),
-        Stage::Gi => (ms.gi, rays.gi),
-        Stage::Ao => (ms.ao, rays.ao),
+        Stage::Swept(id) => (ms.get(id), rays.get(id)),
     }
 }
 
@@ -357,9 +346,9 @@ fn measure_row(
     reference: &Image<Vec3>,
     cfg: &HybridBenchConfig,
 ) -> Result<RowResult> {
-    let mut stage_ms = Vec::with_capacity(cfg.reps as usize);
-    let (timing, frame) = measure(cfg.warmup, cfg.reps, || {
-        let f = r.render(camera, &row.config, cfg.seed);
+    let mut stage_ms = Vec::with_capacity(cfg.run.reps as usize);
+    let (timing, frame) = measure(cfg.run.warmup, cfg.run.reps, || {
+        let f = r.render(camera, &row.config, cfg.run.seed);
         if let Ok(f) = &f {
             stage_ms.push(stage_cost(row.stage, f).0);
         }
@@ -367,14 +356,14 @@ fn measure_row(
     });
     let frame = frame?;
     // The warm-up frames come first: the timed ones are the last `reps`.
-    let timed = &stage_ms[stage_ms.len().saturating_sub(cfg.reps as usize)..];
+    let timed = &stage_ms[stage_ms.len().saturating_sub(cfg.run.reps as usize)..];
     let stage_median = crate::timing::Timing::from_samples(timed).map_or(f64::NAN, |t| t.median_ms);
     let stage_rays = stage_cost(row.stage, &frame).1;
     let rays = frame.rays.total();
     let image = Image::from_vec(frame.width, frame.height, frame.hdr)?;
     let cmp = compare(&image, reference, None);
-    let (rel, err_rel) = row_images(id, cfg.write_images);
-    if cfg.write_images {
+    let (rel, err_rel) = row_images(id, cfg.run.write_images);
+    if cfg.run.write_images {
         save_color(dir.root.join(&rel), &image)?;
         let heat = with_legend(&heat_image(&cmp.flip_map, 1.0, None), 1.0, "FLIP");
         save_rgb8(dir.root.join(&err_rel), &heat)?;

@@ -8,10 +8,10 @@
 //! are there ([`RunDir::check_row`]); anything else is rendered again, so that a damaged
 //! directory repairs itself on `--resume`.
 
-use super::config::Shard;
+use super::config::{RunSettings, Shard};
 use super::record::RowResult;
 use super::scenes::slug;
-use super::sweep::{SweepKind, SweepRow};
+use super::sweep::SweepRow;
 use crate::error::{LabError, Result};
 use crate::results::write_json;
 use renderlab_core::fs::read_bounded;
@@ -59,22 +59,10 @@ pub struct Settings {
     pub format: u32,
     /// Version of the lab that wrote the run.
     pub version: String,
-    /// Frame width.
-    pub width: u32,
-    /// Frame height.
-    pub height: u32,
-    /// Which rows per view.
-    pub sweep: SweepKind,
-    /// Reference paths per pixel.
-    pub reference_spp: u32,
-    /// Untimed frames per row.
-    pub warmup: u32,
-    /// Timed frames per row.
-    pub reps: u32,
-    /// Seed of every random number.
-    pub seed: u64,
-    /// Whether row images are written.
-    pub write_images: bool,
+    /// Resolution, sweep, reference (its spp rounded up to even), timing, seed and images,
+    /// written as fields of this object.
+    #[serde(flatten)]
+    pub run: RunSettings,
     /// The views, in order.
     pub views: Vec<View>,
 }
@@ -82,7 +70,7 @@ pub struct Settings {
 impl Settings {
     /// Every row of the run in canonical order (views × sweep), with its identifier.
     pub fn rows(&self) -> Vec<(String, &View, SweepRow)> {
-        let sweep = self.sweep.rows();
+        let sweep = self.run.sweep.rows();
         let mut out = Vec::with_capacity(self.views.len() * sweep.len());
         for v in &self.views {
             for r in &sweep {

@@ -1,26 +1,19 @@
 //! The rows a run renders per view: the all-raster baseline and the thesis's sweeps, one
 //! stage ray traced at a time with every other stage at its baseline choice, as the thesis
-//! measured them.
+//! measured them. Each stage's settings, their order and which of them the report keeps
+//! come from the hybrid crate's stage registry (`renderlab_hybrid::stages`).
 
-use renderlab_hybrid::{Ao, Gi, Reflections, Shadows, StageConfig, Translucency};
-use serde::{Deserialize, Serialize};
+use renderlab_hybrid::{StageConfig, StageId};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-/// Which stage a row sweeps (the baseline sweeps none).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
+/// Which stage a row sweeps (the baseline sweeps none). Written as the stage's name, or
+/// `baseline`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Stage {
     /// The all-raster frame every other row is compared with.
     Baseline,
-    /// Ray-traced shadows.
-    Shadows,
-    /// Ray-traced translucency.
-    Translucency,
-    /// Ray-traced reflections.
-    Reflections,
-    /// Ray-traced GI.
-    Gi,
-    /// Ray-traced AO.
-    Ao,
+    /// One stage ray traced.
+    Swept(StageId),
 }
 
 impl Stage {
@@ -28,12 +21,34 @@ impl Stage {
     pub fn name(self) -> &'static str {
         match self {
             Stage::Baseline => "baseline",
-            Stage::Shadows => "shadows",
-            Stage::Translucency => "translucency",
-            Stage::Reflections => "reflections",
-            Stage::Gi => "gi",
-            Stage::Ao => "ao",
+            Stage::Swept(id) => id.name(),
         }
+    }
+
+    /// The stage named `name` (`baseline` or a stage's name).
+    pub fn from_name(name: &str) -> Option<Stage> {
+        match name {
+            "baseline" => Some(Stage::Baseline),
+            _ => StageId::from_name(name).map(Stage::Swept),
+        }
+    }
+
+    /// Every swept stage, in the order of the thesis's sweeps.
+    pub fn swept() -> Vec<Stage> {
+        StageId::in_sweep_order().into_iter().map(Stage::Swept).collect()
+    }
+}
+
+impl Serialize for Stage {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}
+
+impl<'de> Deserialize<'de> for Stage {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(d)?;
+        Stage::from_name(&name).ok_or_else(|| serde::de::Error::custom(format!("unknown stage {name:?}")))
     }
 }
 
@@ -55,55 +70,20 @@ impl SweepRow {
     /// The swept parameter that counts work (shadow samples, refraction rays, bounces, spp);
     /// `None` for the baseline.
     pub fn count(&self) -> Option<u32> {
-        let c = &self.config;
         match self.stage {
             Stage::Baseline => None,
-            Stage::Shadows => match c.shadows {
-                Shadows::RayTraced { samples_per_light } => Some(samples_per_light),
-                Shadows::Raster => None,
-            },
-            Stage::Translucency => match c.translucency {
-                Translucency::RayTraced { max_refraction_rays, .. } => Some(max_refraction_rays),
-                Translucency::Raster => None,
-            },
-            Stage::Reflections => match c.reflections {
-                Reflections::RayTraced { max_bounces, .. } => Some(max_bounces),
-                Reflections::ScreenSpace => None,
-            },
-            Stage::Gi => match c.gi {
-                Gi::RayTraced { samples_per_pixel } => Some(samples_per_pixel),
-                Gi::Off => None,
-            },
-            Stage::Ao => match c.ao {
-                Ao::RayTraced { samples_per_pixel, .. } => Some(samples_per_pixel),
-                _ => None,
-            },
+            Stage::Swept(id) => self.config.sweep_count(id),
         }
     }
 
     /// The swept max roughness (reflections, translucency), else `None`.
     pub fn max_roughness(&self) -> Option<f32> {
-        match (self.stage, self.config.reflections, self.config.translucency) {
-            (Stage::Reflections, Reflections::RayTraced { max_roughness, .. }, _) => Some(max_roughness),
-            (Stage::Translucency, _, Translucency::RayTraced { max_roughness, .. }) => Some(max_roughness),
-            _ => None,
+        match self.stage {
+            Stage::Baseline => None,
+            Stage::Swept(id) => self.config.sweep_roughness(id),
         }
     }
 }
-
-/// The thesis's refraction-ray counts.
-pub const THESIS_REFRACTION_RAYS: [u32; 6] = [3, 10, 20, 30, 40, 50];
-/// The thesis's reflection bounce counts.
-pub const THESIS_BOUNCES: [u32; 5] = [1, 2, 4, 8, 16];
-/// The thesis's max-roughness settings of reflections and translucency.
-pub const THESIS_ROUGHNESS: [f32; 4] = [0.01, 0.1, 0.5, 1.0];
-/// The thesis's GI samples per pixel.
-pub const THESIS_GI_SPP: [u32; 4] = [4, 8, 16, 32];
-/// The thesis's AO samples per pixel.
-pub const THESIS_AO_SPP: [u32; 4] = [1, 2, 4, 16];
-/// Shadow rays per area light of the ray-traced shadow row (one, as a real-time engine
-/// traces before denoising).
-pub const SHADOW_SAMPLES: u32 = 1;
 
 /// Which list of rows a run renders.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -125,56 +105,30 @@ impl SweepKind {
     }
 }
 
-fn row(stage: Stage, f: impl FnOnce(&mut StageConfig)) -> SweepRow {
-    let mut config = StageConfig::all_raster();
-    f(&mut config);
-    SweepRow { stage, config }
-}
-
-/// The baseline; ray-traced shadows; translucency with {3, 10, 20, 30, 40, 50} refraction
-/// rays × max roughness {0.01, 0.1, 0.5, 1}; reflections with {1, 2, 4, 8, 16} bounces × the
-/// same roughness; GI at {4, 8, 16, 32} spp; AO at {1, 2, 4, 16} spp with the SSAO radius.
+/// The baseline, then every stage's thesis sweep in the order of the thesis's sweeps:
+/// ray-traced shadows; translucency with {3, 10, 20, 30, 40, 50} refraction rays × max
+/// roughness {0.01, 0.1, 0.5, 1}; reflections with {1, 2, 4, 8, 16} bounces × the same
+/// roughness; GI at {4, 8, 16, 32} spp; AO at {1, 2, 4, 16} spp with the SSAO radius.
 pub fn thesis_rows() -> Vec<SweepRow> {
-    let mut rows = vec![
-        row(Stage::Baseline, |_| {}),
-        row(Stage::Shadows, |c| c.shadows = Shadows::RayTraced { samples_per_light: SHADOW_SAMPLES }),
-    ];
-    for &n in &THESIS_REFRACTION_RAYS {
-        for &r in &THESIS_ROUGHNESS {
-            rows.push(row(Stage::Translucency, |c| {
-                c.translucency = Translucency::RayTraced { max_refraction_rays: n, max_roughness: r }
-            }));
-        }
-    }
-    for &b in &THESIS_BOUNCES {
-        for &r in &THESIS_ROUGHNESS {
-            rows.push(row(Stage::Reflections, |c| {
-                c.reflections = Reflections::RayTraced { max_bounces: b, max_roughness: r }
-            }));
-        }
-    }
-    for &spp in &THESIS_GI_SPP {
-        rows.push(row(Stage::Gi, |c| c.gi = Gi::RayTraced { samples_per_pixel: spp }));
-    }
-    for &spp in &THESIS_AO_SPP {
-        rows.push(row(Stage::Ao, |c| {
-            c.ao = Ao::RayTraced { samples_per_pixel: spp, radius: renderlab_hybrid::config::SSAO_RADIUS }
-        }));
+    let mut rows = vec![SweepRow { stage: Stage::Baseline, config: StageConfig::all_raster() }];
+    for id in StageId::in_sweep_order() {
+        rows.extend(
+            StageConfig::thesis_sweep(id)
+                .into_iter()
+                .map(|config| SweepRow { stage: Stage::Swept(id), config }),
+        );
     }
     rows
 }
 
-/// The report's reduced sweep, a subset of [`thesis_rows`]: the baseline, ray-traced
-/// shadows, translucency with 3 and 10 refraction rays at max roughness 1, reflections with
-/// 1 and 4 bounces at max roughness 1, GI at 4 spp and AO at 1 and 4 spp.
+/// The report's reduced sweep, a subset of [`thesis_rows`]: the baseline and the settings
+/// each stage keeps for the report (ray-traced shadows, translucency with 3 and 10
+/// refraction rays at max roughness 1, reflections with 1 and 4 bounces at max roughness 1,
+/// GI at 4 spp and AO at 1 and 4 spp).
 pub fn report_rows() -> Vec<SweepRow> {
     let keep = |r: &SweepRow| match r.stage {
-        Stage::Baseline | Stage::Shadows => true,
-        Stage::Translucency | Stage::Reflections => {
-            r.max_roughness() == Some(1.0) && matches!(r.count(), Some(1 | 3 | 4 | 10))
-        }
-        Stage::Gi => r.count() == Some(4),
-        Stage::Ao => matches!(r.count(), Some(1 | 4)),
+        Stage::Baseline => true,
+        Stage::Swept(id) => r.config.in_report_sweep(id),
     };
     thesis_rows().into_iter().filter(keep).collect()
 }
@@ -201,8 +155,19 @@ mod tests {
                 r.config.ao != base.ao,
             ];
             let n = differs.iter().filter(|&&d| d).count();
+            assert_eq!(n, StageId::ALL.iter().filter(|&&s| r.config.differs(s)).count());
             assert_eq!(n, usize::from(r.stage != Stage::Baseline), "{}", r.label());
         }
+    }
+
+    #[test]
+    fn stages_are_written_by_name() {
+        for s in [Stage::Baseline, Stage::Swept(StageId::Gi), Stage::Swept(StageId::Translucency)] {
+            let text = serde_json::to_string(&s).unwrap();
+            assert_eq!(text, format!("\"{}\"", s.name()));
+            assert_eq!(serde_json::from_str::<Stage>(&text).unwrap(), s);
+        }
+        assert!(serde_json::from_str::<Stage>("\"glass\"").is_err());
     }
 
     #[test]
@@ -211,9 +176,16 @@ mod tests {
         let report = report_rows();
         assert_eq!(report.len(), 9);
         assert!(report.iter().all(|r| thesis.contains(r)));
-        for s in
-            [Stage::Baseline, Stage::Shadows, Stage::Translucency, Stage::Reflections, Stage::Gi, Stage::Ao]
-        {
+        let every = [
+            Stage::Baseline,
+            Stage::Swept(StageId::Shadows),
+            Stage::Swept(StageId::Translucency),
+            Stage::Swept(StageId::Reflections),
+            Stage::Swept(StageId::Gi),
+            Stage::Swept(StageId::Ao),
+        ];
+        assert_eq!(every[1..], Stage::swept()[..]);
+        for s in every {
             assert!(report.iter().any(|r| r.stage == s), "{s:?}");
         }
     }

@@ -4,7 +4,7 @@
 //! The full sweep is `renderlab hybrid bench --resolution 1920x1080`.
 
 use crate::error::Result;
-use crate::hybrid_lab::{run_hybrid_bench, Existing, HybridBenchConfig, SweepKind};
+use crate::hybrid_lab::{run_hybrid_bench, Existing, HybridBenchConfig, RunSettings, SweepKind};
 use crate::lab::{create_dir, files_under, Lab, LabSummary, Progress};
 use std::path::Path;
 use std::time::Instant;
@@ -31,12 +31,15 @@ impl Lab for HybridLab {
         Ok(HybridLab {
             config: HybridBenchConfig {
                 cameras: vec!["cam1".into()],
-                width: 320,
-                height: 180,
-                sweep: SweepKind::Report,
-                reference_spp: REPORT_REFERENCE_SPP,
-                warmup: 1,
-                reps: 3,
+                run: RunSettings {
+                    width: 320,
+                    height: 180,
+                    sweep: SweepKind::Report,
+                    reference_spp: REPORT_REFERENCE_SPP,
+                    warmup: 1,
+                    reps: 3,
+                    ..RunSettings::default()
+                },
                 existing: Existing::Replace,
                 ..HybridBenchConfig::default()
             },
@@ -46,8 +49,8 @@ impl Lab for HybridLab {
     /// The same rows at 160×90 with an 8-spp reference and one frame per row.
     fn quick_preset() -> Result<Self> {
         let mut lab = Self::report_preset()?;
-        lab.config =
-            HybridBenchConfig { width: 160, height: 90, reference_spp: 8, warmup: 0, reps: 1, ..lab.config };
+        lab.config.run =
+            RunSettings { width: 160, height: 90, reference_spp: 8, warmup: 0, reps: 1, ..lab.config.run };
         Ok(lab)
     }
 

@@ -1,13 +1,13 @@
 //! Renders the deferred pipeline's showcase scene (a floor, columns, a back wall, a gold
 //! sphere, a glass sphere; a directional, a point and an area light) and writes a PNG.
 //!
-//! `cargo run -p renderlab-raster --example deferred -- [OUT.png] [WIDTHxHEIGHT]`
+//! `cargo run -p renderlab-hybrid --example deferred -- [OUT.png] [WIDTHxHEIGHT]`
 
-#[path = "../tests/hybrid_common/mod.rs"]
-mod hybrid_common;
+#[path = "../tests/deferred_common/mod.rs"]
+mod deferred_common;
 
 use glam::Vec3;
-use renderlab_raster::deferred::{render, PreparedScene, RasterSettings};
+use renderlab_hybrid::deferred::{render, PreparedScene, RasterSettings};
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
@@ -20,9 +20,9 @@ fn main() -> ExitCode {
         eprintln!("deferred: size {size:?} is not WIDTHxHEIGHT");
         return ExitCode::FAILURE;
     };
-    let scene = hybrid_common::showcase(8);
+    let scene = deferred_common::showcase(8);
     let prepared = PreparedScene::new(&scene);
-    let camera = hybrid_common::camera(Vec3::new(0.5, 3.2, 8.5), Vec3::new(0.0, 1.0, -1.0), Vec3::Y, w, h);
+    let camera = deferred_common::camera(Vec3::new(0.5, 3.2, 8.5), Vec3::new(0.0, 1.0, -1.0), Vec3::Y, w, h);
     let settings = RasterSettings::default();
     let frame = match render(&prepared, &camera, &settings) {
         Ok(f) => f,

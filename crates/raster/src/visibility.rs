@@ -1,10 +1,10 @@
-//! The visibility-buffer rasterizer of the deferred pipeline: world-space meshes seen through
-//! any projection (the camera's perspective, a light's perspective or orthographic view)
-//! rasterized into, per pixel, the nearest triangle's id and depth key, or the nearest few
+//! The visibility-buffer rasterizer (the hybrid crate's geometry pass and shadow maps draw
+//! with it): world-space meshes seen through any projection (the camera's perspective, a
+//! light's perspective or orthographic view) rasterized into, per pixel, the nearest triangle's id and depth key, or the nearest few
 //! (the translucent layers). It reuses the crate's clipping, fixed-point edge functions,
 //! fill rule and band binning; only the per-triangle setup differs: instead of every
-//! attribute's plane it keeps the three rows of `M⁻¹` (see [`crate::setup`]), from which
-//! the perspective-correct barycentrics at a pixel centre follow exactly:
+//! attribute's plane it keeps the three rows of `M⁻¹` (see the crate's `setup` module),
+//! from which the perspective-correct barycentrics at a pixel centre follow exactly:
 //! `qᵢ = rowᵢ · (x, y, 1) = λᵢ / w`, `λᵢ = qᵢ / Σ q`.
 //!
 //! The depth key is `1 − Z/W` (the reversed NDC depth), a plane in screen space for
@@ -23,7 +23,7 @@ use rayon::prelude::*;
 use renderlab_core::Mesh;
 
 /// Marks a pixel that no triangle reached.
-pub(crate) const NO_TRIANGLE: u32 = u32::MAX;
+pub const NO_TRIANGLE: u32 = u32::MAX;
 
 /// Triangles per parallel setup task.
 const SETUP_CHUNK: usize = 2048;
@@ -33,8 +33,8 @@ const SETUP_CHUNK: usize = 2048;
 const DET_EPSILON: f64 = 1e-14;
 
 /// One mesh to draw.
-#[derive(Clone, Copy)]
-pub(crate) struct Source<'a> {
+#[derive(Clone, Copy, Debug)]
+pub struct Source<'a> {
     /// World-space mesh.
     pub mesh: &'a Mesh,
     /// Instance index reported back for its pixels.
@@ -45,7 +45,7 @@ pub(crate) struct Source<'a> {
 
 /// A set-up triangle: enough to recover the barycentrics at any pixel.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct VisTriangle {
+pub struct VisTriangle {
     /// Rows of `M⁻¹`: `rowᵢ · (x, y, 1) = λᵢ / w`.
     rows: [DVec3; 3],
     /// Instance index.
@@ -67,7 +67,7 @@ impl VisTriangle {
 }
 
 /// Everything set up for one view: triangles, their screen triangles and the bins.
-pub(crate) struct VisFrame {
+pub struct VisFrame {
     /// Set-up triangles, in submission order.
     pub tris: Vec<VisTriangle>,
     raster: Vec<RasterTriangle>,

@@ -8,10 +8,10 @@
 //! opaque one are kept, nearest first. The nearest goes to `GBuffer::translucent` (the
 //! stage contract); all of them feed the sorted forward pass.
 
-use super::visibility::{Source, VisFrame, NO_TRIANGLE};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use renderlab_core::{Camera, Mesh};
+use renderlab_raster::visibility::{Source, VisFrame, NO_TRIANGLE};
 use renderlab_scene::{GBuffer, HybridScene, ShadingPoint};
 
 /// A scene made ready for rasterizing: every instance's world-space mesh built once, so

@@ -1,11 +1,11 @@
 //! The deferred pipeline's screen-space stages (SSR, SSAO), the sorted forward translucent
 //! pass, determinism across thread counts, and refusal of bad input.
 
-mod hybrid_common;
+mod deferred_common;
 
+use deferred_common::{box_mesh, camera, scene, showcase, square};
 use glam::{Vec2, Vec3};
-use hybrid_common::{box_mesh, camera, scene, showcase, square};
-use renderlab_raster::deferred::{
+use renderlab_hybrid::deferred::{
     ambient_diffuse, forward_translucent, geometry_pass, lit_opaque, render, screen_space_reflections,
     specular_weight, ssao, PreparedScene, RasterSettings, SsaoSettings, Unshadowed,
 };

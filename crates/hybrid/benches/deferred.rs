@@ -1,14 +1,14 @@
 //! Each stage of the deferred pipeline at 640×360 on the showcase scene tessellated to
 //! about 50 000 triangles, and the whole frame.
 //!
-//! `cargo bench -p renderlab-raster --bench deferred -- --measurement-time 3`
+//! `cargo bench -p renderlab-hybrid --bench deferred -- --measurement-time 3`
 
-#[path = "../tests/hybrid_common/mod.rs"]
-mod hybrid_common;
+#[path = "../tests/deferred_common/mod.rs"]
+mod deferred_common;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use glam::Vec3;
-use renderlab_raster::deferred::{
+use renderlab_hybrid::deferred::{
     ambient_diffuse, direct_lighting, forward_translucent, geometry_pass, lit_opaque, render,
     screen_space_reflections, ssao, PreparedScene, RasterSettings, ShadowMaps,
 };
@@ -16,10 +16,10 @@ use renderlab_scene::LightingTerms;
 use std::hint::black_box;
 
 fn stages(c: &mut Criterion) {
-    let scene = hybrid_common::showcase(20);
+    let scene = deferred_common::showcase(20);
     let prepared = PreparedScene::new(&scene);
     let camera =
-        hybrid_common::camera(Vec3::new(0.5, 3.2, 8.5), Vec3::new(0.0, 1.0, -1.0), Vec3::Y, 640, 360);
+        deferred_common::camera(Vec3::new(0.5, 3.2, 8.5), Vec3::new(0.0, 1.0, -1.0), Vec3::Y, 640, 360);
     let settings = RasterSettings::default();
     let geometry = geometry_pass(&prepared, &camera, settings.translucent_layers);
     let g = &geometry.gbuffer;

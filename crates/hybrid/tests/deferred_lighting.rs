@@ -1,10 +1,10 @@
 //! The deferred pipeline's direct lighting and shadow maps against analytic references.
 
-mod hybrid_common;
+mod deferred_common;
 
+use deferred_common::{box_mesh, camera, light, scene, square};
 use glam::{Vec2, Vec3};
-use hybrid_common::{box_mesh, camera, light, scene, square};
-use renderlab_raster::deferred::{
+use renderlab_hybrid::deferred::{
     direct_lighting, geometry_pass, PreparedScene, RasterSettings, ShadowMaps, ShadowSettings, Unshadowed,
 };
 use renderlab_scene::{LightKind, PbrMaterial};
@@ -38,7 +38,7 @@ fn a_lambertian_floor_under_a_directional_light_reflects_albedo_over_pi_times_e_
     };
     let g = geometry_pass(&prepared, &cam, 1);
     let shadows = ShadowMaps::build(&prepared, &shadow_settings(256));
-    for vis in [&shadows as &dyn renderlab_raster::deferred::Visibility, &Unshadowed] {
+    for vis in [&shadows as &dyn renderlab_hybrid::deferred::Visibility, &Unshadowed] {
         let direct = direct_lighting(&s, &g.gbuffer, vis, 4);
         let expected = 1.0 / PI * e * tilt.cos();
         let mut n = 0;

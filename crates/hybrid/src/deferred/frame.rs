@@ -1,56 +1,22 @@
-//! The rasterized deferred pipeline of the hybrid lab, over a [`HybridScene`], writing the
-//! scene crate's stage contract ([`GBuffer`], [`LightingTerms`]).
-//!
-//! # Stages, each callable alone
-//!
-//! | stage | function | writes |
-//! |---|---|---|
-//! | geometry | [`geometry_pass`] (world meshes cached in [`PreparedScene`]) | [`GeometryPass`]: G-buffer, visibility buffer, translucent layers |
-//! | shadows | [`ShadowMaps::build`] (a [`Visibility`]) | per-light depth maps |
-//! | lighting | [`direct_lighting`] with any [`Visibility`] | `terms.direct` |
-//! | ambient | [`ambient_diffuse`], [`ssao`] | `terms.diffuse_indirect`, `terms.ambient_occlusion` |
-//! | reflections | [`screen_space_reflections`] of [`lit_opaque`] | `terms.specular_indirect` |
-//! | translucency | [`forward_translucent`] over `terms.compose(..)` | the final linear image |
-//! | display | [`tonemap`] | 8-bit sRGB |
-//!
-//! [`render`] runs them in that order and times each. A ray-traced stage replaces one row:
-//! a shadow stage implements [`Visibility`] (it is asked, per light sample, whether the
-//! light is visible, with the sample's direction and distance in the [`ShadowQuery`]) and
-//! is passed to [`direct_lighting`] and [`forward_translucent`]; a reflection, GI or AO
-//! stage writes its slot of [`LightingTerms`] instead of the raster function.
-//!
-//! # Conventions
-//!
-//! Linear radiance until tone mapping. Area lights are sampled at the centres of
-//! `area_samples × area_samples` strata (default 4×4 = 16), punctual lights exactly. Every
-//! stage works per pixel (or per shadow-map band) with no shared mutable state and no
-//! random numbers, so a frame is bit-identical for any thread count.
+//! The all-raster frame on its own, without a BVH: every raster pass in order, each timed.
+//! (The hybrid renderer runs the same passes through the stage registry, any of them
+//! replaced by its ray-traced choice; this is the raster pipeline as a benchmark and an
+//! example show it.)
 
-mod ambient;
-mod forward;
-mod geometry;
-mod lighting;
-mod settings;
-mod shadows;
-mod ssr;
-mod tonemap;
-mod visibility;
-
-pub use ambient::{ambient_diffuse, diffuse_albedo, ssao};
-pub use forward::{forward_translucent, layer_radiance};
-pub use geometry::{geometry_pass, view_depth, GeometryPass, PreparedScene, VisibilitySample};
-pub use lighting::{
-    direct_lighting, light_sample_u, samples_per_side, shade_direct, ShadowQuery, Unshadowed, Visibility,
-};
-pub use settings::{RasterSettings, ShadowSettings, SsaoSettings, SsrSettings, ToneMap};
-pub use shadows::{DepthMap, LightShadow, ShadowMaps, MAX_SPOT_HALF_ANGLE_DEG};
-pub use ssr::{screen_space_reflections, specular_weight};
-pub use tonemap::{tone_curve, tonemap};
-
+use super::compose::lit_opaque;
+use super::geometry::{geometry_pass, GeometryPass, PreparedScene};
+use super::lighting::direct_lighting;
+use super::settings::RasterSettings;
+use super::tonemap::tonemap;
+use crate::stages::ao::ssao;
+use crate::stages::gi::ambient_diffuse;
+use crate::stages::reflections::ssr::screen_space_reflections;
+use crate::stages::shadows::maps::ShadowMaps;
+use crate::stages::translucency::forward_translucent;
 use glam::Vec3;
 use renderlab_core::image::check_dimensions;
 use renderlab_core::{Camera, Image};
-use renderlab_scene::{GBuffer, HybridScene, LightingTerms};
+use renderlab_scene::{HybridScene, LightingTerms};
 use std::time::Instant;
 
 /// Wall-clock time of each stage of one frame, milliseconds.
@@ -122,23 +88,6 @@ impl std::fmt::Display for DeferredError {
 }
 
 impl std::error::Error for DeferredError {}
-
-/// The lit opaque image the reflections reflect: `emitted + direct + diffuse_indirect · AO`
-/// where a surface is, the sky elsewhere (`specular_indirect` is left out, so reflections
-/// do not reflect reflections).
-pub fn lit_opaque(gbuffer: &GBuffer, terms: &LightingTerms, sky: Vec3) -> Vec<Vec3> {
-    gbuffer
-        .opaque
-        .iter()
-        .enumerate()
-        .map(|(i, sp)| match sp {
-            None => sky,
-            Some(sp) => {
-                sp.emissive + terms.direct[i] + terms.diffuse_indirect[i] * terms.ambient_occlusion[i]
-            }
-        })
-        .collect()
-}
 
 /// Renders the all-raster frame of `prepared` seen by `camera`: geometry, shadow maps,
 /// direct lighting, ambient and SSAO, screen-space reflections, composition and the sorted

@@ -15,23 +15,12 @@
 //! of roughness and `n·v`): about F0 for a mirror seen head-on, rising toward 1 at grazing
 //! angles, lower for rough surfaces.
 
-use super::geometry::view_depth;
-use super::settings::SsrSettings;
-use glam::{Vec2, Vec3, Vec4};
+use crate::deferred::geometry::view_depth;
+use crate::deferred::settings::SsrSettings;
+use crate::deferred::weights::specular_weight;
+use glam::{Vec2, Vec3};
 use rayon::prelude::*;
-use renderlab_scene::{brdf, GBuffer, ShadingPoint};
-
-/// The split-sum environment-BRDF weight `F0·A + B` at roughness `roughness` and `n·v`
-/// (Karis's fit of the tabulated DFG term).
-pub fn specular_weight(sp: &ShadingPoint, n_dot_v: f32) -> Vec3 {
-    let c0 = Vec4::new(-1.0, -0.0275, -0.572, 0.022);
-    let c1 = Vec4::new(1.0, 0.0425, 1.04, -0.04);
-    let r = c0 * sp.roughness + c1;
-    let a004 = (r.x * r.x).min((-9.28 * n_dot_v.max(0.0)).exp2()) * r.x + r.y;
-    let a = -1.04 * a004 + r.z;
-    let b = 1.04 * a004 + r.w;
-    (brdf::f0(sp) * a + Vec3::splat(b)).max(Vec3::ZERO)
-}
+use renderlab_scene::GBuffer;
 
 /// `specular_indirect` by screen-space reflections of `lit` (the lit opaque image,
 /// row-major, the sky where no surface is), the sky as the fallback.
@@ -168,27 +157,5 @@ impl<'a> Marcher<'a> {
             prev = t;
         }
         None
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_weight_is_about_f0_for_a_head_on_mirror_and_grows_at_grazing() {
-        let sp = ShadingPoint {
-            roughness: 0.0,
-            metallic: 1.0,
-            base_color: Vec3::new(0.9, 0.5, 0.2),
-            ..Default::default()
-        };
-        let head_on = specular_weight(&sp, 1.0);
-        assert!((head_on - sp.base_color).abs().max_element() < 0.02, "{head_on}");
-        let dielectric = ShadingPoint { roughness: 0.0, ..Default::default() };
-        assert!((specular_weight(&dielectric, 1.0).x - 0.04).abs() < 0.01);
-        assert!(specular_weight(&dielectric, 0.05).x > 0.3);
-        let rough = ShadingPoint { roughness: 1.0, ..dielectric };
-        assert!(specular_weight(&rough, 0.05).x < specular_weight(&dielectric, 0.05).x);
     }
 }

@@ -18,13 +18,14 @@
 //! are lit. Translucent instances cast no shadow-map shadow: glass lets the light through,
 //! and the raster pipeline has no caustics to put in its place.
 
-use super::geometry::PreparedScene;
-use super::lighting::{ShadowQuery, Visibility};
-use super::settings::ShadowSettings;
-use super::visibility::{Source, VisFrame, NO_TRIANGLE};
+use crate::deferred::geometry::PreparedScene;
+use crate::deferred::lighting::{ShadowQuery, Visibility};
+use crate::deferred::settings::ShadowSettings;
 use glam::{DMat4, Mat4, Vec3, Vec4Swizzles};
 use rayon::prelude::*;
+use renderlab_raster::visibility::{Source, VisFrame, NO_TRIANGLE};
 use renderlab_scene::{Light, LightKind};
+use std::sync::{Arc, Mutex};
 
 /// Widest spot cone (half-angle, degrees) drawn into one perspective map.
 pub const MAX_SPOT_HALF_ANGLE_DEG: f32 = 60.0;
@@ -322,6 +323,45 @@ impl DepthMap {
             }
         }
         lit as f32 / ((2 * r + 1) * (2 * r + 1)) as f32
+    }
+}
+
+/// The shadow maps of the last raster-shadowed frame, with the settings they were built for.
+/// The lights and the scene are static, so the maps are built once and reused, as an engine
+/// caches the shadow maps of static lights; a frame rebuilds them only when the shadow
+/// settings have changed.
+#[derive(Debug, Default)]
+pub struct ShadowMapCache {
+    maps: Mutex<Option<(ShadowSettings, Arc<ShadowMaps>)>>,
+}
+
+impl ShadowMapCache {
+    /// The maps of `prepared` for `settings`, building them if needed (`true` when built
+    /// now).
+    pub fn get(&self, prepared: &PreparedScene, settings: &ShadowSettings) -> (Arc<ShadowMaps>, bool) {
+        let mut cache = self.maps.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((s, maps)) = cache.as_ref() {
+            if s == settings {
+                return (maps.clone(), false);
+            }
+        }
+        let maps = Arc::new(ShadowMaps::build(prepared, settings));
+        *cache = Some((settings.clone(), maps.clone()));
+        (maps, true)
+    }
+}
+
+/// Shared maps as a [`Visibility`]: what a frame with raster shadows hands its later passes.
+#[derive(Clone, Debug)]
+pub struct SharedShadowMaps(pub Arc<ShadowMaps>);
+
+impl Visibility for SharedShadowMaps {
+    fn visibility(&self, q: &ShadowQuery) -> f32 {
+        self.0.visibility(q)
+    }
+
+    fn varies_per_sample(&self) -> bool {
+        self.0.varies_per_sample()
     }
 }
 
