@@ -5,9 +5,9 @@
 //! `cargo run --release -p renderlab-hybrid --example hybrid -- OUT_DIR [SPP]`
 
 use renderlab_core::io::save_rgb8;
-use renderlab_hybrid::shapes::showcase;
 use renderlab_hybrid::{Ao, Gi, HybridRenderer, Reflections, Shadows, StageConfig, Translucency};
 use renderlab_raster::deferred::{tonemap, ToneMap};
+use renderlab_scene::procedural::showcase;
 use std::path::PathBuf;
 
 fn main() {

@@ -13,7 +13,7 @@
 //! * The raster choices of every stage are `renderlab_raster::deferred`'s stage functions
 //!   (geometry pass, shadow maps, SSR, SSAO, ambient, sorted forward translucency), called
 //!   one by one so that any of them can be replaced.
-//! * [`shapes`] builds the small meshes and scenes of the tests and benchmarks.
+//! * The small meshes and scenes of the tests and benchmarks are `renderlab_scene::shapes`'s.
 //!
 //! Every stage draws its random numbers from a per-pixel stream seeded by `(seed, pixel,
 //! stage)` ([`rng`]), so a frame is bit-identical for any number of threads.
@@ -28,7 +28,6 @@ pub mod memory;
 pub mod reference;
 pub mod renderer;
 pub mod rng;
-pub mod shapes;
 pub mod stages;
 
 pub use accel::Accel;
