@@ -26,13 +26,14 @@ const RELIEFS: [&str; 3] = ["brick_pavement", "bricks", "bark_willow"];
 /// The registry's entry.
 pub const ENTRY: SceneEntry = SceneEntry {
     name: "courtyard",
-    summary: "Scene 2 of the thesis: a walled brick court with an arcaded gallery, a fountain holding a mirror dish and a glass sphere, copper, chrome, wood and glass pieces",
+    summary: "Scene 2 of the thesis: a walled brick court with an arcaded gallery, a fountain holding \
+        a mirror dish and a glass sphere, copper, chrome, wood and glass pieces",
     triangles: TRIANGLES,
     lights: 5,
     views: &[
-        View { name: "cam1", eye: Vec3::new(0.0, 1.7, 9.0), target: Vec3::new(0.0, 1.2, 0.0), fov_y_deg: 55.0 },
-        View { name: "cam2", eye: Vec3::new(1.5, 1.6, -9.2), target: Vec3::new(-0.5, 1.0, 2.0), fov_y_deg: 60.0 },
-        View { name: "cam3", eye: Vec3::new(9.0, 5.5, 9.0), target: Vec3::new(-2.0, 0.5, -3.0), fov_y_deg: 50.0 },
+        View::new("cam1", Vec3::new(0.0, 1.7, 9.0), Vec3::new(0.0, 1.2, 0.0), 55.0),
+        View::new("cam2", Vec3::new(1.5, 1.6, -9.2), Vec3::new(-0.5, 1.0, 2.0), 60.0),
+        View::new("cam3", Vec3::new(9.0, 5.5, 9.0), Vec3::new(-2.0, 0.5, -3.0), 50.0),
     ],
     resolution: DEFAULT_RESOLUTION,
     far: 2000.0,
@@ -84,7 +85,8 @@ fn build() -> HybridScene {
         cuboid(
             Vec3::new(0.0, col_h + 1.65, (z - HALF) * 0.5),
             Vec3::new(6.6, 0.15, (HALF + z).abs() * 0.5 + 0.3),
-            CuboidUv::Repeat(1.0)),
+            CuboidUv::Repeat(1.0),
+        ),
         stone,
     );
 
@@ -104,7 +106,11 @@ fn build() -> HybridScene {
     s.add_named("basin", basin, stone);
     s.add_named("pedestal", cylinder(0.2, 0.15, 1.0, 48), stone);
     s.add_named("dish", translated(bowl(0.7, 128), Vec3::new(0.0, 1.0, 0.0)), steel);
-    s.add_named("glass sphere", sphere(Vec3::new(0.0, 1.0 + 0.175 + 0.35, 0.0), 0.35, 96, 48, SphereStyle::Closed), glass);
+    s.add_named(
+        "glass sphere",
+        sphere(Vec3::new(0.0, 1.0 + 0.175 + 0.35, 0.0), 0.35, 96, 48, SphereStyle::Closed),
+        glass,
+    );
 
     // Pieces around the court.
     s.add_named("copper ball", sphere(Vec3::new(4.0, 0.6, 3.0), 0.6, 96, 48, SphereStyle::Closed), copper);
@@ -137,7 +143,6 @@ fn build() -> HybridScene {
         120.0,
     );
     s.point("corner lamp", Vec3::new(8.0, 3.0, -8.5), WARM, 10.0);
-
 
     // The rest of the budget: the paved floor (its partial row runs under the front wall).
     let floor_size = Vec2::splat(2.0 * HALF + 1.0);

@@ -23,6 +23,14 @@ pub struct View {
     pub fov_y_deg: f32,
 }
 
+impl View {
+    /// A camera `name` at `eye` looking at `target` with a vertical field of view of
+    /// `fov_y_deg` degrees.
+    pub const fn new(name: &'static str, eye: Vec3, target: Vec3, fov_y_deg: f32) -> Self {
+        Self { name, eye, target, fov_y_deg }
+    }
+}
+
 /// One built-in scene of the registry (one per file of `procedural/`).
 #[derive(Clone, Copy, Debug)]
 pub struct SceneEntry {

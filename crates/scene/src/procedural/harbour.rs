@@ -12,7 +12,10 @@ use super::parts::{bollard, hull, lamp_post, vase};
 use crate::material::PbrMaterial;
 use crate::relief_maps::relief_maps;
 use crate::scene::HybridScene;
-use crate::shapes::{arch, cuboid, cylinder, lathe, sphere, stairs, translated, water_slab, CuboidUv, SceneBuilder, SphereStyle};
+use crate::shapes::{
+    arch, cuboid, cylinder, lathe, sphere, stairs, translated, water_slab, CuboidUv, SceneBuilder,
+    SphereStyle,
+};
 use glam::{Affine3A, Quat, Vec2, Vec3};
 
 /// Table 2.1, scene 3.
@@ -28,13 +31,14 @@ const RELIEFS: [&str; 4] = ["brick_pavement", "bricks", "bark_willow", "sand_roc
 /// The registry's entry.
 pub const ENTRY: SceneEntry = SceneEntry {
     name: "harbour",
-    summary: "Scene 3 of the thesis: a quay, a pier out to a lighthouse with a glass lantern, a ruined arcade and boats in a wide wave-rippled water body over a rocky sea bed",
+    summary: "Scene 3 of the thesis: a quay, a pier out to a lighthouse with a glass lantern, a ruined \
+        arcade and boats in a wide wave-rippled water body over a rocky sea bed",
     triangles: TRIANGLES,
     lights: 10,
     views: &[
-        View { name: "cam1", eye: Vec3::new(0.0, QUAY + 1.8, 19.0), target: Vec3::new(0.0, -0.5, -20.0), fov_y_deg: 55.0 },
-        View { name: "cam2", eye: Vec3::new(-9.0, 0.7, 7.0), target: Vec3::new(-20.0, 1.0, -15.0), fov_y_deg: 60.0 },
-        View { name: "cam3", eye: Vec3::new(30.0, 18.0, 25.0), target: Vec3::new(0.0, 0.0, -20.0), fov_y_deg: 45.0 },
+        View::new("cam1", Vec3::new(0.0, QUAY + 1.8, 19.0), Vec3::new(0.0, -0.5, -20.0), 55.0),
+        View::new("cam2", Vec3::new(-9.0, 0.7, 7.0), Vec3::new(-20.0, 1.0, -15.0), 60.0),
+        View::new("cam3", Vec3::new(30.0, 18.0, 25.0), Vec3::new(0.0, 0.0, -20.0), 45.0),
     ],
     resolution: DEFAULT_RESOLUTION,
     far: 2000.0,
@@ -74,8 +78,16 @@ fn build() -> HybridScene {
     s.add_named("water", translated(slab, Vec3::new(0.0, 0.0, -29.7)), water);
 
     // The quay: a brick mass with a paved top, stairs down into the water.
-    s.add_named("quay", cuboid(Vec3::new(0.0, -0.85, 16.0), Vec3::new(40.0, 2.15, 6.0), CuboidUv::Repeat(1.5)), bricks);
-    s.add_named("quay top", cuboid(Vec3::new(0.0, QUAY - 0.1, 16.0), Vec3::new(40.0, 0.1, 6.0), CuboidUv::Repeat(2.0)), pavement);
+    s.add_named(
+        "quay",
+        cuboid(Vec3::new(0.0, -0.85, 16.0), Vec3::new(40.0, 2.15, 6.0), CuboidUv::Repeat(1.5)),
+        bricks,
+    );
+    s.add_named(
+        "quay top",
+        cuboid(Vec3::new(0.0, QUAY - 0.1, 16.0), Vec3::new(40.0, 0.1, 6.0), CuboidUv::Repeat(2.0)),
+        pavement,
+    );
     let flight = Affine3A::from_rotation_translation(
         Quat::from_rotation_y(std::f32::consts::PI),
         Vec3::new(-10.0, -1.7, 6.0),
@@ -84,7 +96,11 @@ fn build() -> HybridScene {
     s.place("stairs", flight_mesh, stone, flight);
 
     // The pier: a plank deck on twenty piles, out to the lighthouse.
-    s.add_named("pier deck", cuboid(Vec3::new(6.0, 1.15, -10.0), Vec3::new(2.0, 0.15, 20.0), CuboidUv::Repeat(1.0)), planks);
+    s.add_named(
+        "pier deck",
+        cuboid(Vec3::new(6.0, 1.15, -10.0), Vec3::new(2.0, 0.15, 20.0), CuboidUv::Repeat(1.0)),
+        planks,
+    );
     let pile = s.mesh(cylinder(0.25, WATER_FLOOR - 0.5, 1.0, 48));
     for k in 0..10 {
         let z = 8.0 - 4.0 * k as f32;
@@ -105,18 +121,30 @@ fn build() -> HybridScene {
         None,
     );
     s.add_named("lighthouse", translated(tower, Vec3::new(6.0, 0.0, -33.0)), white);
-    s.add_named("lantern glass", sphere(Vec3::new(6.0, 12.2, -33.0), 0.9, 96, 48, SphereStyle::Closed), glass);
+    s.add_named(
+        "lantern glass",
+        sphere(Vec3::new(6.0, 12.2, -33.0), 0.9, 96, 48, SphereStyle::Closed),
+        glass,
+    );
     s.add_named("lantern cap", translated(cylinder(1.0, 0.0, 0.3, 48), Vec3::new(6.0, 13.1, -33.0)), iron);
 
     // A ruined arcade in the water on the left, reflected in it.
     for x in [-31.0f32, -25.0, -19.0, -13.0] {
-        s.add_named("arcade pier", cuboid(Vec3::new(x, 0.5, -18.0), Vec3::new(0.6, 3.5, 0.8), CuboidUv::Repeat(1.0)), bricks);
+        s.add_named(
+            "arcade pier",
+            cuboid(Vec3::new(x, 0.5, -18.0), Vec3::new(0.6, 3.5, 0.8), CuboidUv::Repeat(1.0)),
+            bricks,
+        );
     }
     let arc = s.mesh(arch(2.4, 3.2, 1.6, 15, 0.6));
     for x in [-28.0f32, -22.0, -16.0] {
         s.place("arcade arch", arc, stone, Affine3A::from_translation(Vec3::new(x, 4.0, -18.0)));
     }
-    s.add_named("arcade deck", cuboid(Vec3::new(-22.0, 7.5, -18.0), Vec3::new(9.6, 0.3, 0.8), CuboidUv::Repeat(1.0)), stone);
+    s.add_named(
+        "arcade deck",
+        cuboid(Vec3::new(-22.0, 7.5, -18.0), Vec3::new(9.6, 0.3, 0.8), CuboidUv::Repeat(1.0)),
+        stone,
+    );
 
     // Boats, buoys, bollards, lamp posts and the pieces on the quay.
     let boat = s.mesh(hull(5.0, 1.8, 0.8, 64, 16));
@@ -142,7 +170,11 @@ fn build() -> HybridScene {
         s.place("lamp globe", globe, glass, Affine3A::from_translation(base + Vec3::Y * 4.75));
         s.point(&format!("lamp {k}"), base + Vec3::Y * 5.3, WARM, 12.0);
     }
-    s.add_named("mirror sphere", sphere(Vec3::new(2.0, QUAY + 1.2, 14.0), 1.2, 160, 80, SphereStyle::Closed), chrome);
+    s.add_named(
+        "mirror sphere",
+        sphere(Vec3::new(2.0, QUAY + 1.2, 14.0), 1.2, 160, 80, SphereStyle::Closed),
+        chrome,
+    );
     s.add_named("brass urn", translated(vase(1.4, 96, 40), Vec3::new(-2.5, QUAY, 13.5)), brass);
     s.add_named("glass vase", translated(vase(0.8, 96, 40), Vec3::new(-1.0, QUAY, 15.5)), glass);
 
@@ -167,7 +199,6 @@ fn build() -> HybridScene {
     );
     s.spot("boat spot", Vec3::new(8.0, 6.0, 12.0), Vec3::new(-3.0, 0.3, -4.0), (8.0, 16.0), Vec3::ONE, 400.0);
     s.spot("tower spot", Vec3::new(8.0, 1.5, -25.0), Vec3::new(6.0, 6.0, -33.0), (10.0, 20.0), COOL, 200.0);
-
 
     // The rest of the budget: the rocky sea bed under the water slab.
     s.pad(

@@ -13,10 +13,11 @@ use glam::Vec3;
 /// The registry's entry.
 pub const ENTRY: SceneEntry = SceneEntry {
     name: "showcase",
-    summary: "The small scene of the tests and benchmarks: floor, wall, two boxes, a mirror, a glass and a rough sphere, three lights",
+    summary: "The small scene of the tests and benchmarks: a floor, a wall, two boxes, a mirror, a \
+        glass and a rough sphere, three lights",
     triangles: 2476,
     lights: 3,
-    views: &[View { name: "cam1", eye: Vec3::new(0.0, 2.0, 6.0), target: Vec3::new(0.0, 0.7, -0.5), fov_y_deg: 45.0 }],
+    views: &[View::new("cam1", Vec3::new(0.0, 2.0, 6.0), Vec3::new(0.0, 0.7, -0.5), 45.0)],
     resolution: (320, 180),
     far: 1000.0,
     default_run: false,
