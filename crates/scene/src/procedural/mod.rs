@@ -1,7 +1,10 @@
 //! The built-in scenes: one file per scene, each holding its [`SceneEntry`] (name,
 //! description, size, cameras, builder, whether a default run renders it), and one line
 //! per scene in the `registry!` below. Every list of scene names (the default run, help
-//! and error messages) is derived from [`SCENES`].
+//! and error messages) is derived from [`SCENES`], and the tests walk every entry. Adding
+//! a scene is a new file `NAME.rs` holding `pub const ENTRY: SceneEntry` and its line in
+//! `registry!` (the scene files are declared inside the macro, where `cargo fmt` does not
+//! look: format them with `rustfmt`).
 //!
 //! The thesis's three scenes are sized exactly as its Table 2.1: the `temple` (547,800
 //! triangles, 15 lights), the `courtyard` (101,000 triangles, 5 lights) and the `harbour`
