@@ -13,7 +13,7 @@
 //! material values); [`gbuffer`] is the contract between the pipeline's stages (the
 //! G-buffer they read, the lighting terms they write, and how the terms compose).
 //!
-//! Where scenes come from: [`load`] reads glTF and OBJ files, [`procedural`] is the
+//! Where scenes come from: [`mod@load`] reads glTF and OBJ files, [`procedural`] is the
 //! registry of built-in scenes, built with the meshes and the scene builder of [`shapes`],
 //! and [`resolve()`] turns a name or a file path into a checked scene.
 
