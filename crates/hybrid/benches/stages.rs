@@ -4,8 +4,8 @@
 //! `cargo bench -p renderlab-hybrid --bench stages`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use renderlab_hybrid::shapes::showcase;
 use renderlab_hybrid::{Ao, Gi, HybridRenderer, Reflections, Shadows, StageConfig, Translucency};
+use renderlab_scene::procedural::showcase;
 use std::hint::black_box;
 
 fn stages(c: &mut Criterion) {

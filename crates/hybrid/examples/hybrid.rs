@@ -6,8 +6,8 @@
 
 use renderlab_core::io::save_rgb8;
 use renderlab_hybrid::deferred::{tonemap, ToneMap};
-use renderlab_hybrid::shapes::showcase;
 use renderlab_hybrid::{Ao, Gi, HybridRenderer, Reflections, Shadows, StageConfig, Translucency};
+use renderlab_scene::procedural::showcase;
 use std::path::PathBuf;
 
 fn main() {

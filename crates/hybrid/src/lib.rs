@@ -16,7 +16,7 @@
 //!   re-exports the raster choices of the stages: the whole raster pipeline in one place.
 //! * [`mod@reference`] holds the path tracer; [`lighting`] the shading the ray-traced
 //!   stages and the path tracer share; [`accel`] the BVH as they query it.
-//! * [`shapes`] builds the small meshes and scenes of the tests and benchmarks.
+//! * The small meshes and scenes of the tests and benchmarks are `renderlab_scene::shapes`'s.
 //!
 //! Every stage draws its random numbers from a per-pixel stream seeded by `(seed, pixel,
 //! stage)` ([`rng`]), so a frame is bit-identical for any number of threads.
@@ -31,7 +31,6 @@ pub mod memory;
 pub mod reference;
 pub mod renderer;
 pub mod rng;
-pub mod shapes;
 pub mod stages;
 
 pub use accel::Accel;

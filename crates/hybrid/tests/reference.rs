@@ -6,9 +6,9 @@ mod common;
 use common::cornell;
 use glam::Vec3;
 use renderlab_core::Camera;
-use renderlab_hybrid::shapes::{light, quad, uv_sphere, SceneBuilder};
 use renderlab_hybrid::HybridRenderer;
 use renderlab_scene::brdf::eval;
+use renderlab_scene::shapes::{light, quad, sphere, SceneBuilder, SphereStyle};
 use renderlab_scene::{LightKind, PbrMaterial, ShadingPoint};
 use std::f32::consts::PI;
 
@@ -36,7 +36,7 @@ fn furnace_sphere_matches_the_integral_equation() {
     let mut b = SceneBuilder::new("furnace", Vec3::ZERO);
     let mut m = PbrMaterial::dielectric("white", Vec3::splat(0.5), 1.0);
     m.emissive = Vec3::ONE;
-    b.add(uv_sphere(Vec3::ZERO, 1.0, 96, 48), m);
+    b.add(sphere(Vec3::ZERO, 1.0, 96, 48, SphereStyle::Analytic), m);
     let r = HybridRenderer::new(&b.scene).unwrap();
     let cam = Camera::look_at(Vec3::ZERO, Vec3::new(0.3, 0.2, -1.0), 12, 12);
     let reference = r.reference(&cam, 64, 7).unwrap();

@@ -4,12 +4,12 @@
 
 use renderlab_core::Camera;
 use renderlab_hybrid::rng::Stream;
-use renderlab_hybrid::shapes::showcase;
 use renderlab_hybrid::stages::ao::{SSAO_RADIUS, SSAO_SAMPLES};
 use renderlab_hybrid::stages::entry::{Entry, Phase};
 use renderlab_hybrid::stages::reflections::DEFAULT_MAX_ROUGHNESS;
 use renderlab_hybrid::stages::{DESCRIPTORS, NAMES};
 use renderlab_hybrid::{Ao, Gi, HybridRenderer, Reflections, Shadows, StageConfig, StageId, Translucency};
+use renderlab_scene::procedural::showcase;
 use std::collections::HashSet;
 
 /// A stage's flag values as the command line gives them, `None` for the others.

@@ -6,10 +6,11 @@ use common::{cornell, mse, project};
 use glam::Vec3;
 use renderlab_core::Camera;
 use renderlab_hybrid::rng::Rng;
-use renderlab_hybrid::shapes::{cuboid, light, quad, showcase, uv_sphere, SceneBuilder};
 use renderlab_hybrid::stages::{ao, shadows, translucency};
 use renderlab_hybrid::{Ao, Gi, HybridRenderer, Reflections, Shadows, StageConfig, StageId, Translucency};
 use renderlab_scene::brdf::eval;
+use renderlab_scene::procedural::showcase;
+use renderlab_scene::shapes::{cuboid, light, quad, sphere, CuboidUv, SceneBuilder, SphereStyle};
 use renderlab_scene::{GBuffer, LightKind, PbrMaterial, ShadingPoint};
 
 /// A one-pixel G-buffer holding `sp`, seen by a camera above it.
@@ -41,7 +42,7 @@ fn hard_shadows_are_exactly_zero_or_one() {
         PbrMaterial::dielectric("floor", Vec3::splat(0.5), 1.0),
     );
     b.add(
-        cuboid(Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.5, 0.25, 0.5)),
+        cuboid(Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.5, 0.25, 0.5), CuboidUv::PerFace),
         PbrMaterial::dielectric("box", Vec3::splat(0.5), 1.0),
     );
     b.light(light(LightKind::Directional, Vec3::ZERO, Vec3::NEG_Y, 2.0));
@@ -147,7 +148,10 @@ fn a_mirror_shows_the_reflected_object_at_the_mirrored_pixel() {
 
 fn slab_scene(ior: f32) -> renderlab_scene::HybridScene {
     let mut b = SceneBuilder::new("slab", Vec3::ONE);
-    b.add(cuboid(Vec3::ZERO, Vec3::new(20.0, 0.25, 20.0)), PbrMaterial::glass("slab", ior, 0.0));
+    b.add(
+        cuboid(Vec3::ZERO, Vec3::new(20.0, 0.25, 20.0), CuboidUv::PerFace),
+        PbrMaterial::glass("slab", ior, 0.0),
+    );
     b.scene
 }
 
@@ -206,7 +210,7 @@ fn total_internal_reflection_beyond_the_critical_angle() {
 #[test]
 fn one_refraction_ray_cannot_leave_a_sphere() {
     let mut b = SceneBuilder::new("sphere", Vec3::ONE);
-    b.add(uv_sphere(Vec3::ZERO, 1.0, 48, 24), PbrMaterial::glass("glass", 1.5, 0.0));
+    b.add(sphere(Vec3::ZERO, 1.0, 48, 24, SphereStyle::Analytic), PbrMaterial::glass("glass", 1.5, 0.0));
     let r = HybridRenderer::new(&b.scene).unwrap();
     let cam = Camera::look_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, 32, 32);
     let mean_inside = |n: u32| {

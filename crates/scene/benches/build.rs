@@ -6,13 +6,13 @@
 //! each material it has not seen.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use renderlab_scene::procedural::{builtin, NAMES, RELIEF_TEXTURE_SIZE};
+use renderlab_scene::procedural::{builtin, DEFAULT_RUN, RELIEF_TEXTURE_SIZE};
 use std::hint::black_box;
 
 fn build(c: &mut Criterion) {
     let mut group = c.benchmark_group("scene_build");
     group.sample_size(10);
-    for name in NAMES {
+    for &name in DEFAULT_RUN {
         group.bench_function(name, |b| b.iter(|| black_box(builtin(black_box(name)))));
     }
     group.bench_function("relief_maps_cold", |b| {

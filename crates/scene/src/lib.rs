@@ -12,6 +12,10 @@
 //! instances, cameras, validation) and [`shading`] (a hit or a G-buffer texel resolved into
 //! material values); [`gbuffer`] is the contract between the pipeline's stages (the
 //! G-buffer they read, the lighting terms they write, and how the terms compose).
+//!
+//! Where scenes come from: [`mod@load`] reads glTF and OBJ files, [`procedural`] is the
+//! registry of built-in scenes, built with the meshes and the scene builder of [`shapes`],
+//! and [`resolve()`] turns a name or a file path into a checked scene.
 
 #![warn(missing_docs)]
 
@@ -22,14 +26,18 @@ pub mod light;
 pub mod load;
 pub mod material;
 pub mod procedural;
+mod relief_maps;
+pub mod resolve;
 pub mod sampling;
 pub mod scene;
 pub mod shading;
+pub mod shapes;
 
 pub use error::{Result, SceneError};
 pub use gbuffer::{GBuffer, LightingTerms};
 pub use light::{Light, LightKind, LightSample};
 pub use load::{load, LoadError, LoadedScene};
 pub use material::{PbrMaterial, Texture};
+pub use resolve::{resolve, ResolveError};
 pub use scene::{HybridScene, Instance, SceneCamera};
 pub use shading::ShadingPoint;

@@ -3,7 +3,7 @@
 
 use glam::{Vec3, Vec4Swizzles};
 use renderlab_core::Camera;
-use renderlab_hybrid::shapes::{light, quad, SceneBuilder};
+use renderlab_scene::shapes::{light, quad, SceneBuilder};
 use renderlab_scene::{HybridScene, LightKind, PbrMaterial};
 
 /// Mean squared error over pixels and channels.

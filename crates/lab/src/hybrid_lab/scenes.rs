@@ -1,70 +1,23 @@
-//! The scenes the hybrid lab renders: a built-in scene by name, or a glTF/OBJ file; and
-//! their cameras at the resolution a run asks for.
-//!
-//! Every lookup of a built-in scene goes through [`by_name`], so that adding the procedural
-//! scenes is one edit here.
+//! The scenes the hybrid lab renders and their cameras at the resolution a run asks for.
+//! Which scenes exist and how a name or a file becomes a checked scene is the scene crate's
+//! (`renderlab_scene::procedural`'s registry, [`renderlab_scene::resolve()`]); this file
+//! holds the lab's side: its error type, the default run, and the cameras of a run.
 
 use crate::error::{LabError, Result};
 use renderlab_core::Camera;
 use renderlab_hybrid::renderer::MAX_PIXELS;
+use renderlab_scene::resolve::is_file;
 use renderlab_scene::HybridScene;
 use std::path::Path;
 
-/// The built-in scenes, in the order a run without `--scenes` renders them: the thesis's
-/// three (`renderlab_scene::procedural`).
-pub const BUILTIN: [&str; 3] = renderlab_scene::procedural::NAMES;
-
-/// The small scene of the hybrid crate's tests (a few thousand triangles, camera `cam1`):
-/// accepted by name for quick runs and tests, not part of a default run.
-pub const SHOWCASE: &str = "showcase";
-
-/// The built-in scene called `name` ([`BUILTIN`] or [`SHOWCASE`]).
-pub fn by_name(name: &str) -> Result<HybridScene> {
-    if name == SHOWCASE {
-        return Ok(renderlab_hybrid::shapes::showcase());
-    }
-    renderlab_scene::procedural::builtin(name).ok_or_else(|| {
-        LabError::Hybrid(format!(
-            "unknown scene {name:?} (built-in: {}, {SHOWCASE}; or a .gltf, .glb or .obj file)",
-            BUILTIN.join(", ")
-        ))
-    })
-}
-
-/// Whether `spec` names a file rather than a built-in scene (it has a scene file's
-/// extension).
-pub fn is_file(spec: &str) -> bool {
-    let ext = Path::new(spec).extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
-    matches!(ext.as_deref(), Some("gltf" | "glb" | "obj"))
-}
+/// The built-in scenes, in the order a run without `--scenes` renders them (the registry's
+/// default run: the thesis's three).
+pub const BUILTIN: &[&str] = renderlab_scene::procedural::DEFAULT_RUN;
 
 /// The scene `spec` names (a built-in name, or a scene file), checked: it must have at least
 /// one light and one camera. Returns the scene and the loader's warnings (repairs made).
 pub fn resolve(spec: &str) -> Result<(HybridScene, Vec<String>)> {
-    let (scene, warnings) =
-        if is_file(spec) { load_file(Path::new(spec))? } else { (by_name(spec)?, Vec::new()) };
-    check_scene(spec, &scene)?;
-    Ok((scene, warnings))
-}
-
-/// Checks that `scene` (named `spec` in messages) can be rendered by the lab: valid, with at
-/// least one light and one camera.
-pub fn check_scene(spec: &str, scene: &HybridScene) -> Result<()> {
-    scene.validate().map_err(|e| LabError::Hybrid(format!("scene {spec}: {e}")))?;
-    if scene.lights.is_empty() {
-        return Err(LabError::Hybrid(format!(
-            "scene {spec} has no lights: every stage of the hybrid frame shades light sources"
-        )));
-    }
-    if scene.cameras.is_empty() {
-        return Err(LabError::Hybrid(format!("scene {spec} has no camera")));
-    }
-    Ok(())
-}
-
-/// Loads a glTF or OBJ scene file (the loader's error names the file and the problem).
-fn load_file(path: &Path) -> Result<(HybridScene, Vec<String>)> {
-    let loaded = renderlab_scene::load(path).map_err(|e| LabError::Hybrid(e.to_string()))?;
+    let loaded = renderlab_scene::resolve(spec).map_err(|e| LabError::Hybrid(e.to_string()))?;
     Ok((loaded.scene, loaded.warnings))
 }
 
@@ -141,7 +94,7 @@ mod tests {
 
     #[test]
     fn builtin_scenes_resolve_and_unknown_names_are_refused() {
-        let (scene, _) = resolve(SHOWCASE).unwrap();
+        let (scene, _) = resolve("showcase").unwrap();
         assert!(!scene.cameras.is_empty() && !scene.lights.is_empty());
         let cam = camera(&scene, &scene.cameras[0].name, 16, 9).unwrap();
         assert_eq!((cam.width, cam.height), (16, 9));
@@ -151,17 +104,6 @@ mod tests {
         assert!(camera(&scene, "nope", 16, 9).unwrap_err().to_string().contains("cam1"));
         assert!(camera(&scene, "cam1", 0, 9).is_err());
         assert!(camera(&scene, "cam1", 100_000, 100_000).is_err());
-    }
-
-    #[test]
-    fn a_scene_without_lights_is_refused() {
-        let mut scene = by_name("showcase").unwrap();
-        scene.lights.clear();
-        let e = check_scene("dark", &scene).unwrap_err().to_string();
-        assert!(e.contains("dark") && e.contains("no lights"), "{e}");
-        scene.cameras.clear();
-        scene.lights = by_name("showcase").unwrap().lights;
-        assert!(check_scene("blind", &scene).unwrap_err().to_string().contains("no camera"));
     }
 
     #[test]

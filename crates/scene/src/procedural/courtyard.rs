@@ -4,11 +4,13 @@
 //! paved floor. 101,000 triangles, 5 lights (sun, an area panel under the gallery, a
 //! lantern, a spot and a corner lamp).
 
-use super::builder::{place_at, relief_maps, SceneBuilder, COOL, SUN, WARM};
+use super::common::{place_at, COOL, SUN, WARM};
+use super::entry::{SceneEntry, View, DEFAULT_RESOLUTION};
 use super::parts::{bowl, column, vase};
-use super::shapes::{arch, cuboid, cylinder, lathe, sphere, translated};
 use crate::material::PbrMaterial;
+use crate::relief_maps::relief_maps;
 use crate::scene::HybridScene;
+use crate::shapes::{arch, cuboid, cylinder, lathe, sphere, translated, CuboidUv, SceneBuilder, SphereStyle};
 use glam::{Affine3A, Vec2, Vec3};
 
 /// Table 2.1, scene 2.
@@ -21,8 +23,26 @@ const WALL: f32 = 6.0;
 /// The relief materials dressing the scene.
 const RELIEFS: [&str; 3] = ["brick_pavement", "bricks", "bark_willow"];
 
-/// Builds the scene.
-pub fn build() -> HybridScene {
+/// The registry's entry.
+pub const ENTRY: SceneEntry = SceneEntry {
+    name: "courtyard",
+    summary: "Scene 2 of the thesis: a walled brick court with an arcaded gallery, a fountain holding \
+        a mirror dish and a glass sphere, copper, chrome, wood and glass pieces",
+    triangles: TRIANGLES,
+    lights: 5,
+    views: &[
+        View::new("cam1", Vec3::new(0.0, 1.7, 9.0), Vec3::new(0.0, 1.2, 0.0), 55.0),
+        View::new("cam2", Vec3::new(1.5, 1.6, -9.2), Vec3::new(-0.5, 1.0, 2.0), 60.0),
+        View::new("cam3", Vec3::new(9.0, 5.5, 9.0), Vec3::new(-2.0, 0.5, -3.0), 50.0),
+    ],
+    resolution: DEFAULT_RESOLUTION,
+    far: 2000.0,
+    default_run: true,
+    build,
+};
+
+/// Builds the scene (its cameras come from [`ENTRY`]).
+fn build() -> HybridScene {
     // Make the relief maps this scene uses together, in parallel.
     relief_maps(&RELIEFS);
     let mut s = SceneBuilder::new("courtyard", Vec3::new(0.5, 0.62, 0.85));
@@ -44,7 +64,7 @@ pub fn build() -> HybridScene {
         (Vec3::new(-HALF - t, WALL * 0.5, 0.0), Vec3::new(t, WALL * 0.5, HALF)),
         (Vec3::new(HALF + t, WALL * 0.5, 0.0), Vec3::new(t, WALL * 0.5, HALF)),
     ] {
-        s.add("wall", cuboid(c, h, 1.5), bricks);
+        s.add_named("wall", cuboid(c, h, CuboidUv::Repeat(1.5)), bricks);
     }
 
     // The gallery: five columns, four arches, a roof slab back to the wall.
@@ -60,12 +80,12 @@ pub fn build() -> HybridScene {
         let x = -4.5 + 3.0 * k as f32;
         s.place(&format!("arch {k}"), arch_mesh, stone, Affine3A::from_translation(Vec3::new(x, col_h, z)));
     }
-    s.add(
+    s.add_named(
         "gallery roof",
         cuboid(
             Vec3::new(0.0, col_h + 1.65, (z - HALF) * 0.5),
             Vec3::new(6.6, 0.15, (HALF + z).abs() * 0.5 + 0.3),
-            1.0,
+            CuboidUv::Repeat(1.0),
         ),
         stone,
     );
@@ -83,21 +103,25 @@ pub fn build() -> HybridScene {
         128,
         None,
     );
-    s.add("basin", basin, stone);
-    s.add("pedestal", cylinder(0.2, 0.15, 1.0, 48), stone);
-    s.add("dish", translated(bowl(0.7, 128), Vec3::new(0.0, 1.0, 0.0)), steel);
-    s.add("glass sphere", translated(sphere(0.35, 96, 48), Vec3::new(0.0, 1.0 + 0.175 + 0.35, 0.0)), glass);
+    s.add_named("basin", basin, stone);
+    s.add_named("pedestal", cylinder(0.2, 0.15, 1.0, 48), stone);
+    s.add_named("dish", translated(bowl(0.7, 128), Vec3::new(0.0, 1.0, 0.0)), steel);
+    s.add_named(
+        "glass sphere",
+        sphere(Vec3::new(0.0, 1.0 + 0.175 + 0.35, 0.0), 0.35, 96, 48, SphereStyle::Closed),
+        glass,
+    );
 
     // Pieces around the court.
-    s.add("copper ball", translated(sphere(0.6, 96, 48), Vec3::new(4.0, 0.6, 3.0)), copper);
-    s.add("chrome urn", translated(vase(1.2, 96, 32), Vec3::new(-4.5, 0.0, -1.5)), chrome);
-    let crate_mesh = s.mesh(cuboid(Vec3::ZERO, Vec3::splat(0.5), 1.0));
+    s.add_named("copper ball", sphere(Vec3::new(4.0, 0.6, 3.0), 0.6, 96, 48, SphereStyle::Closed), copper);
+    s.add_named("chrome urn", translated(vase(1.2, 96, 32), Vec3::new(-4.5, 0.0, -1.5)), chrome);
+    let crate_mesh = s.mesh(cuboid(Vec3::ZERO, Vec3::splat(0.5), CuboidUv::Repeat(1.0)));
     for (i, (x, zz, yaw)) in
         [(-5.5f32, 4.0f32, 15.0f32), (-6.6, 4.6, -20.0), (6.5, -3.5, 40.0)].into_iter().enumerate()
     {
         s.place(&format!("crate {i}"), crate_mesh, wood, place_at(Vec3::new(x, 0.5, zz), yaw, Vec3::ONE));
     }
-    s.add("glass vase", translated(vase(0.7, 96, 32), Vec3::new(-5.5, 1.0, 4.0)), glass);
+    s.add_named("glass vase", translated(vase(0.7, 96, 32), Vec3::new(-5.5, 1.0, 4.0)), glass);
 
     // Lights.
     s.directional("sun", Vec3::new(0.55, -0.6, -0.58), SUN, 3.5);
@@ -119,10 +143,6 @@ pub fn build() -> HybridScene {
         120.0,
     );
     s.point("corner lamp", Vec3::new(8.0, 3.0, -8.5), WARM, 10.0);
-
-    s.camera("cam1", Vec3::new(0.0, 1.7, 9.0), Vec3::new(0.0, 1.2, 0.0), 55.0);
-    s.camera("cam2", Vec3::new(1.5, 1.6, -9.2), Vec3::new(-0.5, 1.0, 2.0), 60.0);
-    s.camera("cam3", Vec3::new(9.0, 5.5, 9.0), Vec3::new(-2.0, 0.5, -3.0), 50.0);
 
     // The rest of the budget: the paved floor (its partial row runs under the front wall).
     let floor_size = Vec2::splat(2.0 * HALF + 1.0);

@@ -1,7 +1,7 @@
 //! Composite parts shared by the built-in scenes: columns, vases, bowls, bollards, lamp
 //! glasses and hulls, each one mesh in its own object space resting on y = 0.
 
-use super::shapes::{cuboid, lathe, translated, MeshBuilder};
+use crate::shapes::{cuboid, lathe, translated, CuboidUv, MeshBuilder};
 use glam::{Vec2, Vec3};
 use renderlab_core::Mesh;
 
@@ -21,7 +21,7 @@ pub fn column(height: f32, r: f32, flutes: u32, segments: u32, rings: u32) -> Me
     b.append(&cuboid(
         Vec3::new(0.0, plinth_h * 0.5, 0.0),
         Vec3::new(1.35 * r, plinth_h * 0.5, 1.35 * r),
-        0.5,
+        CuboidUv::Repeat(0.5),
     ));
     // Base moulding: a half-round torus profile from the plinth to the shaft.
     let torus_profile: Vec<Vec2> = (0..=8)
@@ -58,7 +58,7 @@ pub fn column(height: f32, r: f32, flutes: u32, segments: u32, rings: u32) -> Me
     b.append(&cuboid(
         Vec3::new(0.0, height - abacus_h * 0.5, 0.0),
         Vec3::new(1.4 * r, abacus_h * 0.5, 1.4 * r),
-        0.5,
+        CuboidUv::Repeat(0.5),
     ));
     b.finish()
 }

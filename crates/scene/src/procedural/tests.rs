@@ -1,13 +1,19 @@
-//! The built-in scenes' sizes, validity and closedness, and the shape generators' winding.
+//! The registry, the built-in scenes' sizes, validity and closedness, and the shape
+//! generators' winding.
 
-use super::shapes::{cuboid, cylinder, lathe, signed_volume, sphere, torus, water_slab};
 use super::*;
 use crate::light::{Light, LightKind};
 use crate::material::PbrMaterial;
+use crate::shapes::{
+    self, cuboid, cylinder, lathe, signed_volume, sphere, torus, water_slab, CuboidUv, SphereStyle,
+};
 use glam::Vec4Swizzles;
 use glam::{Vec2, Vec3};
 use renderlab_core::Mesh;
 use std::collections::HashMap;
+
+/// The thesis's scenes 1, 2 and 3, the default run's first entries.
+const THESIS: [&str; 3] = ["temple", "courtyard", "harbour"];
 
 /// Every edge of a closed mesh, with vertices identified by (rounded) position, is shared
 /// by exactly two triangles running it in opposite directions.
@@ -32,8 +38,42 @@ fn is_closed(mesh: &Mesh) -> bool {
 }
 
 #[test]
+fn the_registry_lists_every_scene_once_and_the_default_run_in_the_thesis_order() {
+    // A new scene joins at the end: the names and the default run's order stay.
+    assert!(names().starts_with(&["temple", "courtyard", "harbour", "showcase"]), "{:?}", names());
+    assert!(DEFAULT_RUN.starts_with(&THESIS) && !DEFAULT_RUN.contains(&"showcase"), "{DEFAULT_RUN:?}");
+    let expected: Vec<&str> = SCENES.iter().filter(|e| e.default_run).map(|e| e.name).collect();
+    assert_eq!(DEFAULT_RUN, expected);
+    for e in SCENES {
+        assert_eq!(SCENES.iter().filter(|o| o.name == e.name).count(), 1, "{}", e.name);
+        assert!(!e.summary.is_empty() && !e.views.is_empty(), "{}", e.name);
+        assert_eq!(entry(e.name).map(|f| f.name), Some(e.name));
+    }
+}
+
+#[test]
+fn every_entry_builds_the_scene_it_describes() {
+    for e in SCENES {
+        let s = builtin(e.name).expect("a registered name");
+        assert_eq!(s.name, e.name);
+        assert_eq!(s.triangle_count(), e.triangles, "{}: triangles", e.name);
+        assert_eq!(s.lights.len(), e.lights, "{}: lights", e.name);
+        s.validate().unwrap_or_else(|err| panic!("{}: {err}", e.name));
+        assert_eq!(s.cameras.len(), e.views.len(), "{}", e.name);
+        for (c, v) in s.cameras.iter().zip(e.views) {
+            assert_eq!(c.name, v.name);
+            assert_eq!((c.camera.width, c.camera.height), e.resolution, "{}", e.name);
+            assert_eq!((c.camera.position, c.camera.fov_y_deg, c.camera.far), (v.eye, v.fov_y_deg, e.far));
+        }
+    }
+    assert_eq!(showcase().cameras, builtin("showcase").unwrap().cameras);
+}
+
+#[test]
 fn every_builtin_scene_has_the_thesis_size_and_validates() {
-    for (name, (triangles, lights)) in NAMES.iter().zip(SIZES) {
+    // Table 2.1 of the thesis: triangles and lights of scenes 1, 2 and 3.
+    let sizes = [(547_800, 15), (101_000, 5), (268_200, 10)];
+    for (name, (triangles, lights)) in THESIS.iter().zip(sizes) {
         let s = builtin(name).expect("a built-in name");
         assert_eq!(s.triangle_count(), triangles, "{name}: triangles");
         assert_eq!(s.lights.len(), lights, "{name}: lights");
@@ -70,7 +110,7 @@ fn every_builtin_scene_has_the_thesis_size_and_validates() {
 
 #[test]
 fn transmissive_meshes_are_closed_and_wound_outward() {
-    for name in NAMES {
+    for name in names() {
         let s = builtin(name).unwrap();
         for inst in &s.instances {
             if s.materials[inst.material as usize].is_translucent() {
@@ -103,9 +143,12 @@ fn the_harbour_water_is_a_wide_ior_1_33_surface() {
 #[test]
 fn solid_shapes_are_closed_and_wound_outward() {
     let shapes = [
-        ("cuboid", cuboid(Vec3::ONE, Vec3::new(1.0, 2.0, 3.0), 1.0)),
+        ("cuboid", cuboid(Vec3::ONE, Vec3::new(1.0, 2.0, 3.0), CuboidUv::Repeat(1.0))),
+        ("cuboid per face", cuboid(Vec3::ONE, Vec3::new(1.0, 2.0, 3.0), CuboidUv::PerFace)),
         ("cylinder", cylinder(0.5, -1.0, 2.0, 17)),
-        ("sphere", sphere(1.0, 24, 12)),
+        ("sphere", sphere(Vec3::ZERO, 1.0, 24, 12, SphereStyle::Closed)),
+        ("moved sphere", sphere(Vec3::new(1.0, -2.0, 3.0), 1.0, 24, 12, SphereStyle::Closed)),
+        ("analytic sphere", sphere(Vec3::new(1.0, -2.0, 3.0), 1.0, 24, 12, SphereStyle::Analytic)),
         ("torus", torus(2.0, 0.5, 24, 12)),
         ("lathe", lathe(&[vec![Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.5), Vec2::new(0.0, 1.0)]], 9, None)),
         ("fluted", parts::column(4.0, 0.3, 12, 48, 8)),
@@ -128,7 +171,7 @@ fn solid_shapes_are_closed_and_wound_outward() {
             }
         }
     }
-    let sphere = sphere(2.0, 16, 8);
+    let sphere = sphere(Vec3::ZERO, 2.0, 16, 8, SphereStyle::Closed);
     let v6 = signed_volume(&sphere);
     let exact = 6.0 * 4.0 / 3.0 * std::f32::consts::PI * 8.0;
     assert!(v6 < exact && v6 > 0.85 * exact, "inscribed polyhedron volume {v6} vs {exact}");

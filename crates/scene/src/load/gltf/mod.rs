@@ -33,12 +33,14 @@ use crate::scene::{HybridScene, Instance, SceneCamera};
 use ::gltf::accessor::{DataType, Dimensions};
 use ::gltf::khr_lights_punctual::Kind;
 use ::gltf::{buffer, camera::Projection, Accessor, Document, Gltf, Semantic};
+use assembly::{assemble, assembled_count};
 use base64::Engine;
 use glam::{Affine3A, Mat4, Vec2, Vec3, Vec4};
 use renderlab_core::Camera;
 use std::collections::HashMap;
 use std::path::Path;
 
+mod assembly;
 mod material;
 
 /// Deepest node nesting followed; deeper trees (or cycles) are refused.
@@ -576,55 +578,5 @@ fn finite_or(x: f32, default: f32) -> f32 {
         x
     } else {
         default
-    }
-}
-
-/// How many triangles [`assemble`] makes of `n` vertices drawn in `mode`.
-fn assembled_count(mode: ::gltf::mesh::Mode, n: usize) -> usize {
-    use ::gltf::mesh::Mode;
-    match mode {
-        Mode::TriangleStrip | Mode::TriangleFan => n.saturating_sub(2),
-        _ => n / 3,
-    }
-}
-
-/// The triangles a primitive of `mode` draws from its vertex sequence `idx`, as the glTF
-/// specification (§3.7.2.1) assembles them: lists by threes (a trailing partial triangle
-/// dropped), strips with every other triangle's first two vertices swapped so that all keep
-/// the first one's winding, fans around the first vertex.
-pub(crate) fn assemble(mode: ::gltf::mesh::Mode, idx: &[u32]) -> Vec<[u32; 3]> {
-    use ::gltf::mesh::Mode;
-    match mode {
-        Mode::TriangleStrip => {
-            (0..idx.len().saturating_sub(2))
-                .map(|i| {
-                    if i % 2 == 0 {
-                        [idx[i], idx[i + 1], idx[i + 2]]
-                    } else {
-                        [idx[i + 1], idx[i], idx[i + 2]]
-                    }
-                })
-                .collect()
-        }
-        Mode::TriangleFan => (1..idx.len().saturating_sub(1)).map(|i| [idx[i], idx[i + 1], idx[0]]).collect(),
-        _ => idx.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
-    }
-}
-
-#[cfg(test)]
-mod assembly_tests {
-    use super::assemble;
-    use ::gltf::mesh::Mode;
-
-    #[test]
-    fn strips_keep_the_winding_and_fans_turn_around_the_first_vertex() {
-        let idx = [10, 11, 12, 13, 14];
-        assert_eq!(assemble(Mode::TriangleStrip, &idx), vec![[10, 11, 12], [12, 11, 13], [12, 13, 14]]);
-        assert_eq!(assemble(Mode::TriangleFan, &idx), vec![[11, 12, 10], [12, 13, 10], [13, 14, 10]]);
-        assert_eq!(assemble(Mode::Triangles, &idx), vec![[10, 11, 12]]);
-        for mode in [Mode::TriangleStrip, Mode::TriangleFan, Mode::Triangles] {
-            assert!(assemble(mode, &idx[..2]).is_empty());
-            assert!(assemble(mode, &[]).is_empty());
-        }
     }
 }
