@@ -4,7 +4,9 @@
 //! going unnoticed. `RENDERLAB_BLESS=1 cargo test -p renderlab --test readme -- catalogue` rewrites the
 //! tables in place from the registries.
 
+use renderlab_hybrid::stages::DESCRIPTORS as STAGES;
 use renderlab_relief::techniques::DESCRIPTORS;
+use renderlab_scene::procedural::SCENES;
 use renderlab_texture::filter::FILTERS;
 
 const README: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md");
@@ -25,7 +27,32 @@ fn tables() -> Vec<(&'static str, String)> {
     for f in FILTERS {
         filters.push_str(&format!("| `{}` | {} |\n", cell(f.syntax), cell(f.description)));
     }
-    vec![("relief", relief), ("filters", filters)]
+    let mut stages = String::from("| stage | flag | default | what the choices do |\n|---|---|---|---|\n");
+    for d in STAGES {
+        stages.push_str(&format!(
+            "| {} | `--{} {}` | `{}` | {} |\n",
+            d.name,
+            d.name,
+            cell(d.syntax),
+            d.default,
+            cell(d.help)
+        ));
+    }
+    let mut scenes = String::from("| scene | triangles | lights | cameras | in a default run | what it is |\n|---|---|---|---|---|---|\n");
+    for e in SCENES {
+        let views: Vec<&str> = e.views.iter().map(|v| v.name).collect();
+        let default = if e.default_run { "yes" } else { "no" };
+        scenes.push_str(&format!(
+            "| `{}` | {} | {} | {} | {} | {} |\n",
+            e.name,
+            e.triangles,
+            e.lights,
+            views.join(", "),
+            default,
+            cell(e.summary)
+        ));
+    }
+    vec![("relief", relief), ("filters", filters), ("stages", stages), ("scenes", scenes)]
 }
 
 /// Text made safe for one markdown table cell.
