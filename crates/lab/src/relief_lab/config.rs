@@ -2,6 +2,7 @@
 
 use crate::fixtures::{BENCH_ANGLES_DEG, BENCH_HEIGHT, BENCH_WIDTH};
 use renderlab_relief::maps::complexity::ComplexityParams;
+use renderlab_relief::memory::ReliefMemory;
 use renderlab_relief::techniques::{bench_settings, pom::Pom};
 use renderlab_relief::{Kernel, KernelChoice, Technique};
 
@@ -38,8 +39,8 @@ pub struct ReliefBenchConfig {
     pub gpu_required: bool,
 }
 
-/// Which renderers a relief run measures.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// Which renderers a relief run measures (the values of `relief bench --backend`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
 pub enum Backend {
     /// The CPU renderer alone.
     #[default]
@@ -61,6 +62,15 @@ impl Backend {
     /// Whether the GPU renderer runs.
     pub fn gpu(self) -> bool {
         self != Backend::Cpu
+    }
+
+    /// The measured memory fit of a run on these renderers, by which a texture size and
+    /// frame are refused before any work.
+    pub fn memory(self) -> ReliefMemory {
+        match self {
+            Backend::Cpu => ReliefMemory::BENCH_CPU,
+            Backend::Gpu | Backend::Both => ReliefMemory::BENCH_GPU,
+        }
     }
 }
 
@@ -114,6 +124,29 @@ pub const POM_32: Technique = Technique::Pom(Pom { layers: 32 });
 /// the scalar march as well (the thesis's baseline).
 pub fn default_techniques() -> Vec<Method> {
     bench_settings().into_iter().map(|(technique, kernel)| Method { technique, kernel }).collect()
+}
+
+/// The methods a run measures: the given techniques, each on `kernel` (default auto), or,
+/// when `list` is empty, the lab's default list ([`default_techniques`]), whose kernels
+/// `kernel` replaces where a technique offers it (so that `--kernel scalar` leaves a
+/// technique without a scalar twin on its own kernel rather than refusing the run).
+pub fn methods(list: &[Technique], kernel: Option<KernelChoice>) -> Vec<Method> {
+    if list.is_empty() {
+        let mut methods = default_techniques();
+        if let Some(choice) = kernel {
+            for m in &mut methods {
+                let offered = match choice {
+                    KernelChoice::Auto => true,
+                    KernelChoice::Exactly(k) => m.technique.descriptor().kernels.contains(&k),
+                };
+                if offered {
+                    m.kernel = choice;
+                }
+            }
+        }
+        return methods;
+    }
+    list.iter().map(|&technique| Method { technique, kernel: kernel.unwrap_or_default() }).collect()
 }
 
 /// Resolves each method's kernel choice on this CPU, keeping the first of any duplicates.
