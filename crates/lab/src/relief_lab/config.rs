@@ -179,3 +179,32 @@ impl Default for ReliefBenchConfig {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_kernel_replaces_the_default_lists_kernels_only_where_offered() {
+        let defaults = default_techniques();
+        assert_eq!(methods(&[], None), defaults);
+        let simd = methods(&[], Some(KernelChoice::Exactly(Kernel::Simd)));
+        assert_eq!(simd.len(), defaults.len());
+        for (m, d) in simd.iter().zip(&defaults) {
+            assert_eq!(m.technique, d.technique);
+            let offered = m.technique.descriptor().kernels.contains(&Kernel::Simd);
+            let expected = if offered { KernelChoice::Exactly(Kernel::Simd) } else { d.kernel };
+            assert_eq!(m.kernel, expected, "{}", m.technique);
+        }
+        assert!(methods(&[], Some(KernelChoice::Auto)).iter().all(|m| m.kernel == KernelChoice::Auto));
+    }
+
+    #[test]
+    fn given_techniques_run_on_the_given_kernel_or_auto() {
+        assert_eq!(methods(&[POM_32], None), vec![Method::auto(POM_32)]);
+        assert_eq!(
+            methods(&[POM_32], Some(KernelChoice::Exactly(Kernel::Scalar))),
+            vec![Method::on(POM_32, Kernel::Scalar)]
+        );
+    }
+}
