@@ -1,7 +1,8 @@
-//! Command-line arguments: the top-level command and its parse entry points. Each command's
-//! own flags live beside its run function in `commands/`; the flag groups several commands
-//! share (material, complexity, own maps, techniques), the one `WIDTHxHEIGHT` parser and the
-//! ranged value parsers are the modules below.
+//! Command-line arguments: the top-level command and its parse entry points. A command's own
+//! flags live beside its run function in `commands/` (the `texture` flags, below, and the
+//! `hybrid` and `merge` flags, in `args/hybrid.rs`, have yet to move there); the flag groups
+//! several commands share (material, complexity, own maps, techniques), the one
+//! `WIDTHxHEIGHT` parser and the ranged value parsers are the modules below.
 
 use crate::commands::complexity::ComplexityArgs;
 use crate::commands::materials::MaterialsArgs;

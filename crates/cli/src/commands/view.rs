@@ -3,6 +3,7 @@
 //! `--compare` the same camera and technique are then timed by the headless renderer, so that
 //! the viewer's overhead is one ratio measured in one run.
 
+use crate::args::material::MAX_TEXTURE_SIZE;
 use crate::args::own_maps::OwnMapsArgs;
 use crate::args::range::{in_range, Whole};
 use crate::args::technique::parse_technique;
@@ -22,7 +23,7 @@ use std::path::PathBuf;
 /// The range of `--frames` of a `--screenshot` run.
 const FRAMES: Whole<u32> = Whole::new(1, 100_000);
 /// The range of `--texture-size`, texels per side of the built-in materials' maps.
-const TEXTURE_SIZE: Whole<u32> = Whole::new(8, 8192);
+const TEXTURE_SIZE: Whole<u32> = Whole::new(8, MAX_TEXTURE_SIZE);
 
 /// `renderlab view`: the interactive viewer, or a scripted `--screenshot` run.
 #[derive(Args, Debug)]
