@@ -1,7 +1,9 @@
 //! `renderlab`: render relief and textured surfaces, measure the methods, write the lab report.
 //!
-//! This binary only parses arguments, reports progress and maps errors to exit codes; every
-//! algorithm lives in the library crates.
+//! This binary only parses arguments (each command's flags, their ranges and their help in
+//! one file per command under `commands/`, the choices derived from the libraries'
+//! catalogues and enums), dispatches, reports progress and maps errors to exit codes: every
+//! algorithm, the reference renderings and the labs' policies live in the library crates.
 
 #![warn(missing_docs)]
 // The argument structs' doc comments are `--help` texts (with `[:A:B]` syntax), not rustdoc links.
@@ -9,12 +11,12 @@
 
 mod args;
 mod commands;
-mod gpu;
 mod progress;
+mod vulkan_layer;
 
 fn main() {
     // First, while the process has one thread: the environment may only be changed then.
-    gpu::quiet_device_select_layer();
+    vulkan_layer::quiet_device_select_layer();
     let cli = match args::try_parse() {
         Ok(cli) => cli,
         Err(e) if !e.use_stderr() => e.exit(), // --help, --version

@@ -322,3 +322,29 @@ fn write_gray_png(path: &Path, w: u32, h: u32) {
     }
     std::fs::write(path, buf).unwrap();
 }
+
+#[test]
+fn a_value_out_of_range_is_refused_in_one_line_naming_the_flag_the_value_and_the_range() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = dir.path().join("x.png");
+    let d = dir.path().join("d");
+    for (args, flag, value, range) in [
+        (vec!["water", "--out", s(&d), "--fps", "0"], "--fps", "0", "1..=1000"),
+        (vec!["water", "--out", s(&d), "--pitch", "95"], "--pitch", "95", "[-89, 89]"),
+        (vec!["water", "--out", s(&d), "--size", "4x4"], "--size", "4x4", "8..=8192"),
+        (vec!["water", "--out", s(&d), "--time-step", "0"], "--time-step", "0", "(0, 60]"),
+        (vec!["smoke", "--out", s(&d), "--sigma", "nan"], "--sigma", "NaN", "(0, 8]"),
+        (vec!["smoke", "--out", s(&d), "--grid", "2"], "--grid", "2", "4..=256"),
+        (vec!["noise", "--out", s(&d), "--octaves", "-1"], "--octaves", "-1", "1..=32"),
+        (vec!["relief", "bench", "--out", s(&d), "--reps", "0"], "--reps", "0", "1..=1000"),
+        (vec!["relief", "bench", "--out", s(&d), "--angles", "0,90"], "--angles", "90", "[0, 89]"),
+        (vec!["relief", "render", "--out", s(&o), "--angle", "inf"], "--angle", "inf", "[0, 89]"),
+        (vec!["relief", "render", "--out", s(&o), "--height-scale", "2"], "--height-scale", "2", "[0, 1]"),
+        (vec!["materials", "--out", s(&d), "--size", "8"], "--size", "8", "16..=8192"),
+        (vec!["view", "--texture-size", "4"], "--texture-size", "4", "8..=8192"),
+    ] {
+        let err = refused_before_work(&args, flag);
+        assert!(err.contains(value) && err.contains(range), "{args:?}: {err}");
+    }
+    assert!(!d.exists() && !o.exists());
+}

@@ -1,10 +1,13 @@
 //! The checks every command makes before any work: frame sizes, output files and output
-//! directories (so that a bad path fails at once, not after a render), and the one way a
-//! command creates a directory.
+//! directories (so that a bad path fails at once, not after a render), the relief memory
+//! budget, and the one way a command creates a directory.
 
+use crate::args::material::MAX_TEXTURE_SIZE;
 use anyhow::{bail, Context, Result};
 use renderlab_core::image::check_dimensions;
 use renderlab_core::io;
+use renderlab_core::memory::{gib, BUDGET};
+use renderlab_relief::memory::ReliefMemory;
 use std::path::Path;
 
 /// Checks a frame size given by `--width/--height`.
@@ -14,6 +17,39 @@ pub(crate) fn frame_size(width: u32, height: u32) -> Result<()> {
         bail!("--width/--height: {width}x{height} is too small (at least 8x8)");
     }
     Ok(())
+}
+
+/// Refuses a texture size of `materials` materials and a frame (`None`: a window's, not
+/// counted) whose estimated peak memory ([`ReliefMemory`]) exceeds the budget, in one line
+/// naming the largest texture size that fits.
+pub(crate) fn check_memory(
+    fit: ReliefMemory,
+    size: u32,
+    materials: u64,
+    frame: Option<(u32, u32)>,
+) -> Result<()> {
+    let (w, h) = frame.unwrap_or((0, 0));
+    let pixels = u64::from(w) * u64::from(h);
+    let need = fit.estimate(size, materials, pixels);
+    if need <= BUDGET {
+        return Ok(());
+    }
+    let largest = fit.largest_texture(materials, pixels);
+    let what = if materials == 1 { String::new() } else { format!(" ({materials} materials)") };
+    if largest < 16 {
+        bail!(
+            "--width/--height {w}x{h}: the frame needs about {:.1} GiB, over the {} GiB memory budget",
+            gib(fit.frame(pixels)),
+            BUDGET >> 30
+        );
+    }
+    let with = if frame.is_some() { format!(" with a {w}x{h} frame") } else { String::new() };
+    bail!(
+        "--texture-size {size}{what}{with} needs about {:.1} GiB, over the {} GiB memory budget; the largest texture size here is {}",
+        gib(need),
+        BUDGET >> 30,
+        largest.min(MAX_TEXTURE_SIZE)
+    );
 }
 
 /// Checks an output file before any work: a format the command writes (PNG or EXR), a

@@ -1,13 +1,25 @@
 //! `renderlab report`: the suite of labs on the built-in scenes.
 
 use super::checks::check_out_dir;
-use crate::args::ReportArgs;
 use crate::progress::LabBars;
 use anyhow::Result;
+use clap::Args;
 use renderlab_lab::suite::{run_report, Preset};
+use std::path::PathBuf;
+
+/// `renderlab report`.
+#[derive(Args, Debug)]
+pub struct ReportArgs {
+    /// Output directory (created if missing).
+    #[arg(long, default_value = "report")]
+    pub out: PathBuf,
+    /// Fewer repetitions and a smaller frame, for a quick look (not for figures).
+    #[arg(long)]
+    pub quick: bool,
+}
 
 /// `renderlab report`: every lab, one progress bar each.
-pub(super) fn report(a: ReportArgs) -> Result<()> {
+pub(super) fn run(a: ReportArgs) -> Result<()> {
     check_out_dir("--out", &a.out)?;
     let preset = if a.quick { Preset::Quick } else { Preset::Report };
     let bars = LabBars::default();

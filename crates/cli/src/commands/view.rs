@@ -3,9 +3,13 @@
 //! `--compare` the same camera and technique are then timed by the headless renderer, so that
 //! the viewer's overhead is one ratio measured in one run.
 
-use super::relief::load_own_material;
-use crate::args::ViewArgs;
+use crate::args::material::MAX_TEXTURE_SIZE;
+use crate::args::own_maps::OwnMapsArgs;
+use crate::args::range::{in_range, Whole};
+use crate::args::technique::parse_technique;
+use crate::commands::checks::{check_memory, check_out_file};
 use anyhow::{bail, Context, Result};
+use clap::Args;
 use renderlab_core::{io, Material};
 use renderlab_gpu::{GpuContext, ReliefRenderer};
 use renderlab_lab::fixtures::thesis_room;
@@ -14,29 +18,71 @@ use renderlab_relief::{Map, ReliefMaterial, Technique};
 use renderlab_viewer::launch::{bookmark, BOOKMARKS};
 use renderlab_viewer::split::SplitMode;
 use renderlab_viewer::{Launch, Script, ScriptReport};
+use std::path::PathBuf;
+
+/// The range of `--frames` of a `--screenshot` run.
+const FRAMES: Whole<u32> = Whole::new(1, 100_000);
+/// The range of `--texture-size`, texels per side of the built-in materials' maps.
+const TEXTURE_SIZE: Whole<u32> = Whole::new(8, MAX_TEXTURE_SIZE);
+
+/// `renderlab view`: the interactive viewer, or a scripted `--screenshot` run.
+#[derive(Args, Debug)]
+pub struct ViewArgs {
+    /// Render --frames frames in the window, write the last one to this PNG, print the frame
+    /// times and close (for scripts, docs and measurements).
+    #[arg(long)]
+    pub screenshot: Option<PathBuf>,
+    /// Technique to start on (default: the thesis's adaptive POM); `renderlab relief render
+    /// --help` lists them.
+    #[arg(long, short, value_parser = parse_technique)]
+    pub technique: Option<Technique>,
+    /// Camera to start at: room, bench0, bench45, bench60 or bench80 (the thesis's views).
+    #[arg(long, default_value = "room")]
+    pub camera: String,
+    /// Start in the split screen: `side` (the technique beside --right) or `error` (the
+    /// technique beside its error heat map against the GPU reference); `off` by default.
+    #[arg(long, default_value = "off", value_parser = |s: &str| SplitMode::parse(s).ok_or_else(|| format!("'{s}' is not one of off, side, error")))]
+    pub split: SplitMode,
+    /// The split screen's right-hand technique (default: the GPU reference).
+    #[arg(long, value_parser = parse_technique)]
+    pub right: Option<Technique>,
+    /// Frames a --screenshot run renders, in [`FRAMES`].
+    #[arg(long, default_value_t = 30, requires = "screenshot", value_parser = in_range(FRAMES),
+          help = format!("Frames a --screenshot run renders ({FRAMES}; the first builds the pipeline and is not timed)"))]
+    pub frames: u32,
+    /// After a --screenshot run, time the same frame with the headless renderer and print the
+    /// viewer's overhead.
+    #[arg(long, requires = "screenshot")]
+    pub compare: bool,
+    /// Keep the interface (HUD) shown during a --screenshot run, so that the frame times
+    /// include it; the image written is the room's picture either way.
+    #[arg(long, requires = "screenshot")]
+    pub hud: bool,
+    /// Size of the built-in materials' maps in texels per side, in [`TEXTURE_SIZE`].
+    #[arg(long, default_value_t = 512, value_parser = in_range(TEXTURE_SIZE),
+          help = format!("Size of the built-in materials' maps in texels per side ({TEXTURE_SIZE})"))]
+    pub texture_size: u32,
+    /// Your own maps, put on every surface of the room.
+    #[command(flatten)]
+    pub own: OwnMapsArgs,
+}
 
 /// `renderlab view`.
-pub(crate) fn view(a: ViewArgs) -> Result<()> {
+pub(crate) fn run(a: ViewArgs) -> Result<()> {
     if bookmark(&a.camera, 8, 8).is_none() {
         bail!("--camera: '{}' is not one of {}", a.camera, BOOKMARKS.join(", "));
     }
-    if !(1..=100_000).contains(&a.frames) {
-        bail!("--frames: {} is outside 1..=100000", a.frames);
-    }
-    if !(8..=8192).contains(&a.texture_size) {
-        bail!("--texture-size: {} is outside 8..=8192", a.texture_size);
-    }
     // The room's four materials, on the GPU.
-    super::relief::check_memory(renderlab_relief::memory::ReliefMemory::RENDER_GPU, a.texture_size, 4, None)?;
+    check_memory(renderlab_relief::memory::ReliefMemory::RENDER_GPU, a.texture_size, 4, None)?;
     if a.own.height_scale.is_some() && a.own.albedo.is_none() {
         bail!("--height-scale: the viewer applies it to your own maps only (give --albedo and --height-map)");
     }
     if let Some(out) = &a.screenshot {
-        if super::checks::check_out_file("--screenshot", out)? != io::Format::Png {
+        if check_out_file("--screenshot", out)? != io::Format::Png {
             bail!("--screenshot: {} must be a .png file", out.display());
         }
     }
-    let material = load_own_material(&a.own)?;
+    let material = a.own.load()?;
     let launch = Launch {
         technique: a.technique,
         camera: Some(a.camera.clone()),

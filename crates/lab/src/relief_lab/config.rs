@@ -2,6 +2,7 @@
 
 use crate::fixtures::{BENCH_ANGLES_DEG, BENCH_HEIGHT, BENCH_WIDTH};
 use renderlab_relief::maps::complexity::ComplexityParams;
+use renderlab_relief::memory::ReliefMemory;
 use renderlab_relief::techniques::{bench_settings, pom::Pom};
 use renderlab_relief::{Kernel, KernelChoice, Technique};
 
@@ -38,8 +39,8 @@ pub struct ReliefBenchConfig {
     pub gpu_required: bool,
 }
 
-/// Which renderers a relief run measures.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// Which renderers a relief run measures (the values of `relief bench --backend`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
 pub enum Backend {
     /// The CPU renderer alone.
     #[default]
@@ -61,6 +62,15 @@ impl Backend {
     /// Whether the GPU renderer runs.
     pub fn gpu(self) -> bool {
         self != Backend::Cpu
+    }
+
+    /// The measured memory fit of a run on these renderers, by which a texture size and
+    /// frame are refused before any work.
+    pub fn memory(self) -> ReliefMemory {
+        match self {
+            Backend::Cpu => ReliefMemory::BENCH_CPU,
+            Backend::Gpu | Backend::Both => ReliefMemory::BENCH_GPU,
+        }
     }
 }
 
@@ -116,6 +126,29 @@ pub fn default_techniques() -> Vec<Method> {
     bench_settings().into_iter().map(|(technique, kernel)| Method { technique, kernel }).collect()
 }
 
+/// The methods a run measures: the given techniques, each on `kernel` (default auto), or,
+/// when `list` is empty, the lab's default list ([`default_techniques`]), whose kernels
+/// `kernel` replaces where a technique offers it (so that `--kernel scalar` leaves a
+/// technique without a scalar twin on its own kernel rather than refusing the run).
+pub fn methods(list: &[Technique], kernel: Option<KernelChoice>) -> Vec<Method> {
+    if list.is_empty() {
+        let mut methods = default_techniques();
+        if let Some(choice) = kernel {
+            for m in &mut methods {
+                let offered = match choice {
+                    KernelChoice::Auto => true,
+                    KernelChoice::Exactly(k) => m.technique.descriptor().kernels.contains(&k),
+                };
+                if offered {
+                    m.kernel = choice;
+                }
+            }
+        }
+        return methods;
+    }
+    list.iter().map(|&technique| Method { technique, kernel: kernel.unwrap_or_default() }).collect()
+}
+
 /// Resolves each method's kernel choice on this CPU, keeping the first of any duplicates.
 pub fn resolve(methods: &[Method]) -> Result<Vec<(Technique, Kernel)>, renderlab_relief::ReliefError> {
     let mut out: Vec<(Technique, Kernel)> = Vec::new();
@@ -144,5 +177,34 @@ impl Default for ReliefBenchConfig {
             gpu_subset: None,
             gpu_required: true,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_kernel_replaces_the_default_lists_kernels_only_where_offered() {
+        let defaults = default_techniques();
+        assert_eq!(methods(&[], None), defaults);
+        let simd = methods(&[], Some(KernelChoice::Exactly(Kernel::Simd)));
+        assert_eq!(simd.len(), defaults.len());
+        for (m, d) in simd.iter().zip(&defaults) {
+            assert_eq!(m.technique, d.technique);
+            let offered = m.technique.descriptor().kernels.contains(&Kernel::Simd);
+            let expected = if offered { KernelChoice::Exactly(Kernel::Simd) } else { d.kernel };
+            assert_eq!(m.kernel, expected, "{}", m.technique);
+        }
+        assert!(methods(&[], Some(KernelChoice::Auto)).iter().all(|m| m.kernel == KernelChoice::Auto));
+    }
+
+    #[test]
+    fn given_techniques_run_on_the_given_kernel_or_auto() {
+        assert_eq!(methods(&[POM_32], None), vec![Method::auto(POM_32)]);
+        assert_eq!(
+            methods(&[POM_32], Some(KernelChoice::Exactly(Kernel::Scalar))),
+            vec![Method::on(POM_32, Kernel::Scalar)]
+        );
     }
 }

@@ -16,9 +16,13 @@ use renderlab_relief::{Kernel, ReliefMaterial, Technique};
 /// UV error shown by the error view: 0 … this many texels.
 pub const UV_ERROR_MAX_TEXELS: f32 = 4.0;
 
-/// What a debug view shows in place of the shaded image.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// What a relief frame shows: the shaded image, or a debug view in its place (the values of
+/// `relief render --debug`; the error view's range is [`UV_ERROR_MAX_TEXELS`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
 pub enum DebugView {
+    /// The shaded image.
+    #[default]
+    None,
     /// Per-pixel layer count as a heat map, 0 … the technique's layers (the thesis's debug
     /// mode, in colour).
     Layers,
@@ -26,8 +30,7 @@ pub enum DebugView {
     Complexity,
     /// The exact reference, shaded as the technique would be.
     Reference,
-    /// UV error against the reference, 0 … [`UV_ERROR_MAX_TEXELS`] texels of the first
-    /// material's height map.
+    /// UV error against the reference, 0 … 4 texels of the first material's height map.
     Error,
 }
 
@@ -72,6 +75,7 @@ pub fn debug_view(
         |t: Technique, k: Kernel| render(view.input(), mats, t, k, scene.lighting, scene.background, false);
     let (width, height) = (view.gbuffer.width(), view.gbuffer.height());
     Ok(match which {
+        DebugView::None => lit(technique, kernel)?.image,
         DebugView::Reference => {
             render_reference(view.input(), mats, technique, scene.lighting, scene.background).image
         }

@@ -3,7 +3,8 @@
 //! intersection shaded the same way. Writes `results.json`, `results.csv`, images and an
 //! `index.html` that sets our figures beside the thesis's Table 4.1. With a GPU backend the
 //! same frames are drawn by the techniques' WGSL shaders (`renderlab-gpu`), measured the same
-//! way, and timed in turn with the CPU renderer for the ratio of their frame times.
+//! way, and timed in turn with the CPU renderer for the ratio of their frame times. One frame,
+//! shaded or as a debug view, on either renderer, is drawn by [`render_frame`].
 
 mod config;
 mod debug;
@@ -12,14 +13,18 @@ mod gpu_side;
 mod gpu_tables;
 mod page;
 mod record;
+mod render;
 mod run;
 mod uv_error;
 mod verdicts;
 
-pub use config::{default_techniques, resolve, Backend, GpuSubset, Method, ReliefBenchConfig, POM_32};
+pub use config::{
+    default_techniques, methods, resolve, Backend, GpuSubset, Method, ReliefBenchConfig, POM_32,
+};
 pub use debug::{debug_view, layers_view, uv_error_view, DebugView, UV_ERROR_MAX_TEXELS};
 pub use device::device_label;
 pub use record::{label, RecordBackend, ReliefRecord, ReliefSummary};
+pub use render::{render_frame, FrameRequest, RenderBackend, REPS, WARMUP};
 pub use run::{run_relief_bench, View};
 pub use uv_error::{mean_and_p95, uv_error_map};
 pub use verdicts::{thesis_weighted_gain, versus_pom32, VersusPom32, THESIS_TABLE_4_1};
