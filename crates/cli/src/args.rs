@@ -160,8 +160,8 @@ pub enum ReliefCommand {
 /// Which material to use: a built-in one or the user's maps.
 #[derive(Args, Debug, Clone)]
 pub struct MaterialArgs {
-    /// Built-in material: bricks (the default), sand_rocks, bark_willow or brick_pavement.
-    #[arg(long, conflicts_with = "albedo")]
+    // Built-in material (the help lists the material registry).
+    #[arg(long, conflicts_with = "albedo", help = material_help())]
     pub material: Option<String>,
     /// Size of the built-in material's maps in texels per side.
     #[arg(long, default_value_t = 1024)]
@@ -607,6 +607,19 @@ pub struct TextureRenderArgs {
     /// once per surface unit, repeated.
     #[arg(long)]
     pub texture: Option<PathBuf>,
+}
+
+/// `--material` help, generated from the material registry: "Built-in material: bricks (the
+/// default), sand_rocks, bark_willow or brick_pavement" (as clap writes a one-sentence doc
+/// comment: without the full stop).
+fn material_help() -> String {
+    use renderlab_texture::materials::{DEFAULT_MATERIAL, MATERIAL_NAMES};
+    let names: Vec<String> = MATERIAL_NAMES
+        .iter()
+        .map(|&n| if n == DEFAULT_MATERIAL { format!("{n} (the default)") } else { n.to_string() })
+        .collect();
+    let (last, first) = names.split_last().expect("the registry has materials");
+    format!("Built-in material: {} or {last}", first.join(", "))
 }
 
 /// Parses a `--filters` entry through the filter catalogue.

@@ -17,7 +17,7 @@ use renderlab_relief::maps::complexity::{complexity_map, ComplexityParams};
 use renderlab_relief::memory::ReliefMemory;
 use renderlab_relief::render::render as render_frame;
 use renderlab_relief::{KernelChoice, Map, ReliefMaterial, Technique};
-use renderlab_texture::materials::{material as builtin_material, MATERIAL_NAMES};
+use renderlab_texture::materials::{material as builtin_material, DEFAULT_MATERIAL, MATERIAL_NAMES};
 
 /// The complexity-map parameters of the flags, checked.
 fn params(f: &ComplexityFlags) -> Result<ComplexityParams> {
@@ -25,9 +25,6 @@ fn params(f: &ComplexityFlags) -> Result<ComplexityParams> {
     p.validate()?;
     Ok(p)
 }
-
-/// The built-in material of `--material`'s default.
-const DEFAULT_MATERIAL: &str = "bricks";
 
 /// The largest `--texture-size`.
 const MAX_TEXTURE_SIZE: u32 = 8192;
