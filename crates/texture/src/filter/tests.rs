@@ -126,7 +126,11 @@ fn the_lab_measures_every_filter() {
     for f in &lab {
         assert_eq!(f.name().parse::<FilterSpec>().unwrap(), *f);
     }
-    let names: Vec<String> = lab.iter().map(FilterSpec::name).collect();
+    // The filters the lab measured when its list was written by hand (a filter added to the
+    // registry adds its own settings without changing these).
+    let old = ["nearest", "bilinear", "bicubic", "trilinear", "aniso", "ewa"];
+    let names: Vec<String> =
+        lab.iter().filter(|f| old.contains(&f.info().name)).map(FilterSpec::name).collect();
     assert_eq!(
         names.join(", "),
         "nearest, bilinear, bicubic, trilinear, aniso2, aniso4, aniso8, aniso16, aniso16:box, ewa, \
@@ -158,20 +162,36 @@ fn gpu_forms_follow_the_entries() {
 /// was written by hand.
 #[test]
 fn generated_texts_are_the_hand_written_ones() {
-    let expected = "nearest, bilinear, bicubic, trilinear, anisoN[:box|:sigma=S:cut=C], \
-                    ewa[:sigma=S][:cut=C][:ecc=E][:texels=T]";
+    // Each filter's syntax and description as the hand-written catalogue had them (a filter
+    // added to the registry adds its own without changing these).
+    let old = [
+        ("nearest", "nearest texel of level 0 (1 fetch)"),
+        ("bilinear", "bilinear on level 0 (4 fetches)"),
+        ("bicubic", "Catmull-Rom bicubic on level 0 (16 fetches)"),
+        (
+            "trilinear",
+            "mip-mapping, level from the longer screen axis' footprint as GPUs choose it (8 fetches)",
+        ),
+        (
+            "anisoN[:box|:sigma=S:cut=C]",
+            "up to N trilinear probes (1..=64) along the footprint's major axis, Gaussian-weighted by \
+             the pixel filter (default σ=0.5, cut=3) or equal-weighted (box, as GPUs)",
+        ),
+        (
+            "ewa[:sigma=S][:cut=C][:ecc=E][:texels=T]",
+            "Heckbert's elliptical weighted average with the pixel filter's Gaussian (default σ=0.5, \
+             cut=3), eccentricity clamp E (default 16) and at most T texels (default 216)",
+        ),
+    ];
+    for (i, (syntax, description)) in old.iter().enumerate() {
+        assert_eq!((FILTERS[i].syntax().as_str(), FILTERS[i].description), (*syntax, *description));
+    }
+    // The lists join them as the hand-written code did.
+    let syntaxes: Vec<String> = FILTERS.iter().map(Descriptor::syntax).collect();
+    let expected = syntaxes.join(", ");
     assert_eq!(super::expected(), expected);
-    assert_eq!(
-        FilterSpec::help(),
-        "nearest: nearest texel of level 0 (1 fetch); bilinear: bilinear on level 0 (4 fetches); \
-         bicubic: Catmull-Rom bicubic on level 0 (16 fetches); trilinear: mip-mapping, level from \
-         the longer screen axis' footprint as GPUs choose it (8 fetches); anisoN[:box|:sigma=S:cut=C]: \
-         up to N trilinear probes (1..=64) along the footprint's major axis, Gaussian-weighted by the \
-         pixel filter (default σ=0.5, cut=3) or equal-weighted (box, as GPUs); \
-         ewa[:sigma=S][:cut=C][:ecc=E][:texels=T]: Heckbert's elliptical weighted average with the \
-         pixel filter's Gaussian (default σ=0.5, cut=3), eccentricity clamp E (default 16) and at \
-         most T texels (default 216)"
-    );
+    let lines: Vec<String> = FILTERS.iter().map(|d| format!("{}: {}", d.syntax(), d.description)).collect();
+    assert_eq!(FilterSpec::help(), lines.join("; "));
     let pixel = "pixel filter: '{}' is not 'box', 'sigma=S' or 'cut=C' (e.g. sigma=0.45:cut=2)";
     let range = "pixel filter: σ = {} must lie in 0.1..=2 px and cut = {} in 1..=4 σ";
     for (text, reason) in [
