@@ -241,7 +241,7 @@ fn parse_model(s: &str) -> Result<PixelFilter, String> {
 fn filters_help() -> String {
     let list: Vec<String> = renderlab_texture::filter::FILTERS
         .iter()
-        .map(|f| format!("  {}\n      {}", f.syntax, f.description))
+        .map(|f| format!("  {}\n      {}", f.syntax(), f.description))
         .collect();
     let defaults: Vec<String> =
         renderlab_lab::texture_lab::default_filters().iter().map(|f| f.name()).collect();

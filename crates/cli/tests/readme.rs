@@ -8,6 +8,7 @@ use renderlab_hybrid::stages::DESCRIPTORS as STAGES;
 use renderlab_relief::techniques::DESCRIPTORS;
 use renderlab_scene::procedural::SCENES;
 use renderlab_texture::filter::FILTERS;
+use renderlab_texture::materials::MATERIALS;
 
 const README: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md");
 
@@ -25,7 +26,7 @@ fn tables() -> Vec<(&'static str, String)> {
     }
     let mut filters = String::from("| filter | what it does |\n|---|---|\n");
     for f in FILTERS {
-        filters.push_str(&format!("| `{}` | {} |\n", cell(f.syntax), cell(f.description)));
+        filters.push_str(&format!("| `{}` | {} |\n", cell(&f.syntax()), cell(f.description)));
     }
     let mut stages = String::from("| stage | flag | default | what the choices do |\n|---|---|---|---|\n");
     for d in STAGES {
@@ -52,7 +53,17 @@ fn tables() -> Vec<(&'static str, String)> {
             cell(e.summary)
         ));
     }
-    vec![("relief", relief), ("filters", filters), ("stages", stages), ("scenes", scenes)]
+    let mut materials = String::from("| material | relief depth | what it is |\n|---|---|---|\n");
+    for m in MATERIALS {
+        materials.push_str(&format!("| `{}` | {} | {} |\n", m.name, m.height_scale, cell(m.description)));
+    }
+    vec![
+        ("relief", relief),
+        ("materials", materials),
+        ("filters", filters),
+        ("stages", stages),
+        ("scenes", scenes),
+    ]
 }
 
 /// Text made safe for one markdown table cell.

@@ -69,14 +69,10 @@ fn run() -> Result<(), String> {
 }
 
 fn filters(ctx: &GpuContext, w: u32, h: u32) -> Result<(), String> {
-    let filters = [
-        GpuFilter::Nearest,
-        GpuFilter::Bilinear,
-        GpuFilter::Trilinear,
-        GpuFilter::Anisotropic(4),
-        GpuFilter::Anisotropic(16),
-        GpuFilter::Ewa(Default::default()),
-    ];
+    let filters: Vec<GpuFilter> = ["nearest", "bilinear", "trilinear", "aniso4:box", "aniso16:box", "ewa"]
+        .iter()
+        .map(|n| GpuFilter::from_spec(&n.parse().map_err(|e| format!("{e}"))?).map_err(|e| e.to_string()))
+        .collect::<Result<_, String>>()?;
     let names: Vec<String> = filters.iter().map(GpuFilter::name).collect();
     println!("{w}×{h}, GPU ms / wall ms, median of {REPS} after {WARMUP} warm-up frames\n");
     println!("| scene | {} |", names.join(" | "));

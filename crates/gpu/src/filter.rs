@@ -15,6 +15,11 @@
 //! unreduced coordinate, as on a rasterized surface (differences of the exact mapping
 //! between neighbouring pixels), because a driver may ignore explicit gradients there
 //! (lavapipe's does).
+//!
+//! Which of these a CPU filter has is stated by its entry in `renderlab_texture`'s filter
+//! registry (`Entry::gpu`: a hardware sampler mode, WGSL with its parameters, or the reason
+//! there is none; `Entry::WGSL`: the source and the CPU constants it reads). This file maps
+//! those forms to the frame's modes and samplers and names no filter.
 
 use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
@@ -25,9 +30,11 @@ use crate::upload::{create, upload_pyramid, write_level};
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
 use renderlab_core::Image;
-use renderlab_texture::filter::ewa::{COARSE_RECONSTRUCTION_VARIANCE, PER_UNIT, RECONSTRUCTION_VARIANCE};
+use renderlab_texture::filter::{
+    wgsl_sources, GpuForm, GpuTwin, HardwareSampler, Levels, WgslParams, MAX_HARDWARE_ANISOTROPY,
+};
 use renderlab_texture::scene::{Surface, TestScene};
-use renderlab_texture::{Anisotropic, Ewa, FilterSpec, PixelFilter, Wrap};
+use renderlab_texture::{FilterSpec, Trilinear, Wrap};
 use std::time::Instant;
 
 /// The filter frame's WGSL.
@@ -37,95 +44,64 @@ pub const FILTER_WGSL: &str = include_str!("shaders/filter.wgsl");
 const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
 /// Most probes the hardware's anisotropic filtering takes (wgpu's and Vulkan's usual limit).
-pub const MAX_ANISOTROPY: u32 = 16;
+pub const MAX_ANISOTROPY: u32 = MAX_HARDWARE_ANISOTROPY;
 
-/// A texture filter the GPU runs.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum GpuFilter {
-    /// The hardware's nearest texel on level 0.
-    Nearest,
-    /// The hardware's bilinear filter on level 0.
-    Bilinear,
-    /// The hardware's trilinear filter, its level chosen by the hardware from the footprint.
-    Trilinear,
-    /// The hardware's anisotropic filter with at most this many probes (`anisotropy_clamp`,
-    /// 2..=16): implementation-defined (how many probes, where, with which weights).
-    Anisotropic(u16),
-    /// EWA in WGSL with the CPU filter's parameters.
-    Ewa(Ewa),
-}
+/// A texture filter the GPU runs: the GPU twin a CPU filter's registry entry states
+/// ([`FilterSpec::gpu`]): the hardware's sampler in one of the frame's modes, or a filter
+/// written in WGSL with its parameters.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GpuFilter(GpuTwin);
 
 impl GpuFilter {
-    /// The GPU filter for the CPU filter `spec`: nearest, bilinear, trilinear, `anisoN:box`
-    /// (the hardware's equal-weight probes; N ≤ 16, and N = 1 is trilinear) and EWA. Bicubic
-    /// and Gaussian-weighted anisotropic probes have no GPU twin: refused with the reason.
+    /// The GPU filter for the CPU filter `spec`, as its registry entry states it; a filter
+    /// without one is refused with the entry's reason.
     pub fn from_spec(spec: &FilterSpec) -> Result<GpuFilter> {
-        let refuse = |why: &str| Err(GpuError::NoGpuFilter(spec.name(), why.to_string()));
-        match *spec {
-            FilterSpec::Nearest => Ok(GpuFilter::Nearest),
-            FilterSpec::Bilinear => Ok(GpuFilter::Bilinear),
-            FilterSpec::Trilinear => Ok(GpuFilter::Trilinear),
-            FilterSpec::Bicubic => {
-                refuse("the hardware has no bicubic filter and none is written in WGSL yet")
-            }
-            FilterSpec::Anisotropic(Anisotropic { max_probes, kernel: PixelFilter::Box }) => match max_probes
-            {
-                1 => Ok(GpuFilter::Trilinear),
-                2..=MAX_ANISOTROPY => Ok(GpuFilter::Anisotropic(max_probes as u16)),
-                _ => refuse("the hardware's anisotropic filtering takes at most 16 probes"),
-            },
-            FilterSpec::Anisotropic(_) => {
-                refuse("the hardware's anisotropic probes have equal weights: use anisoN:box")
-            }
-            FilterSpec::Ewa(e) => Ok(GpuFilter::Ewa(e)),
-        }
+        spec.gpu().map(GpuFilter).map_err(|why| GpuError::NoGpuFilter(spec.name(), why))
     }
 
     /// Its name: the CPU twin's (`trilinear`, `ewa`), `hw-anisoN` for the hardware's
     /// anisotropic filter (whose CPU counterpart `anisoN:box` is an approximation of it).
     pub fn name(&self) -> String {
-        match self {
-            GpuFilter::Nearest => "nearest".into(),
-            GpuFilter::Bilinear => "bilinear".into(),
-            GpuFilter::Trilinear => "trilinear".into(),
-            GpuFilter::Anisotropic(n) => format!("hw-aniso{n}"),
-            GpuFilter::Ewa(e) => FilterSpec::Ewa(*e).name(),
-        }
+        self.0.name.clone()
     }
 
     /// The CPU filter it is compared with.
     pub fn cpu_twin(&self) -> FilterSpec {
-        match *self {
-            GpuFilter::Nearest => FilterSpec::Nearest,
-            GpuFilter::Bilinear => FilterSpec::Bilinear,
-            GpuFilter::Trilinear => FilterSpec::Trilinear,
-            GpuFilter::Anisotropic(n) => FilterSpec::Anisotropic(Anisotropic::box_probes(n as u32)),
-            GpuFilter::Ewa(e) => FilterSpec::Ewa(e),
-        }
+        self.0.cpu
+    }
+
+    /// How it runs.
+    pub fn form(&self) -> GpuForm {
+        self.0.form
     }
 
     /// The frame's mode (see `Filter.mode` in `filter.wgsl`).
     fn mode(&self) -> u32 {
-        match self {
-            GpuFilter::Nearest | GpuFilter::Bilinear => 0,
-            GpuFilter::Trilinear => 1,
-            GpuFilter::Ewa(_) => 2,
-            GpuFilter::Anisotropic(_) => 3,
+        match self.0.form {
+            GpuForm::Sampler(HardwareSampler { levels: Levels::Base, .. }) => 0,
+            GpuForm::Sampler(HardwareSampler { levels: Levels::Gradients, .. }) => 1,
+            GpuForm::Wgsl(_) => 2,
+            GpuForm::Sampler(HardwareSampler { levels: Levels::Quad { .. }, .. }) => 3,
         }
     }
 
-    /// The sampler: EWA's is bilinear within a level (its fallback's).
+    /// The sampler: a WGSL filter's is bilinear within a level (EWA's fallback's).
     fn sampler(&self, ctx: &GpuContext, wrap: Wrap) -> wgpu::Sampler {
         let address = match wrap {
             Wrap::Repeat => wgpu::AddressMode::Repeat,
             Wrap::Clamp => wgpu::AddressMode::ClampToEdge,
         };
-        let (filter, mipmap, anisotropy_clamp) = match *self {
-            GpuFilter::Nearest => (wgpu::FilterMode::Nearest, wgpu::MipmapFilterMode::Nearest, 1),
-            GpuFilter::Bilinear | GpuFilter::Trilinear | GpuFilter::Ewa(_) => {
-                (wgpu::FilterMode::Linear, wgpu::MipmapFilterMode::Linear, 1)
+        let (linear, anisotropy_clamp) = match self.0.form {
+            GpuForm::Sampler(HardwareSampler { linear, levels: Levels::Quad { anisotropy } }) => {
+                (linear, anisotropy)
             }
-            GpuFilter::Anisotropic(n) => (wgpu::FilterMode::Linear, wgpu::MipmapFilterMode::Linear, n),
+            GpuForm::Sampler(HardwareSampler { linear, .. }) => (linear, 1),
+            GpuForm::Wgsl(_) => (true, 1),
+        };
+        let (filter, mipmap) = if linear {
+            (wgpu::FilterMode::Linear, wgpu::MipmapFilterMode::Linear)
+        } else {
+            (wgpu::FilterMode::Nearest, wgpu::MipmapFilterMode::Nearest)
         };
         ctx.device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("filter"),
@@ -155,17 +131,20 @@ struct FilterUniform {
     pad: [u32; 2],
 }
 
-/// The filter module: the constants of EWA's CPU code, the frame and EWA's WGSL.
+/// The filter module: the constants of the WGSL filters' CPU code, the frame, and the WGSL
+/// filters of the registry ([`wgsl_sources`]: EWA's).
 pub fn module_source() -> String {
-    format!(
-        "// renderlab: texture filters\n\
-         const EWA_PER_UNIT: f32 = {:?}f;\n\
-         const EWA_RECONSTRUCTION_VARIANCE: f32 = {RECONSTRUCTION_VARIANCE:?}f;\n\
-         const EWA_COARSE_RECONSTRUCTION_VARIANCE: f32 = {COARSE_RECONSTRUCTION_VARIANCE:?}f;\n\
-         {FILTER_WGSL}\n{}",
-        PER_UNIT as f32,
-        Ewa::WGSL
-    )
+    let sources = wgsl_sources();
+    let mut s = String::from("// renderlab: texture filters\n");
+    for (name, value) in sources.iter().flat_map(|w| w.constants) {
+        s.push_str(&format!("const {name}: f32 = {value:?}f;\n"));
+    }
+    s.push_str(FILTER_WGSL);
+    for w in &sources {
+        s.push('\n');
+        s.push_str(w.source);
+    }
+    s
 }
 
 /// Renders one texture-lab scene through the GPU's filters.
@@ -289,7 +268,8 @@ impl<'a> FilterRenderer<'a> {
             }
             self.probe = Some(t);
         }
-        let group = self.prepare(&GpuFilter::Trilinear, true);
+        let trilinear = GpuFilter::from_spec(&Trilinear.into()).expect("trilinear runs on every GPU");
+        let group = self.prepare(&trilinear, true);
         self.draw(&group, false)?;
         let texels: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&read_texture(self.ctx, &self.target, 16)?);
         let level = texels.iter().map(|c| if c[3] > 0.5 { c[0] } else { 0.0 }).collect();
@@ -324,12 +304,9 @@ impl<'a> FilterRenderer<'a> {
     /// Writes the frame constants of `filter` and binds the scene's texture (or the level
     /// probe) with its sampler.
     fn prepare(&self, filter: &GpuFilter, probe: bool) -> wgpu::BindGroup {
-        let (sigma, cut, ecc, texels) = match filter {
-            GpuFilter::Ewa(e) => {
-                let ((sigma, cut), (ecc, texels)) = (e.clamped_kernel(), e.clamped_bounds());
-                (sigma, cut, ecc, texels)
-            }
-            _ => (0.0, 0.0, 0.0, 0),
+        let (sigma, cut, ecc, texels) = match filter.form() {
+            GpuForm::Wgsl(WgslParams { sigma, cut, bound, budget }) => (sigma, cut, bound, budget),
+            GpuForm::Sampler(_) => (0.0, 0.0, 0.0, 0),
         };
         let uniform = FilterUniform {
             background: self.background.extend(0.0).to_array(),

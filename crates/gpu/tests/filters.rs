@@ -50,8 +50,9 @@ use renderlab_core::Image;
 use renderlab_gpu::{FilterRenderer, GpuError, GpuFilter};
 use renderlab_measure::metrics::psnr;
 use renderlab_texture::filter::{bilinear_level, lod};
+use renderlab_texture::filter::{lab_filters, GpuForm, HardwareSampler, Levels};
 use renderlab_texture::scene::{SceneKind, Surface, TestScene};
-use renderlab_texture::{FilterSpec, Texture};
+use renderlab_texture::{Bilinear, FilterSpec, Nearest, Texture, Trilinear};
 
 /// Frame size: small, since CI's GPU is a CPU.
 const WIDTH: u32 = 160;
@@ -138,6 +139,11 @@ fn mean(img: &Image<Vec3>, mask: &Image<bool>) -> f64 {
     v.iter().sum::<f64>() / v.len().max(1) as f64
 }
 
+/// The GPU twin of the catalogue filter named `name`.
+fn gpu_twin(name: &str) -> GpuFilter {
+    GpuFilter::from_spec(&name.parse().expect("a catalogue filter")).expect("a GPU twin")
+}
+
 /// The GPU filter renderer of `case`.
 fn gpu_filter<'a>(ctx: &'a renderlab_gpu::GpuContext, case: &Case) -> FilterRenderer<'a> {
     FilterRenderer::new(ctx, &case.scene, &case.surface).expect("scene uploads")
@@ -150,7 +156,7 @@ fn nearest_and_bilinear_agree() {
     for kind in scenes() {
         let case = Case::new(kind);
         let mut r = gpu_filter(&ctx, &case);
-        for spec in [FilterSpec::Nearest, FilterSpec::Bilinear] {
+        for spec in [FilterSpec::Nearest(Nearest), FilterSpec::Bilinear(Bilinear)] {
             let g = GpuFilter::from_spec(&spec).expect("a GPU twin");
             let gpu = r.render(&g).unwrap_or_else(|e| panic!("{}: {e}", g.name()));
             let cpu = case.cpu(&spec);
@@ -166,7 +172,7 @@ fn nearest_and_bilinear_agree() {
                 differ * 100.0
             );
             let ok = match spec {
-                FilterSpec::Nearest => differ <= 0.01,
+                FilterSpec::Nearest(_) => differ <= 0.01,
                 _ => max <= WEIGHTS + 1e-6,
             };
             if !ok {
@@ -204,8 +210,8 @@ fn trilinear_chooses_the_cpu_level_and_agrees() {
         let case = Case::new(kind);
         let mut r = gpu_filter(&ctx, &case);
         let levels = r.levels().expect("level probe");
-        let gpu = r.render(&GpuFilter::Trilinear).expect("trilinear");
-        let cpu = case.cpu(&FilterSpec::Trilinear);
+        let gpu = r.render(&gpu_twin("trilinear")).expect("trilinear");
+        let cpu = case.cpu(&FilterSpec::Trilinear(Trilinear));
         case.save("trilinear", &gpu, &cpu);
         let tex = &case.scene.texture;
         let (mut level_max, mut level_sum, mut beyond) = (0.0f32, 0.0f64, 0usize);
@@ -274,10 +280,10 @@ fn hardware_anisotropic_against_the_cpu() {
         let case = Case::new(kind);
         let quads = case.quads();
         let mut r = gpu_filter(&ctx, &case);
-        let nearest = case.cpu(&FilterSpec::Nearest);
+        let nearest = case.cpu(&FilterSpec::Nearest(Nearest));
         let ewa = case.cpu(&"ewa".parse().expect("EWA"));
         for n in [4u16, 16] {
-            let g = GpuFilter::Anisotropic(n);
+            let g = gpu_twin(&format!("aniso{n}:box"));
             let gpu = r.render(&g).expect("anisotropic");
             let cpu = case.cpu(&g.cpu_twin());
             case.save(&g.name(), &gpu, &cpu);
@@ -312,15 +318,46 @@ fn hardware_anisotropic_against_the_cpu() {
 #[test]
 fn filter_specs_map_to_gpu_filters_or_are_refused() {
     let map = |s: &str| GpuFilter::from_spec(&s.parse().expect("a catalogue filter"));
-    assert_eq!(map("nearest").unwrap(), GpuFilter::Nearest);
-    assert_eq!(map("trilinear").unwrap(), GpuFilter::Trilinear);
-    assert_eq!(map("aniso1:box").unwrap(), GpuFilter::Trilinear);
-    assert_eq!(map("aniso16:box").unwrap(), GpuFilter::Anisotropic(16));
+    let sampler = |linear, levels| GpuForm::Sampler(HardwareSampler { linear, levels });
+    assert_eq!(map("nearest").unwrap().form(), sampler(false, Levels::Base));
+    assert_eq!(map("nearest").unwrap().name(), "nearest");
+    assert_eq!(map("trilinear").unwrap().form(), sampler(true, Levels::Gradients));
+    assert_eq!(map("trilinear").unwrap().cpu_twin(), FilterSpec::Trilinear(Trilinear));
+    assert_eq!(map("aniso1:box").unwrap(), map("trilinear").unwrap());
+    assert_eq!(map("aniso16:box").unwrap().form(), sampler(true, Levels::Quad { anisotropy: 16 }));
+    assert_eq!(map("aniso16:box").unwrap().name(), "hw-aniso16");
     assert_eq!(map("aniso16:box").unwrap().cpu_twin().name(), "aniso16:box");
     assert_eq!(map("ewa:texels=64").unwrap().name(), "ewa:texels=64");
     for (bad, why) in [("bicubic", "bicubic"), ("aniso16", "equal weights"), ("aniso32:box", "16 probes")] {
         let e = map(bad).expect_err("no GPU twin");
         assert!(matches!(e, GpuError::NoGpuFilter(..)), "{e}");
         assert!(e.to_string().contains(bad) && e.to_string().contains(why), "{e}");
+    }
+}
+
+/// Every filter of the registry (at the settings the lab measures): the GPU side accepts
+/// exactly those whose entry states a GPU form, under the entry's name, and each renders a
+/// small frame with the surface's pixels finite and opaque where it shows.
+#[test]
+fn every_registry_filter_with_a_gpu_form_is_accepted_and_renders() {
+    let ctx = context();
+    let case = Case::new(SceneKind::ThesisQuad);
+    let mut r = ctx.as_ref().map(|c| gpu_filter(c, &case));
+    let module = renderlab_gpu::filter::module_source();
+    for w in renderlab_texture::filter::wgsl_sources() {
+        assert!(module.contains(w.source), "the filter module holds every WGSL filter");
+    }
+    for spec in lab_filters() {
+        match (spec.gpu(), GpuFilter::from_spec(&spec)) {
+            (Ok(twin), Ok(g)) => {
+                assert_eq!((g.name(), g.cpu_twin(), g.form()), (twin.name, twin.cpu, twin.form));
+                if let Some(r) = r.as_mut() {
+                    let img = r.render(&g).unwrap_or_else(|e| panic!("{}: {e}", g.name()));
+                    assert!(img.pixels().iter().all(|c| c.is_finite()), "{}", g.name());
+                }
+            }
+            (Err(why), Err(e)) => assert!(e.to_string().contains(&why), "{spec}: {e}"),
+            (a, b) => panic!("{spec}: the entry says {a:?}, the GPU side {b:?}"),
+        }
     }
 }

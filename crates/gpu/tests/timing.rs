@@ -42,7 +42,8 @@ fn filters_are_timed_on_the_device_and_by_the_clock() {
     let scene = TestScene::new(SceneKind::ThesisQuad, 64, 48).expect("built-in scene");
     let surface = scene.surface();
     let mut r = FilterRenderer::new(&ctx, &scene, &surface).expect("scene uploads");
-    for f in [GpuFilter::Trilinear, GpuFilter::Anisotropic(16), GpuFilter::Ewa(Default::default())] {
+    for name in ["trilinear", "aniso16:box", "ewa"] {
+        let f = GpuFilter::from_spec(&name.parse().expect("a catalogue filter")).expect("a GPU twin");
         let t = r.time(&f, 1, 3).expect("timed");
         println!("{}: gpu {:?} ms, wall {:.3} ms (median of {})", f.name(), t.gpu_ms, t.wall_ms, t.reps);
         assert_eq!(t.reps, 3);

@@ -3,7 +3,7 @@
 
 use proptest::prelude::*;
 use renderlab_lab::texture_lab::{rank, run_texture_bench, SigmaStudy, TextureBenchConfig, TextureRecord};
-use renderlab_texture::filter::{Anisotropic, Ewa, FilterSpec};
+use renderlab_texture::filter::{Anisotropic, Ewa, FilterSpec, Trilinear};
 use renderlab_texture::mapping::Mode;
 use renderlab_texture::reference::{PixelFilter, Sampling};
 use renderlab_texture::scene::SceneKind;
@@ -18,7 +18,7 @@ fn lab_writes_records_images_and_index() {
         height: 32,
         scenes: vec![SceneKind::ThesisQuad, SceneKind::ZonePlate],
         filters: vec![
-            FilterSpec::Trilinear,
+            FilterSpec::Trilinear(Trilinear),
             FilterSpec::Anisotropic(Anisotropic::box_probes(16)),
             FilterSpec::Ewa(Ewa::default()),
         ],

@@ -5,10 +5,7 @@ use super::own_maps::OwnMapsArgs;
 use anyhow::{bail, Result};
 use clap::Args;
 use renderlab_core::Material;
-use renderlab_texture::materials::{material as builtin_material, MATERIAL_NAMES};
-
-/// The built-in material of `--material`'s default.
-const DEFAULT_MATERIAL: &str = "bricks";
+use renderlab_texture::materials::{material as builtin_material, DEFAULT_MATERIAL, MATERIAL_NAMES};
 
 /// The smallest `--texture-size`.
 pub const MIN_TEXTURE_SIZE: u32 = 16;
@@ -19,8 +16,8 @@ pub const MAX_TEXTURE_SIZE: u32 = 8192;
 /// Which material to use: a built-in one or the user's maps.
 #[derive(Args, Debug, Clone)]
 pub struct MaterialArgs {
-    /// Built-in material: bricks (the default), sand_rocks, bark_willow or brick_pavement.
-    #[arg(long, conflicts_with = "albedo")]
+    // Built-in material (the help lists the material registry).
+    #[arg(long, conflicts_with = "albedo", help = material_help())]
     pub material: Option<String>,
     /// Size of the built-in material's maps in texels per side.
     #[arg(long, default_value_t = 1024)]
@@ -68,4 +65,16 @@ fn check_material_name(name: &str) -> Result<()> {
         bail!("--material: '{name}' is not one of {}", MATERIAL_NAMES.join(", "));
     }
     Ok(())
+}
+
+/// `--material` help, generated from the material registry: "Built-in material: bricks (the
+/// default), sand_rocks, bark_willow or brick_pavement" (as clap writes a one-sentence doc
+/// comment: without the full stop).
+fn material_help() -> String {
+    let names: Vec<String> = MATERIAL_NAMES
+        .iter()
+        .map(|&n| if n == DEFAULT_MATERIAL { format!("{n} (the default)") } else { n.to_string() })
+        .collect();
+    let (last, first) = names.split_last().expect("the registry has materials");
+    format!("Built-in material: {} or {last}", first.join(", "))
 }

@@ -4,30 +4,22 @@
 use crate::error::Result;
 use glam::Vec4;
 use renderlab_core::Image;
-use renderlab_texture::filter::{Anisotropic, Ewa, FilterSpec};
+use renderlab_texture::filter::{Ewa, FilterSpec};
 use renderlab_texture::mapping::modes::Mode;
 use renderlab_texture::reference::{PixelFilter, Sampling};
 use renderlab_texture::scene::{SceneKind, TestScene};
 
-/// The lab's default filters: nearest, bilinear, bicubic, trilinear, anisotropic with 2/4/8/16
-/// Gaussian-weighted probes and with 16 equal-weight probes (the GPU form), EWA with the
-/// model's kernel, Heckbert's original 2σ truncation, and a tighter texel budget.
+/// The lab's default filters, from the filter registry (each filter's entry names the settings
+/// measured: nearest, bilinear, bicubic, trilinear, anisotropic with 2/4/8/16 Gaussian-weighted
+/// probes and with 16 equal-weight probes (the GPU form), EWA with the model's kernel,
+/// Heckbert's original 2σ truncation, and a tighter texel budget).
 pub fn default_filters() -> Vec<FilterSpec> {
-    let mut v = vec![FilterSpec::Nearest, FilterSpec::Bilinear, FilterSpec::Bicubic, FilterSpec::Trilinear];
-    v.extend(
-        [2, 4, 8, 16]
-            .map(|n| FilterSpec::Anisotropic(Anisotropic { max_probes: n, ..Anisotropic::default() })),
-    );
-    v.push(FilterSpec::Anisotropic(Anisotropic::box_probes(16)));
-    v.push(FilterSpec::Ewa(Ewa::default()));
-    v.push(FilterSpec::Ewa(Ewa { cut: 2.0, max_texels: 96, ..Ewa::default() }));
-    v.push(FilterSpec::Ewa(TUNED_EWA));
-    v
+    renderlab_texture::filter::lab_filters()
 }
 
 /// EWA with the model's kernel and a tighter texel budget (a footprint with more than 64
-/// texels moves up the pyramid): the cost-bounded variant.
-pub const TUNED_EWA: Ewa = Ewa { sigma: 0.5, cut: 3.0, max_eccentricity: 16.0, max_texels: 64 };
+/// texels moves up the pyramid): the cost-bounded variant ([`Ewa::TUNED`]).
+pub const TUNED_EWA: Ewa = Ewa::TUNED;
 
 /// dB the reference's noise floor must sit above the best filter's PSNR.
 pub const NOISE_MARGIN_DB: f64 = 10.0;

@@ -12,7 +12,7 @@ use crate::metrics::psnr;
 use crate::report::format_number;
 use glam::Vec3;
 use renderlab_core::Image;
-use renderlab_texture::filter::{Anisotropic, Ewa, FilterSpec};
+use renderlab_texture::filter::{Anisotropic, Ewa, FilterSpec, Trilinear};
 use renderlab_texture::reference::PixelFilter;
 use serde::Serialize;
 
@@ -40,7 +40,7 @@ fn filters(kernels: &[PixelFilter]) -> Vec<FilterSpec> {
         kernels.iter().filter_map(|&k| Ewa::with_kernel(k).map(FilterSpec::Ewa)).collect();
     v.extend(kernels.iter().map(|&k| FilterSpec::Anisotropic(Anisotropic { max_probes: 16, kernel: k })));
     v.push(FilterSpec::Anisotropic(Anisotropic::box_probes(16)));
-    v.push(FilterSpec::Trilinear);
+    v.push(FilterSpec::Trilinear(Trilinear));
     v
 }
 

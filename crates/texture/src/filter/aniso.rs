@@ -24,7 +24,11 @@
 // `!(x >= t)` is deliberate: it also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-use super::basic::{trilinear_at, Filter, Trilinear};
+use super::descriptor::{Descriptor, Entry, Param, Value};
+use super::gpu_form::{Gpu, GpuForm, HardwareSampler, Levels, MAX_HARDWARE_ANISOTROPY};
+use super::lookup::trilinear_at;
+use super::sampling::Filter;
+use super::trilinear::Trilinear;
 use crate::ellipse::Jacobian;
 use crate::kernel::PixelFilter;
 use crate::mip::Texture;
@@ -44,12 +48,15 @@ pub struct Anisotropic {
 impl Default for Anisotropic {
     /// 16 probes under the lab's pixel filter ([`PixelFilter::GAUSSIAN`]).
     fn default() -> Self {
-        Anisotropic { max_probes: 16, kernel: PixelFilter::GAUSSIAN }
+        Anisotropic { max_probes: DEFAULT_PROBES, kernel: PixelFilter::GAUSSIAN }
     }
 }
 
 /// Most probes placed, whatever `max_probes` says.
 const PROBES: u32 = 64;
+
+/// The probe count of [`Anisotropic::default`] (GPUs' "16×").
+const DEFAULT_PROBES: u32 = 16;
 
 /// A probe plan: how many, at which LOD, spaced how far apart in UV, with which weight.
 struct Plan {
@@ -150,5 +157,59 @@ impl Filter for Anisotropic {
             wsum += w;
         }
         acc / wsum
+    }
+}
+
+impl Entry for Anisotropic {
+    const DESCRIPTOR: Descriptor = Descriptor {
+        name: "aniso",
+        description: "up to N trilinear probes (1..=64) along the footprint's major axis, \
+                      Gaussian-weighted by the pixel filter (default σ=0.5, cut=3) or equal-weighted (box, as GPUs)",
+        params: &[Param::suffix("N", "probe count", DEFAULT_PROBES, 1, PROBES), Param::kernel(true)],
+    };
+
+    fn from_values(v: &[Value]) -> Self {
+        Anisotropic { max_probes: v[0].whole(), kernel: v[1].kernel() }
+    }
+
+    fn values(&self) -> Vec<Value> {
+        vec![Value::Whole(self.max_probes), Value::Kernel(self.kernel)]
+    }
+
+    fn kernel(&self) -> Option<PixelFilter> {
+        Some(self.kernel)
+    }
+
+    /// The default Gaussian becomes `model`; any other kernel is kept.
+    fn under_model(self, model: PixelFilter) -> Self {
+        if self.kernel == PixelFilter::GAUSSIAN {
+            Anisotropic { kernel: model, ..self }
+        } else {
+            self
+        }
+    }
+
+    /// 2, 4, 8 and 16 Gaussian-weighted probes, and 16 equal-weight probes (the GPU form).
+    fn lab() -> Vec<Self> {
+        let mut v: Vec<Self> =
+            [2, 4, 8, 16].into_iter().map(|n| Anisotropic { max_probes: n, ..Anisotropic::default() }).collect();
+        v.push(Anisotropic::box_probes(16));
+        v
+    }
+
+    /// `anisoN:box` is the hardware's anisotropic filter with at most N probes (N ≤ 16; one
+    /// probe is trilinear); Gaussian-weighted probes have no GPU twin.
+    fn gpu(&self) -> Gpu {
+        match (self.kernel, self.max_probes) {
+            (PixelFilter::Box, 1) => Gpu::Same(Trilinear::DESCRIPTOR.name),
+            (PixelFilter::Box, n @ 2..=MAX_HARDWARE_ANISOTROPY) => Gpu::Form(GpuForm::Sampler(HardwareSampler {
+                linear: true,
+                levels: Levels::Quad { anisotropy: n as u16 },
+            })),
+            (PixelFilter::Box, _) => Gpu::None("the hardware's anisotropic filtering takes at most 16 probes"),
+            (PixelFilter::Gaussian { .. }, _) => {
+                Gpu::None("the hardware's anisotropic probes have equal weights: use anisoN:box")
+            }
+        }
     }
 }

@@ -7,7 +7,10 @@
 //! reproduces polynomials up to degree 2 (the B-spline only degree 1 and blurs by a third of
 //! a texel). The price is a small overshoot (negative lobes) at sharp edges.
 
-use super::basic::{finite, Filter};
+use super::descriptor::{Descriptor, Entry, Value};
+use super::gpu_form::Gpu;
+use super::lookup::finite;
+use super::sampling::Filter;
 use crate::mip::{Texture, Wrap};
 use glam::{Vec2, Vec4};
 use renderlab_core::counter::Counter;
@@ -16,7 +19,7 @@ use renderlab_core::image::wrap_index;
 
 /// Catmull-Rom bicubic interpolation on level 0 (16 fetches): sharper than bilinear under
 /// magnification, no antialiasing under minification.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Bicubic;
 
 /// The four Catmull-Rom weights for taps at offsets −1, 0, 1, 2 from the texel left of the
@@ -40,7 +43,7 @@ fn taps(i0: i64, n: u32, wrap: Wrap) -> [usize; 4] {
 
 impl Filter for Bicubic {
     fn name(&self) -> &'static str {
-        "bicubic"
+        Self::DESCRIPTOR.name
     }
 
     #[inline]
@@ -63,5 +66,25 @@ impl Filter for Bicubic {
             acc += r * wyj;
         }
         acc
+    }
+}
+
+impl Entry for Bicubic {
+    const DESCRIPTOR: Descriptor = Descriptor {
+        name: "bicubic",
+        description: "Catmull-Rom bicubic on level 0 (16 fetches)",
+        params: &[],
+    };
+
+    fn from_values(_: &[Value]) -> Self {
+        Bicubic
+    }
+
+    fn values(&self) -> Vec<Value> {
+        Vec::new()
+    }
+
+    fn gpu(&self) -> Gpu {
+        Gpu::None("the hardware has no bicubic filter and none is written in WGSL yet")
     }
 }

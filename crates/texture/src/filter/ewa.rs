@@ -36,7 +36,10 @@
 // `!(x >= t)` is deliberate: it also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-use super::basic::{finite, Filter};
+use super::descriptor::{Descriptor, Entry, Param, Value};
+use super::gpu_form::{Gpu, GpuForm, WgslParams, WgslSource};
+use super::lookup::{bilinear_level, finite};
+use super::sampling::Filter;
 use crate::ellipse::{Ellipse, Jacobian};
 use crate::kernel::PixelFilter;
 use crate::mip::{Texture, Wrap};
@@ -90,16 +93,26 @@ impl Default for Ewa {
     /// and ≤ 216 texels: a 16:1 footprint fits on the level where its minor semi-axis is one
     /// texel (the 96 texels that fit at a 2σ cut, grown by the area ratio (3/2)²).
     fn default() -> Self {
-        Ewa { sigma: 0.5, cut: 3.0, max_eccentricity: 16.0, max_texels: 216 }
+        Ewa { sigma: 0.5, cut: 3.0, max_eccentricity: DEFAULT_ECCENTRICITY, max_texels: DEFAULT_TEXELS }
     }
 }
 
+/// The eccentricity clamp of [`Ewa::default`].
+const DEFAULT_ECCENTRICITY: f32 = 16.0;
+
+/// The texel budget of [`Ewa::default`].
+const DEFAULT_TEXELS: u32 = 216;
+
+/// The eccentricity clamps accepted (and applied).
+const ECCENTRICITY_RANGE: (f32, f32) = (1.0, 64.0);
+
+/// The texel budgets accepted (and applied).
+const TEXELS_RANGE: (u32, u32) = (16, 4096);
+
 impl Ewa {
-    /// The filter's GPU twin: WGSL (in `ewa.wgsl`, beside this file) that defines
-    /// `fn ewa(uv: vec2<f32>, duv_dx: vec2<f32>, duv_dy: vec2<f32>) -> vec4<f32>` with this
-    /// file's operations, on the bindings of `renderlab-gpu`'s filter frame (the file states
-    /// that contract). Kept with the CPU code so that a change to one is made beside the other.
-    pub const WGSL: &'static str = include_str!("ewa.wgsl");
+    /// EWA with the model's kernel and a tighter texel budget (a footprint with more than 64
+    /// texels moves up the pyramid): the cost-bounded variant the texture lab measures.
+    pub const TUNED: Ewa = Ewa { sigma: 0.5, cut: 3.0, max_eccentricity: 16.0, max_texels: 64 };
 
     /// σ and cut as the filter uses them: clamped to the model's ranges, NaN becoming the
     /// defaults (for the GPU twin, which takes them clamped).
@@ -110,8 +123,9 @@ impl Ewa {
     /// The eccentricity clamp and the texel budget as the filter uses them: clamped to
     /// `1..=64` (NaN meaning 16) and `16..=4096`.
     pub fn clamped_bounds(&self) -> (f32, u32) {
-        let ecc = if self.max_eccentricity.is_nan() { 16.0 } else { self.max_eccentricity.clamp(1.0, 64.0) };
-        (ecc, self.max_texels.clamp(16, 4096))
+        let (lo, hi) = ECCENTRICITY_RANGE;
+        let ecc = if self.max_eccentricity.is_nan() { DEFAULT_ECCENTRICITY } else { self.max_eccentricity.clamp(lo, hi) };
+        (ecc, self.max_texels.clamp(TEXELS_RANGE.0, TEXELS_RANGE.1))
     }
 
     /// EWA with the default bounds whose weights follow `kernel`, or `None` for a kernel EWA
@@ -268,7 +282,7 @@ fn reconstruction_cut(cut: f32) -> f32 {
 
 impl Filter for Ewa {
     fn name(&self) -> &'static str {
-        "ewa"
+        Self::DESCRIPTOR.name
     }
 
     fn sample<C: Counter>(
@@ -469,12 +483,79 @@ impl Ewa {
         if wsum > 0.0 {
             acc / wsum
         } else {
-            super::basic::bilinear_level(
+            bilinear_level(
                 tex,
                 level,
                 (fp.centre + 0.5) / Vec2::new(w as f32, h as f32),
                 counter,
             )
         }
+    }
+}
+
+impl Entry for Ewa {
+    const DESCRIPTOR: Descriptor = Descriptor {
+        name: "ewa",
+        description: "Heckbert's elliptical weighted average with the pixel filter's Gaussian \
+                      (default σ=0.5, cut=3), eccentricity clamp E (default 16) and at most T texels (default 216)",
+        params: &[
+            Param::kernel(false),
+            Param::real("ecc", "E", "eccentricity clamp", DEFAULT_ECCENTRICITY, ECCENTRICITY_RANGE),
+            Param::whole("texels", "T", "texel budget", DEFAULT_TEXELS, TEXELS_RANGE),
+        ],
+    };
+
+    fn from_values(v: &[Value]) -> Self {
+        let (sigma, cut) = match v[0].kernel() {
+            PixelFilter::Gaussian { sigma, cut } => (sigma, cut),
+            PixelFilter::Box => unreachable!("EWA's kernel parameter accepts no box"),
+        };
+        Ewa { sigma, cut, max_eccentricity: v[1].real(), max_texels: v[2].whole() }
+    }
+
+    fn values(&self) -> Vec<Value> {
+        vec![Value::Kernel(self.kernel()), Value::Real(self.max_eccentricity), Value::Whole(self.max_texels)]
+    }
+
+    fn kernel(&self) -> Option<PixelFilter> {
+        Some(Ewa::kernel(self))
+    }
+
+    /// The default Gaussian becomes `model`, unless `model` is the box (which EWA cannot
+    /// apply); any other kernel is kept.
+    fn under_model(self, model: PixelFilter) -> Self {
+        match model {
+            PixelFilter::Gaussian { sigma, cut } if Ewa::kernel(&self) == PixelFilter::GAUSSIAN => {
+                Ewa { sigma, cut, ..self }
+            }
+            _ => self,
+        }
+    }
+
+    /// The model's kernel, Heckbert's original 2σ truncation with a budget to match, and
+    /// [`Ewa::TUNED`].
+    fn lab() -> Vec<Self> {
+        vec![Ewa::default(), Ewa { cut: 2.0, max_texels: 96, ..Ewa::default() }, Ewa::TUNED]
+    }
+
+    /// The filter's GPU twin: WGSL (in `ewa.wgsl`, beside this file) that defines
+    /// `fn ewa(uv: vec2<f32>, duv_dx: vec2<f32>, duv_dy: vec2<f32>) -> vec4<f32>` with this
+    /// file's operations, on the bindings of `renderlab-gpu`'s filter frame (the file states
+    /// that contract), with the weight table's resolution and the reconstruction variances
+    /// of this file. Kept with the CPU code so that a change to one is made beside the other.
+    const WGSL: Option<WgslSource> = Some(WgslSource {
+        source: include_str!("ewa.wgsl"),
+        constants: &[
+            ("EWA_PER_UNIT", PER_UNIT as f32),
+            ("EWA_RECONSTRUCTION_VARIANCE", RECONSTRUCTION_VARIANCE),
+            ("EWA_COARSE_RECONSTRUCTION_VARIANCE", COARSE_RECONSTRUCTION_VARIANCE),
+        ],
+    });
+
+    /// The WGSL twin with σ, cut, the eccentricity clamp and the texel budget clamped as this
+    /// filter applies them.
+    fn gpu(&self) -> Gpu {
+        let ((sigma, cut), (bound, budget)) = (self.clamped_kernel(), self.clamped_bounds());
+        Gpu::Form(GpuForm::Wgsl(WgslParams { sigma, cut, bound, budget }))
     }
 }

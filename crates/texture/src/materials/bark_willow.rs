@@ -6,16 +6,32 @@
 //! with patches of greenish lichen.
 
 use super::noise::{lerp, perlin, smoothstep, Fbm};
+use super::descriptor::{Entry, MaterialInfo, Sampler};
 use super::texel::{srgb, Detail, Texel};
 use glam::Vec3;
 
 /// Relief depth in texture units per unit of height: deep furrows.
-pub(super) const HEIGHT_SCALE: f32 = 0.07;
+const HEIGHT_SCALE: f32 = 0.07;
+
+/// The `bark_willow` material.
+pub(super) struct BarkWillow;
+
+impl Entry for BarkWillow {
+    const INFO: MaterialInfo = MaterialInfo {
+        name: "bark_willow",
+        description: "the fissured bark of an old willow: long ridges between deep, branching furrows",
+        height_scale: HEIGHT_SCALE,
+    };
+
+    fn sampler() -> Sampler {
+        Box::new(texel)
+    }
+}
 
 const SEED: u32 = 0xba4c_0003;
 
 /// One texel of willow bark at texture coordinates `(u, v)`.
-pub(super) fn texel(u: f32, v: f32, d: &Detail) -> Texel {
+fn texel(u: f32, v: f32, d: &Detail) -> Texel {
     let lim = d.max_cells;
     // Meander: shift u by slow noise that varies mostly along v.
     let warp = Fbm::new(4, 2, SEED).octaves(3).fbm(u, v);

@@ -10,11 +10,27 @@
 //! pattern tiles with `n` chevron columns per tile.
 
 use super::noise::{cellular, floor, hash2, lerp, perlin, rand, rounded_box, smoothstep, Fbm};
+use super::descriptor::{Entry, MaterialInfo, Sampler};
 use super::texel::{srgb, Detail, Texel};
 use glam::{Vec2, Vec3};
 
 /// Relief depth in texture units per unit of height.
-pub(super) const HEIGHT_SCALE: f32 = 0.04;
+const HEIGHT_SCALE: f32 = 0.04;
+
+/// The `brick_pavement` material.
+pub(super) struct BrickPavement;
+
+impl Entry for BrickPavement {
+    const INFO: MaterialInfo = MaterialInfo {
+        name: "brick_pavement",
+        description: "clay pavers laid in a 45° herringbone, with sand-filled joints",
+        height_scale: HEIGHT_SCALE,
+    };
+
+    fn sampler() -> Sampler {
+        Box::new(texel)
+    }
+}
 
 /// Chevron columns per tile (`n`); the lattice period is `2n` along v and `n` along u.
 const COLUMNS: u32 = 4;
@@ -66,7 +82,7 @@ fn paver(q: Vec2) -> (u32, Vec2, Vec2) {
 }
 
 /// One texel of the pavement at texture coordinates `(u, v)`.
-pub(super) fn texel(u: f32, v: f32, d: &Detail) -> Texel {
+fn texel(u: f32, v: f32, d: &Detail) -> Texel {
     let lim = d.max_cells;
     let k = 2.0 * COLUMNS as f32;
     let q = Vec2::new(k * (u + v), k * (v - u));

@@ -4,12 +4,28 @@
 //! height and tilt, a mottled and pitted face, darker burnt ends on some bricks.
 
 use super::noise::{cellular, floor, lerp, perlin, rand, rounded_box, smoothstep, Fbm};
+use super::descriptor::{Entry, MaterialInfo, Sampler};
 use super::texel::{srgb, Detail, Texel};
 use glam::{Vec2, Vec3};
 
 /// Relief depth in texture units per unit of height: a brick face stands 3 % of a tile above
 /// the deepest mortar (about 15 mm on a 0.5 m tile).
-pub(super) const HEIGHT_SCALE: f32 = 0.05;
+const HEIGHT_SCALE: f32 = 0.05;
+
+/// The `bricks` material.
+pub(super) struct Bricks;
+
+impl Entry for Bricks {
+    const INFO: MaterialInfo = MaterialInfo {
+        name: "bricks",
+        description: "a wall of clay bricks in running bond, with recessed mortar joints",
+        height_scale: HEIGHT_SCALE,
+    };
+
+    fn sampler() -> Sampler {
+        Box::new(texel)
+    }
+}
 
 /// Courses of bricks per tile (must divide the tile: an integer).
 const COURSES: u32 = 8;
@@ -37,7 +53,7 @@ fn palette(i: u32) -> Vec3 {
 }
 
 /// One texel of the brick wall at texture coordinates `(u, v)`.
-pub(super) fn texel(u: f32, v: f32, d: &Detail) -> Texel {
+fn texel(u: f32, v: f32, d: &Detail) -> Texel {
     let lim = d.max_cells;
     // Course and brick within the course; odd courses are shifted by half a brick.
     let y = v * COURSES as f32;

@@ -2,6 +2,12 @@
 //! `sand_rocks`, `bark_willow` and `brick_pavement` (the thesis does not state the sources of
 //! its texture files, so renderlab synthesises stand-ins with the same character).
 //!
+//! The catalogue: one file per material, each with its texel function and one
+//! [`MaterialInfo`] in its `Entry` implementation, and one line per material in
+//! the `registry!` below, from which [`MATERIALS`], [`MATERIAL_NAMES`] and the lookup by name
+//! come. What the materials share is below them (`texel.rs`, `noise.rs`, `descriptor.rs`); no
+//! material file imports this one.
+//!
 //! Every material is a pure function of the texel coordinates and fixed seeds, so the same
 //! name and size always give bit-identical maps, whatever the thread count. Every feature is
 //! periodic with period 1 in texture space (noise lattices wrapped modulo whole cells, brick
@@ -10,20 +16,59 @@
 
 #![warn(missing_docs)]
 
-mod bark_willow;
-mod brick_pavement;
-mod bricks;
+mod descriptor;
 mod noise;
-mod sand_rocks;
 mod texel;
 
+pub use descriptor::MaterialInfo;
+
+use descriptor::{Entry, Sampler};
 use glam::Vec3;
 use renderlab_core::image::{check_dimensions, Image};
 use renderlab_core::{CoreError, Material, Result};
 use texel::{Detail, Texel};
 
+/// Declares the catalogue: each material's module, [`MATERIALS`], and the lookup from a name
+/// to its texel function.
+macro_rules! registry {
+    ($($module:ident::$ty:ident,)*) => {
+        $(mod $module;)*
+
+        /// Every built-in material, in the order the thesis's scene uses them.
+        pub const MATERIALS: &[MaterialInfo] = &[$(<$module::$ty as Entry>::INFO,)*];
+
+        /// The texel function and relief depth scale of the built-in material `name`.
+        fn sampler(name: &str) -> Result<(Sampler, f32)> {
+            $(
+                if name == <$module::$ty as Entry>::INFO.name {
+                    return Ok((<$module::$ty as Entry>::sampler(), <$module::$ty as Entry>::INFO.height_scale));
+                }
+            )*
+            Err(CoreError::UnknownName { kind: "material", name: name.to_string(), known: MATERIAL_NAMES.join(", ") })
+        }
+    };
+}
+
+registry! {
+    bricks::Bricks,
+    sand_rocks::SandRocks,
+    bark_willow::BarkWillow,
+    brick_pavement::BrickPavement,
+}
+
 /// Names of the built-in materials, in the order the thesis's scene uses them.
-pub const MATERIAL_NAMES: [&str; 4] = ["bricks", "sand_rocks", "bark_willow", "brick_pavement"];
+pub const MATERIAL_NAMES: [&str; MATERIALS.len()] = {
+    let mut names = [""; MATERIALS.len()];
+    let mut i = 0;
+    while i < names.len() {
+        names[i] = MATERIALS[i].name;
+        i += 1;
+    }
+    names
+};
+
+/// The material the binary builds when none is named: the thesis's benchmark wall.
+pub const DEFAULT_MATERIAL: &str = "bricks";
 
 /// Default texture size of the built-in materials.
 pub const DEFAULT_SIZE: u32 = 1024;
@@ -41,29 +86,6 @@ pub fn material(name: &str, size: u32) -> Result<Material> {
     let detail = Detail { size, texel: 1.0 / size as f32, max_cells: (size / 2).max(1) };
     let (albedo, height) = render(&detail, &*texel);
     Material::from_maps(name, albedo, height, None, scale)
-}
-
-/// A material's texel function: albedo and raw height at texture coordinates `(u, v)`.
-type Sampler = Box<dyn Fn(f32, f32, &Detail) -> Texel + Sync>;
-
-/// The texel function and relief depth scale of the built-in material `name`.
-fn sampler(name: &str) -> Result<(Sampler, f32)> {
-    Ok(match name {
-        "bricks" => (Box::new(bricks::texel), bricks::HEIGHT_SCALE),
-        "sand_rocks" => {
-            let rocks = sand_rocks::SandRocks::new();
-            (Box::new(move |u, v, d| rocks.texel(u, v, d)), sand_rocks::HEIGHT_SCALE)
-        }
-        "bark_willow" => (Box::new(bark_willow::texel), bark_willow::HEIGHT_SCALE),
-        "brick_pavement" => (Box::new(brick_pavement::texel), brick_pavement::HEIGHT_SCALE),
-        _ => {
-            return Err(CoreError::UnknownName {
-                kind: "material",
-                name: name.to_string(),
-                known: MATERIAL_NAMES.join(", "),
-            })
-        }
-    })
 }
 
 /// Evaluates `texel` at every texel centre `((x + ½)/size, (y + ½)/size)` in parallel and
@@ -146,6 +168,19 @@ mod tests {
         ];
         for (name, size, sum) in recorded {
             assert_eq!(checksum(&material(name, size).unwrap()), sum, "{name} at {size}²");
+        }
+    }
+
+    #[test]
+    fn every_entry_is_named_once_described_and_builds_with_its_depth() {
+        assert_eq!(MATERIAL_NAMES, ["bricks", "sand_rocks", "bark_willow", "brick_pavement"]);
+        assert!(MATERIAL_NAMES.contains(&DEFAULT_MATERIAL));
+        for (i, info) in MATERIALS.iter().enumerate() {
+            assert!(MATERIALS[..i].iter().all(|m| m.name != info.name), "{} twice", info.name);
+            assert!(!info.description.is_empty(), "{}", info.name);
+            let m = material(info.name, 16).unwrap();
+            assert_eq!(m.height_scale, info.height_scale, "{}", info.name);
+            assert_eq!(m.size(), (16, 16));
         }
     }
 

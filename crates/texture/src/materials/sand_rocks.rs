@@ -6,11 +6,26 @@
 //! and darkens the sand around its base.
 
 use super::noise::{for_each_feature, hash, hash2, lerp, perlin, rand, smoothstep, unit, Fbm};
+use super::descriptor::{Entry, MaterialInfo, Sampler};
 use super::texel::{srgb, Detail, Texel};
 use glam::{Vec2, Vec3};
 
 /// Relief depth in texture units per unit of height.
-pub(super) const HEIGHT_SCALE: f32 = 0.06;
+const HEIGHT_SCALE: f32 = 0.06;
+
+impl Entry for SandRocks {
+    const INFO: MaterialInfo = MaterialInfo {
+        name: "sand_rocks",
+        description: "rippled sand with clusters of rounded rocks",
+        height_scale: HEIGHT_SCALE,
+    };
+
+    /// The rock layers are laid out once per build, then every texel reads them.
+    fn sampler() -> Sampler {
+        let rocks = SandRocks::new();
+        Box::new(move |u, v, d| rocks.texel(u, v, d))
+    }
+}
 
 const SEED: u32 = 0x5a9d_0002;
 /// Jitter of the rock centres within their cells.
@@ -203,7 +218,7 @@ pub(super) struct SandRocks {
 
 impl SandRocks {
     /// Places the rocks of every layer.
-    pub(super) fn new() -> Self {
+    fn new() -> Self {
         // Large stones, cobbles and pebbles: cells per tile, seed, cluster threshold, radius
         // range (cells), dome height range.
         type Spec = (u32, u32, f32, (f32, f32), (f32, f32));
@@ -221,7 +236,7 @@ impl SandRocks {
     }
 
     /// One texel of sand and rocks at texture coordinates `(u, v)`.
-    pub(super) fn texel(&self, u: f32, v: f32, d: &Detail) -> Texel {
+    fn texel(&self, u: f32, v: f32, d: &Detail) -> Texel {
         texel(&self.layers, u, v, d)
     }
 }

@@ -1,41 +1,11 @@
-//! The [`Filter`] trait and the filters every GPU samples in hardware: nearest, bilinear and
-//! trilinear, with the lookups and the level-of-detail rule the other filters build on.
+//! The lookups the filters build on: one level's bilinear lookup, the level of detail of a
+//! footprint as GPUs choose it, and a trilinear lookup at a given level.
 
 use crate::mip::{Texture, Wrap};
 use glam::{Vec2, Vec4};
 use renderlab_core::counter::Counter;
 use renderlab_core::fastmath::{floor, floor_i64};
 use renderlab_core::image::wrap_index;
-
-/// A texture reconstruction/antialiasing filter.
-pub trait Filter: Sync {
-    /// Short name used in reports and on the command line.
-    fn name(&self) -> &'static str;
-
-    /// Filtered texture value at `uv` for a pixel whose footprint is spanned by
-    /// `duv_dx` and `duv_dy` (UV change per pixel step in x and y).
-    fn sample<C: Counter>(
-        &self,
-        tex: &Texture,
-        uv: Vec2,
-        duv_dx: Vec2,
-        duv_dy: Vec2,
-        counter: &mut C,
-    ) -> Vec4;
-}
-
-/// Nearest-texel lookup on level 0 (1 fetch).
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Nearest;
-
-/// Bilinear interpolation on level 0 (4 fetches): no antialiasing under minification.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Bilinear;
-
-/// Trilinear mip-mapping (8 fetches): bilinear on the two levels around the LOD of [`lod`],
-/// blended linearly.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Trilinear;
 
 /// Sanitises a coordinate so that NaN or huge values give a defined lookup.
 #[inline]
@@ -97,48 +67,6 @@ pub fn lod(tex: &Texture, duv_dx: Vec2, duv_dy: Vec2) -> f32 {
     l.clamp(0.0, (tex.level_count() - 1) as f32)
 }
 
-impl Filter for Nearest {
-    fn name(&self) -> &'static str {
-        "nearest"
-    }
-
-    #[inline]
-    fn sample<C: Counter>(&self, tex: &Texture, uv: Vec2, _: Vec2, _: Vec2, counter: &mut C) -> Vec4 {
-        let s = tex.size();
-        counter.count(1);
-        tex.texel(0, floor_i64(finite(uv.x) * s.x), floor_i64(finite(uv.y) * s.y))
-    }
-}
-
-impl Filter for Bilinear {
-    fn name(&self) -> &'static str {
-        "bilinear"
-    }
-
-    #[inline]
-    fn sample<C: Counter>(&self, tex: &Texture, uv: Vec2, _: Vec2, _: Vec2, counter: &mut C) -> Vec4 {
-        bilinear_level(tex, 0, uv, counter)
-    }
-}
-
-impl Filter for Trilinear {
-    fn name(&self) -> &'static str {
-        "trilinear"
-    }
-
-    #[inline]
-    fn sample<C: Counter>(
-        &self,
-        tex: &Texture,
-        uv: Vec2,
-        duv_dx: Vec2,
-        duv_dy: Vec2,
-        counter: &mut C,
-    ) -> Vec4 {
-        trilinear_at(tex, uv, lod(tex, duv_dx, duv_dy), counter)
-    }
-}
-
 /// Trilinear lookup at an explicit level of detail `l` (in `[0, levels − 1]`, as [`lod`]
 /// returns it): bilinear in the two nearest levels, blended. Lets a caller that samples several
 /// same-sized textures with one footprint compute the LOD once.
@@ -157,23 +85,7 @@ pub fn trilinear_at<C: Counter>(tex: &Texture, uv: Vec2, l: f32, counter: &mut C
 #[cfg(test)]
 mod tests {
     use super::*;
-    use renderlab_core::counter::Tally;
     use renderlab_core::Image;
-
-    fn ramp() -> Texture {
-        Texture::from_gray(&Image::from_fn(8, 4, |x, _| x as f32 / 7.0), Wrap::Clamp)
-    }
-
-    #[test]
-    fn bilinear_hits_texel_centres_and_interpolates() {
-        let t = ramp();
-        let mut c = Tally::default();
-        let v = Bilinear.sample(&t, Vec2::new(2.5 / 8.0, 0.5), Vec2::ZERO, Vec2::ZERO, &mut c);
-        assert!((v.x - 2.0 / 7.0).abs() < 1e-6);
-        let v = Bilinear.sample(&t, Vec2::new(3.0 / 8.0, 0.5), Vec2::ZERO, Vec2::ZERO, &mut c);
-        assert!((v.x - 2.5 / 7.0).abs() < 1e-6);
-        assert_eq!(c.0, 8);
-    }
 
     #[test]
     fn lod_follows_footprint() {
@@ -203,24 +115,5 @@ mod tests {
         // Not the length of the whole Jacobian: ρ = (3, 0) and (0, 4) give log2 4, not log2 5.
         let l = lod(&t, Vec2::new(3.0 / 256.0, 0.0), Vec2::new(0.0, 4.0 / 64.0));
         assert!((l - 2.0).abs() < 1e-6, "{l}");
-    }
-
-    #[test]
-    fn trilinear_of_constant_is_constant() {
-        let t = Texture::from_gray(&Image::new(33, 17, 0.25), Wrap::Repeat);
-        let mut c = Tally::default();
-        for k in 0..20 {
-            let d = Vec2::new(0.01 * k as f32, 0.003);
-            let v = Trilinear.sample(&t, Vec2::new(0.3, 0.7), d, d.perp(), &mut c);
-            assert!((v.x - 0.25).abs() < 1e-5);
-        }
-    }
-
-    #[test]
-    fn nan_uv_is_defined() {
-        let t = ramp();
-        let mut c = Tally::default();
-        let v = Trilinear.sample(&t, Vec2::NAN, Vec2::NAN, Vec2::NAN, &mut c);
-        assert!(v.is_finite());
     }
 }
