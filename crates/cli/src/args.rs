@@ -16,6 +16,7 @@ use crate::commands::water::WaterArgs;
 use clap::{Args, CommandFactory, FromArgMatches, Parser, Subcommand};
 use renderlab_texture::filter::FilterSpec;
 use renderlab_texture::reference::PixelFilter;
+use renderlab_texture::scene::SceneKind;
 use std::path::PathBuf;
 
 pub(crate) mod complexity;
@@ -182,9 +183,8 @@ pub struct TextureBenchArgs {
     #[arg(long, value_delimiter = ',', value_parser = parse_filter, long_help = filters_help())]
     /// Filters, comma-separated (default: the lab's set).
     pub filters: Vec<FilterSpec>,
-    /// Scenes, comma-separated (default: all): checkerboard, thesis_quad (checker),
-    /// thesis_quad_circuit, thesis_quad_earth, quad_tilt_DEG (DEG in 0..=89.9), zone_plate.
-    #[arg(long, value_delimiter = ',')]
+    // Scenes, comma-separated (the help lists the scene catalogue).
+    #[arg(long, value_delimiter = ',', help = scenes_help())]
     pub scenes: Vec<String>,
     /// Your texture (PNG, JPEG, TGA or EXR, any size) in place of every scene's built-in one,
     /// once per surface unit, repeated.
@@ -222,6 +222,13 @@ pub struct TextureRenderArgs {
     /// once per surface unit, repeated.
     #[arg(long)]
     pub texture: Option<PathBuf>,
+}
+
+/// `--scenes` help, generated from the scene catalogue: "Scenes, comma-separated (default:
+/// all): checkerboard, thesis_quad (checker), …, quad_tilt_DEG (DEG in 0..=89.9), zone_plate"
+/// (as clap writes a one-sentence doc comment: without the full stop).
+fn scenes_help() -> String {
+    format!("Scenes, comma-separated (default: all): {}", SceneKind::help())
 }
 
 /// Parses a `--filters` entry through the filter catalogue.

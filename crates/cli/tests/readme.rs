@@ -9,6 +9,7 @@ use renderlab_relief::techniques::DESCRIPTORS;
 use renderlab_scene::procedural::SCENES;
 use renderlab_texture::filter::FILTERS;
 use renderlab_texture::materials::MATERIALS;
+use renderlab_texture::scene::SCENES as TEXTURE_SCENES;
 
 const README: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md");
 
@@ -27,6 +28,10 @@ fn tables() -> Vec<(&'static str, String)> {
     let mut filters = String::from("| filter | what it does |\n|---|---|\n");
     for f in FILTERS {
         filters.push_str(&format!("| `{}` | {} |\n", cell(&f.syntax()), cell(f.description)));
+    }
+    let mut texture_scenes = String::from("| scene | what it shows |\n|---|---|\n");
+    for d in TEXTURE_SCENES {
+        texture_scenes.push_str(&format!("| `{}` | {} |\n", cell(&d.syntax()), cell(d.description)));
     }
     let mut stages = String::from("| stage | flag | default | what the choices do |\n|---|---|---|---|\n");
     for d in STAGES {
@@ -61,6 +66,7 @@ fn tables() -> Vec<(&'static str, String)> {
         ("relief", relief),
         ("materials", materials),
         ("filters", filters),
+        ("texture-scenes", texture_scenes),
         ("stages", stages),
         ("scenes", scenes),
     ]

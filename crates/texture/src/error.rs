@@ -18,11 +18,13 @@ pub enum SceneError {
         reason: String,
     },
     /// An unknown scene name.
-    #[error(
-        "unknown scene '{0}' (expected checkerboard, thesis_quad, thesis_quad_circuit, thesis_quad_earth, \
-         quad_tilt_DEG or zone_plate)"
-    )]
-    UnknownScene(String),
+    #[error("unknown scene '{name}' (expected {expected})")]
+    UnknownScene {
+        /// The text given.
+        name: String,
+        /// Every scene's syntax, from the scene catalogue.
+        expected: String,
+    },
 }
 
 /// A [`SceneError::Size`] for parameter `what`.
