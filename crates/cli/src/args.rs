@@ -1,32 +1,28 @@
-//! Command-line arguments: the top-level command and its parse entry points. A command's own
-//! flags live beside its run function in `commands/` (the `texture` flags, below, and the
-//! `hybrid` and `merge` flags, in `args/hybrid.rs`, have yet to move there); the flag groups
-//! several commands share (material, complexity, own maps, techniques), the one
+//! Command-line arguments: the top-level command and its parse entry points. Every command's
+//! own flags live beside its run function in `commands/`; the flag groups several commands
+//! share (material, complexity, own maps, techniques), the one
 //! `WIDTHxHEIGHT` parser and the ranged value parsers are the modules below.
 
 use crate::commands::complexity::ComplexityArgs;
+use crate::commands::hybrid::HybridCommand;
 use crate::commands::materials::MaterialsArgs;
+use crate::commands::merge::MergeArgs;
 use crate::commands::noise::NoiseArgs;
 use crate::commands::relief::ReliefCommand;
 use crate::commands::report::ReportArgs;
 use crate::commands::shaders::ShadersCommand;
 use crate::commands::smoke::SmokeArgs;
+use crate::commands::texture::TextureCommand;
 use crate::commands::view::ViewArgs;
 use crate::commands::water::WaterArgs;
-use clap::{Args, CommandFactory, FromArgMatches, Parser, Subcommand};
-use renderlab_texture::filter::FilterSpec;
-use renderlab_texture::reference::PixelFilter;
-use renderlab_texture::scene::SceneKind;
-use std::path::PathBuf;
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 
 pub(crate) mod complexity;
-mod hybrid;
 pub(crate) mod material;
 pub(crate) mod own_maps;
 pub(crate) mod range;
 pub(crate) mod size;
 pub(crate) mod technique;
-pub use hybrid::*;
 
 /// Parses the process's arguments. Every command accepts values that read as negative
 /// numbers (`--height-scale -1`), and every number or size flag any value at all (`--angle
@@ -124,139 +120,6 @@ pub enum Command {
     /// (keys 1–6, arrows, B, V, H, X, C, M, F12, Esc). With --screenshot, render --frames frames in
     /// the window, write the last one and print the frame times.
     View(ViewArgs),
-}
-
-/// `renderlab texture …`.
-#[derive(Subcommand, Debug)]
-pub enum TextureCommand {
-    /// Render every test scene (checkerboard plane to the horizon, the thesis's quad, a quad at
-    /// several tilts, a zone plate) with every filter; time it (ns per pixel), count its texel
-    /// fetches and measure PSNR, SSIM and FLIP against a supersampled reference under two
-    /// pixel-filter models (the --model Gaussian, σ = 0.5 px cut at 3σ by default, and the box);
-    /// the reference is refined until its own noise sits 10 dB below the best filter's error.
-    /// Then the σ study (EWA and the reference at σ 0.35–0.6, cut 2σ and 3σ) and every
-    /// perspective-mapping mode side by side. Writes results.json, results.csv, noise.csv,
-    /// sigma.csv, images and index.html to --out.
-    Bench(TextureBenchArgs),
-    /// Render one test scene with one filter (or the reference) to a PNG.
-    Render(TextureRenderArgs),
-}
-
-/// `renderlab texture bench`.
-#[derive(Args, Debug)]
-pub struct TextureBenchArgs {
-    /// Output directory (created if missing).
-    #[arg(long)]
-    pub out: PathBuf,
-    /// Frame width in pixels (8..=4096).
-    #[arg(long, default_value_t = 320)]
-    pub width: u32,
-    /// Frame height in pixels (8..=4096).
-    #[arg(long, default_value_t = 240)]
-    pub height: u32,
-    /// Timed repetitions per measurement (the median is reported; filters and modes take
-    /// turns and are timed on one thread; 1..=1000).
-    #[arg(long, default_value_t = 5)]
-    pub reps: u32,
-    /// Untimed warm-up runs per measurement (0..=100).
-    #[arg(long, default_value_t = 1)]
-    pub warmup: u32,
-    /// The pixel-filter model every filter with a kernel follows and the primary reference
-    /// integrates: `sigma=S:cut=C` (a Gaussian of σ = S px, 0.1..=2, truncated on a disc at C·σ,
-    /// C in 1..=4; either part may be left out).
-    #[arg(long, default_value = "sigma=0.5:cut=3", value_parser = parse_model)]
-    pub model: PixelFilter,
-    /// The reference's first adaptive tolerance: the standard error a screen cell's mean may
-    /// keep (linear units, 0.0005..=0.2). Tightened, with more strata everywhere, while the
-    /// reference's noise is within 10 dB of the best filter's error.
-    #[arg(long, default_value_t = 0.02)]
-    pub tolerance: f32,
-    /// Most strata per axis a screen cell of the reference gets (8..=128; samples = N²).
-    #[arg(long, default_value_t = 64)]
-    pub max_strata: u32,
-    /// Skip the σ study.
-    #[arg(long)]
-    pub no_sigma_study: bool,
-    /// Scenes of the σ study, comma-separated (default: checkerboard, thesis_quad).
-    #[arg(long, value_delimiter = ',')]
-    pub sigma_scenes: Vec<String>,
-    #[arg(long, value_delimiter = ',', value_parser = parse_filter, long_help = filters_help())]
-    /// Filters, comma-separated (default: the lab's set).
-    pub filters: Vec<FilterSpec>,
-    // Scenes, comma-separated (the help lists the scene catalogue).
-    #[arg(long, value_delimiter = ',', help = scenes_help())]
-    pub scenes: Vec<String>,
-    /// Your texture (PNG, JPEG, TGA or EXR, any size) in place of every scene's built-in one,
-    /// once per surface unit, repeated.
-    #[arg(long)]
-    pub texture: Option<PathBuf>,
-    /// Skip writing images (results and report only).
-    #[arg(long)]
-    pub no_images: bool,
-}
-
-/// `renderlab texture render`.
-#[derive(Args, Debug)]
-pub struct TextureRenderArgs {
-    /// Output PNG (or EXR) file.
-    #[arg(long, short)]
-    pub out: PathBuf,
-    /// Scene (see `texture bench --help`).
-    #[arg(long, default_value = "checkerboard")]
-    pub scene: String,
-    /// Filter (see `texture bench --help`), or `reference` for the Gaussian reference or
-    /// `reference-box` for the box one.
-    #[arg(long, short, default_value = "ewa")]
-    pub filter: String,
-    /// Frame width in pixels (8..=4096).
-    #[arg(long, default_value_t = 640)]
-    pub width: u32,
-    /// Frame height in pixels (8..=4096).
-    #[arg(long, default_value_t = 480)]
-    pub height: u32,
-    /// Reference strata per axis of every screen cell, for --filter reference (1..=128;
-    /// samples per cell = N²).
-    #[arg(long, default_value_t = 16)]
-    pub samples: u32,
-    /// Your texture (PNG, JPEG, TGA or EXR, any size) in place of the scene's built-in one,
-    /// once per surface unit, repeated.
-    #[arg(long)]
-    pub texture: Option<PathBuf>,
-}
-
-/// `--scenes` help, generated from the scene catalogue: "Scenes, comma-separated (default:
-/// all): checkerboard, thesis_quad (checker), …, quad_tilt_DEG (DEG in 0..=89.9), zone_plate"
-/// (as clap writes a one-sentence doc comment: without the full stop).
-fn scenes_help() -> String {
-    format!("Scenes, comma-separated (default: all): {}", SceneKind::help())
-}
-
-/// Parses a `--filters` entry through the filter catalogue.
-fn parse_filter(s: &str) -> Result<FilterSpec, String> {
-    s.parse::<FilterSpec>().map_err(|e| e.to_string())
-}
-
-/// Parses `--model`.
-fn parse_model(s: &str) -> Result<PixelFilter, String> {
-    match PixelFilter::parse(s).map_err(|e| e.to_string())? {
-        PixelFilter::Box => Err("the model must be a Gaussian (the box is always the second model)".into()),
-        g => Ok(g),
-    }
-}
-
-/// `--filters` help, generated from the filter catalogue.
-fn filters_help() -> String {
-    let list: Vec<String> = renderlab_texture::filter::FILTERS
-        .iter()
-        .map(|f| format!("  {}\n      {}", f.syntax(), f.description))
-        .collect();
-    let defaults: Vec<String> =
-        renderlab_lab::texture_lab::default_filters().iter().map(|f| f.name()).collect();
-    format!(
-        "Filters, comma-separated. Parameters follow the name, ':'-separated, in any order:\n{}\nDefault: {}",
-        list.join("\n"),
-        defaults.join(", ")
-    )
 }
 
 #[cfg(test)]

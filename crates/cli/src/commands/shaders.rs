@@ -24,8 +24,9 @@ pub enum ShadersCommand {
 /// `renderlab shaders export`.
 #[derive(Args, Debug)]
 pub struct ShadersExportArgs {
-    /// Languages, comma-separated (at least one): wgsl, glsl, hlsl, msl, spv.
-    #[arg(long, value_delimiter = ',', value_parser = parse_lang)]
+    /// Languages, comma-separated (at least one; the help lists the exporter's languages).
+    #[arg(long, value_delimiter = ',', value_parser = parse_lang,
+          help = format!("Languages, comma-separated (at least one): {}", lang_names()))]
     pub lang: Vec<renderlab_gpu::export::Lang>,
     /// Output directory (created if missing).
     #[arg(long)]
@@ -37,6 +38,11 @@ pub struct ShadersExportArgs {
     pub technique: Vec<Technique>,
 }
 
+/// The exporter's languages, comma-separated, as `--lang` takes them.
+fn lang_names() -> String {
+    export::Lang::ALL.map(|l| l.name()).join(", ")
+}
+
 /// Reads one `--lang` value.
 fn parse_lang(s: &str) -> Result<renderlab_gpu::export::Lang, String> {
     renderlab_gpu::export::Lang::parse(s).map_err(|e| e.to_string())
@@ -46,7 +52,7 @@ fn parse_lang(s: &str) -> Result<renderlab_gpu::export::Lang, String> {
 pub(crate) fn export(a: ShadersExportArgs) -> Result<()> {
     if a.lang.is_empty() {
         // Checked here rather than by clap, whose message for a missing flag spans lines.
-        bail!("--lang: give at least one language: wgsl, glsl, hlsl, msl, spv");
+        bail!("--lang: give at least one language: {}", lang_names());
     }
     check_out_dir("--out", &a.out)?;
     let shaders = export::shaders(&a.technique)?;

@@ -85,13 +85,13 @@ impl SweepRow {
     }
 }
 
-/// Which list of rows a run renders.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+/// Which list of rows a run renders (also the `--sweep` values of `hybrid bench`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]
 pub enum SweepKind {
     /// Every sweep of the thesis: 54 rows per view.
     Thesis,
-    /// The report's reduced sweep ([`report_rows`]): 9 rows per view.
+    /// The report's reduced sweep: 9 rows per view.
     Report,
 }
 

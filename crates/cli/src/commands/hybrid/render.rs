@@ -1,0 +1,90 @@
+//! `renderlab hybrid render`: one view of a scene with one configuration of the stages, or
+//! its path-traced reference.
+
+use super::limits::{check_memory, check_scene_memory, resolution};
+use super::stage_flags::StageFlags;
+use crate::args::range::{in_range, Whole};
+use crate::args::size::parse_size;
+use anyhow::{anyhow, Result};
+use clap::Args;
+use renderlab_core::{io, Image};
+use renderlab_hybrid::stages::NAMES;
+use renderlab_hybrid::{HybridRenderer, StageConfig};
+use renderlab_lab::hybrid_lab::scenes;
+use std::path::PathBuf;
+
+/// The range of `--reference`, paths per pixel.
+const REFERENCE_SPP: Whole<u32> = Whole::new(1, 1 << 20);
+
+/// The scene and view of `hybrid render`.
+#[derive(Args, Debug)]
+pub struct HybridRenderArgs {
+    /// Scene: a built-in name or a glTF 2.0 (.gltf, .glb) or OBJ (.obj) file.
+    #[arg(long)]
+    pub scene: String,
+    /// Camera name (default: the scene's first camera).
+    #[arg(long)]
+    pub camera: Option<String>,
+    /// Frame size WIDTHxHEIGHT (default: the camera's own).
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub resolution: Option<(u32, u32)>,
+    /// One flag per stage.
+    #[command(flatten)]
+    pub stages: StageFlags,
+    /// Render the path-traced reference with SPP paths per pixel instead (two independent
+    /// halves; their difference gives the reference's noise floor, printed).
+    #[arg(long, value_name = "SPP", conflicts_with_all = NAMES, value_parser = in_range(REFERENCE_SPP))]
+    pub reference: Option<u32>,
+    /// Seed of the stages' (or the reference's) random numbers.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Output PNG (or EXR, linear radiance) file.
+    #[arg(long, short)]
+    pub out: PathBuf,
+}
+
+/// `renderlab hybrid render`: one image.
+pub(crate) fn run(a: HybridRenderArgs) -> Result<()> {
+    crate::commands::checks::check_out_file("--out", &a.out)?;
+    let size = a.resolution.map(|s| resolution(s, false)).transpose()?;
+    let config = StageConfig::from_flags(|name| a.stages.get(name)).map_err(|e| anyhow!(e))?;
+    let (scene, warnings) = scenes::resolve(&a.scene)?;
+    for w in &warnings {
+        eprintln!("renderlab: warning: {}: {w}", a.scene);
+    }
+    let name = match &a.camera {
+        Some(n) => n.clone(),
+        None => scene.cameras[0].name.clone(),
+    };
+    let own = scene.cameras.iter().find(|c| c.name == name).map(|c| (c.camera.width, c.camera.height));
+    let (w, h) = size.or(own).unwrap_or((1, 1));
+    check_memory(&format!("camera {name:?} of {}:", a.scene), w, h, false)?;
+    let triangles: u64 = scene.meshes.iter().map(|m| m.triangles.len() as u64).sum();
+    check_scene_memory(&a.scene, triangles, w, h)?;
+    let camera = scenes::camera(&scene, &name, w, h)?;
+    let renderer = HybridRenderer::new(&scene)?;
+    let started = std::time::Instant::now();
+    let (hdr, what) = match a.reference {
+        Some(spp) => {
+            let r = renderer.reference(&camera, spp, a.seed)?;
+            let what = format!(
+                "path-traced reference, {} spp, {} rays; noise floor: PSNR between halves {:.2} dB (linear, peak 1), full reference about {:.2} dB",
+                r.spp, r.rays, r.noise.psnr_halves, r.noise.psnr_full
+            );
+            (r.hdr, what)
+        }
+        None => {
+            let f = renderer.render(&camera, &config, a.seed)?;
+            let ms: Vec<String> =
+                f.stage_ms.in_frame_order().iter().map(|(pass, ms)| format!("{pass} {ms:.1}")).collect();
+            let what = format!("{}: {} rays; ms: {}", config.label(), f.rays.total(), ms.join(", "));
+            (f.hdr, what)
+        }
+    };
+    let seconds = started.elapsed().as_secs_f64();
+    let image = Image::from_vec(w, h, hdr)?;
+    io::save_color(&a.out, &image)?;
+    println!("{} {} at {w}x{h}, {what}; {seconds:.2} s", scene.name, name);
+    println!("wrote {}", a.out.display());
+    Ok(())
+}
