@@ -8,7 +8,8 @@ use crate::ellipse::jacobian::Jacobian;
 use crate::mapping::ops::OpCounter;
 use crate::mapping::Coeffs;
 
-/// Exact derivatives: numerators as above over `D²`, `D = G·x + H·y + I` stepped by `G`.
+/// Exact derivatives: the numerators of (2.16)–(2.19) over `D²`, `D = G·x + H·y + I` stepped
+/// by `G`.
 pub(super) fn analytic<O: OpCounter>(c: &Coeffs, x0: i32, y0: i32, width: usize, out: &mut [Jacobian], ops: &mut O) {
     let k = Increments::new(c, ops);
     let xs = px(x0, 0);
