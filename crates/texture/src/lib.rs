@@ -5,10 +5,11 @@
 //! [`Counter`](renderlab_core::counter::Counter), so counting costs nothing when it is off.
 //!
 //! [`mapping`] holds Heckbert's perspective-correct (projective) mapping with the thesis's
-//! scanline evaluation modes and their operation counts; [`ellipse`] the EWA footprint
-//! Jacobian (four methods) and ellipse coefficients. [`scene`] holds the texture lab's test
-//! scenes (exact mappings with analytic Jacobians) and [`reference`](mod@reference) their supersampled ground
-//! truth.
+//! scanline evaluation modes (a catalogue, one file per mode) and their operation counts;
+//! [`ellipse`] the EWA footprint Jacobian (a catalogue of methods, one file each) and ellipse
+//! coefficients. [`scene`] holds the texture lab's test scenes (a catalogue, one file per
+//! scene: exact mappings with analytic Jacobians) and [`reference`](mod@reference) their
+//! supersampled ground truth.
 //!
 //! [`materials`] builds the built-in relief materials (albedo, height and normal maps:
 //! `bricks`, `sand_rocks`, `bark_willow`, `brick_pavement`) and [`procedural`] the texture
