@@ -2,8 +2,8 @@
 //! at 45° and the whole room, into a fresh G-buffer and into a reused one.
 
 //!
-//! The views are the relief lab's fixtures (`renderlab_lab::fixtures`), restated here from
-//! their explicit parameters because this crate sits below the lab. Rasterization reads only
+//! The views are the relief lab's fixtures (`renderlab_measure::fixtures`), restated here from
+//! their explicit parameters because this crate sits below the crate that holds them. Rasterization reads only
 //! geometry and the light, so every surface gets one flat material.
 
 use criterion::{criterion_group, criterion_main, Criterion};

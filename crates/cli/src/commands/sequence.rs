@@ -18,7 +18,7 @@ pub const TIME_STEP: Interval = Interval::above(0.0, 60.0);
 
 /// Renders a `water` or `smoke` sequence into `out` (PNG frames and the APNG, see
 /// [`FrameSink`]) with a progress bar, mapping a noise-parameter error to its flag with
-/// `flag_error`. Returns the milliseconds per frame.
+/// `flag_error` (a command's use of [`flag_error`]). Returns the milliseconds per frame.
 pub fn write_sequence(
     name: &str,
     out: &Path,
@@ -44,4 +44,19 @@ pub fn write_sequence(
     sink.finish()?;
     p.finish();
     Ok(started.elapsed().as_secs_f64() * 1e3 / f64::from(frames))
+}
+
+/// The flag of a noise-parameter error: `--size` and `--octaves` for those errors, the flag
+/// `params` pairs with the parameter the library names (each command's own table), the
+/// frame-time flags for the time `t`, and `what` ("water parameters") for anything else.
+pub fn flag_error(e: renderlab_noise::NoiseError, what: &str, params: &[(&str, &str)]) -> anyhow::Error {
+    use renderlab_noise::NoiseError as E;
+    let flag = match &e {
+        E::Size { .. } => "--size",
+        E::Octaves { .. } => "--octaves",
+        E::Parameter { name: "t", .. } => "--start/--frames/--time-step",
+        E::Parameter { name, .. } => params.iter().find(|(p, _)| p == name).map_or(what, |(_, f)| f),
+        _ => what,
+    };
+    anyhow::anyhow!("{flag}: {e}")
 }

@@ -2,7 +2,7 @@
 
 use crate::args::range::{finite_in, in_range, Interval, Whole};
 use crate::args::size::size_in;
-use crate::commands::sequence::{write_sequence, FPS, TIME_STEP};
+use crate::commands::sequence::{flag_error, write_sequence, FPS, TIME_STEP};
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
 use glam::Vec3;
@@ -140,29 +140,24 @@ pub struct SmokeArgs {
 
 /// Maps a smoke-parameter error to the command-line flag that set the parameter.
 fn smoke_flag_error(e: renderlab_noise::NoiseError) -> anyhow::Error {
-    use renderlab_noise::NoiseError as E;
-    let flag = match &e {
-        E::Size { .. } => "--size",
-        E::Octaves { .. } => "--octaves",
-        E::Parameter { name, .. } => match *name {
-            "grid" => "--grid",
-            "time_step" => "--time-step",
-            "rise_speed" => "--rise-speed",
-            "swirl" => "--swirl",
-            "sigma" => "--sigma",
-            "density" => "--density",
-            "absorption" => "--absorption",
-            "scattering" => "--scattering",
-            "light_direction" => "--light",
-            "step" => "--step",
-            "shadow_steps" => "--shadow-steps",
-            "animation_factor" => "--animation-factor",
-            "t" => "--start/--frames/--time-step",
-            _ => "smoke parameters",
-        },
-        _ => "smoke parameters",
-    };
-    anyhow::anyhow!("{flag}: {e}")
+    flag_error(
+        e,
+        "smoke parameters",
+        &[
+            ("grid", "--grid"),
+            ("time_step", "--time-step"),
+            ("rise_speed", "--rise-speed"),
+            ("swirl", "--swirl"),
+            ("sigma", "--sigma"),
+            ("density", "--density"),
+            ("absorption", "--absorption"),
+            ("scattering", "--scattering"),
+            ("light_direction", "--light"),
+            ("step", "--step"),
+            ("shadow_steps", "--shadow-steps"),
+            ("animation_factor", "--animation-factor"),
+        ],
+    )
 }
 
 /// The smoke parameters of the flags, checked (the ranges by the parser, the rest here and

@@ -2,7 +2,7 @@
 
 use crate::args::range::{finite_in, in_range, Interval, Whole};
 use crate::args::size::size_in;
-use crate::commands::sequence::{write_sequence, FPS, TIME_STEP};
+use crate::commands::sequence::{flag_error, write_sequence, FPS, TIME_STEP};
 use anyhow::{bail, Result};
 use clap::Args;
 use renderlab_noise::water::{MAX_WATER_SIDE, MAX_WATER_TIME};
@@ -78,23 +78,18 @@ pub struct WaterArgs {
 
 /// Maps a water-parameter error to the command-line flag that set the parameter.
 fn water_flag_error(e: renderlab_noise::NoiseError) -> anyhow::Error {
-    use renderlab_noise::NoiseError as E;
-    let flag = match &e {
-        E::Size { .. } => "--size",
-        E::Octaves { .. } => "--octaves",
-        E::Parameter { name, .. } => match *name {
-            "time_step" => "--time-step",
-            "wind" => "--wind",
-            "amplitude" => "--amplitude",
-            "choppiness" => "--choppiness",
-            "camera_height" => "--camera-height",
-            "pitch_deg" => "--pitch",
-            "t" => "--start/--frames/--time-step",
-            _ => "water parameters",
-        },
-        _ => "water parameters",
-    };
-    anyhow::anyhow!("{flag}: {e}")
+    flag_error(
+        e,
+        "water parameters",
+        &[
+            ("time_step", "--time-step"),
+            ("wind", "--wind"),
+            ("amplitude", "--amplitude"),
+            ("choppiness", "--choppiness"),
+            ("camera_height", "--camera-height"),
+            ("pitch_deg", "--pitch"),
+        ],
+    )
 }
 
 /// The water parameters of the flags, checked (the ranges by the parser, the rest here and
