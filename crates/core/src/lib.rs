@@ -7,6 +7,7 @@
 
 #![warn(missing_docs)]
 
+pub mod any_f64;
 pub mod apng;
 pub mod camera;
 pub mod color;

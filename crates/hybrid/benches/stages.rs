@@ -4,6 +4,7 @@
 //! `cargo bench -p renderlab-hybrid --bench stages`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use renderlab_hybrid::stages::gi::GI_REGULARIZE_ROUGHNESS;
 use renderlab_hybrid::{Ao, Gi, HybridRenderer, Reflections, Shadows, StageConfig, Translucency};
 use renderlab_scene::procedural::showcase;
 use std::hint::black_box;
@@ -21,7 +22,10 @@ fn stages(c: &mut Criterion) {
             translucency: Translucency::RayTraced { max_refraction_rays: 3, max_roughness: 0.5 },
             ..base
         },
-        StageConfig { gi: Gi::RayTraced { samples_per_pixel: 4 }, ..base },
+        StageConfig {
+            gi: Gi::RayTraced { samples_per_pixel: 4, regularize: GI_REGULARIZE_ROUGHNESS },
+            ..base
+        },
         StageConfig { ao: Ao::RayTraced { samples_per_pixel: 4, radius: 0.5 }, ..base },
     ];
     let mut group = c.benchmark_group("hybrid 320x180");

@@ -6,6 +6,7 @@
 
 use renderlab_core::io::save_rgb8;
 use renderlab_hybrid::deferred::{tonemap, ToneMap};
+use renderlab_hybrid::stages::gi::GI_REGULARIZE_ROUGHNESS;
 use renderlab_hybrid::{Ao, Gi, HybridRenderer, Reflections, Shadows, StageConfig, Translucency};
 use renderlab_scene::procedural::showcase;
 use std::path::PathBuf;
@@ -29,7 +30,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     all_rt.shadows = Shadows::RayTraced { samples_per_light: 4 };
     all_rt.reflections = Reflections::RayTraced { max_bounces: 4, max_roughness: 0.5 };
     all_rt.translucency = Translucency::RayTraced { max_refraction_rays: 10, max_roughness: 0.5 };
-    all_rt.gi = Gi::RayTraced { samples_per_pixel: 8 };
+    all_rt.gi = Gi::RayTraced { samples_per_pixel: 8, regularize: GI_REGULARIZE_ROUGHNESS };
     all_rt.ao = Ao::RayTraced { samples_per_pixel: 4, radius: 0.5 };
     let save = |name: &str, hdr: &[glam::Vec3]| {
         save_rgb8(out.join(name), &tonemap(hdr, cam.width, cam.height, 1.0, ToneMap::AcesFitted))

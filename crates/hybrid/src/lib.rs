@@ -32,6 +32,7 @@ pub mod reference;
 pub mod renderer;
 pub mod rng;
 pub mod stages;
+pub mod terms;
 
 pub use accel::Accel;
 pub use error::{HybridError, Result};
@@ -39,3 +40,4 @@ pub use reference::{NoiseFloor, PathTracer, Reference};
 pub use renderer::{HybridFrame, HybridRenderer};
 pub use stages::choices::*;
 pub use stages::{PerStage, StageConfig, StageId};
+pub use terms::{Term, TermImages, TermScore};

@@ -39,7 +39,32 @@ pub fn direct_light_from(
     rng: &mut Rng,
     rays: &mut u64,
 ) -> Vec3 {
-    let mut sum = Vec3::ZERO;
+    direct_light_parts(scene, accel, sp, v, area_samples, with_area, rng, rays).total
+}
+
+/// Direct light and the area lights' part of it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DirectParts {
+    /// From every light.
+    pub total: Vec3,
+    /// From the area lights alone (a part of `total`).
+    pub area: Vec3,
+}
+
+/// [`direct_light_from`], with the area lights' part kept apart (the reference splits its
+/// direct term by the lights' extent).
+#[allow(clippy::too_many_arguments)]
+pub fn direct_light_parts(
+    scene: &HybridScene,
+    accel: &Accel,
+    sp: &ShadingPoint,
+    v: Vec3,
+    area_samples: u32,
+    with_area: bool,
+    rng: &mut Rng,
+    rays: &mut u64,
+) -> DirectParts {
+    let mut out = DirectParts::default();
     for light in &scene.lights {
         if !with_area && light.is_area() {
             continue;
@@ -61,9 +86,13 @@ pub fn direct_light_from(
                 acc += f * s.radiance;
             }
         }
-        sum += acc / n as f32;
+        let c = acc / n as f32;
+        out.total += c;
+        if light.is_area() {
+            out.area += c;
+        }
     }
-    sum
+    out
 }
 
 /// Direct light without shadows, area lights by a fixed `n`-sample stratified pattern (the

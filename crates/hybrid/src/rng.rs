@@ -17,6 +17,10 @@ impl Stream {
     pub const REFERENCE_A: Stream = Stream(6);
     /// The path tracer's second half.
     pub const REFERENCE_B: Stream = Stream(7);
+    /// The path tracer's ambient-occlusion rays, first half.
+    pub const REFERENCE_AO_A: Stream = Stream(8);
+    /// The path tracer's ambient-occlusion rays, second half.
+    pub const REFERENCE_AO_B: Stream = Stream(9);
 }
 
 /// SplitMix64's finaliser: a bijective avalanche of 64 bits.

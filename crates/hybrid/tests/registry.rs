@@ -6,6 +6,7 @@ use renderlab_core::Camera;
 use renderlab_hybrid::rng::Stream;
 use renderlab_hybrid::stages::ao::{SSAO_RADIUS, SSAO_SAMPLES};
 use renderlab_hybrid::stages::entry::{Entry, Phase};
+use renderlab_hybrid::stages::gi::GI_REGULARIZE_ROUGHNESS;
 use renderlab_hybrid::stages::reflections::DEFAULT_MAX_ROUGHNESS;
 use renderlab_hybrid::stages::{DESCRIPTORS, NAMES};
 use renderlab_hybrid::{Ao, Gi, HybridRenderer, Reflections, Shadows, StageConfig, StageId, Translucency};
@@ -71,7 +72,12 @@ fn every_stage_parses_its_default_to_its_baseline_and_reads_back_its_values() {
     round_trip(&[Shadows::Raster, Shadows::RayTraced { samples_per_light: 7 }]);
     round_trip(&Reflections::thesis_sweep());
     round_trip(&Translucency::thesis_sweep());
-    round_trip(&[Gi::Off]);
+    round_trip(&[Gi::Off, Gi::RayTraced { samples_per_pixel: 3, regularize: 0.0 }]);
+    round_trip(&Gi::thesis_sweep());
+    assert_eq!(
+        Gi::parse("rt:2").unwrap(),
+        Gi::RayTraced { samples_per_pixel: 2, regularize: GI_REGULARIZE_ROUGHNESS }
+    );
     round_trip(&Gi::thesis_sweep());
     round_trip(&[Ao::Off, Ao::BASELINE, Ao::RayTraced { samples_per_pixel: 3, radius: 0.25 }]);
     round_trip(&Ao::thesis_sweep());
@@ -125,7 +131,7 @@ fn labels_name_the_ray_traced_stages() {
 fn bad_parameters_are_refused() {
     let mut c = StageConfig::all_raster();
     assert!(c.validate().is_ok());
-    c.gi = Gi::RayTraced { samples_per_pixel: 0 };
+    c.gi = Gi::RayTraced { samples_per_pixel: 0, regularize: GI_REGULARIZE_ROUGHNESS };
     assert!(c.validate().is_err());
     c.gi = Gi::Off;
     c.reflections = Reflections::RayTraced { max_bounces: 1, max_roughness: f32::NAN };
@@ -154,7 +160,10 @@ fn choices_with_and_without_parameters() {
         Translucency::parse("rt:20:0.1").unwrap(),
         Translucency::RayTraced { max_refraction_rays: 20, max_roughness: 0.1 }
     );
-    assert_eq!(Gi::parse("rt:16").unwrap(), Gi::RayTraced { samples_per_pixel: 16 });
+    assert_eq!(
+        Gi::parse("rt:16").unwrap(),
+        Gi::RayTraced { samples_per_pixel: 16, regularize: GI_REGULARIZE_ROUGHNESS }
+    );
     assert_eq!(Ao::parse("rt:2:1.5").unwrap(), Ao::RayTraced { samples_per_pixel: 2, radius: 1.5 });
     assert_eq!(Ao::parse("off").unwrap(), Ao::Off);
     assert_eq!(Ao::parse("ssao").unwrap(), Ao::ScreenSpace { samples: SSAO_SAMPLES, radius: SSAO_RADIUS });
@@ -190,7 +199,7 @@ fn bad_values_name_the_flag() {
         Reflections::parse("rt:1:2").unwrap_err(),
         "--reflections: MAXROUGH \"2\" must be a number in [0, 1]"
     );
-    assert_eq!(Gi::parse("maps").unwrap_err(), "--gi: unknown choice \"maps\" (syntax: off|rt[:SPP])");
+    assert_eq!(Gi::parse("maps").unwrap_err(), "--gi: unknown choice \"maps\" (syntax: off|rt[:SPP[:REG]])");
 }
 
 proptest::proptest! {

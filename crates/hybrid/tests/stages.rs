@@ -6,6 +6,7 @@ use common::{cornell, mse, project};
 use glam::Vec3;
 use renderlab_core::Camera;
 use renderlab_hybrid::rng::Rng;
+use renderlab_hybrid::stages::gi::GI_REGULARIZE_ROUGHNESS;
 use renderlab_hybrid::stages::{ao, shadows, translucency};
 use renderlab_hybrid::{Ao, Gi, HybridRenderer, Reflections, Shadows, StageConfig, StageId, Translucency};
 use renderlab_scene::brdf::eval;
@@ -243,7 +244,7 @@ fn gi_converges_as_spp_grows() {
     let r = HybridRenderer::new(&scene).unwrap();
     let gi = |spp: u32, seed: u64| {
         let cfg = StageConfig {
-            gi: Gi::RayTraced { samples_per_pixel: spp },
+            gi: Gi::RayTraced { samples_per_pixel: spp, regularize: GI_REGULARIZE_ROUGHNESS },
             ao: Ao::Off,
             ..StageConfig::all_raster()
         };
@@ -259,7 +260,7 @@ fn gi_converges_as_spp_grows() {
     let full = |spp: u32| {
         let cfg = StageConfig {
             shadows: Shadows::RayTraced { samples_per_light: 1 },
-            gi: Gi::RayTraced { samples_per_pixel: spp },
+            gi: Gi::RayTraced { samples_per_pixel: spp, regularize: GI_REGULARIZE_ROUGHNESS },
             ao: Ao::Off,
             reflections: Reflections::RayTraced { max_bounces: 1, max_roughness: 1.0 },
             ..StageConfig::all_raster()
@@ -316,7 +317,7 @@ fn frames_are_bit_identical_for_any_thread_count() {
     cfg.shadows = Shadows::RayTraced { samples_per_light: 2 };
     cfg.reflections = Reflections::RayTraced { max_bounces: 2, max_roughness: 0.6 };
     cfg.translucency = Translucency::RayTraced { max_refraction_rays: 4, max_roughness: 0.5 };
-    cfg.gi = Gi::RayTraced { samples_per_pixel: 2 };
+    cfg.gi = Gi::RayTraced { samples_per_pixel: 2, regularize: GI_REGULARIZE_ROUGHNESS };
     cfg.ao = Ao::RayTraced { samples_per_pixel: 2, radius: 0.5 };
     assert!(StageId::ALL.iter().all(|&id| cfg.differs(id)));
     let run = |threads: usize| {
@@ -340,7 +341,10 @@ fn bad_input_is_refused() {
     let cam = scene.cameras[0].camera;
     assert!(r.render(&Camera { width: 0, ..cam }, &StageConfig::all_raster(), 0).is_err());
     assert!(r.render(&Camera { fov_y_deg: f32::NAN, ..cam }, &StageConfig::all_raster(), 0).is_err());
-    let bad = StageConfig { gi: Gi::RayTraced { samples_per_pixel: 0 }, ..StageConfig::all_raster() };
+    let bad = StageConfig {
+        gi: Gi::RayTraced { samples_per_pixel: 0, regularize: GI_REGULARIZE_ROUGHNESS },
+        ..StageConfig::all_raster()
+    };
     assert!(r.render(&cam, &bad, 0).is_err());
     assert!(r.reference(&cam, 0, 0).is_err());
     let mut broken = scene.clone();

@@ -78,6 +78,20 @@ pub fn eval(sp: &ShadingPoint, v: Vec3, l: Vec3) -> Vec3 {
     (kd * sp.base_color / PI + specular) * n_dot_l
 }
 
+/// The diffuse lobe of [`eval`] alone, `kd · base_colour / π · (n·l)` with the same `kd`: the
+/// share of `eval` that the diffuse indirect term gathers (the rest is the specular lobe's).
+pub fn eval_diffuse(sp: &ShadingPoint, v: Vec3, l: Vec3) -> Vec3 {
+    let n = sp.normal;
+    let n_dot_l = n.dot(l);
+    if n_dot_l <= 0.0 || n.dot(v) <= 0.0 {
+        return Vec3::ZERO;
+    }
+    let h = (v + l).normalize();
+    let f = fresnel_schlick(v.dot(h).max(0.0), f0(sp));
+    let kd = (Vec3::ONE - f) * ((1.0 - sp.metallic) * (1.0 - sp.transmission));
+    kd * sp.base_color / PI * n_dot_l
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

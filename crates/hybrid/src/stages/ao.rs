@@ -28,6 +28,7 @@ use crate::accel::Accel;
 use crate::deferred::geometry::view_depth;
 use crate::deferred::settings::{RasterSettings, SsaoSettings};
 use crate::rng::{stratified, Rng, Stream};
+use crate::terms::Term;
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use renderlab_scene::sampling::{cosine_hemisphere, Frame};
@@ -80,6 +81,7 @@ impl Entry for Ao {
         phase: Phase::Terms,
         sweep_position: 4,
         stream: STREAM,
+        term: Term::Occlusion,
     };
 
     const BASELINE: Self = Ao::ScreenSpace { samples: SSAO_SAMPLES, radius: SSAO_RADIUS };

@@ -12,6 +12,7 @@
 use super::context::StageContext;
 use crate::deferred::settings::RasterSettings;
 use crate::rng::Stream;
+use crate::terms::Term;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 use std::fmt::Debug;
@@ -50,6 +51,9 @@ pub struct Descriptor {
     pub sweep_position: u32,
     /// The random stream of its ray-traced choice.
     pub stream: Stream,
+    /// The term of the frame's composition it writes, on which the lab scores it against the
+    /// reference's same term.
+    pub term: Term,
 }
 
 impl Descriptor {

@@ -48,6 +48,7 @@ use crate::deferred::lighting::{shade_direct, Visibility};
 use crate::deferred::weights::diffuse_albedo;
 use crate::lighting::{ambient, direct_light};
 use crate::rng::{Rng, Stream};
+use crate::terms::Term;
 use glam::Vec3;
 use rayon::prelude::*;
 use renderlab_scene::brdf::{self, alpha, f0_dielectric, fresnel_schlick};
@@ -92,6 +93,7 @@ impl Entry for Translucency {
         phase: Phase::Over,
         sweep_position: 1,
         stream: STREAM,
+        term: Term::Translucent,
     };
 
     const BASELINE: Self = Translucency::Raster;

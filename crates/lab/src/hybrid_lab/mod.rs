@@ -12,7 +12,6 @@
 //! Errors are measured on the display image: linear radiance clamped to [0, 1] and
 //! sRGB-encoded, as [`crate::metrics`] does and as the PNGs show it.
 
-mod any_f64;
 mod assemble;
 mod config;
 mod merge;
@@ -22,6 +21,7 @@ mod run;
 pub mod scenes;
 mod store;
 pub mod sweep;
+pub mod terms;
 
 pub use assemble::{assemble, HybridSummary};
 pub use config::{Existing, HybridBenchConfig, RunSettings, Shard};

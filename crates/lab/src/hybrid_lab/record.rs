@@ -2,8 +2,10 @@
 //! it ([`HybridRecord`], with the deltas against its view's baseline and the reference's
 //! noise floor beside its error).
 
-use super::any_f64;
 use super::sweep::{Stage, SweepRow};
+use super::terms::TermFloors;
+use renderlab_core::any_f64;
+use renderlab_hybrid::{Term, TermScore};
 use serde::{Deserialize, Serialize};
 
 /// One finished row: what was rendered and what was measured, nothing derived from other
@@ -47,6 +49,25 @@ pub struct RowResult {
     pub image: String,
     /// Its FLIP heat map, relative to the run's directory (empty when images are off).
     pub error_image: String,
+    /// Every term of the frame scored against the reference's same term
+    /// ([`renderlab_hybrid::terms`]), in the order of [`Term::ALL`].
+    #[serde(default)]
+    pub terms: Vec<TermScore>,
+    /// The direct term scored over the pixels the area lights light most (where they give at
+    /// least half of the reference's direct light): what soft shadows change.
+    #[serde(default)]
+    pub direct_area_lit: Option<TermScore>,
+    /// Pixels whose visible surface is translucent that the frame shows black (luminance
+    /// below 10⁻⁴) where the reference does not (above 10⁻²).
+    #[serde(default)]
+    pub black_pixels: u64,
+}
+
+impl RowResult {
+    /// The score of `term`, if measured.
+    pub fn term(&self, term: Term) -> Option<&TermScore> {
+        self.terms.iter().find(|t| t.term == term)
+    }
 }
 
 /// What the results files hold per row: the [`RowResult`] flattened, with the deltas against
@@ -111,6 +132,29 @@ pub struct HybridRecord {
     /// True when the row's PSNR reaches the noise floor: its error is not distinguishable
     /// from the reference's own, and no lower error is claimed.
     pub at_noise_floor: bool,
+    /// The term the swept stage writes (`direct`, `specular`, `translucent`, `diffuse`,
+    /// `ao`); empty for the baseline, which writes every term.
+    pub term: &'static str,
+    /// Pixels over which the term is scored.
+    pub term_mask_pixels: Option<u64>,
+    /// The term's mean squared error per channel against the reference's term (linear).
+    pub term_mse: Option<f64>,
+    /// The term's squared error relative to the reference term's energy.
+    pub term_rel_mse: Option<f64>,
+    /// The term's PSNR (peak 1, linear), dB.
+    pub term_psnr_db: Option<f64>,
+    /// The reference's own noise floor on the term, dB.
+    pub term_floor_psnr_db: Option<f64>,
+    /// Whether the term's error cannot be told from the reference's noise on it.
+    pub term_at_floor: Option<bool>,
+    /// Translucent pixels shown black where the reference is not.
+    pub black_pixels: u64,
+    /// Every term's score (in `results.json`'s rows, not the CSV).
+    #[serde(skip)]
+    pub terms: Vec<TermScore>,
+    /// The direct term over the area-lit pixels (see [`RowResult::direct_area_lit`]).
+    #[serde(skip)]
+    pub direct_area_lit: Option<TermScore>,
 }
 
 impl HybridRecord {
@@ -127,6 +171,10 @@ impl HybridRecord {
         let r: &SweepRow = &row.row;
         let baseline_ms = baseline.map_or(f64::NAN, |b| b.frame_ms);
         let pixels = (width as u64 * height as u64).max(1) as f64;
+        let own = match r.stage {
+            Stage::Baseline => None,
+            Stage::Swept(id) => row.term(id.descriptor().term),
+        };
         HybridRecord {
             scene: row.scene.clone(),
             camera: row.camera.clone(),
@@ -155,7 +203,22 @@ impl HybridRecord {
             noise_floor_psnr_db: floor.noise_floor_psnr_db,
             noise_floor_flip: floor.halves_flip,
             at_noise_floor: row.psnr_db >= floor.noise_floor_psnr_db,
+            term: own.map_or("", |t| t.term.name()),
+            term_mask_pixels: own.map(|t| t.mask_pixels),
+            term_mse: own.map(|t| t.mse),
+            term_rel_mse: own.map(|t| t.rel_mse),
+            term_psnr_db: own.map(|t| t.psnr_db),
+            term_floor_psnr_db: own.map(|t| t.floor_psnr_db),
+            term_at_floor: own.map(|t| t.at_floor),
+            black_pixels: row.black_pixels,
+            terms: row.terms.clone(),
+            direct_area_lit: row.direct_area_lit.clone(),
         }
+    }
+
+    /// The score of `term`, if measured.
+    pub fn term_score(&self, term: Term) -> Option<&TermScore> {
+        self.terms.iter().find(|t| t.term == term)
     }
 
     /// Whether the row is the view's baseline.
@@ -187,6 +250,8 @@ pub struct RefInfo {
     pub halves_ssim: f64,
     /// The reference image, relative to the run's directory.
     pub image: String,
+    /// The reference's noise floor on each term over the term's mask.
+    pub terms: TermFloors,
 }
 
 /// How the errors are measured, as `results.json` and the page say it.

@@ -16,6 +16,7 @@ use super::store::{
     read_json, reference_image, row_images, view_id, Manifest, RowState, RunDir, Settings, View, FORMAT,
 };
 use super::sweep::{Stage, SweepRow};
+use super::terms::ViewTerms;
 use crate::error::{LabError, Result};
 use crate::heatmap::{heat_image, with_legend};
 use crate::lab::Progress;
@@ -130,7 +131,7 @@ pub fn run_hybrid_bench(cfg: &HybridBenchConfig, out: &Path, progress: Progress)
         })?;
         for (id, _, row) in todo {
             progress(done, total, &format!("{}: {}", view.id, row.label()));
-            let result = measure_row(&dir, id, view, row, r, &camera, &reference, cfg)?;
+            let result = measure_row(&dir, id, view, row, r, &camera, (&reference.0, &reference.1), cfg)?;
             dir.write_row(&result)?;
             done += 1;
         }
@@ -269,6 +270,9 @@ fn check_reference(dir: &RunDir, view: &View, s: &Settings) -> Result<RefState> 
     if img.size() != (s.run.width, s.run.height) {
         return Ok(RefState::Bad(format!("{} is {}x{}", exr.display(), img.width(), img.height())));
     }
+    if let Err(e) = ViewTerms::load(dir, view, s.run.width, s.run.height, &info.terms) {
+        return Ok(RefState::Bad(e.to_string()));
+    }
     let png = dir.root.join(&info.image);
     if std::fs::metadata(&png).map_or(true, |m| !m.is_file() || m.len() == 0) {
         save_color(&png, &img)?;
@@ -281,8 +285,8 @@ fn check_reference(dir: &RunDir, view: &View, s: &Settings) -> Result<RefState> 
     Ok(RefState::Good)
 }
 
-/// A view's reference: read back if `stored` (checked whole), else path-traced and
-/// persisted.
+/// A view's reference and its terms: read back if `stored` (checked whole), else
+/// path-traced and persisted.
 #[allow(clippy::too_many_arguments)]
 fn reference(
     dir: &RunDir,
@@ -292,10 +296,12 @@ fn reference(
     s: &Settings,
     stored: bool,
     progress: &(dyn Fn(f64) + Sync),
-) -> Result<Image<Vec3>> {
+) -> Result<(Image<Vec3>, ViewTerms)> {
     let (exr, json) = (dir.ref_exr(view), dir.ref_json(view));
     if stored {
-        return Ok(load_color(&exr)?);
+        let info: RefInfo = read_json(&json)?;
+        let terms = ViewTerms::load(dir, view, s.run.width, s.run.height, &info.terms)?;
+        return Ok((load_color(&exr)?, terms));
     }
     let started = Instant::now();
     let reference = r.reference_with_progress(
@@ -305,6 +311,8 @@ fn reference(
         progress,
     )?;
     let seconds = started.elapsed().as_secs_f64();
+    let terms = ViewTerms::of_reference(&reference);
+    terms.save(dir, view, s.run.width, s.run.height)?;
     let image = |v: Vec<Vec3>| Image::from_vec(s.run.width, s.run.height, v);
     let (hdr, a, b) = (image(reference.hdr)?, image(reference.half_a)?, image(reference.half_b)?);
     let halves = compare(&a, &b, None).metrics;
@@ -320,9 +328,10 @@ fn reference(
         halves_flip: halves.flip,
         halves_ssim: halves.ssim,
         image: rel,
+        terms: terms.floors().clone(),
     };
     write_json(&json, &info)?;
-    Ok(hdr)
+    Ok((hdr, terms))
 }
 
 /// The swept stage's own time and rays in `frame` (the baseline: the whole frame's).
@@ -343,7 +352,7 @@ fn measure_row(
     row: &SweepRow,
     r: &HybridRenderer,
     camera: &Camera,
-    reference: &Image<Vec3>,
+    (reference, terms): (&Image<Vec3>, &ViewTerms),
     cfg: &HybridBenchConfig,
 ) -> Result<RowResult> {
     let mut stage_ms = Vec::with_capacity(cfg.run.reps as usize);
@@ -360,6 +369,7 @@ fn measure_row(
     let stage_median = crate::timing::Timing::from_samples(timed).map_or(f64::NAN, |t| t.median_ms);
     let stage_rays = stage_cost(row.stage, &frame).1;
     let rays = frame.rays.total();
+    let (term_scores, direct_area_lit, black_pixels) = terms.score(&frame);
     let image = Image::from_vec(frame.width, frame.height, frame.hdr)?;
     let cmp = compare(&image, reference, None);
     let (rel, err_rel) = row_images(id, cfg.run.write_images);
@@ -386,5 +396,8 @@ fn measure_row(
         flip: cmp.metrics.flip,
         image: rel,
         error_image: err_rel,
+        terms: term_scores,
+        direct_area_lit: Some(direct_area_lit),
+        black_pixels,
     })
 }

@@ -23,8 +23,10 @@ use std::path::{Path, PathBuf};
 
 /// Version of the run-directory layout; runs of different formats never merge. Format 2:
 /// views are named by their camera's index as well as its name, so that two cameras whose
-/// names slug alike (`a b`, `a_b`) or are equal never share files.
-pub const FORMAT: u32 = 2;
+/// names slug alike (`a b`, `a_b`) or are equal never share files. Format 3: each view's
+/// reference carries its terms (`refs/VIEW.term-NAME.exr`, `refs/VIEW.aux.exr`, the floors
+/// in `refs/VIEW.json`) and each row its per-term scores.
+pub const FORMAT: u32 = 3;
 
 /// The largest JSON file of a run directory that is read (a manifest of many views is a few
 /// hundred KB; a row is under 2 KB): a larger one is damaged, not read into memory.
@@ -427,6 +429,9 @@ mod tests {
             flip: 0.1,
             image,
             error_image,
+            terms: Vec::new(),
+            direct_area_lit: None,
+            black_pixels: 0,
         }
     }
 

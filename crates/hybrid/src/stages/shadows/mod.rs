@@ -20,6 +20,7 @@ use crate::accel::Accel;
 use crate::deferred::lighting::{direct_lighting, ShadowQuery, Visibility};
 use crate::lighting::direct_light;
 use crate::rng::{Rng, Stream};
+use crate::terms::Term;
 use glam::Vec3;
 use maps::SharedShadowMaps;
 use renderlab_scene::{GBuffer, HybridScene};
@@ -59,6 +60,7 @@ impl Entry for Shadows {
         phase: Phase::Terms,
         sweep_position: 0,
         stream: STREAM,
+        term: Term::Direct,
     };
 
     const BASELINE: Self = Shadows::Raster;

@@ -1,6 +1,6 @@
 //! Serde for an `f64` that may be non-finite: finite values as JSON numbers, the others as
 //! the strings `"inf"`, `"-inf"` and `"NaN"` (JSON has no literal for them), read back
-//! exactly. Used with `#[serde(with = "any_f64")]` by the rows and the references.
+//! exactly. Used with `#[serde(with = "renderlab_core::any_f64")]` by results that may hold an infinite PSNR or an undefined ratio.
 
 use serde::{Deserialize, Deserializer, Serializer};
 
