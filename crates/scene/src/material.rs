@@ -66,9 +66,19 @@ pub struct PbrMaterial {
     pub transmission: f32,
     /// Index of refraction (glass 1.5, water 1.33), as `KHR_materials_ior`.
     pub ior: f32,
+    /// Whether the surface emits (and, as glTF's `doubleSided` means, is meant to be seen)
+    /// from its back face too; a hit on the back of a single-sided material resolves to no
+    /// emission ([`HybridScene::shading_point`]). `true` by default, so that a material
+    /// built in code emits from both faces as it always has; glTF files set it from
+    /// `doubleSided` (whose own default is `false`).
+    ///
+    /// [`HybridScene::shading_point`]: crate::HybridScene::shading_point
+    pub double_sided: bool,
 }
 
 impl Default for PbrMaterial {
+    /// A grey (0.8), half-rough dielectric of ior 1.5 that neither emits nor transmits,
+    /// double-sided.
     fn default() -> Self {
         Self {
             name: "default".into(),
@@ -81,6 +91,7 @@ impl Default for PbrMaterial {
             emissive: Vec3::ZERO,
             transmission: 0.0,
             ior: 1.5,
+            double_sided: true,
         }
     }
 }
@@ -106,6 +117,13 @@ impl PbrMaterial {
             ior,
             ..Self::default()
         }
+    }
+
+    /// Whether the material emits light: some component of [`Self::emissive`] is above zero.
+    /// An instance of such a material lights the scene by itself, so a file lit only by its
+    /// emitters gets no default light when loaded.
+    pub fn is_emissive(&self) -> bool {
+        self.emissive.cmpgt(Vec3::ZERO).any()
     }
 
     /// Whether the material lets light through (drawn by the translucent pass).

@@ -1,6 +1,7 @@
 //! A scene named by the user: a built-in name (the registry of [`crate::procedural`]) or a
 //! scene file (`.gltf`, `.glb`, `.obj`, told apart by extension), loaded and checked
-//! renderable: valid, with at least one light and one camera.
+//! renderable: valid, lit (by at least one light or one emissive surface) and with at least
+//! one camera.
 
 use crate::error::SceneError;
 use crate::load::{load, LoadError, LoadedScene};
@@ -31,8 +32,8 @@ pub enum ResolveError {
         /// What is wrong with it.
         source: SceneError,
     },
-    /// The scene has no light to shade with.
-    #[error("scene {spec} has no lights: every stage of the hybrid frame shades light sources")]
+    /// The scene has nothing that gives light: no light and no emissive surface.
+    #[error("scene {spec} has no lights and no emissive surfaces: nothing lights it")]
     NoLights {
         /// The spec as given.
         spec: String,
@@ -68,11 +69,13 @@ pub fn resolve(spec: &str) -> Result<LoadedScene, ResolveError> {
     Ok(loaded)
 }
 
-/// Checks that `scene` (named `spec` in messages) can be rendered: valid, with at least
-/// one light and one camera.
+/// Checks that `scene` (named `spec` in messages) can be rendered: valid, lit by at least
+/// one light or one emissive surface ([`HybridScene::has_emitters`]; the renderers take
+/// emission from the surfaces their rays and G-buffer find, and loop over the lights, of
+/// which there may be none), and with at least one camera.
 pub fn check(spec: &str, scene: &HybridScene) -> Result<(), ResolveError> {
     scene.validate().map_err(|source| ResolveError::Invalid { spec: spec.to_string(), source })?;
-    if scene.lights.is_empty() {
+    if scene.lights.is_empty() && !scene.has_emitters() {
         return Err(ResolveError::NoLights { spec: spec.to_string() });
     }
     if scene.cameras.is_empty() {
@@ -84,6 +87,7 @@ pub fn check(spec: &str, scene: &HybridScene) -> Result<(), ResolveError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec3;
 
     #[test]
     fn built_in_names_resolve_and_unknown_names_are_refused_with_the_list() {
@@ -107,11 +111,17 @@ mod tests {
     }
 
     #[test]
-    fn a_scene_without_lights_is_refused() {
+    fn a_scene_without_lights_or_emitters_is_refused_and_one_lit_by_an_emitter_is_not() {
         let mut scene = procedural::showcase();
         scene.lights.clear();
+        for m in &mut scene.materials {
+            m.emissive = Vec3::ZERO;
+        }
         let e = check("dark", &scene).unwrap_err().to_string();
-        assert!(e.contains("dark") && e.contains("no lights"), "{e}");
+        assert!(e.contains("dark") && e.contains("no lights and no emissive surfaces"), "{e}");
+        let lamp = scene.instances[0].material as usize;
+        scene.materials[lamp].emissive = Vec3::new(0.0, 0.0, 2.0);
+        check("lamp-lit", &scene).unwrap();
         scene.cameras.clear();
         scene.lights = procedural::showcase().lights;
         assert!(check("blind", &scene).unwrap_err().to_string().contains("no camera"));

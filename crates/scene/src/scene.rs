@@ -74,6 +74,17 @@ impl HybridScene {
         self.instances.iter().map(|i| self.meshes.get(i.mesh as usize).map_or(0, |m| m.triangles.len())).sum()
     }
 
+    /// Whether some instance emits light: its material [`PbrMaterial::is_emissive`] and its
+    /// mesh has triangles. Such a scene is lit even without [`Self::lights`] (a room whose
+    /// lamp is an emissive panel). Instances with references out of range count as not
+    /// emitting, so that this may be asked before [`Self::validate`].
+    pub fn has_emitters(&self) -> bool {
+        self.instances.iter().any(|i| {
+            self.materials.get(i.material as usize).is_some_and(PbrMaterial::is_emissive)
+                && self.meshes.get(i.mesh as usize).is_some_and(|m| !m.triangles.is_empty())
+        })
+    }
+
     /// Checks every reference and every number: indices in range, finite vertices, valid
     /// materials and lights. The loaders call it, so that a bad file is refused with one
     /// line rather than failing later inside a renderer.
@@ -155,7 +166,8 @@ impl HybridScene {
     /// Resolves a hit on triangle `triangle` of `instance` at barycentrics `bary` (weights
     /// of the second and third vertex), seen along the unit ray direction `dir`: interpolates
     /// the vertex attributes, samples the material's textures, applies its normal map and
-    /// turns both normals toward the viewer.
+    /// turns both normals toward the viewer. The back face of a material that is not
+    /// [`PbrMaterial::double_sided`] emits nothing.
     pub fn shading_point(&self, instance: u32, triangle: u32, bary: Vec2, dir: Vec3) -> ShadingPoint {
         let inst = &self.instances[instance as usize];
         let mesh = &self.meshes[inst.mesh as usize];
@@ -216,6 +228,9 @@ impl HybridScene {
         if !sp.front_face {
             sp.geometric_normal = -sp.geometric_normal;
             sp.normal = -sp.normal;
+            if !material.double_sided {
+                sp.emissive = Vec3::ZERO;
+            }
         }
         if sp.normal.dot(dir) > 0.0 {
             // An interpolated or mapped normal that faces away: fall back to the face's.
@@ -274,6 +289,26 @@ mod tests {
         assert!(!back.front_face);
         assert_eq!(back.normal, Vec3::NEG_Z);
         assert_eq!(back.geometric_normal, Vec3::NEG_Z);
+    }
+
+    #[test]
+    fn a_single_sided_emitter_emits_from_its_front_only() {
+        let mut s = one_triangle(Affine3A::from_translation(Vec3::new(0.0, 0.0, 2.0)));
+        assert!(!s.has_emitters());
+        let e = Vec3::new(4.0, 2.0, 1.0);
+        s.materials[0].emissive = e;
+        assert!(s.has_emitters());
+        let at = Vec2::new(0.25, 0.25);
+        // Double-sided (the default): both faces emit.
+        assert_eq!(s.shading_point(0, 0, at, Vec3::NEG_Z).emissive, e);
+        assert_eq!(s.shading_point(0, 0, at, Vec3::Z).emissive, e);
+        s.materials[0].double_sided = false;
+        let (front, back) = (s.shading_point(0, 0, at, Vec3::NEG_Z), s.shading_point(0, 0, at, Vec3::Z));
+        assert!(front.front_face && !back.front_face);
+        assert_eq!((front.emissive, back.emissive), (e, Vec3::ZERO));
+        // A mesh without triangles lights nothing.
+        s.meshes[0].triangles.clear();
+        assert!(!s.has_emitters());
     }
 
     #[test]

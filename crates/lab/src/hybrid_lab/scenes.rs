@@ -14,8 +14,8 @@ use std::path::Path;
 /// default run: the thesis's three).
 pub const BUILTIN: &[&str] = renderlab_scene::procedural::DEFAULT_RUN;
 
-/// The scene `spec` names (a built-in name, or a scene file), checked: it must have at least
-/// one light and one camera. Returns the scene and the loader's warnings (repairs made).
+/// The scene `spec` names (a built-in name, or a scene file), checked: it must be lit (by a
+/// light or an emissive surface) and have at least one camera. Returns the scene and the loader's warnings (repairs made).
 pub fn resolve(spec: &str) -> Result<(HybridScene, Vec<String>)> {
     let loaded = renderlab_scene::resolve(spec).map_err(|e| LabError::Hybrid(e.to_string()))?;
     Ok((loaded.scene, loaded.warnings))

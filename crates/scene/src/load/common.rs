@@ -18,7 +18,8 @@ pub struct LoadedScene {
     /// The scene; it passes [`HybridScene::validate`].
     pub scene: HybridScene,
     /// One line per repair or ignored feature (dropped degenerate triangles, a default
-    /// light added, an unsupported extension skipped …).
+    /// light added to a file with neither lights nor emissive surfaces, an unsupported
+    /// extension skipped …).
     pub warnings: Vec<String>,
 }
 
@@ -98,14 +99,22 @@ pub(crate) fn resolve(base: Option<&Path>, name: &str) -> Result<PathBuf, Proble
     }
 }
 
-/// The finishing steps shared by the loaders: a default light and camera when the file has
-/// none (each with a warning), then validation.
+/// The finishing steps shared by the loaders: a default light when the file has no light of
+/// any kind, a default camera when it has none (each with a warning), then validation.
+///
+/// A file lit only by its emissive surfaces ([`HybridScene::has_emitters`]: a room whose lamp
+/// is an emissive panel) is left as it is: no light is added and its sky is kept, since a
+/// sun would change the scene the file describes. Only a file with neither lights nor
+/// emitters gets the default sun, and a sky of 0.3 where its sky is black.
 pub(crate) fn finish(mut scene: HybridScene, warnings: &mut Vec<String>) -> Result<HybridScene, Problem> {
     if scene.instances.is_empty() {
         warnings.push("the file has no triangles: nothing to draw".into());
     }
-    if scene.lights.is_empty() {
-        warnings.push("the file has no lights: added a default sun (directional, from above) and sky".into());
+    if scene.lights.is_empty() && !scene.has_emitters() {
+        warnings.push(
+            "the file has no lights and no emissive surfaces: added a default sun (directional, from above) and sky"
+                .into(),
+        );
         scene.lights.push(Light {
             name: "default sun".into(),
             kind: LightKind::Directional,

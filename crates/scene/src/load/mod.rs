@@ -3,8 +3,9 @@
 //!
 //! Every loader reads the whole file into memory, refusing what is not a regular file and
 //! reading no more than [`LoadLimits`] allows, turns it into a [`crate::HybridScene`],
-//! repairs what has a well-defined repair (missing normals, tangents or UVs, degenerate triangles, no lights, no camera) and says
-//! so in [`LoadedScene::warnings`], and refuses everything else with one [`LoadError`]
+//! repairs what has a well-defined repair (missing normals, tangents or UVs, degenerate
+//! triangles, no light of any kind — neither lights nor emissive surfaces —, no camera) and
+//! says so in [`LoadedScene::warnings`], and refuses everything else with one [`LoadError`]
 //! naming the file and the problem. Malformed input never panics: the fuzz tests in
 //! `tests/load_fuzz.rs` feed the loaders mutated files.
 //!

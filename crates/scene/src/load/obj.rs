@@ -16,10 +16,11 @@
 //! - `Pm` → metalness (0 without it);
 //! - `Ni` → ior (values below 1, such as the common 1.0 placeholder's neighbours, give 1);
 //! - `d` → transmission 1 − d, or `Tr` → transmission Tr;
-//! - `Ke` → emitted radiance.
+//! - `Ke` → emitted radiance. MTL has no notion of a material's sides, so every material
+//!   stays [`PbrMaterial::double_sided`]: an emitter shines from both faces.
 //!
-//! OBJ has no lights or cameras: the shared finishing step adds a default sun and a
-//! framing camera, with warnings. A missing MTL file gives the default material and a
+//! OBJ has no lights or cameras: the shared finishing step adds a framing camera, and a
+//! default sun unless some material emits (`Ke`), with warnings. A missing MTL file gives the default material and a
 //! warning; a missing texture is an error.
 
 use super::common::{finish, read_limited, resolve, LoadLimits, LoadedScene, Problem};
@@ -178,7 +179,8 @@ fn convert(
     let param = |key: &str| {
         m.unknown_param.get(key).and_then(|v| v.trim().parse::<f32>().ok()).filter(|v| v.is_finite())
     };
-    let mut out = PbrMaterial { name: m.name.clone(), ..PbrMaterial::default() };
+    // MTL cannot say which faces a material shows: both, as before sidedness was read.
+    let mut out = PbrMaterial { name: m.name.clone(), double_sided: true, ..PbrMaterial::default() };
     if let Some(kd) = m.diffuse {
         out.base_color = Vec3::from(kd.map(unit));
     }

@@ -1,5 +1,6 @@
 //! glTF materials and textures into the scene's: metal–roughness factors and maps, the
-//! texture transform, images decoded once per use (colour or data).
+//! texture transform, images decoded once per use (colour or data). `doubleSided` (false
+//! unless the file says so) decides whether a material's back face emits.
 
 use super::{uri_bytes, Loader, Problem};
 use crate::load::textures::decode_image;
@@ -24,6 +25,7 @@ impl Loader<'_> {
             emissive: Vec3::from(m.emissive_factor()).max(Vec3::ZERO),
             transmission: m.transmission().map_or(0.0, |t| unit(t.transmission_factor())),
             ior: m.ior().map_or(1.5, |i| if i.is_finite() && i >= 1.0 { i } else { 1.5 }),
+            double_sided: m.double_sided(),
             ..PbrMaterial::default()
         };
         if !out.emissive.is_finite() {

@@ -6,7 +6,8 @@
 //! the first UV set, tangents — computed when missing —, indexed or not, sparse accessors
 //! included; COLOR_0 vertex colours, drawn through a texture baked for the primitive when
 //! its material has no texture of its own), metal–roughness materials with their
-//! base-colour (decoded from sRGB), metal–roughness and normal textures, emissive colour,
+//! base-colour (decoded from sRGB), metal–roughness and normal textures, emissive colour
+//! (emitted from the back face only where the material is `doubleSided`),
 //! `KHR_texture_transform` (applied to the primitive's UVs: the scene's material has one UV
 //! map, so the base colour's transform serves all its textures, with a warning when they
 //! differ), `KHR_materials_transmission` and `KHR_materials_ior`, `KHR_lights_punctual` lights
