@@ -17,6 +17,7 @@ use crate::stages::context::StageContext;
 use crate::stages::entry::Phase;
 use crate::stages::shadows::maps::ShadowMapCache;
 use crate::stages::{PerStage, StageConfig};
+use crate::terms::term::{Term, TermImages};
 use glam::Vec3;
 use renderlab_core::Camera;
 use renderlab_scene::{GBuffer, HybridScene, LightingTerms};
@@ -43,6 +44,37 @@ pub struct HybridFrame {
     pub gbuffer: GBuffer,
     /// The lighting terms the stages wrote.
     pub terms: LightingTerms,
+}
+
+impl HybridFrame {
+    /// The frame's image split by term ([`crate::terms`]): where the G-buffer's nearest
+    /// visible surface is translucent, the whole pixel is [`Term::Translucent`]; where it is
+    /// opaque, the lighting terms the stages wrote (the diffuse term times AO, as the
+    /// composition multiplies it); where no surface is, the sky is [`Term::Emitted`]. On
+    /// pixels without a translucent layer they sum to the image exactly as the composition
+    /// adds them.
+    pub fn term_images(&self) -> TermImages {
+        let (g, t) = (&self.gbuffer, &self.terms);
+        let slot = |term: Term| term.slot().expect("a radiance term");
+        let mut out = TermImages::zero(self.hdr.len());
+        for i in 0..self.hdr.len() {
+            if g.translucent[i].is_some() {
+                out.radiance[slot(Term::Translucent)][i] = self.hdr[i];
+                continue;
+            }
+            match &g.opaque[i] {
+                None => out.radiance[slot(Term::Emitted)][i] = self.hdr[i],
+                Some(sp) => {
+                    out.radiance[slot(Term::Emitted)][i] = sp.emissive;
+                    out.radiance[slot(Term::Direct)][i] = t.direct[i];
+                    out.radiance[slot(Term::Diffuse)][i] = t.diffuse_indirect[i] * t.ambient_occlusion[i];
+                    out.radiance[slot(Term::Specular)][i] = t.specular_indirect[i];
+                    out.occlusion[i] = t.ambient_occlusion[i];
+                }
+            }
+        }
+        out
+    }
 }
 
 /// A scene prepared for rendering: validated, its world meshes cached for the rasterizer

@@ -15,11 +15,12 @@
 //! radiance up to float rounding.
 
 use super::bsdf::{area_lights_on_segment, sample_bsdf, Scatter};
-use super::{PathTracer, SMOOTH_FOR_LIGHTS};
+use super::tracer::{PathTracer, SMOOTH_FOR_LIGHTS};
 use crate::accel::{resolve, Accel};
 use crate::lighting::direct_light_parts;
 use crate::rng::Rng;
-use crate::terms::{PixelKind, Term};
+use crate::terms::score::PixelKind;
+use crate::terms::term::Term;
 use glam::Vec3;
 use renderlab_scene::HybridScene;
 

@@ -28,7 +28,7 @@ use crate::accel::Accel;
 use crate::deferred::geometry::view_depth;
 use crate::deferred::settings::{RasterSettings, SsaoSettings};
 use crate::rng::{stratified, Rng, Stream};
-use crate::terms::Term;
+use crate::terms::term::Term;
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use renderlab_scene::sampling::{cosine_hemisphere, Frame};

@@ -12,7 +12,7 @@
 use super::context::StageContext;
 use crate::deferred::settings::RasterSettings;
 use crate::rng::Stream;
-use crate::terms::Term;
+use crate::terms::term::Term;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 use std::fmt::Debug;

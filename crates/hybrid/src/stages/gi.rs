@@ -34,7 +34,7 @@ use crate::accel::Accel;
 use crate::deferred::weights::diffuse_albedo;
 use crate::lighting::direct_light;
 use crate::rng::{stratified, Rng, Stream};
-use crate::terms::Term;
+use crate::terms::term::Term;
 use glam::Vec3;
 use rayon::prelude::*;
 use renderlab_scene::sampling::{cosine_hemisphere, Frame};

@@ -48,7 +48,7 @@ use crate::deferred::lighting::{shade_direct, Visibility};
 use crate::deferred::weights::diffuse_albedo;
 use crate::lighting::{ambient, direct_light};
 use crate::rng::{Rng, Stream};
-use crate::terms::Term;
+use crate::terms::term::Term;
 use glam::Vec3;
 use rayon::prelude::*;
 use renderlab_scene::brdf::{self, alpha, f0_dielectric, fresnel_schlick};

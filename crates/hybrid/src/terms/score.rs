@@ -25,7 +25,7 @@
 //! translucent term on every pixel whose visible surface is translucent; occlusion on every
 //! opaque pixel.
 
-use super::{Term, TermImages};
+use super::term::{Term, TermImages};
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 

@@ -3,7 +3,6 @@
 //! noise floor beside its error).
 
 use super::sweep::{Stage, SweepRow};
-use super::terms::TermFloors;
 use renderlab_core::any_f64;
 use renderlab_hybrid::{Term, TermScore};
 use serde::{Deserialize, Serialize};
@@ -252,6 +251,27 @@ pub struct RefInfo {
     pub image: String,
     /// The reference's noise floor on each term over the term's mask.
     pub terms: TermFloors,
+}
+
+/// The reference's noise on one term over that term's mask.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TermFloor {
+    /// The term.
+    pub term: Term,
+    /// Pixels in the mask.
+    pub mask_pixels: u64,
+    /// Expected squared error per channel of the reference's term.
+    #[serde(with = "renderlab_core::any_f64")]
+    pub floor_mse: f64,
+}
+
+/// Every term's floor, and the direct term's over the area-lit pixels.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TermFloors {
+    /// In the order of [`Term::ALL`].
+    pub terms: Vec<TermFloor>,
+    /// The direct term over the pixels the area lights light most.
+    pub area_lit: TermFloor,
 }
 
 /// How the errors are measured, as `results.json` and the page say it.

@@ -7,6 +7,7 @@
 //! `refs/VIEW.aux.exr`. A resumed run reads them back and rebuilds the same masks, so a row
 //! is scored alike whether its reference was just rendered or read.
 
+use super::record::{TermFloor, TermFloors};
 use super::store::{RunDir, View};
 use crate::error::{LabError, Result};
 use glam::Vec3;
@@ -14,7 +15,6 @@ use renderlab_core::io::{load_color, save_exr};
 use renderlab_core::Image;
 use renderlab_hybrid::terms::{area_lit_mask, floor_mse, luminance, score_term, term_mask, PixelKind};
 use renderlab_hybrid::{HybridFrame, Reference, Term, TermImages, TermScore};
-use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
 /// A frame pixel counts as black below this luminance.
@@ -22,27 +22,6 @@ pub const BLACK: f32 = 1e-4;
 /// A reference pixel counts as lit above this luminance (so that a pixel dark in the
 /// reference too is not counted).
 pub const LIT: f32 = 1e-2;
-
-/// The reference's noise on one term over that term's mask.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct TermFloor {
-    /// The term.
-    pub term: Term,
-    /// Pixels in the mask.
-    pub mask_pixels: u64,
-    /// Expected squared error per channel of the reference's term.
-    #[serde(with = "renderlab_core::any_f64")]
-    pub floor_mse: f64,
-}
-
-/// Every term's floor, and the direct term's over the area-lit pixels.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct TermFloors {
-    /// In the order of [`Term::ALL`].
-    pub terms: Vec<TermFloor>,
-    /// The direct term over the pixels the area lights light most.
-    pub area_lit: TermFloor,
-}
 
 /// A view's reference by term, with its masks.
 #[derive(Clone, Debug)]
@@ -142,7 +121,7 @@ impl ViewTerms {
     /// the area-lit pixels, and the translucent pixels the frame shows black where the
     /// reference does not.
     pub fn score(&self, frame: &HybridFrame) -> (Vec<TermScore>, TermScore, u64) {
-        let x = TermImages::of_frame(frame);
+        let x = frame.term_images();
         let scores = Term::ALL
             .iter()
             .zip(&self.masks)

@@ -28,7 +28,7 @@ use crate::accel::Accel;
 use crate::deferred::compose::lit_opaque;
 use crate::lighting::{ambient, direct_light, specular_weight};
 use crate::rng::{Rng, Stream};
-use crate::terms::Term;
+use crate::terms::term::Term;
 use glam::Vec3;
 use renderlab_scene::brdf::alpha;
 use renderlab_scene::sampling::{ggx_visible_normal, reflect, Frame};

@@ -20,7 +20,7 @@ use crate::accel::Accel;
 use crate::deferred::lighting::{direct_lighting, ShadowQuery, Visibility};
 use crate::lighting::direct_light;
 use crate::rng::{Rng, Stream};
-use crate::terms::Term;
+use crate::terms::term::Term;
 use glam::Vec3;
 use maps::SharedShadowMaps;
 use renderlab_scene::{GBuffer, HybridScene};
