@@ -98,7 +98,13 @@ pub fn direct_light_parts(
 /// Direct light without shadows, area lights by a fixed `n`-sample stratified pattern (the
 /// denominator of a shadowed fraction in tests and diagnostics).
 pub fn unshadowed_direct(scene: &HybridScene, sp: &ShadingPoint, v: Vec3, n: u32) -> Vec3 {
-    let mut sum = Vec3::ZERO;
+    unshadowed_direct_parts(scene, sp, v, n).total
+}
+
+/// [`unshadowed_direct`] with the area lights' part kept apart: how much of the light that
+/// could reach a surface comes from lights with an extent.
+pub fn unshadowed_direct_parts(scene: &HybridScene, sp: &ShadingPoint, v: Vec3, n: u32) -> DirectParts {
+    let mut out = DirectParts::default();
     for light in &scene.lights {
         let n = if light.is_area() { n.max(1) } else { 1 };
         let mut acc = Vec3::ZERO;
@@ -106,9 +112,13 @@ pub fn unshadowed_direct(scene: &HybridScene, sp: &ShadingPoint, v: Vec3, n: u32
             let s = light.sample(sp.position, stratified(i, n, Vec2::ZERO));
             acc += eval(sp, v, s.to_light) * s.radiance;
         }
-        sum += acc / n as f32;
+        let c = acc / n as f32;
+        out.total += c;
+        if light.is_area() {
+            out.area += c;
+        }
     }
-    sum
+    out
 }
 
 /// The weight of the indirect specular term, the raster SSR's own

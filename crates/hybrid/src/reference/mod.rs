@@ -46,9 +46,10 @@ pub mod path;
 pub mod tracer;
 
 use crate::accel::{resolve, Accel};
+use crate::lighting::unshadowed_direct_parts;
 use crate::rng::{stratified, Rng, Stream};
 use crate::stages::context::par_pixels;
-use crate::terms::score::PixelKind;
+use crate::terms::score::{luminance, PixelKind};
 use crate::terms::term::{Term, TermImages};
 use glam::Vec3;
 use renderlab_core::Camera;
@@ -65,8 +66,8 @@ pub use tracer::{PathTracer, SMOOTH_FOR_LIGHTS};
 #[derive(Clone, Copy)]
 struct PixelHalf {
     terms: [Vec3; 5],
-    direct_area: Vec3,
     occlusion: f32,
+    area_share: f32,
     kind: PixelKind,
 }
 
@@ -104,12 +105,8 @@ impl PathTracer {
         let every = total_rows.div_ceil(100).max(1);
         let rows_done = AtomicUsize::new(0);
         let run = |stream: Stream, ao_stream: Stream| {
-            let empty = PixelHalf {
-                terms: [Vec3::ZERO; 5],
-                direct_area: Vec3::ZERO,
-                occlusion: 1.0,
-                kind: PixelKind::Sky,
-            };
+            let empty =
+                PixelHalf { terms: [Vec3::ZERO; 5], occlusion: 1.0, area_share: 0.0, kind: PixelKind::Sky };
             let mut img = vec![empty; n];
             let rays = par_pixels(&mut img, camera.width, |i, out| {
                 let mut rng = Rng::new(seed, i as u64, stream);
@@ -120,18 +117,16 @@ impl PathTracer {
                     for (sum, t) in out.terms.iter_mut().zip(p.terms) {
                         *sum += t;
                     }
-                    out.direct_area += p.direct_area;
                     out.kind = p.kind;
                 }
                 let inv = 1.0 / half as f32;
                 for t in &mut out.terms {
                     *t *= inv;
                 }
-                out.direct_area *= inv;
                 if out.kind == PixelKind::Opaque {
                     let mut ao_rng = Rng::new(seed, i as u64, ao_stream);
-                    out.occlusion =
-                        self.occlusion(scene, accel, camera.position, dir, half, &mut ao_rng, &mut rays);
+                    (out.occlusion, out.area_share) =
+                        self.first_surface(scene, accel, camera.position, dir, half, &mut ao_rng, &mut rays);
                 }
                 if i % w == w - 1 {
                     let done = rows_done.fetch_add(1, Ordering::Relaxed) + 1;
@@ -163,7 +158,7 @@ impl PathTracer {
             spp: half * 2,
             noise,
             rays: rays_a + rays_b,
-            direct_area: a.iter().zip(&b).map(|(a, b)| (a.direct_area + b.direct_area) * 0.5).collect(),
+            area_share: a.iter().map(|p| p.area_share).collect(),
             kinds: a.iter().map(|p| p.kind).collect(),
             terms,
         }
@@ -184,12 +179,13 @@ impl PathTracer {
         self.trace(scene, accel, origin, dir, rng, rays).total()
     }
 
-    /// The ambient-occlusion integral `(1/π) ∫ V(ω) cos θ dω` (visibility within
-    /// [`Self::ao_radius`]) of the first surface along the camera ray `origin + t·dir`,
-    /// estimated by `samples` stratified cosine-distributed rays (a direction below the
-    /// surface's face counts as occluded, as in the AO stage).
+    /// Two facts of the first surface along the camera ray `origin + t·dir`: its
+    /// ambient-occlusion integral `(1/π) ∫ V(ω) cos θ dω` (visibility within
+    /// [`PathTracer::ao_radius`]), estimated by `samples` stratified cosine-distributed rays
+    /// (a direction below the surface's face counts as occluded, as in the AO stage), and
+    /// the area lights' share of its unshadowed direct light ([`Reference::area_share`]).
     #[allow(clippy::too_many_arguments)]
-    fn occlusion(
+    fn first_surface(
         &self,
         scene: &HybridScene,
         accel: &Accel,
@@ -198,10 +194,13 @@ impl PathTracer {
         samples: u32,
         rng: &mut Rng,
         rays: &mut u64,
-    ) -> f32 {
+    ) -> (f32, f32) {
         *rays += 1;
-        let Some(hit) = accel.closest(origin, dir, f32::INFINITY) else { return 1.0 };
+        let Some(hit) = accel.closest(origin, dir, f32::INFINITY) else { return (1.0, 0.0) };
         let sp = resolve(scene, &hit, dir);
+        let parts = unshadowed_direct_parts(scene, &sp, -dir, 4);
+        let total = luminance(parts.total);
+        let share = if total > 0.0 { luminance(parts.area) / total } else { 0.0 };
         let frame = Frame::new(sp.normal);
         let shift = rng.vec2();
         let mut open = 0u32;
@@ -215,7 +214,7 @@ impl PathTracer {
                 open += 1;
             }
         }
-        open as f32 / samples as f32
+        (open as f32 / samples as f32, share)
     }
 }
 
@@ -253,8 +252,10 @@ pub struct Reference {
     /// Each half split by term ([`crate::terms`]); each half's radiance terms sum to
     /// `half_a`, `half_b`.
     pub terms: [TermImages; 2],
-    /// Of the direct term (mean of both halves), what the area lights gave.
-    pub direct_area: Vec<Vec3>,
+    /// Per pixel whose visible surface is opaque, the area lights' share of the direct
+    /// light that could reach it unshadowed (luminance, a fixed 4 × 4 pattern per area
+    /// light; 0 elsewhere): where soft shadows can show.
+    pub area_share: Vec<f32>,
     /// What each pixel's camera ray meets first.
     pub kinds: Vec<PixelKind>,
 }

@@ -29,8 +29,6 @@ use renderlab_scene::HybridScene;
 pub struct PathSample {
     /// The radiance terms in the order of [`Term::RADIANCE`].
     pub terms: [Vec3; 5],
-    /// Of [`Term::Direct`], what the area lights gave.
-    pub direct_area: Vec3,
     /// What the camera ray met first.
     pub kind: PixelKind,
 }
@@ -67,7 +65,7 @@ impl PathTracer {
         rays: &mut u64,
     ) -> PathSample {
         let slot = |t: Term| t.slot().expect("a radiance term");
-        let mut out = PathSample { terms: [Vec3::ZERO; 5], direct_area: Vec3::ZERO, kind: PixelKind::Sky };
+        let mut out = PathSample { terms: [Vec3::ZERO; 5], kind: PixelKind::Sky };
         let mut route = Route::Camera;
         let add = |out: &mut PathSample, route: Route, c: Vec3| match route {
             Route::Camera => out.terms[slot(Term::Emitted)] += c,
@@ -93,7 +91,6 @@ impl PathTracer {
                 if depth == 1 && matches!(route, Route::Opaque(_)) {
                     // The first surface's own light from the area lights: direct.
                     out.terms[slot(Term::Direct)] += c;
-                    out.direct_area += c;
                 } else {
                     add(&mut out, route, c);
                 }
@@ -119,7 +116,6 @@ impl PathTracer {
                     out.kind = PixelKind::Opaque;
                     out.terms[slot(Term::Emitted)] += sp.emissive;
                     out.terms[slot(Term::Direct)] += direct.total;
-                    out.direct_area += direct.area;
                 }
             } else {
                 add(&mut out, route, throughput * (sp.emissive + direct.total));

@@ -19,18 +19,16 @@
 //! `crate::reference`), and its tests hold it to closed forms.
 //!
 //! Masks ([`term_mask`]): the emitted term is scored where the camera sees an opaque
-//! surface or the sky; the direct, diffuse and specular terms where the visible surface is
-//! opaque and the reference's term carries at least [`MATTERS`] of the pixel's reference
-//! radiance (the pixels where a stage writing that term can change the picture); the
-//! translucent term on every pixel whose visible surface is translucent; occlusion on every
-//! opaque pixel.
+//! surface or the sky; the direct, diffuse and specular terms and occlusion on every pixel
+//! whose visible surface is opaque (each is defined there; a mask that followed the
+//! reference's term would drop the very pixels a shadow darkens, and those where a stage
+//! adds light the reference has none of); the translucent term on every pixel whose visible
+//! surface is translucent. [`area_lit_mask`] narrows the direct term to the pixels where
+//! lights with an extent give most of the light (where soft shadows show).
 
 use super::term::{Term, TermImages};
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
-
-/// The share of a pixel's reference radiance from which a term counts as mattering there.
-pub const MATTERS: f32 = 0.01;
 
 /// What the camera ray of a pixel meets first (the reference's classification, from the
 /// pixel-centre ray every path of the pixel starts with).
@@ -93,10 +91,10 @@ pub fn luminance(c: Vec3) -> f32 {
     c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
 }
 
-/// The mask of `term` (see the module's notes) from the reference's mean terms and its
-/// pixel kinds, with its description.
-pub fn term_mask(term: Term, reference: &TermImages, kinds: &[PixelKind]) -> (Vec<bool>, String) {
-    let total = reference.sum();
+/// The mask of `term` (see the module's notes) from the reference's pixel kinds, with its
+/// description.
+pub fn term_mask(term: Term, kinds: &[PixelKind]) -> (Vec<bool>, String) {
+    let opaque = || kinds.iter().map(|k| *k == PixelKind::Opaque).collect();
     match term {
         Term::Emitted => {
             (kinds.iter().map(|k| *k != PixelKind::Translucent).collect(), "opaque and sky pixels".into())
@@ -105,27 +103,8 @@ pub fn term_mask(term: Term, reference: &TermImages, kinds: &[PixelKind]) -> (Ve
             kinds.iter().map(|k| *k == PixelKind::Translucent).collect(),
             "pixels whose visible surface is translucent".into(),
         ),
-        Term::Occlusion => (
-            kinds.iter().map(|k| *k == PixelKind::Opaque).collect(),
-            "pixels whose visible surface is opaque".into(),
-        ),
-        Term::Direct | Term::Diffuse | Term::Specular => {
-            let img = reference.get(term).expect("a radiance term");
-            let mask = (0..kinds.len())
-                .map(|i| {
-                    kinds[i] == PixelKind::Opaque
-                        && luminance(img[i]) > 0.0
-                        && luminance(img[i]) >= MATTERS * luminance(total[i])
-                })
-                .collect();
-            (
-                mask,
-                format!(
-                    "opaque pixels where the reference's {} term is at least {}% of the pixel's light",
-                    term.name(),
-                    MATTERS * 100.0
-                ),
-            )
+        Term::Direct | Term::Diffuse | Term::Specular | Term::Occlusion => {
+            (opaque(), "pixels whose visible surface is opaque".into())
         }
     }
 }
@@ -187,18 +166,12 @@ pub fn score_term(
     }
 }
 
-/// The pixels the area lights light most: opaque pixels where the direct term matters and
-/// the area lights give at least half of the reference's direct light (`direct_area` is
-/// that part's luminance per pixel).
-pub fn area_lit_mask(
-    reference: &TermImages,
-    direct_area: &[f32],
-    kinds: &[PixelKind],
-) -> (Vec<bool>, String) {
-    let (direct, _) = term_mask(Term::Direct, reference, kinds);
-    let img = reference.get(Term::Direct).expect("a radiance term");
-    let mask = (0..kinds.len()).map(|i| direct[i] && direct_area[i] >= 0.5 * luminance(img[i])).collect();
-    (mask, "opaque pixels where the area lights give at least half of the reference's direct light".into())
+/// The pixels the area lights light most: opaque pixels where lights with an extent give at
+/// least half of the direct light that could reach the surface unshadowed (`area_share`,
+/// [`Reference::area_share`](crate::Reference::area_share)).
+pub fn area_lit_mask(area_share: &[f32], kinds: &[PixelKind]) -> (Vec<bool>, String) {
+    let mask = kinds.iter().zip(area_share).map(|(k, &s)| *k == PixelKind::Opaque && s >= 0.5).collect();
+    (mask, "opaque pixels where area lights give at least half of the unshadowed direct light".into())
 }
 
 #[cfg(test)]
@@ -233,14 +206,13 @@ mod tests {
     }
 
     #[test]
-    fn masks_follow_the_pixel_kinds_and_the_term_share() {
-        let mut r = TermImages::zero(3);
-        r.radiance[1] = vec![Vec3::ONE, Vec3::splat(0.001), Vec3::ONE];
-        r.radiance[2] = vec![Vec3::ZERO, Vec3::ONE, Vec3::ONE];
-        let kinds = [PixelKind::Opaque, PixelKind::Opaque, PixelKind::Translucent];
-        assert_eq!(term_mask(Term::Direct, &r, &kinds).0, vec![true, false, false]);
-        assert_eq!(term_mask(Term::Diffuse, &r, &kinds).0, vec![false, true, false]);
-        assert_eq!(term_mask(Term::Translucent, &r, &kinds).0, vec![false, false, true]);
-        assert_eq!(term_mask(Term::Occlusion, &r, &kinds).0, vec![true, true, false]);
+    fn masks_follow_the_pixel_kinds_and_the_area_share() {
+        let kinds = [PixelKind::Opaque, PixelKind::Opaque, PixelKind::Translucent, PixelKind::Sky];
+        assert_eq!(term_mask(Term::Direct, &kinds).0, vec![true, true, false, false]);
+        assert_eq!(term_mask(Term::Specular, &kinds).0, vec![true, true, false, false]);
+        assert_eq!(term_mask(Term::Translucent, &kinds).0, vec![false, false, true, false]);
+        assert_eq!(term_mask(Term::Occlusion, &kinds).0, vec![true, true, false, false]);
+        assert_eq!(term_mask(Term::Emitted, &kinds).0, vec![true, true, false, true]);
+        assert_eq!(area_lit_mask(&[0.7, 0.2, 0.9, 0.9], &kinds).0, vec![true, false, false, false]);
     }
 }

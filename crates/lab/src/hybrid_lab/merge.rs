@@ -13,6 +13,7 @@ use super::assemble::{assemble, HybridSummary};
 use super::config::Shard;
 use super::record::{RefInfo, RowResult};
 use super::store::{read_json, reference_image, Manifest, RunDir, View, FORMAT};
+use super::terms::ViewTerms;
 use crate::error::{LabError, Result};
 use renderlab_core::CoreError;
 use std::collections::HashMap;
@@ -156,6 +157,9 @@ pub fn merge_runs(parts: &[PathBuf], out: &Path) -> Result<HybridSummary> {
             let rel = reference_image(view);
             copy(&src.root.join(&rel), &built.root.join(&rel))?;
             copy(&src.ref_json(view), &built.ref_json(view))?;
+            for (from, to) in ViewTerms::files(src, view).iter().zip(ViewTerms::files(&built, view)) {
+                copy(from, &to)?;
+            }
         }
         built.write_manifest(&Manifest { settings: s.clone(), shard: Shard::WHOLE })?;
         let mut summary = assemble(&staging.path)?;
@@ -190,6 +194,7 @@ fn check_reference(src: &RunDir, view: &View, width: u32, height: u32) -> Result
     if img.size() != (width, height) {
         return fail(format!("{}: is {}x{}, not {width}x{height}", exr.display(), img.width(), img.height()));
     }
+    ViewTerms::load(src, view, width, height, &info.terms)?;
     let png = src.root.join(&rel);
     match std::fs::metadata(&png) {
         Ok(m) if m.is_file() => Ok(()),

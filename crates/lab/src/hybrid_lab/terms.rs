@@ -3,7 +3,7 @@
 //! When a view's reference is rendered, each term's mask and the reference's noise floor on
 //! it are fixed ([`renderlab_hybrid::terms`]): the floors go into `refs/VIEW.json`, the mean
 //! term images into `refs/VIEW.term-NAME.exr` (exact floats) and the pixel kinds, the
-//! ambient-occlusion reference and the area lights' share of the direct light into
+//! ambient-occlusion reference and the area lights' share of the unshadowed direct light into
 //! `refs/VIEW.aux.exr`. A resumed run reads them back and rebuilds the same masks, so a row
 //! is scored alike whether its reference was just rendered or read.
 
@@ -28,7 +28,7 @@ pub const LIT: f32 = 1e-2;
 pub struct ViewTerms {
     mean: TermImages,
     kinds: Vec<PixelKind>,
-    direct_area: Vec<f32>,
+    area_share: Vec<f32>,
     masks: Vec<(Vec<bool>, String)>,
     area_lit: (Vec<bool>, String),
     floors: TermFloors,
@@ -38,7 +38,7 @@ impl ViewTerms {
     /// The terms of a reference just rendered, their masks and floors.
     pub fn of_reference(r: &Reference) -> Self {
         let mean = r.mean_terms();
-        let direct_area: Vec<f32> = r.direct_area.iter().map(|&c| luminance(c)).collect();
+        let area_share = r.area_share.clone();
         let [a, b] = &r.terms;
         let floors = |masks: &[(Vec<bool>, String)], area_lit: &(Vec<bool>, String)| TermFloors {
             terms: Term::ALL
@@ -56,14 +56,21 @@ impl ViewTerms {
                 floor_mse: floor_mse(Term::Direct, a, b, &area_lit.0),
             },
         };
-        let (masks, area_lit) = masks(&mean, &direct_area, &r.kinds);
+        let (masks, area_lit) = masks(&area_share, &r.kinds);
         let floors = floors(&masks, &area_lit);
-        Self { mean, kinds: r.kinds.clone(), direct_area, masks, area_lit, floors }
+        Self { mean, kinds: r.kinds.clone(), area_share, masks, area_lit, floors }
     }
 
     /// The floors (for `refs/VIEW.json`).
     pub fn floors(&self) -> &TermFloors {
         &self.floors
+    }
+
+    /// Every file [`Self::save`] writes for `view` (what a merge copies).
+    pub fn files(dir: &RunDir, view: &View) -> Vec<PathBuf> {
+        let (mut terms, aux) = Self::paths(dir, view);
+        terms.push(aux);
+        terms
     }
 
     /// The term images' files of `view`.
@@ -82,7 +89,7 @@ impl ViewTerms {
             save_exr(path, &Image::from_vec(width, height, img.clone())?)?;
         }
         let packed = (0..self.kinds.len())
-            .map(|i| Vec3::new(self.mean.occlusion[i], self.kinds[i].code(), self.direct_area[i]))
+            .map(|i| Vec3::new(self.mean.occlusion[i], self.kinds[i].code(), self.area_share[i]))
             .collect();
         save_exr(&aux, &Image::from_vec(width, height, packed)?)?;
         Ok(())
@@ -109,12 +116,12 @@ impl ViewTerms {
                 || LabError::Hybrid(format!("{}: a pixel kind is not 0, 1 or 2", aux.display())),
             )?;
         let mean = TermImages { radiance, occlusion: packed.iter().map(|p| p.x).collect() };
-        let direct_area: Vec<f32> = packed.iter().map(|p| p.z).collect();
+        let area_share: Vec<f32> = packed.iter().map(|p| p.z).collect();
         if floors.terms.len() != Term::ALL.len() {
             return Err(LabError::Hybrid(format!("the reference of {} has no floor per term", view.id)));
         }
-        let (masks, area_lit) = masks(&mean, &direct_area, &kinds);
-        Ok(Self { mean, kinds, direct_area, masks, area_lit, floors: floors.clone() })
+        let (masks, area_lit) = masks(&area_share, &kinds);
+        Ok(Self { mean, kinds, area_share, masks, area_lit, floors: floors.clone() })
     }
 
     /// Every term of `frame` scored (in the order of [`Term::ALL`]), the direct term over
@@ -144,12 +151,8 @@ impl ViewTerms {
 
 /// Each term's mask (in the order of [`Term::ALL`]) and the area-lit mask.
 #[allow(clippy::type_complexity)]
-fn masks(
-    mean: &TermImages,
-    direct_area: &[f32],
-    kinds: &[PixelKind],
-) -> (Vec<(Vec<bool>, String)>, (Vec<bool>, String)) {
-    (Term::ALL.iter().map(|&t| term_mask(t, mean, kinds)).collect(), area_lit_mask(mean, direct_area, kinds))
+fn masks(area_share: &[f32], kinds: &[PixelKind]) -> (Vec<(Vec<bool>, String)>, (Vec<bool>, String)) {
+    (Term::ALL.iter().map(|&t| term_mask(t, kinds)).collect(), area_lit_mask(area_share, kinds))
 }
 
 fn count(mask: &[bool]) -> u64 {

@@ -134,9 +134,14 @@ impl Entry for Reflections {
         out
     }
 
-    /// 1 and 4 bounces at max roughness 1.
+    /// 1 and 4 bounces at max roughness 1, and 1 bounce at max roughness 0.01 (the thesis's
+    /// minimal quality, which its conclusions compare with SSR).
     fn in_report_sweep(&self) -> bool {
-        matches!(*self, Reflections::RayTraced { max_bounces: 1 | 4, max_roughness } if max_roughness == 1.0)
+        match *self {
+            Reflections::RayTraced { max_bounces: 1, max_roughness } => max_roughness == 1.0 || max_roughness == 0.01,
+            Reflections::RayTraced { max_bounces: 4, max_roughness } => max_roughness == 1.0,
+            _ => false,
+        }
     }
 
     fn sweep_count(&self) -> Option<u32> {
