@@ -40,11 +40,12 @@ const FIXED: u64 = 512 << 20;
 const RENDER_FIXED: u64 = FIXED;
 const BENCH_FIXED: u64 = FIXED;
 /// Peak bytes per pixel of `hybrid render`: 625 to 660 measured (temple and showcase, raster
-/// and all-ray-traced stages; the path-traced reference alone needs 224), 7% added.
+/// and all-ray-traced stages; the path-traced reference alone, with its terms and their
+/// halves, needs 501), 7% added.
 const RENDER_PER_PIXEL: u64 = 704;
-/// Peak bytes per pixel of `hybrid bench`: 714 measured (the rows' frames with the view's
-/// reference and the image metrics' buffers), 7% added.
-const BENCH_PER_PIXEL: u64 = 768;
+/// Peak bytes per pixel of `hybrid bench`: 776 measured (the rows' frames with the view's
+/// reference, its term images and masks, and the image metrics' buffers), 7% added.
+const BENCH_PER_PIXEL: u64 = 832;
 
 /// The estimated peak resident memory of `run` at `pixels` pixels, in bytes.
 pub fn estimate(run: Run, pixels: u64) -> u64 {

@@ -7,9 +7,11 @@ use crate::args::range::{in_range, Whole};
 use crate::args::size::parse_size;
 use anyhow::{anyhow, Result};
 use clap::Args;
+use glam::Vec3;
 use renderlab_core::{io, Image};
+use renderlab_hybrid::reference::FLOOR_CANNOT_SEE;
 use renderlab_hybrid::stages::NAMES;
-use renderlab_hybrid::{HybridRenderer, StageConfig};
+use renderlab_hybrid::{HybridRenderer, StageConfig, Term};
 use renderlab_lab::hybrid_lab::scenes;
 use std::path::PathBuf;
 
@@ -35,6 +37,11 @@ pub struct HybridRenderArgs {
     /// halves; their difference gives the reference's noise floor, printed).
     #[arg(long, value_name = "SPP", conflicts_with_all = NAMES, value_parser = in_range(REFERENCE_SPP))]
     pub reference: Option<u32>,
+    /// With --reference: also write the reference's render passes, one image per term of
+    /// the frame's composition (emitted, direct, diffuse, specular, translucent, which sum
+    /// to the image) and its ambient occlusion, beside --out as STEM.TERM.EXT.
+    #[arg(long, requires = "reference")]
+    pub passes: bool,
     /// Seed of the stages' (or the reference's) random numbers.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -64,13 +71,24 @@ pub(crate) fn run(a: HybridRenderArgs) -> Result<()> {
     let camera = scenes::camera(&scene, &name, w, h)?;
     let renderer = HybridRenderer::new(&scene)?;
     let started = std::time::Instant::now();
+    let mut passes = Vec::new();
     let (hdr, what) = match a.reference {
         Some(spp) => {
             let r = renderer.reference(&camera, spp, a.seed)?;
             let what = format!(
-                "path-traced reference, {} spp, {} rays; noise floor: PSNR between halves {:.2} dB (linear, peak 1), full reference about {:.2} dB",
-                r.spp, r.rays, r.noise.psnr_halves, r.noise.psnr_full
+                "path-traced reference, {} spp, {} rays; noise floor: PSNR between halves {:.2} dB (linear, peak 1), full reference about {:.2} dB ({})",
+                r.spp, r.rays, r.noise.psnr_halves, r.noise.psnr_full, FLOOR_CANNOT_SEE
             );
+            if a.passes {
+                let terms = r.mean_terms();
+                for term in Term::RADIANCE {
+                    passes.push((term.name(), terms.get(term).expect("a radiance term").to_vec()));
+                }
+                passes.push((
+                    Term::Occlusion.name(),
+                    terms.occlusion.iter().map(|&o| Vec3::splat(o)).collect(),
+                ));
+            }
             (r.hdr, what)
         }
         None => {
@@ -86,5 +104,17 @@ pub(crate) fn run(a: HybridRenderArgs) -> Result<()> {
     io::save_color(&a.out, &image)?;
     println!("{} {} at {w}x{h}, {what}; {seconds:.2} s", scene.name, name);
     println!("wrote {}", a.out.display());
+    for (term, pixels) in passes {
+        let path = pass_path(&a.out, term);
+        io::save_color(&path, &Image::from_vec(w, h, pixels)?)?;
+        println!("wrote {}", path.display());
+    }
     Ok(())
+}
+
+/// `DIR/STEM.TERM.EXT` for `--out DIR/STEM.EXT`.
+fn pass_path(out: &std::path::Path, term: &str) -> PathBuf {
+    let stem = out.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let ext = out.extension().map(|e| e.to_string_lossy().into_owned()).unwrap_or_else(|| "png".into());
+    out.with_file_name(format!("{stem}.{term}.{ext}"))
 }
