@@ -14,8 +14,12 @@
 //! * [`deferred`] holds the passes every frame runs whatever its stages choose (the geometry
 //!   pass into the G-buffer, the lighting pass, composition, tone mapping, the settings) and
 //!   re-exports the raster choices of the stages: the whole raster pipeline in one place.
-//! * [`mod@reference`] holds the path tracer; [`lighting`] the shading the ray-traced
-//!   stages and the path tracer share; [`accel`] the BVH as they query it.
+//! * [`mod@reference`] holds the path tracer, unbiased, which writes one image per term of
+//!   the frame's composition from the same paths (its render passes); [`terms`] names the
+//!   terms, splits a frame the same way ([`HybridFrame::term_images`]) and scores a stage's
+//!   term against the reference's over the pixels it is defined on, beside the reference's
+//!   own noise on that term; [`lighting`] holds the shading the ray-traced stages and the
+//!   path tracer share; [`accel`] the BVH as they query it.
 //! * The small meshes and scenes of the tests and benchmarks are `renderlab_scene::shapes`'s.
 //!
 //! Every stage draws its random numbers from a per-pixel stream seeded by `(seed, pixel,
