@@ -24,6 +24,7 @@ pub mod compare;
 mod config;
 #[cfg(test)]
 mod fixtures;
+pub mod gains;
 mod merge;
 mod page;
 pub mod pareto;

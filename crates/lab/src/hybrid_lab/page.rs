@@ -5,7 +5,8 @@
 //! front of cost against its term error, and its most accurate row's gains), the
 //! cost-versus-error plots, and the images with their FLIP maps.
 
-use super::claims::{claims, stage_gains, Claim};
+use super::claims::{claims, Claim};
+use super::gains::stage_gains;
 use super::pareto::StageFront;
 use super::record::RefInfo;
 use super::record::{HybridRecord, RowResult, ERROR_SPACE};

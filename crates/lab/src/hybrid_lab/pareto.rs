@@ -70,7 +70,7 @@ impl<'a> StageFront<'a> {
     pub fn of(view: &[&'a HybridRecord], stage: StageId) -> Option<Self> {
         let term = stage.descriptor().term;
         let base = view.iter().find(|r| r.is_baseline())?;
-        let mut points = vec![point(base, format!("raster ({})", stage.descriptor().default), 0.0, term)?];
+        let mut points = vec![point(base, raster_name(stage), 0.0, term)?];
         for r in view.iter().filter(|r| r.stage_id() == Some(stage)) {
             points.push(point(r, r.setting().to_string(), r.delta_ms, term)?);
         }
@@ -150,12 +150,16 @@ impl<'a> StageFront<'a> {
             );
         } else {
             let outcome = compare_terms(best.score, raster.score);
+            let cost = if best.cost_ms > 0.0 {
+                format!("which costs {} ms more", format_number(best.cost_ms, 2))
+            } else {
+                format!("at no extra time (Δ {} ms)", format_number(best.cost_ms, 2))
+            };
             s += &format!(
-                "The raster choice sits {} dB below the front's most accurate point, {} ({}), which costs {} ms more.",
+                "The raster choice sits {} dB below the front's most accurate point, {} ({}), {cost}.",
                 format_number(gain_db(best.score, raster.score), 2),
                 best.name,
                 outcome.words(),
-                format_number(best.cost_ms, 2)
             );
             if outcome != Outcome::Better {
                 s += " No gain is claimed.";
@@ -191,6 +195,15 @@ impl<'a> StageFront<'a> {
             false,
             false,
         )
+    }
+}
+
+/// The raster choice's name: `raster`, or `raster (ssr)` where the stage's baseline choice
+/// has a name of its own.
+fn raster_name(stage: StageId) -> String {
+    match stage.descriptor().default {
+        "raster" => "raster".into(),
+        d => format!("raster ({d})"),
     }
 }
 

@@ -55,17 +55,19 @@ fn reflections_hold_only_far_beyond_ssr() {
 }
 
 #[test]
-fn gi_holds_when_dearer_and_less_visible_than_reflections() {
+fn gi_holds_when_much_dearer_and_no_more_visible_than_reflections() {
     let refl = row(StageId::Reflections, "rt-reflections b1 r0.01", (Some(1), Some(0.01)), 2.0, 21.0, 1e-3);
     let gi = |delta, psnr| row(StageId::Gi, "rt-gi 4spp", (Some(4), None), delta, psnr, 5e-3);
     let (v, text) = verdict(gi_benefit, &[baseline(1e-2), refl.clone(), gi(10.0, 20.1)]);
     assert_eq!(v, Verdict::Holds, "{text}");
     // Every stage's gain per ms is printed: GI 3.01 dB over 10 ms.
     assert!(text.contains("gi (4spp): diffuse term 3.01 dB for Δ 10.00 ms (0.301 dB/ms)"), "{text}");
-    // Cheaper than the reflections: does not hold.
-    assert_eq!(verdict(gi_benefit, &[baseline(1e-2), refl.clone(), gi(1.0, 20.1)]).0, Verdict::DoesNotHold);
-    // As visible as the reflections (whole frames within the margin): does not hold.
-    assert_eq!(verdict(gi_benefit, &[baseline(1e-2), refl.clone(), gi(10.0, 21.0)]).0, Verdict::DoesNotHold);
+    // As visible as the reflections (whole frames within the margin) for five times the cost: holds.
+    assert_eq!(verdict(gi_benefit, &[baseline(1e-2), refl.clone(), gi(10.0, 21.0)]).0, Verdict::Holds);
+    // Not twice the reflections' cost: does not hold.
+    assert_eq!(verdict(gi_benefit, &[baseline(1e-2), refl.clone(), gi(3.0, 20.1)]).0, Verdict::DoesNotHold);
+    // More visible than the reflections: does not hold.
+    assert_eq!(verdict(gi_benefit, &[baseline(1e-2), refl.clone(), gi(10.0, 22.0)]).0, Verdict::DoesNotHold);
     // Without reflections: cannot tell.
     assert_eq!(verdict(gi_benefit, &[baseline(1e-2), gi(10.0, 20.1)]).0, Verdict::CannotTell);
 }
