@@ -12,7 +12,7 @@
 //!   otherwise; *cannot tell* without such a row, with an empty mask or with both at the
 //!   floor. Its cost is printed beside the thesis's as `× baseline` (the thesis timed a
 //!   GPU; the verdict does not rest on it).
-//! * **(b) GI.** "[GI] costs much more than reflections and gives no comparably visible
+//! * **(b) GI.** "\[GI\] costs much more than reflections and gives no comparably visible
 //!   benefit": a benefit not commensurate with its cost, measured against the reflections
 //!   of minimal quality (lowest max roughness swept, fewest bounces), which the thesis
 //!   recommends. GI's cheapest row for the cost, GI's most accurate row (on its term) for
@@ -48,7 +48,7 @@ use renderlab_hybrid::{StageId, Term, TermScore};
 pub const FAR_DB: f64 = 3.0;
 
 /// How many times the reflections' cost GI must cost to cost "much more" (the thesis's own
-/// tables put it at 4–13 times at max roughness 0.01).
+/// tables put GI at 4–12 times the reflections at max roughness 0.01 with one bounce).
 pub const MUCH_MORE: f64 = 2.0;
 
 /// A claim's verdict on one view.

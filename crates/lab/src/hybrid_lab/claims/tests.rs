@@ -153,3 +153,16 @@ fn every_claim_is_tested_on_every_view() {
     assert!(c.iter().all(|c| c.views.len() == 2 && c.views.iter().all(|v| v.verdict == Verdict::CannotTell)));
     assert!(c[0].finding().starts_with("Claim (a) \"even at minimal quality"), "{}", c[0].finding());
 }
+
+#[test]
+fn the_thesis_own_tables_pass_its_cost_rule() {
+    use super::super::thesis::{TABLE_3_5, TABLE_3_6, TABLE_3_7, TABLE_3_8, THESIS_BASELINE_MS};
+    // Each scene's reflections at one bounce and max roughness 0.01 against its GI rows.
+    for (s, refl) in [TABLE_3_5[0][0], TABLE_3_6[0][0], TABLE_3_7[0][0]].into_iter().enumerate() {
+        let refl = refl - THESIS_BASELINE_MS[s];
+        for gi in TABLE_3_8[s] {
+            let ratio = (gi - THESIS_BASELINE_MS[s]) / refl;
+            assert!((3.8..12.0).contains(&ratio) && ratio > MUCH_MORE, "scene {s}: {ratio}");
+        }
+    }
+}
