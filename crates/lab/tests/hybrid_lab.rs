@@ -76,6 +76,19 @@ fn shards_merged_equal_one_run_and_resume_completes_a_run() {
     assert_eq!(records.len(), 10);
     assert!(records.iter().all(|r| r["psnr_db"].as_f64().is_some() && r["rays"].as_u64().is_some()));
     assert!(records.iter().any(|r| r["stage_rays"].as_u64() > Some(0)), "ray-traced rows trace rays");
+    // Every row carries every term's score; a stage's own term is among them.
+    for r in records {
+        let names: Vec<&str> =
+            r["term_scores"].as_array().unwrap().iter().map(|t| t["term"].as_str().unwrap()).collect();
+        // (TermScore writes the occlusion term as `occlusion`; the record's `term` column names it `ao`.)
+        assert_eq!(names, ["emitted", "direct", "diffuse", "specular", "translucent", "occlusion"], "{r}");
+        assert!(r["direct_area_lit"].is_object() || r["direct_area_lit"].is_null());
+    }
+    // The page tests the thesis's claims, sets its tables beside ours and shows each stage's front.
+    let page = std::fs::read_to_string(whole.join("index.html")).unwrap();
+    for needle in ["claims tested", "Claim (d)", "Table 3.9", "What each stage buys", "on the front"] {
+        assert!(page.contains(needle), "{needle}");
+    }
 
     // Three shards, merged.
     let parts: Vec<PathBuf> = (1..=3).map(|k| tmp.path().join(format!("part{k}"))).collect();

@@ -2,14 +2,17 @@
 //! `results.csv` and `index.html`. A finished run, a resumed one and a merge of shards call
 //! the same function on the same rows, so they give the same results.
 
+use super::claims::claims;
 use super::page::write_page;
+use super::pareto::StageFront;
 use super::record::RefInfo;
-use super::record::{HybridRecord, RowResult, ERROR_SPACE};
+use super::record::{by_view, HybridRecord, RowResult, ERROR_SPACE};
 use super::store::{read_json, Manifest, RunDir, View};
 use super::sweep::Stage;
 use crate::error::{LabError, Result};
 use crate::report::format_number;
 use crate::results::{write_csv, write_json};
+use renderlab_hybrid::TermScore;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -46,6 +49,19 @@ pub struct ReferenceEntry<'a> {
     pub info: &'a RefInfo,
 }
 
+/// A record as `results.json` lists it: its flat fields (the CSV's columns), then every
+/// term's score and the direct term's over the area-lit pixels.
+#[derive(Clone, Debug, Serialize)]
+pub struct RecordEntry<'a> {
+    /// The record.
+    #[serde(flatten)]
+    pub record: &'a HybridRecord,
+    /// Every term's score, in the order of `Term::ALL`.
+    pub term_scores: &'a [TermScore],
+    /// The direct term over the pixels the area lights light most.
+    pub direct_area_lit: Option<&'a TermScore>,
+}
+
 /// `results.json`.
 #[derive(Serialize)]
 struct Results<'a> {
@@ -53,7 +69,7 @@ struct Results<'a> {
     /// How errors are measured.
     error_space: &'static str,
     references: Vec<ReferenceEntry<'a>>,
-    records: &'a [HybridRecord],
+    records: Vec<RecordEntry<'a>>,
 }
 
 /// Reads every finished row of `out`'s shard, writes `results.json`, `results.csv` and
@@ -97,7 +113,14 @@ pub fn assemble(out: &Path) -> Result<HybridSummary> {
         manifest: &manifest,
         error_space: ERROR_SPACE,
         references: refs.iter().map(|(view, info)| ReferenceEntry { view, info }).collect(),
-        records: &records,
+        records: records
+            .iter()
+            .map(|record| RecordEntry {
+                record,
+                term_scores: &record.terms,
+                direct_area_lit: record.direct_area_lit.as_ref(),
+            })
+            .collect(),
     };
     write_json(out.join("results.json"), &results)?;
     write_csv(out.join("results.csv"), &records)?;
@@ -118,9 +141,11 @@ pub fn assemble(out: &Path) -> Result<HybridSummary> {
     })
 }
 
-/// Per stage, over every view: the most expensive and the most accurate setting.
+/// Per stage: its cost and best whole-frame error over every view, then on each view its
+/// Pareto front on its own term; then each claim of the thesis with its verdict.
 fn findings(records: &[HybridRecord]) -> Vec<String> {
     let mut out = Vec::new();
+    let views = by_view(records);
     for stage in Stage::swept() {
         let rs: Vec<&HybridRecord> = records.iter().filter(|r| r.stage == stage.name()).collect();
         if rs.is_empty() {
@@ -129,8 +154,8 @@ fn findings(records: &[HybridRecord]) -> Vec<String> {
         let mean = |f: &dyn Fn(&HybridRecord) -> f64| rs.iter().map(|r| f(r)).sum::<f64>() / rs.len() as f64;
         let best = rs.iter().copied().max_by(|a, b| a.psnr_db.total_cmp(&b.psnr_db)).expect("non-empty");
         let floor = rs.iter().filter(|r| r.at_noise_floor).count();
-        out.push(format!(
-            "Ray-traced {}: {} rows, frame time {}× the baseline on average (mean delta {} ms); best PSNR {} dB ({}, {} {}){}.",
+        let mut line = format!(
+            "Ray-traced {}: {} rows, frame time {}× the baseline on average (mean delta {} ms); best whole-frame PSNR {} dB ({}, {} {}){}.",
             stage.name(),
             rs.len(),
             format_number(mean(&|r| r.delta_ratio), 2),
@@ -140,12 +165,21 @@ fn findings(records: &[HybridRecord]) -> Vec<String> {
             best.scene,
             best.camera,
             if floor > 0 { format!("; {floor} rows reach the reference's noise floor (no lower error claimed)") } else { String::new() },
-        ));
+        );
+        if let Stage::Swept(id) = stage {
+            for v in &views {
+                if let Some(f) = StageFront::of(v, id) {
+                    line += &format!(" {}: {}", v[0].view_title(), f.sentence());
+                }
+            }
+        }
+        out.push(line);
     }
+    out.extend(claims(records).iter().map(|c| c.finding()));
     out
 }
 
-/// One sentence: rows, views, and the baseline's error.
+/// One sentence: rows, views, the baseline's error and the claims' verdicts.
 fn headline(records: &[HybridRecord], m: &Manifest) -> String {
     let base: Vec<&HybridRecord> = records.iter().filter(|r| r.is_baseline()).collect();
     let psnr = if base.is_empty() {
@@ -153,12 +187,15 @@ fn headline(records: &[HybridRecord], m: &Manifest) -> String {
     } else {
         format_number(base.iter().map(|r| r.psnr_db).sum::<f64>() / base.len() as f64, 2)
     };
+    let verdicts: Vec<String> =
+        claims(records).iter().map(|c| format!("({}) {}", c.id, c.overall())).collect();
     format!(
-        "{} rows over {} views at {}×{} against {}-spp path-traced references; the all-raster baseline's mean PSNR is {psnr} dB.",
+        "{} rows over {} views at {}×{} against {}-spp path-traced references; the all-raster baseline's mean PSNR is {psnr} dB; the thesis's claims: {}.",
         records.len(),
         m.settings.views.len(),
         m.settings.run.width,
         m.settings.run.height,
         m.settings.run.reference_spp,
+        verdicts.join(", "),
     )
 }

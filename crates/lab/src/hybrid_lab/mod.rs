@@ -9,24 +9,37 @@
 //! `index.html` are always assembled from the persisted rows ([`assemble`]), so a resumed,
 //! a sharded-and-merged and an uninterrupted run give the same results.
 //!
-//! Errors are measured on the display image: linear radiance clamped to [0, 1] and
-//! sRGB-encoded, as [`crate::metrics`] does and as the PNGs show it.
+//! Each row is also scored on every term of the frame's composition against the reference's
+//! same term ([`terms`]); [`pareto`] shows what each stage buys on its own term for its
+//! cost, [`claims`] tests the thesis's quality claims with those scores under the floor
+//! rules of [`compare`], and [`thesis`] sets the thesis's frame-time tables beside ours.
+//!
+//! Whole-frame errors are measured on the display image: linear radiance clamped to [0, 1]
+//! and sRGB-encoded, as [`crate::metrics`] does and as the PNGs show it; term errors in
+//! linear radiance.
 
 mod assemble;
+pub mod claims;
+pub mod compare;
 mod config;
+#[cfg(test)]
+mod fixtures;
+pub mod gains;
 mod merge;
 mod page;
+pub mod pareto;
 mod record;
 mod run;
 pub mod scenes;
 mod store;
 pub mod sweep;
 pub mod terms;
+pub mod thesis;
 
 pub use assemble::{assemble, HybridSummary};
 pub use config::{Existing, HybridBenchConfig, RunSettings, Shard};
 pub use merge::merge_runs;
-pub use record::{HybridRecord, RowResult};
+pub use record::{by_view, HybridRecord, RowResult};
 pub use run::run_hybrid_bench;
 pub use store::{Manifest, Settings, FORMAT};
 pub use sweep::{Stage, SweepKind, SweepRow};

@@ -1,12 +1,20 @@
-//! The hybrid lab's HTML page (`templates/hybrid.html`): per view, the reference and its
-//! noise floor, the rows' table (time, delta against the baseline as the thesis tabulates
-//! it, rays, error), the cost-versus-error plot, and the images with their FLIP maps.
+//! The hybrid lab's HTML page (`templates/hybrid.html`): the thesis's claims tested and its
+//! tables beside ours; per view, the reference and its noise floor, each term's mask and
+//! floor, the rows' table (time, delta against the baseline as the thesis tabulates it,
+//! rays, whole-frame error, the row's own term error), what each stage buys (its Pareto
+//! front of cost against its term error, and its most accurate row's gains), the
+//! cost-versus-error plots, and the images with their FLIP maps.
 
+use super::claims::{claims, Claim};
+use super::gains::stage_gains;
+use super::pareto::StageFront;
 use super::record::RefInfo;
 use super::record::{HybridRecord, RowResult, ERROR_SPACE};
 use super::store::{Manifest, View};
+use super::thesis::thesis_tables;
 use crate::plot::{scatter_svg, Series};
 use crate::report::{format_number, write_page as render, Template};
+use renderlab_hybrid::{StageId, Term};
 use serde::Serialize;
 use std::path::Path;
 
@@ -20,12 +28,57 @@ struct Figure {
     caption: String,
 }
 
+/// One stage's Pareto front on one view.
+#[derive(Serialize)]
+struct FrontPage {
+    svg: String,
+    sentence: String,
+}
+
+/// One claim of the thesis with its verdicts.
+#[derive(Serialize)]
+struct ClaimPage {
+    id: &'static str,
+    quote: &'static str,
+    rule: &'static str,
+    overall: String,
+    views: Vec<Vec<String>>,
+}
+
+impl From<&Claim> for ClaimPage {
+    fn from(c: &Claim) -> Self {
+        ClaimPage {
+            id: c.id,
+            quote: c.quote,
+            rule: c.rule,
+            overall: c.overall(),
+            views: c
+                .views
+                .iter()
+                .map(|v| vec![v.view.clone(), v.verdict.words().into(), v.figures.clone()])
+                .collect(),
+        }
+    }
+}
+
+/// One thesis table beside ours.
+#[derive(Serialize)]
+struct ThesisPage {
+    number: &'static str,
+    caption: String,
+    headers: Vec<String>,
+    rows: Vec<Vec<String>>,
+}
+
 /// One view's part of the page.
 #[derive(Serialize)]
 struct ViewPage {
     title: String,
     reference: Vec<Vec<String>>,
+    terms: Vec<Vec<String>>,
     rows: Vec<Vec<String>>,
+    fronts: Vec<FrontPage>,
+    gains: Vec<Vec<String>>,
     plot_flip: String,
     plot_psnr: String,
     figures: Vec<Figure>,
@@ -45,6 +98,8 @@ struct Page<'a> {
     missing: usize,
     error_space: &'static str,
     findings: &'a [String],
+    claims: Vec<ClaimPage>,
+    thesis: Vec<ThesisPage>,
     views: Vec<ViewPage>,
 }
 
@@ -70,8 +125,12 @@ fn series(records: &[&HybridRecord], error: fn(&HybridRecord) -> f64) -> Vec<Ser
     out
 }
 
-/// The table row of a record.
+/// The table row of a record: its cost, its whole-frame error, and its own term's error
+/// (the baseline writes every term: see the view's terms table).
 fn table_row(r: &HybridRecord) -> Vec<String> {
+    let dash = || "–".to_string();
+    let own = r.stage_id().and_then(|s| r.term_score(s.descriptor().term));
+    let shows_black = r.is_baseline() || r.stage_id() == Some(StageId::Translucency);
     vec![
         r.label.clone(),
         format_number(r.frame_ms, 2),
@@ -83,7 +142,69 @@ fn table_row(r: &HybridRecord) -> Vec<String> {
         format_number(r.ssim, 4),
         format_number(r.flip, 4),
         if r.at_noise_floor { "at floor".into() } else { String::new() },
+        if r.is_baseline() { "all".into() } else { r.term.to_string() },
+        own.map_or_else(dash, |t| format_number(t.psnr_db, 2)),
+        own.map_or_else(dash, |t| format_number(t.floor_psnr_db, 2)),
+        own.map_or_else(dash, |t| format_number(t.rel_mse, 4)),
+        own.map_or_else(String::new, |t| if t.at_floor { "at floor".into() } else { String::new() }),
+        if shows_black { r.black_pixels.to_string() } else { dash() },
     ]
+}
+
+/// Each term's mask, the reference's floor on it, and the raster frame's score (from the
+/// baseline row; the masks are the view's, the same for every row).
+fn terms_table(recs: &[&HybridRecord]) -> Vec<Vec<String>> {
+    let Some(base) = recs.iter().find(|r| r.is_baseline()).or(recs.first()) else { return vec![] };
+    let mut rows = Vec::new();
+    for t in Term::ALL {
+        let Some(s) = base.term_score(t) else { continue };
+        let stages: Vec<&str> = StageId::in_sweep_order()
+            .into_iter()
+            .filter(|id| id.descriptor().term == t)
+            .map(|id| id.name())
+            .collect();
+        rows.push(vec![
+            t.name().into(),
+            if stages.is_empty() { "–".into() } else { stages.join(", ") },
+            s.mask.clone(),
+            s.mask_pixels.to_string(),
+            format_number(s.floor_psnr_db, 2),
+            format_number(s.psnr_db, 2),
+            if s.at_floor { "at floor".into() } else { String::new() },
+        ]);
+    }
+    if let Some(s) = &base.direct_area_lit {
+        rows.push(vec![
+            "direct (area-lit)".into(),
+            "shadows".into(),
+            s.mask.clone(),
+            s.mask_pixels.to_string(),
+            format_number(s.floor_psnr_db, 2),
+            format_number(s.psnr_db, 2),
+            if s.at_floor { "at floor".into() } else { String::new() },
+        ]);
+    }
+    rows
+}
+
+/// Each stage's most accurate row: what it buys on its term and on the whole frame.
+fn gains_table(recs: &[&HybridRecord]) -> Vec<Vec<String>> {
+    stage_gains(recs)
+        .iter()
+        .map(|g| {
+            vec![
+                g.stage.name().into(),
+                g.row.setting().into(),
+                g.stage.descriptor().term.name().into(),
+                format_number(g.term_gain_db, 2),
+                g.term_outcome.words().into(),
+                format_number(g.delta_ms, 2),
+                format_number(g.db_per_ms(), 3),
+                format_number(g.frame_gain_db, 2),
+                g.frame_outcome.words().into(),
+            ]
+        })
+        .collect()
 }
 
 /// Writes the page to `path`.
@@ -112,6 +233,11 @@ pub(super) fn write_page(
             }
         }
         let title = view.title();
+        let fronts = StageId::in_sweep_order()
+            .into_iter()
+            .filter_map(|id| StageFront::of(&recs, id))
+            .map(|f| FrontPage { svg: f.svg(&title), sentence: f.sentence() })
+            .collect();
         views.push(ViewPage {
             reference: vec![vec![
                 info.spp.to_string(),
@@ -121,7 +247,10 @@ pub(super) fn write_page(
                 format_number(info.halves_flip, 4),
                 format_number(info.seconds, 1),
             ]],
+            terms: terms_table(&recs),
             rows: recs.iter().map(|r| table_row(r)).collect(),
+            fronts,
+            gains: gains_table(&recs),
             plot_flip: scatter_svg(
                 &format!("{title}: frame time vs FLIP"),
                 "frame time (ms)",
@@ -154,6 +283,16 @@ pub(super) fn write_page(
         missing,
         error_space: ERROR_SPACE,
         findings,
+        claims: claims(records).iter().map(ClaimPage::from).collect(),
+        thesis: thesis_tables()
+            .iter()
+            .map(|t| ThesisPage {
+                number: t.number,
+                caption: t.caption.clone(),
+                headers: t.headers.clone(),
+                rows: t.beside_ours(records),
+            })
+            .collect(),
         views,
     };
     render(path, TEMPLATE, "Hybrid lab: ray-traced stages against rasterization", &page)

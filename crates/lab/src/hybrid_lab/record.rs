@@ -4,7 +4,7 @@
 
 use super::sweep::{Stage, SweepRow};
 use renderlab_core::any_f64;
-use renderlab_hybrid::{Term, TermScore};
+use renderlab_hybrid::{StageId, Term, TermScore};
 use serde::{Deserialize, Serialize};
 
 /// One finished row: what was rendered and what was measured, nothing derived from other
@@ -224,6 +224,40 @@ impl HybridRecord {
     pub fn is_baseline(&self) -> bool {
         self.stage == Stage::Baseline.name()
     }
+
+    /// The swept stage (`None` for the baseline).
+    pub fn stage_id(&self) -> Option<StageId> {
+        StageId::from_name(self.stage)
+    }
+
+    /// The row's setting without the stage's prefix (`b1 r0.01` of `rt-reflections b1
+    /// r0.01`); the whole label when it has no such prefix.
+    pub fn setting(&self) -> &str {
+        self.label.split_once(' ').map_or(&self.label, |(_, rest)| rest)
+    }
+
+    /// The row's view as the page names it: scene, camera and the camera's number.
+    pub fn view_title(&self) -> String {
+        format!("{} {} (camera {})", self.scene, self.camera, self.camera_index)
+    }
+
+    /// Whether `other` is a row of the same view.
+    pub fn same_view(&self, other: &HybridRecord) -> bool {
+        self.scene == other.scene && self.camera_index == other.camera_index
+    }
+}
+
+/// `records` grouped by view (scene and camera number), views in order of first appearance,
+/// rows in their order.
+pub fn by_view(records: &[HybridRecord]) -> Vec<Vec<&HybridRecord>> {
+    let mut out: Vec<Vec<&HybridRecord>> = Vec::new();
+    for r in records {
+        match out.iter_mut().find(|v| v[0].same_view(r)) {
+            Some(v) => v.push(r),
+            None => out.push(vec![r]),
+        }
+    }
+    out
 }
 
 /// A view's reference as the rows are measured against it.
