@@ -205,7 +205,7 @@ fn a_second_run_is_refused_and_an_interrupted_one_leaves_no_temporary_files() {
     let dir = tempfile::tempdir().unwrap();
     let run = dir.path().join("run");
     let r = run.to_str().unwrap();
-    // The thesis's 54 rows: long enough that the run is still at work when it is interrupted.
+    // The thesis's 55 rows: long enough that the run is still at work when it is interrupted.
     let args = [
         "hybrid",
         "bench",

@@ -8,7 +8,7 @@ use common::{cornell, mse};
 use glam::{Vec3, Vec3Swizzles};
 use renderlab_core::Camera;
 use renderlab_hybrid::deferred::{direct_lighting, Unshadowed};
-use renderlab_hybrid::terms::{floor_mse, score_term, term_mask, PixelKind};
+use renderlab_hybrid::terms::{floor, score_term, term_mask, PixelKind};
 use renderlab_hybrid::{HybridRenderer, Reference, Shadows, StageConfig, Term};
 use renderlab_scene::brdf::{eval, eval_diffuse};
 use renderlab_scene::shapes::{cuboid, light, quad, sphere, CuboidUv, SceneBuilder, SphereStyle};
@@ -358,7 +358,7 @@ fn a_broken_shadow_stage_shows_in_its_own_term() {
 
     let mean = reference.mean_terms();
     let (mask, label) = term_mask(Term::Direct, &reference.kinds);
-    let floor = floor_mse(Term::Direct, &reference.terms[0], &reference.terms[1], &mask);
+    let floor = floor(Term::Direct, &reference.terms[0], &reference.terms[1], &mean, &mask);
     let score = |f: &renderlab_hybrid::HybridFrame| {
         score_term(Term::Direct, &f.term_images(), &mean, &mask, &label, floor)
     };

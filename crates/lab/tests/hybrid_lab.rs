@@ -7,7 +7,7 @@ use renderlab_lab::hybrid_lab::{
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
-/// A tiny run: the showcase scene at 32×18, the report's 10 rows, a 4-spp reference.
+/// A tiny run: the showcase scene at 32×18, the report's 12 rows, a 4-spp reference.
 fn tiny() -> HybridBenchConfig {
     HybridBenchConfig {
         scenes: vec!["showcase".into()],
@@ -73,7 +73,7 @@ fn shards_merged_equal_one_run_and_resume_completes_a_run() {
     run(&tiny(), &whole);
     let reference = results_without_timings(&whole);
     let records = reference["records"].as_array().unwrap();
-    assert_eq!(records.len(), 10);
+    assert_eq!(records.len(), 12);
     assert!(records.iter().all(|r| r["psnr_db"].as_f64().is_some() && r["rays"].as_u64().is_some()));
     assert!(records.iter().any(|r| r["stage_rays"].as_u64() > Some(0)), "ray-traced rows trace rays");
     // Every row carries every term's score; a stage's own term is among them.
@@ -81,7 +81,7 @@ fn shards_merged_equal_one_run_and_resume_completes_a_run() {
         let names: Vec<&str> =
             r["term_scores"].as_array().unwrap().iter().map(|t| t["term"].as_str().unwrap()).collect();
         // (TermScore writes the occlusion term as `occlusion`; the record's `term` column names it `ao`.)
-        assert_eq!(names, ["emitted", "direct", "diffuse", "specular", "translucent", "occlusion"], "{r}");
+        assert_eq!(names, ["emitted", "direct", "diffuse", "specular", "translucent", "ao"], "{r}");
         assert!(r["direct_area_lit"].is_object() || r["direct_area_lit"].is_null());
     }
     // The page tests the thesis's claims, sets its tables beside ours and shows each stage's front.
@@ -97,11 +97,11 @@ fn shards_merged_equal_one_run_and_resume_completes_a_run() {
     }
     let merged = tmp.path().join("merged");
     let s = merge_runs(&parts, &merged).unwrap();
-    assert_eq!((s.records.len(), s.missing), (10, 0));
+    assert_eq!((s.records.len(), s.missing), (12, 0));
     assert_eq!(results_without_timings(&merged), reference);
     assert_eq!(
         std::fs::read(merged.join("results.csv")).unwrap().iter().filter(|&&b| b == b'\n').count(),
-        11
+        13
     );
 
     // An interrupted run: delete four finished rows (and the results), then resume.

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 
 fn quiet(_: usize, _: usize, _: &str) {}
 
-/// A tiny run of `scene`: 16×9, the report's 10 rows, a 2-spp reference.
+/// A tiny run of `scene`: 16×9, the report's 12 rows, a 2-spp reference.
 fn tiny(scene: &str) -> HybridBenchConfig {
     HybridBenchConfig {
         scenes: vec![scene.into()],
@@ -170,8 +170,8 @@ fn cameras_whose_names_clash_are_rendered_each_with_its_own_rows() {
     let cfg = tiny(scene.to_str().unwrap());
     let s = run_hybrid_bench(&cfg, &out, &quiet).unwrap();
     assert_eq!(s.manifest.settings.views.len(), 4);
-    assert_eq!((s.records.len(), s.missing), (4 * 10, 0));
-    assert_eq!(row_files(&out).len(), 4 * 10, "one file per row of every camera");
+    assert_eq!((s.records.len(), s.missing), (4 * 12, 0));
+    assert_eq!(row_files(&out).len(), 4 * 12, "one file per row of every camera");
     // Each camera rendered from its own place: its baseline image and error differ from
     // every other camera's.
     let base: Vec<_> = s.records.iter().filter(|r| r.stage == "baseline").collect();
@@ -247,7 +247,7 @@ fn a_resumed_run_repairs_what_is_damaged_and_says_so() {
     }
     assert!(said.contains("reference") && said.contains("temporary"), "{said}");
     assert_eq!(s.repairs.len(), 4 + 2, "{said}");
-    assert_eq!((s.records.len(), s.missing), (10, 0));
+    assert_eq!((s.records.len(), s.missing), (12, 0));
     assert_eq!(results(&dir), expected, "a repaired run equals an undamaged one");
     assert!(temporaries(&dir).is_empty(), "{:?}", temporaries(&dir));
     assert_eq!(std::fs::read(&exr).unwrap().len(), full.len(), "the reference is whole again");
@@ -309,7 +309,7 @@ fn a_merge_reads_everything_first_and_a_failed_one_leaves_out_as_it_was() {
     let s = run_hybrid_bench(&resume(cfg(1)), &parts[0], &quiet).unwrap();
     assert_eq!(s.repairs.len(), 1, "{:?}", s.repairs);
     let s = merge_runs(&parts, &out).unwrap();
-    assert_eq!((s.records.len(), s.missing), (10, 0));
+    assert_eq!((s.records.len(), s.missing), (12, 0));
     assert_eq!(results(&out), expected);
     assert!(s.index.starts_with(&out) && s.index.is_file());
     assert!(out.join("notes.txt").is_file());

@@ -29,5 +29,5 @@
 pub mod score;
 pub mod term;
 
-pub use score::{area_lit_mask, floor_mse, luminance, score_term, term_mask, PixelKind, TermScore};
+pub use score::{area_lit_mask, floor, luminance, score_term, term_mask, Floor, PixelKind, TermScore};
 pub use term::{Term, TermImages};

@@ -4,15 +4,22 @@
 //! For a term `T`, a frame's image `x` and the reference's halves `a`, `b` (mean `r`), over
 //! the mask `M` (`|M|` pixels, three channels each; occlusion has one):
 //!
-//! * `mse = Σ_M |x − r|² / (3|M|)`, `psnr = 10·log10(1 / mse)` (peak 1 in linear radiance,
-//!   as the reference's noise floor is measured);
-//! * `rel_mse = Σ_M |x − r|² / Σ_M |r|²`: the error relative to the term's own energy, so
-//!   that a faint term and a bright one compare;
-//! * the floor: `floor_mse = Σ_M |a − b|² / (4 · 3|M|)`, the reference's expected error on
-//!   the term (each half has variance σ², the mean σ²/2, and `E|a − b|² = 2σ²`);
-//! * `at_floor` when `mse ≤ 2 · floor_mse`: the measured error is reference noise plus at
-//!   most as much again, so the frame's own error cannot be told from the reference's and
-//!   no lower error is claimed.
+//! * `rel_mse`, the relative MSE the ranking uses: per pixel, the mean over channels of
+//!   `(x − r)² / (r² + ε)` with `ε = `[`REL_EPSILON`], averaged over the mask after dropping
+//!   the highest [`TRIM`] of the pixels. Relative, so that a dark region's error counts as
+//!   much as a bright one's; trimmed, so that a handful of pixels whose light no stage
+//!   controls (a surface touching an area light, where the lighting pass's fixed light
+//!   samples diverge; a mirror showing a light's panel) cannot outweigh the whole image,
+//!   as they do in a plain MSE. `rel_db = 10·log10(1 / rel_mse)`.
+//! * `mse = Σ_M |x − r|² / (3|M|)` and `psnr = 10·log10(1 / mse)` (peak 1 in linear
+//!   radiance, as the reference's noise floor is measured), untrimmed, beside it.
+//! * The floor: the same two measures of the reference's own expected error,
+//!   `rel_floor` from the per-pixel `(a − b)² / 4 / (r² + ε)` (trimmed alike) and
+//!   `floor_mse = Σ_M |a − b|² / (4 · 3|M|)` (each half has variance σ², the mean σ²/2, and
+//!   `E|a − b|² = 2σ²`).
+//! * `at_floor` when `rel_mse ≤ 2 · rel_floor`: the measured error is reference noise plus
+//!   at most as much again, so the frame's own error cannot be told from the reference's
+//!   and no lower error is claimed.
 //!
 //! What the halves cannot see is the reference's bias: an estimator that converges to the
 //! wrong image has halves that agree. The reference is unbiased by construction (see
@@ -58,6 +65,14 @@ impl PixelKind {
     }
 }
 
+/// The `ε` of the relative error `(x − r)² / (r² + ε)`: where the reference is darker
+/// than about 0.1, errors count absolutely rather than relatively.
+pub const REL_EPSILON: f64 = 1e-2;
+
+/// The share of a mask's pixels with the highest relative error left out of `rel_mse` and
+/// `rel_floor` (at least none, at most this share rounded down).
+pub const TRIM: f64 = 1e-3;
+
 /// One term's error against the reference.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TermScore {
@@ -67,23 +82,43 @@ pub struct TermScore {
     pub mask: String,
     /// Pixels in the mask.
     pub mask_pixels: u64,
+    /// Trimmed relative MSE over the mask (see the module's notes): what rows are ranked by.
+    #[serde(with = "renderlab_core::any_f64")]
+    pub rel_mse: f64,
+    /// `10·log10(1 / rel_mse)`, dB.
+    #[serde(with = "renderlab_core::any_f64")]
+    pub rel_db: f64,
+    /// The reference's own expected trimmed relative MSE on the term over the mask.
+    #[serde(with = "renderlab_core::any_f64")]
+    pub rel_floor: f64,
+    /// `10·log10(1 / rel_floor)`, dB: the highest `rel_db` that means anything.
+    #[serde(with = "renderlab_core::any_f64")]
+    pub rel_floor_db: f64,
     /// Mean squared error per channel over the mask, linear radiance (occlusion: its factor).
     #[serde(with = "renderlab_core::any_f64")]
     pub mse: f64,
-    /// Squared error relative to the reference term's energy over the mask.
-    #[serde(with = "renderlab_core::any_f64")]
-    pub rel_mse: f64,
     /// `10·log10(1 / mse)`, dB.
     #[serde(with = "renderlab_core::any_f64")]
     pub psnr_db: f64,
     /// The reference's expected squared error on the term over the mask.
     #[serde(with = "renderlab_core::any_f64")]
     pub floor_mse: f64,
-    /// `10·log10(1 / floor_mse)`, dB: the highest PSNR on this term that means anything.
+    /// `10·log10(1 / floor_mse)`, dB.
     #[serde(with = "renderlab_core::any_f64")]
     pub floor_psnr_db: f64,
-    /// Whether `mse ≤ 2 · floor_mse` (see the module's notes).
+    /// Whether `rel_mse ≤ 2 · rel_floor` (see the module's notes).
     pub at_floor: bool,
+}
+
+/// The reference's own expected error on a term over a mask, in both measures.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Floor {
+    /// Expected squared error per channel.
+    #[serde(with = "renderlab_core::any_f64")]
+    pub mse: f64,
+    /// Expected trimmed relative MSE.
+    #[serde(with = "renderlab_core::any_f64")]
+    pub rel: f64,
 }
 
 /// Rec. 709 luminance of linear RGB.
@@ -109,60 +144,85 @@ pub fn term_mask(term: Term, kinds: &[PixelKind]) -> (Vec<bool>, String) {
     }
 }
 
-/// The reference's expected squared error per channel on `term` over `mask`, from its
-/// halves `a`, `b`: `Σ_M |a − b|² / (4 · 3|M|)` (see the module's notes).
-pub fn floor_mse(term: Term, a: &TermImages, b: &TermImages, mask: &[bool]) -> f64 {
-    let mut noise = 0f64;
-    let mut pixels = 0u64;
-    for i in (0..mask.len()).filter(|&i| mask[i]) {
-        noise += match term.slot() {
-            Some(s) => (a.radiance[s][i] - b.radiance[s][i]).length_squared() as f64,
-            None => 3.0 * (a.occlusion[i] as f64 - b.occlusion[i] as f64).powi(2),
-        };
-        pixels += 1;
+/// Per masked pixel, the squared error per channel and the relative squared error
+/// `mean_c (x_c − r_c)² / (r_c² + ε)` of `x` against `r` (`scale` multiplies the squared
+/// differences: `1/4` for the floor's `(a − b)`).
+fn pixel_errors(
+    term: Term,
+    x: &TermImages,
+    y: &TermImages,
+    r: &TermImages,
+    mask: &[bool],
+    scale: f64,
+) -> Vec<(f64, f64)> {
+    let eps = REL_EPSILON;
+    (0..mask.len())
+        .filter(|&i| mask[i])
+        .map(|i| match term.slot() {
+            Some(s) => {
+                let (x, y, r) = (x.radiance[s][i], y.radiance[s][i], r.radiance[s][i]);
+                let (mut sq, mut rel) = (0.0, 0.0);
+                for c in 0..3 {
+                    let d = (x[c] as f64 - y[c] as f64).powi(2) * scale;
+                    sq += d;
+                    rel += d / ((r[c] as f64).powi(2) + eps);
+                }
+                (sq / 3.0, rel / 3.0)
+            }
+            None => {
+                let d = (x.occlusion[i] as f64 - y.occlusion[i] as f64).powi(2) * scale;
+                (d, d / ((r.occlusion[i] as f64).powi(2) + eps))
+            }
+        })
+        .collect()
+}
+
+/// The mean squared error and the trimmed relative MSE of per-pixel errors.
+fn summarise(errors: &[(f64, f64)]) -> (f64, f64) {
+    let n = errors.len();
+    if n == 0 {
+        return (0.0, 0.0);
     }
-    noise / 4.0 / (3.0 * pixels.max(1) as f64)
+    let mse = errors.iter().map(|e| e.0).sum::<f64>() / n as f64;
+    let mut rel: Vec<f64> = errors.iter().map(|e| e.1).collect();
+    rel.sort_by(f64::total_cmp);
+    let keep = n - (n as f64 * TRIM).floor() as usize;
+    (mse, rel[..keep].iter().sum::<f64>() / keep as f64)
+}
+
+/// The reference's expected error on `term` over `mask`, from its halves `a`, `b` (see the
+/// module's notes).
+pub fn floor(term: Term, a: &TermImages, b: &TermImages, mean: &TermImages, mask: &[bool]) -> Floor {
+    let (mse, rel) = summarise(&pixel_errors(term, a, b, mean, mask, 0.25));
+    Floor { mse, rel }
 }
 
 /// Scores `frame`'s `term` against the reference's mean term `reference` over `mask`
-/// (described by `mask_label`), beside the reference's own floor on that mask
-/// ([`floor_mse`]).
+/// (described by `mask_label`), beside the reference's own `floor` on that mask.
 pub fn score_term(
     term: Term,
     frame: &TermImages,
     reference: &TermImages,
     mask: &[bool],
     mask_label: &str,
-    floor_mse: f64,
+    floor: Floor,
 ) -> TermScore {
-    let (mut err, mut energy, mut pixels) = (0f64, 0f64, 0u64);
-    for i in (0..mask.len()).filter(|&i| mask[i]) {
-        let (e, r) = match term.slot() {
-            Some(s) => {
-                let (x, r) = (frame.radiance[s][i], reference.radiance[s][i]);
-                ((x - r).length_squared() as f64, r.length_squared() as f64)
-            }
-            None => {
-                let (x, r) = (frame.occlusion[i] as f64, reference.occlusion[i] as f64);
-                (3.0 * (x - r).powi(2), 3.0 * r * r)
-            }
-        };
-        err += e;
-        energy += r;
-        pixels += 1;
-    }
-    let mse = err / (3.0 * pixels.max(1) as f64);
+    let errors = pixel_errors(term, frame, reference, reference, mask, 1.0);
+    let (mse, rel_mse) = summarise(&errors);
     let db = |m: f64| if m > 0.0 { 10.0 * (1.0 / m).log10() } else { f64::INFINITY };
     TermScore {
         term,
         mask: mask_label.to_string(),
-        mask_pixels: pixels,
+        mask_pixels: errors.len() as u64,
+        rel_mse,
+        rel_db: db(rel_mse),
+        rel_floor: floor.rel,
+        rel_floor_db: db(floor.rel),
         mse,
-        rel_mse: if energy > 0.0 { err / energy } else { f64::NAN },
         psnr_db: db(mse),
-        floor_mse,
-        floor_psnr_db: db(floor_mse),
-        at_floor: mse <= 2.0 * floor_mse,
+        floor_mse: floor.mse,
+        floor_psnr_db: db(floor.mse),
+        at_floor: rel_mse <= 2.0 * floor.rel,
     }
 }
 
@@ -191,18 +251,42 @@ mod tests {
         let x = images(0.9);
         let mask = [true, true, false, true];
         let r = images(0.6);
-        let floor = floor_mse(Term::Direct, &a, &b, &mask);
-        let s = score_term(Term::Direct, &x, &r, &mask, "all", floor);
+        let f = floor(Term::Direct, &a, &b, &r, &mask);
+        let s = score_term(Term::Direct, &x, &r, &mask, "all", f);
         assert_eq!(s.mask_pixels, 3);
-        // r = 0.6: per channel (0.9 − 0.6)² = 0.09; floor (0.2)² / 4 = 0.01.
+        // r = 0.6: per channel (0.9 − 0.6)² = 0.09; floor (0.2)² / 4 = 0.01; relative to
+        // 0.36 + ε.
         assert!((s.mse - 0.09).abs() < 1e-6, "{s:?}");
         assert!((s.floor_mse - 0.01).abs() < 1e-6, "{s:?}");
-        assert!((s.rel_mse - 0.09 / 0.36).abs() < 1e-5, "{s:?}");
+        assert!((s.rel_mse - 0.09 / 0.37).abs() < 1e-6, "{s:?}");
+        assert!((s.rel_floor - 0.01 / 0.37).abs() < 1e-6, "{s:?}");
         assert!(!s.at_floor);
-        let near = score_term(Term::Direct, &images(0.65), &r, &mask, "all", floor);
+        let near = score_term(Term::Direct, &images(0.65), &r, &mask, "all", f);
         assert!(near.at_floor, "{near:?}");
-        let ao = score_term(Term::Occlusion, &x, &r, &mask, "all", floor_mse(Term::Occlusion, &a, &b, &mask));
+        let ao = score_term(Term::Occlusion, &x, &r, &mask, "all", floor(Term::Occlusion, &a, &b, &r, &mask));
         assert!((ao.mse - 0.09).abs() < 1e-6, "{ao:?}");
+    }
+
+    #[test]
+    fn the_relative_error_drops_the_worst_pixels_only() {
+        // 2000 pixels off by 0.1, two of them by 10: the plain MSE follows the two, the
+        // trimmed relative MSE does not.
+        let n = 2000;
+        let r = TermImages { radiance: std::array::from_fn(|_| vec![Vec3::ONE; n]), occlusion: vec![1.0; n] };
+        let mut x = TermImages {
+            radiance: std::array::from_fn(|_| vec![Vec3::splat(1.1); n]),
+            occlusion: vec![1.0; n],
+        };
+        x.radiance[1][7] = Vec3::splat(11.0);
+        x.radiance[1][99] = Vec3::splat(11.0);
+        let mask = vec![true; n];
+        let s = score_term(Term::Direct, &x, &r, &mask, "all", Floor { mse: 0.0, rel: 0.0 });
+        assert!((s.rel_mse - 0.01 / 1.01).abs() < 1e-6, "{s:?}");
+        assert!(s.mse > 0.1, "{s:?}");
+        // Three outliers where two may be dropped: the third counts.
+        x.radiance[1][500] = Vec3::splat(11.0);
+        let s = score_term(Term::Direct, &x, &r, &mask, "all", Floor { mse: 0.0, rel: 0.0 });
+        assert!(s.rel_mse > 0.04, "{s:?}");
     }
 
     #[test]

@@ -18,6 +18,7 @@ pub enum Term {
     /// All the light of pixels whose nearest visible surface is translucent.
     Translucent,
     /// The ambient-occlusion factor of the visible opaque surface (not radiance).
+    #[serde(rename = "ao")]
     Occlusion,
 }
 
@@ -77,5 +78,22 @@ impl TermImages {
     pub fn sum(&self) -> Vec<Vec3> {
         let n = self.occlusion.len();
         (0..n).map(|i| self.radiance.iter().fold(Vec3::ZERO, |s, img| s + img[i])).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_term_is_written_by_its_name_and_read_back() {
+        for t in Term::ALL {
+            let text = serde_json::to_string(&t).unwrap();
+            assert_eq!(text, format!("\"{}\"", t.name()));
+            assert_eq!(serde_json::from_str::<Term>(&text).unwrap(), t);
+            assert_eq!(Term::from_name(t.name()), Some(t));
+        }
+        assert_eq!(Term::RADIANCE.iter().map(|t| t.slot().unwrap()).collect::<Vec<_>>(), [0, 1, 2, 3, 4]);
+        assert_eq!(Term::Occlusion.slot(), None);
     }
 }

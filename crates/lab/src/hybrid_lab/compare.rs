@@ -1,17 +1,18 @@
 //! How two rows' errors are compared, so that no difference smaller than what the reference
 //! itself can resolve is ever called a gain.
 //!
-//! A term's score carries the reference's expected squared error on that term, `floor_mse`
-//! (from its two halves), and is *at the floor* when `mse ≤ 2·floor_mse`
-//! ([`renderlab_hybrid::terms::score`]). Two rules follow:
+//! A term's score is ranked by its trimmed relative MSE, `rel_mse`, and carries the
+//! reference's expected value of it on that term, `rel_floor` (from its two halves); it is
+//! *at the floor* when `rel_mse ≤ 2·rel_floor` ([`renderlab_hybrid::terms::score`]). Two
+//! rules follow:
 //!
-//! * **Ranking** ([`ranked_psnr`]): a score is ranked by its PSNR capped at the highest PSNR
-//!   the reference resolves on the term, `floor_psnr − 10·log10 2` (where "at the floor"
-//!   begins). Every row at the floor therefore ranks the same: rows at the floor tie, and
-//!   none is called better than another. Gains in dB ([`gain_db`]) are differences of
-//!   ranked PSNRs.
+//! * **Ranking** ([`ranked_db`]): a score is ranked by `rel_db = 10·log10(1 / rel_mse)`
+//!   capped at the highest value the reference resolves on the term,
+//!   `rel_floor_db − 10·log10 2` (where "at the floor" begins). Every row at the floor
+//!   therefore ranks the same: rows at the floor tie, and none is called better than
+//!   another. Gains in dB ([`gain_db`]) are differences of ranked values.
 //! * **Whether a difference counts** ([`compare_mse`]): `x` is better than `y` when
-//!   `mse_y − mse_x > floor_mse`, i.e. the error falls by more than the reference's own
+//!   `rel_y − rel_x > rel_floor`, i.e. the error falls by more than the reference's own
 //!   expected error on those pixels (the floor margin); worse when it rises by more; a tie
 //!   otherwise, and always a tie when both are at the floor.
 //!
@@ -22,8 +23,8 @@
 use super::record::HybridRecord;
 use renderlab_hybrid::TermScore;
 
-/// `10·log10 2`, dB: how far below the reference's floor PSNR a term's score is at the
-/// floor (`mse ≤ 2·floor_mse`).
+/// `10·log10 2`, dB: how far below the reference's floor a term's score is at the floor
+/// (`rel_mse ≤ 2·rel_floor`).
 pub const AT_FLOOR_DB: f64 = std::f64::consts::LOG10_2 * 10.0;
 
 /// How one error compares with another under the floor margin.
@@ -51,20 +52,20 @@ impl Outcome {
     }
 }
 
-/// The PSNR a term score ranks by: its PSNR capped at `floor_psnr − 10·log10 2`, the cap
-/// itself when at the floor (see the module's notes).
-pub fn ranked_psnr(s: &TermScore) -> f64 {
-    let cap = s.floor_psnr_db - AT_FLOOR_DB;
+/// The value a term score ranks by: its `rel_db` capped at `rel_floor_db − 10·log10 2`, the
+/// cap itself when at the floor (see the module's notes).
+pub fn ranked_db(s: &TermScore) -> f64 {
+    let cap = s.rel_floor_db - AT_FLOOR_DB;
     if s.at_floor {
         cap
     } else {
-        s.psnr_db.min(cap)
+        s.rel_db.min(cap)
     }
 }
 
-/// `x`'s ranked PSNR minus `y`'s, dB (positive: `x` has the lower error).
+/// `x`'s ranked value minus `y`'s, dB (positive: `x` has the lower error).
 pub fn gain_db(x: &TermScore, y: &TermScore) -> f64 {
-    ranked_psnr(x) - ranked_psnr(y)
+    ranked_db(x) - ranked_db(y)
 }
 
 /// Compares errors `x_mse` and `y_mse` measured against a reference whose own expected
@@ -86,7 +87,7 @@ pub fn compare_mse(x_mse: f64, x_at_floor: bool, y_mse: f64, y_at_floor: bool, f
 /// Compares two scores of the same term on the same view (the larger of their floors is the
 /// margin; they are equal when both come from one reference).
 pub fn compare_terms(x: &TermScore, y: &TermScore) -> Outcome {
-    compare_mse(x.mse, x.at_floor, y.mse, y.at_floor, x.floor_mse.max(y.floor_mse))
+    compare_mse(x.rel_mse, x.at_floor, y.rel_mse, y.at_floor, x.rel_floor.max(y.rel_floor))
 }
 
 /// Compares two rows' whole-frame errors (display images) against their reference's floor.
@@ -113,8 +114,8 @@ mod tests {
         let a = score(Term::Direct, 1.5e-4, 1e-4);
         let b = score(Term::Direct, 0.2e-4, 1e-4);
         assert!(a.at_floor && b.at_floor);
-        assert_eq!(ranked_psnr(&a), ranked_psnr(&b));
-        assert!((ranked_psnr(&a) - (40.0 - 3.0103)).abs() < 1e-3, "{}", ranked_psnr(&a));
+        assert_eq!(ranked_db(&a), ranked_db(&b));
+        assert!((ranked_db(&a) - (40.0 - 3.0103)).abs() < 1e-3, "{}", ranked_db(&a));
         assert_eq!(gain_db(&b, &a), 0.0);
         assert_eq!(compare_terms(&b, &a), Outcome::BothAtFloor);
     }
@@ -127,7 +128,7 @@ mod tests {
         assert_eq!(compare_terms(&score(Term::Specular, 9.1e-4, floor), &y), Outcome::Tie);
         assert_eq!(compare_terms(&score(Term::Specular, 8.9e-4, floor), &y), Outcome::Better);
         assert_eq!(compare_terms(&y, &score(Term::Specular, 8.9e-4, floor)), Outcome::Worse);
-        // One at the floor, the other far above it: better, by the capped PSNRs.
+        // One at the floor, the other far above it: better, by the capped values.
         let x = score(Term::Specular, 0.5e-4, floor);
         assert_eq!(compare_terms(&x, &y), Outcome::Better);
         assert!((gain_db(&x, &y) - (10.0 * (10e-4f64 / 2e-4).log10())).abs() < 1e-9);

@@ -4,16 +4,19 @@
 use super::record::HybridRecord;
 use renderlab_hybrid::{StageId, Term, TermScore};
 
-/// A score of `term` with squared error `mse` against a reference whose floor is
-/// `floor_mse` (1000 mask pixels, reference energy 1 per channel).
+/// A score of `term` with relative (and squared) error `mse` against a reference whose
+/// floor is `floor_mse` in both measures (1000 mask pixels).
 pub fn score(term: Term, mse: f64, floor_mse: f64) -> TermScore {
     let db = |m: f64| 10.0 * (1.0 / m).log10();
     TermScore {
         term,
         mask: format!("{} mask", term.name()),
         mask_pixels: 1000,
-        mse,
         rel_mse: mse,
+        rel_db: db(mse),
+        rel_floor: floor_mse,
+        rel_floor_db: db(floor_mse),
+        mse,
         psnr_db: db(mse),
         floor_mse,
         floor_psnr_db: db(floor_mse),
@@ -23,7 +26,7 @@ pub fn score(term: Term, mse: f64, floor_mse: f64) -> TermScore {
 
 /// A record of `stage` (`None`: the baseline) with `label`, swept `count` and roughness, on
 /// `scene` camera 0, `delta_ms` above a 10 ms baseline, whole-frame PSNR `psnr_db` against
-/// a 40 dB floor, scored `terms`.
+/// a 40 dB floor, scored `terms`; a swept row traced one ray per pixel.
 pub fn record(
     scene: &str,
     stage: Option<StageId>,
@@ -52,9 +55,9 @@ pub fn record(
         baseline_ms: 10.0,
         delta_ms,
         delta_ratio: (10.0 + delta_ms) / 10.0,
-        rays: 0,
-        stage_rays: 0,
-        stage_rays_per_pixel: 0.0,
+        rays: if stage.is_some() { 576 } else { 0 },
+        stage_rays: if stage.is_some() { 576 } else { 0 },
+        stage_rays_per_pixel: if stage.is_some() { 1.0 } else { 0.0 },
         psnr_db,
         ssim: 0.5,
         flip: 0.3,
@@ -66,6 +69,8 @@ pub fn record(
         term_mask_pixels: own.as_ref().map(|t| t.mask_pixels),
         term_mse: own.as_ref().map(|t| t.mse),
         term_rel_mse: own.as_ref().map(|t| t.rel_mse),
+        term_rel_db: own.as_ref().map(|t| t.rel_db),
+        term_rel_floor_db: own.as_ref().map(|t| t.rel_floor_db),
         term_psnr_db: own.as_ref().map(|t| t.psnr_db),
         term_floor_psnr_db: own.as_ref().map(|t| t.floor_psnr_db),
         term_at_floor: own.as_ref().map(|t| t.at_floor),

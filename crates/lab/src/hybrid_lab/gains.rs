@@ -2,7 +2,7 @@
 //! raster choice (ranked PSNRs, [`super::compare`]), that gain per millisecond, and the
 //! whole frame's change, each with whether it counts beyond the floor margin.
 
-use super::compare::{compare_frames, compare_terms, gain_db, ranked_psnr, Outcome};
+use super::compare::{compare_frames, compare_terms, gain_db, ranked_db, Outcome};
 use super::record::HybridRecord;
 use renderlab_hybrid::StageId;
 
@@ -50,7 +50,7 @@ pub fn stage_gains<'a>(view: &[&'a HybridRecord]) -> Vec<StageGain<'a>> {
             .filter(|r| r.stage_id() == Some(stage))
             .filter_map(|r| Some((r, r.term_score(term)?)))
             .max_by(|(r1, s1), (r2, s2)| {
-                ranked_psnr(s1).total_cmp(&ranked_psnr(s2)).then(r2.delta_ms.total_cmp(&r1.delta_ms))
+                ranked_db(s1).total_cmp(&ranked_db(s2)).then(r2.delta_ms.total_cmp(&r1.delta_ms))
             });
         if let Some((row, s)) = best {
             out.push(StageGain {

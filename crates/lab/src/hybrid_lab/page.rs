@@ -143,9 +143,9 @@ fn table_row(r: &HybridRecord) -> Vec<String> {
         format_number(r.flip, 4),
         if r.at_noise_floor { "at floor".into() } else { String::new() },
         if r.is_baseline() { "all".into() } else { r.term.to_string() },
+        own.map_or_else(dash, |t| format_number(t.rel_db, 2)),
+        own.map_or_else(dash, |t| format_number(t.rel_floor_db, 2)),
         own.map_or_else(dash, |t| format_number(t.psnr_db, 2)),
-        own.map_or_else(dash, |t| format_number(t.floor_psnr_db, 2)),
-        own.map_or_else(dash, |t| format_number(t.rel_mse, 4)),
         own.map_or_else(String::new, |t| if t.at_floor { "at floor".into() } else { String::new() }),
         if shows_black { r.black_pixels.to_string() } else { dash() },
     ]
@@ -168,7 +168,8 @@ fn terms_table(recs: &[&HybridRecord]) -> Vec<Vec<String>> {
             if stages.is_empty() { "–".into() } else { stages.join(", ") },
             s.mask.clone(),
             s.mask_pixels.to_string(),
-            format_number(s.floor_psnr_db, 2),
+            format_number(s.rel_floor_db, 2),
+            format_number(s.rel_db, 2),
             format_number(s.psnr_db, 2),
             if s.at_floor { "at floor".into() } else { String::new() },
         ]);
@@ -179,7 +180,8 @@ fn terms_table(recs: &[&HybridRecord]) -> Vec<Vec<String>> {
             "shadows".into(),
             s.mask.clone(),
             s.mask_pixels.to_string(),
-            format_number(s.floor_psnr_db, 2),
+            format_number(s.rel_floor_db, 2),
+            format_number(s.rel_db, 2),
             format_number(s.psnr_db, 2),
             if s.at_floor { "at floor".into() } else { String::new() },
         ]);

@@ -4,7 +4,7 @@
 //! * **Cost** is the frame time against the view's all-raster baseline, `Δ ms`; the raster
 //!   choice is the baseline row itself, at `Δ 0` by definition.
 //! * **Error** is the stage's term (its descriptor's `term`) scored against the reference's
-//!   same term, as a PSNR ranked by [`ranked_psnr`]: capped where the reference stops
+//!   same term, as a PSNR ranked by [`ranked_db`]: capped where the reference stops
 //!   resolving it, so that points at the floor tie. (Within one view the term's relative
 //!   MSE ranks the same, being the MSE over a fixed energy; the PSNR's dB read as gains.)
 //! * A point is **on the front** when no other point costs no more and ranks no lower,
@@ -15,7 +15,7 @@
 //! point (the highest ranked; among equals the cheapest): its gain in dB over the raster
 //! choice, whether that gain counts ([`compare_terms`]), and the `Δ ms` that point costs.
 
-use super::compare::{compare_terms, gain_db, ranked_psnr, Outcome};
+use super::compare::{compare_terms, gain_db, ranked_db, Outcome};
 use super::record::HybridRecord;
 use crate::plot::{scatter_svg, Series};
 use crate::report::format_number;
@@ -32,7 +32,7 @@ pub struct FrontPoint<'a> {
     pub cost_ms: f64,
     /// The stage's term scored on this row.
     pub score: &'a TermScore,
-    /// [`ranked_psnr`] of the score, dB.
+    /// [`ranked_db`] of the score, dB.
     pub ranked_db: f64,
     /// Whether the point is on the front.
     pub on_front: bool,
@@ -209,7 +209,7 @@ fn raster_name(stage: StageId) -> String {
 
 fn point<'a>(r: &'a HybridRecord, name: String, cost_ms: f64, term: Term) -> Option<FrontPoint<'a>> {
     let score = r.term_score(term)?;
-    Some(FrontPoint { record: r, name, cost_ms, score, ranked_db: ranked_psnr(score), on_front: false })
+    Some(FrontPoint { record: r, name, cost_ms, score, ranked_db: ranked_db(score), on_front: false })
 }
 
 #[cfg(test)]

@@ -4,6 +4,7 @@
 
 use super::sweep::{Stage, SweepRow};
 use renderlab_core::any_f64;
+use renderlab_hybrid::terms::Floor;
 use renderlab_hybrid::{StageId, Term, TermScore};
 use serde::{Deserialize, Serialize};
 
@@ -138,8 +139,13 @@ pub struct HybridRecord {
     pub term_mask_pixels: Option<u64>,
     /// The term's mean squared error per channel against the reference's term (linear).
     pub term_mse: Option<f64>,
-    /// The term's squared error relative to the reference term's energy.
+    /// The term's trimmed relative MSE (what rows are ranked by;
+    /// `renderlab_hybrid::terms::score`).
     pub term_rel_mse: Option<f64>,
+    /// `10·log10(1 / term_rel_mse)`, dB.
+    pub term_rel_db: Option<f64>,
+    /// The reference's own floor on the term in the same measure, dB.
+    pub term_rel_floor_db: Option<f64>,
     /// The term's PSNR (peak 1, linear), dB.
     pub term_psnr_db: Option<f64>,
     /// The reference's own noise floor on the term, dB.
@@ -206,6 +212,8 @@ impl HybridRecord {
             term_mask_pixels: own.map(|t| t.mask_pixels),
             term_mse: own.map(|t| t.mse),
             term_rel_mse: own.map(|t| t.rel_mse),
+            term_rel_db: own.map(|t| t.rel_db),
+            term_rel_floor_db: own.map(|t| t.rel_floor_db),
             term_psnr_db: own.map(|t| t.psnr_db),
             term_floor_psnr_db: own.map(|t| t.floor_psnr_db),
             term_at_floor: own.map(|t| t.at_floor),
@@ -294,9 +302,8 @@ pub struct TermFloor {
     pub term: Term,
     /// Pixels in the mask.
     pub mask_pixels: u64,
-    /// Expected squared error per channel of the reference's term.
-    #[serde(with = "renderlab_core::any_f64")]
-    pub floor_mse: f64,
+    /// The reference's expected error on the term, both measures.
+    pub floor: Floor,
 }
 
 /// Every term's floor, and the direct term's over the area-lit pixels.

@@ -89,9 +89,9 @@ impl SweepRow {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]
 pub enum SweepKind {
-    /// Every sweep of the thesis: 54 rows per view.
+    /// Every sweep of the thesis: 55 rows per view (its 54 and a converged shadows row).
     Thesis,
-    /// The report's reduced sweep: 10 rows per view.
+    /// The report's reduced sweep: 12 rows per view.
     Report,
 }
 
@@ -122,9 +122,10 @@ pub fn thesis_rows() -> Vec<SweepRow> {
 }
 
 /// The report's reduced sweep, a subset of [`thesis_rows`]: the baseline and the settings
-/// each stage keeps for the report (ray-traced shadows, translucency with 3 and 10
-/// refraction rays at max roughness 1, reflections with 1 and 4 bounces at max roughness 1
-/// and with 1 at max roughness 0.01, GI at 4 spp and AO at 1 and 4 spp).
+/// each stage keeps for the report (ray-traced shadows with 1 and 16 rays per area light,
+/// translucency with 3 and 10 refraction rays at max roughness 1, reflections with 1 and 4
+/// bounces at max roughness 1 and with 1 at max roughness 0.01 and 0.1, GI at 4 spp and AO
+/// at 1 and 4 spp).
 pub fn report_rows() -> Vec<SweepRow> {
     let keep = |r: &SweepRow| match r.stage {
         Stage::Baseline => true,
@@ -141,7 +142,7 @@ mod tests {
     #[test]
     fn thesis_sweep_has_every_setting_once_and_one_stage_at_a_time() {
         let rows = thesis_rows();
-        assert_eq!(rows.len(), 1 + 1 + 6 * 4 + 5 * 4 + 4 + 4);
+        assert_eq!(rows.len(), 1 + 2 + 6 * 4 + 5 * 4 + 4 + 4);
         let labels: HashSet<String> = rows.iter().map(SweepRow::label).collect();
         assert_eq!(labels.len(), rows.len(), "labels are unique");
         let base = StageConfig::all_raster();
@@ -174,7 +175,7 @@ mod tests {
     fn report_sweep_is_a_subset_with_every_stage() {
         let thesis = thesis_rows();
         let report = report_rows();
-        assert_eq!(report.len(), 10);
+        assert_eq!(report.len(), 12);
         assert!(report.iter().all(|r| thesis.contains(r)));
         let every = [
             Stage::Baseline,

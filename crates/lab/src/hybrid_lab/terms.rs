@@ -13,7 +13,7 @@ use crate::error::{LabError, Result};
 use glam::Vec3;
 use renderlab_core::io::{load_color, save_exr};
 use renderlab_core::Image;
-use renderlab_hybrid::terms::{area_lit_mask, floor_mse, luminance, score_term, term_mask, PixelKind};
+use renderlab_hybrid::terms::{area_lit_mask, floor, luminance, score_term, term_mask, PixelKind};
 use renderlab_hybrid::{HybridFrame, Reference, Term, TermImages, TermScore};
 use std::path::PathBuf;
 
@@ -47,13 +47,13 @@ impl ViewTerms {
                 .map(|(&term, (m, _))| TermFloor {
                     term,
                     mask_pixels: count(m),
-                    floor_mse: floor_mse(term, a, b, m),
+                    floor: floor(term, a, b, &mean, m),
                 })
                 .collect(),
             area_lit: TermFloor {
                 term: Term::Direct,
                 mask_pixels: count(&area_lit.0),
-                floor_mse: floor_mse(Term::Direct, a, b, &area_lit.0),
+                floor: floor(Term::Direct, a, b, &mean, &area_lit.0),
             },
         };
         let (masks, area_lit) = masks(&area_share, &r.kinds);
@@ -133,10 +133,10 @@ impl ViewTerms {
             .iter()
             .zip(&self.masks)
             .zip(&self.floors.terms)
-            .map(|((&t, (m, label)), f)| score_term(t, &x, &self.mean, m, label, f.floor_mse))
+            .map(|((&t, (m, label)), f)| score_term(t, &x, &self.mean, m, label, f.floor))
             .collect();
         let (m, label) = &self.area_lit;
-        let area = score_term(Term::Direct, &x, &self.mean, m, label, self.floors.area_lit.floor_mse);
+        let area = score_term(Term::Direct, &x, &self.mean, m, label, self.floors.area_lit.floor);
         let reference = self.mean.get(Term::Translucent).expect("a radiance term");
         let black = (0..self.kinds.len())
             .filter(|&i| {

@@ -9,6 +9,7 @@
 
 use super::record::HybridRecord;
 use crate::report::format_number;
+use renderlab_hybrid::stages::shadows::SWEEP_SHADOW_SAMPLES;
 use renderlab_hybrid::StageId;
 
 /// The scenes of the thesis's columns (its Scene 1, 2, 3) by our built-in names.
@@ -261,7 +262,7 @@ pub fn thesis_tables() -> Vec<ThesisTable> {
                 .map(|s| Cell {
                     scene: s,
                     stage: StageId::Shadows,
-                    count: None,
+                    count: Some(SWEEP_SHADOW_SAMPLES),
                     roughness: None,
                     thesis_ms: TABLE_3_1[s],
                 })

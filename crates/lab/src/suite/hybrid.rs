@@ -1,5 +1,5 @@
 //! The hybrid lab ([`crate::hybrid_lab`]) as the suite runs it: the reduced sweep
-//! ([`crate::hybrid_lab::sweep::report_rows`]: 10 rows per view) on camera `cam1` of every
+//! ([`crate::hybrid_lab::sweep::report_rows`]: 12 rows per view) on camera `cam1` of every
 //! built-in scene at 320×180, so that the whole report stays within minutes on two cores.
 //! The full sweep is `renderlab hybrid bench --resolution 1920x1080`.
 

@@ -135,10 +135,13 @@ impl Entry for Reflections {
     }
 
     /// 1 and 4 bounces at max roughness 1, and 1 bounce at max roughness 0.01 (the thesis's
-    /// minimal quality, which its conclusions compare with SSR).
+    /// minimal quality, which its conclusions compare with SSR) and 0.1 (the next, for
+    /// scenes with no surface as smooth as 0.01).
     fn in_report_sweep(&self) -> bool {
         match *self {
-            Reflections::RayTraced { max_bounces: 1, max_roughness } => max_roughness == 1.0 || max_roughness == 0.01,
+            Reflections::RayTraced { max_bounces: 1, max_roughness } => {
+                max_roughness == 1.0 || max_roughness == 0.1 || max_roughness == 0.01
+            }
             Reflections::RayTraced { max_bounces: 4, max_roughness } => max_roughness == 1.0,
             _ => false,
         }

@@ -36,6 +36,10 @@ pub const DEFAULT_SHADOW_SAMPLES: u32 = 1;
 /// real-time engine traces before denoising).
 pub const SWEEP_SHADOW_SAMPLES: u32 = 1;
 
+/// Shadow rays per area light of the sweep's second, converged row (not the thesis's: with
+/// no denoiser, one ray's noise hides what the light's extent changes; 16 rays show it).
+pub const CONVERGED_SHADOW_SAMPLES: u32 = 16;
+
 /// The shadow stage's choice.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub enum Shadows {
@@ -105,9 +109,13 @@ impl Entry for Shadows {
         }
     }
 
-    /// One row: [`SWEEP_SHADOW_SAMPLES`] rays per area light.
+    /// Two rows: [`SWEEP_SHADOW_SAMPLES`] rays per area light (the thesis's) and
+    /// [`CONVERGED_SHADOW_SAMPLES`].
     fn thesis_sweep() -> Vec<Self> {
-        vec![Shadows::RayTraced { samples_per_light: SWEEP_SHADOW_SAMPLES }]
+        vec![
+            Shadows::RayTraced { samples_per_light: SWEEP_SHADOW_SAMPLES },
+            Shadows::RayTraced { samples_per_light: CONVERGED_SHADOW_SAMPLES },
+        ]
     }
 
     fn in_report_sweep(&self) -> bool {

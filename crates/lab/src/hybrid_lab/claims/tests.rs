@@ -49,9 +49,19 @@ fn reflections_hold_only_far_beyond_ssr() {
     assert_eq!(verdict(reflections_vs_ssr, &[baseline(1e-2), refl(2e-2)]).0, Verdict::DoesNotHold);
     // Both at the floor: cannot tell.
     assert_eq!(verdict(reflections_vs_ssr, &[baseline(1.5e-4), refl(0.5e-4)]).0, Verdict::CannotTell);
-    // No row at max roughness 0.01: cannot tell.
-    let rough = row(StageId::Reflections, "rt-reflections b1 r1", (Some(1), Some(1.0)), 2.0, 21.0, 1e-3);
-    assert_eq!(verdict(reflections_vs_ssr, &[baseline(1e-2), rough]).0, Verdict::CannotTell);
+    // A row at 0.01 that traced no ray (no surface that smooth) gives way to the next
+    // roughness that traced rays, and the figures say so.
+    let mut none = refl(1e-2);
+    none.stage_rays = 0;
+    let next = row(StageId::Reflections, "rt-reflections b1 r0.1", (Some(1), Some(0.1)), 2.0, 21.0, 1e-3);
+    let (v, text) = verdict(reflections_vs_ssr, &[baseline(1e-2), none.clone(), next]);
+    assert_eq!(v, Verdict::Holds, "{text}");
+    assert!(
+        text.starts_with("b1 r0.01 traced no ray") && text.contains("rt-reflections b1 r0.1 on"),
+        "{text}"
+    );
+    // No reflections row that traced rays: cannot tell.
+    assert_eq!(verdict(reflections_vs_ssr, &[baseline(1e-2), none]).0, Verdict::CannotTell);
 }
 
 #[test]
@@ -73,7 +83,7 @@ fn gi_holds_when_much_dearer_and_no_more_visible_than_reflections() {
 }
 
 #[test]
-fn shadows_hold_when_the_gain_is_where_the_lights_have_extent() {
+fn shadows_hold_when_better_where_the_lights_have_extent() {
     let with_area = |mut r: HybridRecord, area_mse: f64, pixels: u64| {
         let mut s = score(Term::Direct, area_mse, FLOOR);
         s.mask_pixels = pixels;
@@ -91,8 +101,14 @@ fn shadows_hold_when_the_gain_is_where_the_lights_have_extent() {
     // 10 dB on the area-lit pixels, 3 dB over all direct pixels: holds.
     let (v, text) = verdict(shadows_extent, &[base.clone(), rt(5e-3, 1e-3, 300)]);
     assert_eq!(v, Verdict::Holds, "{text}");
-    // The gain is larger elsewhere than where the lights have extent: does not hold.
-    assert_eq!(verdict(shadows_extent, &[base.clone(), rt(1e-3, 5e-3, 300)]).0, Verdict::DoesNotHold);
+    // A gain where the lights have extent holds, however large the gain elsewhere.
+    assert_eq!(verdict(shadows_extent, &[base.clone(), rt(1e-4, 5e-3, 300)]).0, Verdict::Holds);
+    // The most samples count, the fewest are printed beside.
+    let many =
+        with_area(row(StageId::Shadows, "rt-shadows s16", (Some(16), None), 40.0, 20.5, 5e-3), 1e-3, 300);
+    let (v, text) = verdict(shadows_extent, &[base.clone(), rt(5e-3, 2e-2, 300), many]);
+    assert_eq!(v, Verdict::Holds, "{text}");
+    assert!(text.contains("rt-shadows s16 on the direct term") && text.contains("With s1"), "{text}");
     // Worse on the area-lit pixels (one noisy sample): does not hold.
     assert_eq!(verdict(shadows_extent, &[base.clone(), rt(5e-3, 2e-2, 300)]).0, Verdict::DoesNotHold);
     // No area-lit pixels: cannot tell.
