@@ -1,5 +1,5 @@
 //! What each stage's most accurate setting buys on one view: its own term's gain over the
-//! raster choice (ranked PSNRs, [`super::compare`]), that gain per millisecond, and the
+//! raster choice (ranked relative errors in dB, [`super::compare`]), that gain per millisecond, and the
 //! whole frame's change, each with whether it counts beyond the floor margin.
 
 use super::compare::{compare_frames, compare_terms, gain_db, ranked_db, Outcome};
@@ -13,7 +13,7 @@ pub struct StageGain<'a> {
     pub stage: StageId,
     /// Its most accurate row on its term (ties: the cheapest).
     pub row: &'a HybridRecord,
-    /// Its term's gain over the raster choice, dB (ranked PSNRs).
+    /// Its term's gain over the raster choice, dB (ranked relative errors).
     pub term_gain_db: f64,
     /// Whether that gain counts.
     pub term_outcome: Outcome,

@@ -4,9 +4,8 @@
 //! * **Cost** is the frame time against the view's all-raster baseline, `Δ ms`; the raster
 //!   choice is the baseline row itself, at `Δ 0` by definition.
 //! * **Error** is the stage's term (its descriptor's `term`) scored against the reference's
-//!   same term, as a PSNR ranked by [`ranked_db`]: capped where the reference stops
-//!   resolving it, so that points at the floor tie. (Within one view the term's relative
-//!   MSE ranks the same, being the MSE over a fixed energy; the PSNR's dB read as gains.)
+//!   same term, as its relative error in dB ranked by [`ranked_db`]: capped where the
+//!   reference stops resolving it, so that points at the floor tie.
 //! * A point is **on the front** when no other point costs no more and ranks no lower,
 //!   being strictly better in one of the two. Points at the floor tie in error, so only the
 //!   cheapest of them can be on the front.
@@ -176,7 +175,8 @@ impl<'a> StageFront<'a> {
         s
     }
 
-    /// The scatter of `Δ ms` against the term's ranked PSNR, the front joined and labelled.
+    /// The scatter of `Δ ms` against the term's ranked relative error (dB), the front joined
+    /// and labelled.
     pub fn svg(&self, view_title: &str) -> String {
         let series = |on: bool, name: &str| {
             let mut ps: Vec<&FrontPoint> = self.points.iter().filter(|p| p.on_front == on).collect();
@@ -190,7 +190,7 @@ impl<'a> StageFront<'a> {
         scatter_svg(
             &format!("{view_title}: {} ({} term)", self.stage.name(), self.term().name()),
             "Δ frame time against the baseline (ms)",
-            &format!("{} term PSNR (dB, capped at the floor)", self.term().name()),
+            &format!("{} term, relative error (dB, capped at the floor)", self.term().name()),
             &[series(true, "on the front").connected(), series(false, "off the front")],
             false,
             false,
