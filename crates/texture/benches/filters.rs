@@ -8,15 +8,17 @@
 //!
 //! The `lab_workload` group times trilinear and the default (matched-kernel) EWA side by side
 //! on the texture lab's own lookups: every surface pixel of the lab's nine default scenes at
-//! its default 320×240, each scene with its own texture, one thread. Before criterion's
-//! timing, the two filters take turns over the whole workload (the lab's way of timing) and
-//! the medians per lookup and their ratio are printed, so the ratio comes from one run even on
-//! a loaded machine. `cargo bench -p renderlab-texture --bench filters -- lab_workload` runs
-//! it alone.
+//! its default 320×240, each scene with its own texture, one thread. First the two filters
+//! take turns over the whole workload (the lab's way of timing) and the medians per lookup
+//! and of the ratio within a turn are printed, by wall clock and by the thread's time on a
+//! CPU, so the ratio comes from one run even on a loaded machine; then criterion times
+//! trilinear, EWA and EWA on its scalar kernel (`ewa_scalar`, what a CPU without AVX2 runs).
+//! `cargo bench -p renderlab-texture --bench filters -- lab_workload` runs it alone.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use glam::{Vec2, Vec4};
 use renderlab_core::counter::{Counter, NoCount, Tally};
+use renderlab_core::kernel::Kernel;
 use renderlab_core::Image;
 use renderlab_texture::scene::{SceneKind, SurfacePixel, TestScene};
 use renderlab_texture::{Anisotropic, Bicubic, Bilinear, Ewa, Filter, Nearest, Texture, Trilinear, Wrap};
@@ -66,7 +68,7 @@ fn filters(c: &mut Criterion) {
     for n in [2, 4, 8] {
         run(c, Anisotropic { max_probes: n, ..Anisotropic::default() }, &tex, MODERATE, &format!("{n}"));
     }
-    // The texture lab's tuned EWA (at most 24 texels per lookup).
+    // The texture lab's tuned EWA (at most 64 texels per lookup).
     run(c, Ewa { max_texels: 64, ..Ewa::default() }, &tex, MODERATE, "_64");
     run(c, Ewa { cut: 2.0, max_texels: 96, ..Ewa::default() }, &tex, MODERATE, "_cut2");
     // How the cost of the footprint-sized filters grows at a grazing angle.
@@ -106,6 +108,20 @@ fn lab_lookups<F: Filter, C: Counter>(f: &F, work: &[(Texture, Vec<SurfacePixel>
 /// `None` where the system does not say.
 fn on_cpu_ns() -> Option<u64> {
     std::fs::read_to_string("/proc/thread-self/schedstat").ok()?.split_whitespace().next()?.parse().ok()
+}
+
+/// EWA forced onto its scalar kernel (the same bits as the vector one; what a CPU without AVX2
+/// runs).
+struct ScalarEwa(Ewa);
+
+impl Filter for ScalarEwa {
+    fn name(&self) -> &'static str {
+        "ewa_scalar"
+    }
+
+    fn sample<C: Counter>(&self, tex: &Texture, uv: Vec2, dx: Vec2, dy: Vec2, c: &mut C) -> Vec4 {
+        self.0.sample_on(Kernel::Scalar, tex, uv, dx, dy, c)
+    }
 }
 
 /// Turns of the printed comparison on the lab's workload.
@@ -161,6 +177,7 @@ fn lab(c: &mut Criterion) {
     g.sample_size(10);
     g.bench_function("trilinear", |b| b.iter(|| lab_lookups(&tri, &work, &mut NoCount)));
     g.bench_function("ewa", |b| b.iter(|| lab_lookups(&ewa, &work, &mut NoCount)));
+    g.bench_function("ewa_scalar", |b| b.iter(|| lab_lookups(&ScalarEwa(ewa), &work, &mut NoCount)));
     g.finish();
 }
 
