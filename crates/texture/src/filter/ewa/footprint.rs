@@ -53,8 +53,9 @@ pub(super) fn second_moments(dx: Vec2, dy: Vec2, ecc: f32) -> Shape {
     Shape { m: [m00 + k * e.y * e.y, m01 - k * e.x * e.y, m11 + k * e.x * e.x], major2: l1, minor2: floor }
 }
 
-/// Rows whose spans [`Footprint::count`] keeps for the scan.
-pub(super) const STORED_ROWS: usize = 96;
+/// Rows whose spans [`Footprint::count`] keeps for the scan (a multiple of 8, the vector
+/// kernel's rows per step; 512 bytes, which the compiler clears without a call to `memset`).
+pub(super) const STORED_ROWS: usize = 64;
 
 /// The ellipse on one level and the centre in that level's texel coordinates (texel `i` at
 /// `i`).
