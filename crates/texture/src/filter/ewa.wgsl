@@ -1,8 +1,9 @@
 // Heckbert's EWA, the GPU twin of `ewa.rs` (`Ewa::sample`, `Footprint`, `Ewa::scan`) with
 // the same operations in the same order: the footprint's axes, the eccentricity clamp, the
 // level from the minor axis and the texel budget, Heckbert's reconstruction circle, each
-// row's span from the quadratic, and the pixel filter's Gaussian weight read at the same
-// quantised exponent as the CPU's table (`exp(−⌊Q'⌋/EWA_PER_UNIT)`).
+// row's span from the quadratic, and the pixel filter's Gaussian weight `2^(−Q')` with the
+// CPU's base-2 exponent `Q'` clamped to the support (the CPU evaluates `2^(−Q')` by a series
+// within 4·10⁻⁷ of the exact value; here the GPU's `exp2`).
 //
 // The contract with the GPU filter frame (`renderlab-gpu`, `shaders/filter.wgsl`): it binds
 // `filter_tex` (the texture's pyramid, every level as the CPU built it), `filter_sampler`
@@ -171,9 +172,9 @@ fn ewa_texel(level: i32, x: i32, y: i32) -> vec4<f32> {
 // The weighted sum over the texels inside the footprint (`Ewa::scan`).
 fn ewa_scan(fp: EwaFootprint, inv_s2: f32, cut: f32) -> vec4<f32> {
     let rc = ewa_reconstruction_cut(cut);
-    let edge = 0.5 * (rc * rc) * EWA_PER_UNIT;
+    let edge = 0.5 * (rc * rc) * EWA_LOG2_E;
     let g = fp.g;
-    let s = 0.5 * inv_s2 * EWA_PER_UNIT / g.f;
+    let s = 0.5 * inv_s2 * EWA_LOG2_E / g.f;
     let qa = g.a * s;
     let qb = g.b * s;
     let qc = g.c * s;
@@ -183,15 +184,13 @@ fn ewa_scan(fp: EwaFootprint, inv_s2: f32, cut: f32) -> vec4<f32> {
     for (var j = rows.x; j <= rows.y; j += 1) {
         let span = ewa_span(fp, j);
         let v = f32(j) - fp.centre.y;
-        let u = f32(span.x) - fp.centre.x;
         let bv = qb * v;
         let cv = qc * v * v;
         for (var x = span.x; x <= span.y; x += 1) {
-            let uu = u + f32(x - span.x);
-            let q = (qa * uu + bv) * uu + cv;
-            // The table's entry: the exponent clamped to the support, truncated.
-            let i = floor(min(max(q, 0.0), edge));
-            let wt = exp(-i / EWA_PER_UNIT);
+            let u = f32(x) - fp.centre.x;
+            let q = (qa * u + bv) * u + cv;
+            // The exponent clamped to the support.
+            let wt = exp2(-min(max(q, 0.0), edge));
             acc += ewa_texel(fp.level, x, j) * wt;
             wsum += wt;
         }

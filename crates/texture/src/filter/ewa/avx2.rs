@@ -1,0 +1,383 @@
+//! The vector kernel of the scan (`scan.rs` states the order both kernels follow): eight
+//! texels of a row per block. The eight weights are `exp2_neg` evaluated lane by lane (lanes
+//! past the span masked to 0); the texels, four floats each, are loaded two to a register with the
+//! span's mask (so a block never reads past the span's texels), and each pair is multiplied by
+//! its two weights broadcast across its halves. Register `p` of the sums holds lanes `2p`
+//! (low half) and `2p + 1` (high half). No fused multiply-add, so that every operation is the
+//! scalar twin's.
+
+use super::footprint::{Footprint, STORED_ROWS};
+use super::scan::{Batch, Rows, Weights};
+use crate::mip::Wrap;
+use renderlab_core::image::wrap_index;
+#[allow(unused_imports)] // named in the docs
+use super::scan::Sums;
+use glam::Vec4;
+use renderlab_core::fastmath::EXP2_C;
+use std::arch::x86_64::*;
+
+/// Lanes below `n`, for `n` in `0..=8`: −1 where live.
+static LIVE: [[i32; 8]; 9] = {
+    let mut t = [[0; 8]; 9];
+    let mut n = 0;
+    while n <= 8 {
+        let mut l = 0;
+        while l < n {
+            t[n][l] = -1;
+            l += 1;
+        }
+        n += 1;
+    }
+    t
+};
+
+/// The load masks of a block of `n` texels: register `p` covers texels `2p` (low half) and
+/// `2p + 1` (high half), four floats each.
+static PAIRS: [[[i32; 8]; 4]; 9] = {
+    let mut t = [[[0; 8]; 4]; 9];
+    let mut n = 0;
+    while n <= 8 {
+        let mut p = 0;
+        while p < 4 {
+            let mut l = 0;
+            while l < 8 {
+                if 2 * p + l / 4 < n {
+                    t[n][p][l] = -1;
+                }
+                l += 1;
+            }
+            p += 1;
+        }
+        n += 1;
+    }
+    t
+};
+
+/// What every block of a lookup shares, and the sums.
+struct Lanes {
+    qa: __m256,
+    cx: __m256,
+    edge: __m256,
+    half: __m256,
+    one: __m256,
+    c: [__m256; 7],
+    lane: __m256i,
+    pair: [__m256i; 4],
+    acc: [__m256; 4],
+    wacc: __m256,
+}
+
+impl Lanes {
+    /// The constants of `w`, the sums at zero.
+    #[inline]
+    #[target_feature(enable = "avx2")]
+    fn new(w: &Weights) -> Lanes {
+        let zero = _mm256_setzero_ps();
+        Lanes {
+            qa: _mm256_set1_ps(w.q[0]),
+            cx: _mm256_set1_ps(w.cx),
+            edge: _mm256_set1_ps(w.edge),
+            half: _mm256_set1_ps(0.5),
+            one: _mm256_set1_ps(1.0),
+            c: EXP2_C.map(|c| _mm256_set1_ps(c)),
+            lane: _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
+            // Lane indices that broadcast lanes 2p and 2p + 1 across a register's halves.
+            pair: [
+                _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1),
+                _mm256_setr_epi32(2, 2, 2, 2, 3, 3, 3, 3),
+                _mm256_setr_epi32(4, 4, 4, 4, 5, 5, 5, 5),
+                _mm256_setr_epi32(6, 6, 6, 6, 7, 7, 7, 7),
+            ],
+            acc: [zero; 4],
+            wacc: zero,
+        }
+    }
+
+    /// Adds the block of `n` texels (`0..=8`) at `p` whose first column is `x0`, in a row with
+    /// `qb·V = bv` and `qc·V² = cv`, in lanes `0..n`.
+    ///
+    /// # Safety
+    /// The `n` texels from `p` must be readable (none is read past them).
+    #[inline]
+    #[target_feature(enable = "avx2")]
+    unsafe fn block(&mut self, p: *const Vec4, n: usize, x0: i32, bv: f32, cv: f32) {
+        let (bv, cv) = (_mm256_set1_ps(bv), _mm256_set1_ps(cv));
+        let x = _mm256_add_epi32(_mm256_set1_epi32(x0), self.lane);
+        let live = _mm256_loadu_si256(LIVE[n].as_ptr() as *const __m256i);
+        let masks = PAIRS[n].map(|m| _mm256_loadu_si256(m.as_ptr() as *const __m256i));
+        self.lanes(p, x, bv, cv, live, masks);
+    }
+
+    /// Adds the block of `n` texels (`0..=4`) at `p` in lanes `first .. first + n` (`first` 0
+    /// or 4), like [`Lanes::block`].
+    ///
+    /// # Safety
+    /// As [`Lanes::block`].
+    #[inline]
+    #[target_feature(enable = "avx2")]
+    unsafe fn block_from(&mut self, first: usize, p: *const Vec4, n: usize, x0: i32, bv: f32, cv: f32) {
+        let (bv, cv) = (_mm256_set1_ps(bv), _mm256_set1_ps(cv));
+        let x = _mm256_add_epi32(_mm256_set1_epi32(x0 - first as i32), self.lane);
+        let below = |t: &[i32; 8]| _mm256_loadu_si256(t.as_ptr() as *const __m256i);
+        let live = _mm256_andnot_si256(below(&LIVE[first]), below(&LIVE[first + n]));
+        let masks = [0, 1, 2, 3].map(|i| _mm256_andnot_si256(below(&PAIRS[first][i]), below(&PAIRS[first + n][i])));
+        self.lanes(p.wrapping_sub(first), x, bv, cv, live, masks);
+    }
+
+    /// Adds two rows' blocks of at most four texels each: `na` texels at `pa` in lanes
+    /// `0..na`, `nb` at `pb` in lanes `4..4 + nb`, each with its row's first column and
+    /// `qb·V`, `qc·V²`.
+    ///
+    /// # Safety
+    /// As [`Lanes::block`], for both rows.
+    #[inline]
+    #[target_feature(enable = "avx2")]
+    #[allow(clippy::too_many_arguments)]
+    unsafe fn pair_of_rows(&mut self, a: (*const Vec4, usize, i32, f32, f32), b: (*const Vec4, usize, i32, f32, f32)) {
+        let (pa, na, xa, bva, cva) = a;
+        let (pb, nb, xb, bvb, cvb) = b;
+        let bv = _mm256_setr_m128(_mm_set1_ps(bva), _mm_set1_ps(bvb));
+        let cv = _mm256_setr_m128(_mm_set1_ps(cva), _mm_set1_ps(cvb));
+        let x = _mm256_add_epi32(_mm256_setr_m128i(_mm_set1_epi32(xa), _mm_set1_epi32(xb - 4)), self.lane);
+        let row = |t: &[i32; 8]| _mm_loadu_si128(t.as_ptr() as *const __m128i);
+        let live = _mm256_setr_m128i(row(&LIVE[na]), row(&LIVE[nb]));
+        let (ma, mb) = (&PAIRS[na], &PAIRS[nb]);
+        let masks = [
+            _mm256_loadu_si256(ma[0].as_ptr() as *const __m256i),
+            _mm256_loadu_si256(ma[1].as_ptr() as *const __m256i),
+            _mm256_loadu_si256(mb[0].as_ptr() as *const __m256i),
+            _mm256_loadu_si256(mb[1].as_ptr() as *const __m256i),
+        ];
+        let p = [pa, pa.wrapping_add(2), pb, pb.wrapping_add(2)];
+        self.weigh(p, x, bv, cv, live, masks);
+    }
+
+    /// The lanes of one block: texels of columns `x` at `p` (texel `l` of lane `l`).
+    #[inline]
+    #[target_feature(enable = "avx2")]
+    unsafe fn lanes(&mut self, p: *const Vec4, x: __m256i, bv: __m256, cv: __m256, live: __m256i, masks: [__m256i; 4]) {
+        let p = [p, p.wrapping_add(2), p.wrapping_add(4), p.wrapping_add(6)];
+        self.weigh(p, x, bv, cv, live, masks);
+    }
+
+    /// Weighs and adds a block: lanes of columns `x`, live where `live`; register `i` of the
+    /// texels (lanes `2i`, `2i + 1`) loaded from `p[i]` under `masks[i]`.
+    #[inline]
+    #[target_feature(enable = "avx2")]
+    unsafe fn weigh(
+        &mut self,
+        p: [*const Vec4; 4],
+        x: __m256i,
+        bv: __m256,
+        cv: __m256,
+        live: __m256i,
+        masks: [__m256i; 4],
+    ) {
+        let u = _mm256_sub_ps(_mm256_cvtepi32_ps(x), self.cx);
+        let q = _mm256_add_ps(_mm256_mul_ps(_mm256_add_ps(_mm256_mul_ps(self.qa, u), bv), u), cv);
+        // max(q, 0) is 0 for NaN (maxps returns its second operand), as in the twin.
+        let y = _mm256_min_ps(_mm256_max_ps(q, _mm256_setzero_ps()), self.edge);
+        // exp2_neg(y), operation by operation.
+        let k = _mm256_cvttps_epi32(_mm256_add_ps(y, self.half));
+        let g = _mm256_sub_ps(_mm256_cvtepi32_ps(k), y);
+        let c = &self.c;
+        let g2 = _mm256_mul_ps(g, g);
+        let t0 = _mm256_add_ps(_mm256_mul_ps(c[1], g), self.one);
+        let t1 = _mm256_add_ps(_mm256_mul_ps(c[3], g), c[2]);
+        let t2 = _mm256_add_ps(_mm256_mul_ps(c[5], g), c[4]);
+        let e = _mm256_add_ps(t2, _mm256_mul_ps(g2, c[6]));
+        let e = _mm256_add_ps(t1, _mm256_mul_ps(g2, e));
+        let e = _mm256_add_ps(t0, _mm256_mul_ps(g2, e));
+        let wt = _mm256_sub_epi32(_mm256_castps_si256(e), _mm256_slli_epi32::<23>(k));
+        let wt = _mm256_castsi256_ps(_mm256_and_si256(wt, live));
+        self.wacc = _mm256_add_ps(self.wacc, wt);
+        for (i, a) in self.acc.iter_mut().enumerate() {
+            // SAFETY: the mask enables only the lanes of the block's texels, which the caller
+            // guarantees readable; masked lanes are not read.
+            let t = _mm256_maskload_ps(p[i] as *const f32, masks[i]);
+            *a = _mm256_add_ps(*a, _mm256_mul_ps(t, _mm256_permutevar8x32_ps(wt, self.pair[i])));
+        }
+    }
+
+    /// The weighted sum and the sum of the weights, in the twin's order ([`Sums::total`]).
+    #[inline]
+    #[target_feature(enable = "avx2")]
+    fn total(&self) -> (Vec4, f32) {
+        let a = &self.acc;
+        let s = _mm256_add_ps(_mm256_add_ps(a[0], a[1]), _mm256_add_ps(a[2], a[3]));
+        let s = _mm_add_ps(_mm256_castps256_ps128(s), _mm256_extractf128_ps::<1>(s));
+        let h = _mm_add_ps(_mm256_castps256_ps128(self.wacc), _mm256_extractf128_ps::<1>(self.wacc));
+        let h = _mm_add_ps(h, _mm_movehl_ps(h, h));
+        let wsum = _mm_cvtss_f32(_mm_add_ss(h, _mm_shuffle_ps::<1>(h, h)));
+        let mut out = [0.0f32; 4];
+        // SAFETY: `out` holds four floats.
+        unsafe { _mm_storeu_ps(out.as_mut_ptr(), s) };
+        (Vec4::from_array(out), wsum)
+    }
+}
+
+/// The weighted sum over `rows`, the sum of the weights and the texels read: the same bits
+/// as [`super::scan::scalar`].
+///
+/// Where every row's span is stored and lies inside the level's columns (the usual case), the
+/// rows are read straight from the spans (a row with an empty span still takes its block,
+/// which adds `+0` and leaves the sums as they are); otherwise the blocks come from
+/// [`Rows::fill`], which copies the texels of spans past an edge.
+///
+/// # Safety
+/// The CPU must have AVX2.
+#[inline]
+#[target_feature(enable = "avx2")]
+pub(super) unsafe fn scan(rows: &Rows, w: &Weights) -> (Vec4, f32, u32) {
+    let mut lanes = Lanes::new(w);
+    if let Some(spans) = rows.spans {
+        let (j0, j1) = rows.fp.rows();
+        let width = rows.size.0;
+        let count = (j1 - j0 + 1) as usize;
+        let (mut lo_min, mut hi_max, mut n_max, mut texels) = (0i32, -1i32, 0i32, 0i32);
+        for &(lo, hi) in &spans[..count] {
+            let n = (hi - lo + 1).max(0);
+            // Empty rows (lo > hi) take no part in the bounds.
+            lo_min = lo_min.min(if n > 0 { lo } else { 0 });
+            hi_max = hi_max.max(hi);
+            n_max = n_max.max(n);
+            texels += n;
+        }
+        if lo_min >= 0 && hi_max < width as i32 {
+            let px = rows.px.as_ptr();
+            let row = |r: usize| row_at(rows, spans, j0, px, r, w);
+            if n_max <= 4 {
+                // Narrow: two rows a block (an odd last row with an empty partner).
+                for r in (0..count).step_by(2) {
+                    let b = if r + 1 < count { row(r + 1) } else { (px, 0, 0, 0.0, 0.0) };
+                    lanes.pair_of_rows(row(r), b);
+                }
+            } else {
+                for r in 0..count {
+                    let (p, n, lo, bv, cv) = row(r);
+                    lanes.block(p, n.min(8), lo, bv, cv);
+                    let mut k = 8;
+                    while k < n {
+                        lanes.block(p.wrapping_add(k), (n - k).min(8), lo + k as i32, bv, cv);
+                        k += 8;
+                    }
+                }
+            }
+            let (acc, wsum) = lanes.total();
+            return (acc, wsum, texels as u32);
+        }
+    }
+    let mut batch = Batch::new();
+    let mut c = rows.start();
+    let narrow = rows.narrow();
+    loop {
+        let more = rows.fill(&mut c, w, narrow, &mut batch);
+        let base = [rows.px.as_ptr(), batch.copies.as_ptr()];
+        for b in &batch.blocks[..batch.len] {
+            let p = base[b.copied as usize].wrapping_add(b.at as usize);
+            lanes.block_from(b.first as usize, p, b.n as usize, b.x0, b.bv, b.cv);
+        }
+        if !more {
+            break;
+        }
+    }
+    let (acc, wsum) = lanes.total();
+    (acc, wsum, c.texels)
+}
+
+/// Row `r` of a footprint whose spans are stored and lie inside the level's columns: its
+/// first texel, its texel count (0 for an empty span), its first column, `qb·V` and `qc·V²`.
+/// (A plain function, so that it inlines into the kernel and the sums stay in registers.)
+#[inline(always)]
+fn row_at(
+    rows: &Rows,
+    spans: &[(i32, i32); STORED_ROWS],
+    j0: i64,
+    px: *const Vec4,
+    r: usize,
+    w: &Weights,
+) -> (*const Vec4, usize, i32, f32, f32) {
+    let (width, height) = rows.size;
+    let (lo, hi) = spans[r];
+    let j = j0 + r as i64;
+    let yi = match rows.wrap {
+        Wrap::Repeat => wrap_index(j, height),
+        Wrap::Clamp => j.clamp(0, height as i64 - 1) as usize,
+    };
+    let v = j as f32 - rows.fp.centre.y;
+    // An empty row reads nothing, wherever `at` points.
+    let at = (yi * width as usize).wrapping_add(lo as usize);
+    (px.wrapping_add(at), (hi - lo + 1).max(0) as usize, lo, w.q[1] * v, w.q[2] * v * v)
+}
+
+/// The spans of rows `j ..= j + 7` of `fp`: first and last texel per lane, lo > hi for an
+/// empty row; the same bits as [`Footprint::span`] (whose integer conversions agree with
+/// `cvttps` for coordinates within `i32`, which a footprint's never leave).
+#[inline]
+#[target_feature(enable = "avx2")]
+fn spans8(fp: &Footprint, j: i64) -> (__m256i, __m256i) {
+    let e = &fp.e;
+    let lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    let rows = _mm256_add_epi32(_mm256_set1_epi32(j as i32), lane);
+    let v = _mm256_sub_ps(_mm256_cvtepi32_ps(rows), _mm256_set1_ps(fp.centre.y));
+    let d = _mm256_mul_ps(_mm256_set1_ps(e.f), _mm256_sub_ps(_mm256_set1_ps(e.a), _mm256_mul_ps(v, v)));
+    let ok = _mm256_castps_si256(_mm256_cmp_ps::<_CMP_GE_OQ>(d, _mm256_setzero_ps()));
+    let r = _mm256_sqrt_ps(d);
+    let mid = _mm256_mul_ps(_mm256_set1_ps(-0.5 * e.b), v);
+    let (inv_a, cx) = (_mm256_set1_ps(fp.inv_a), _mm256_set1_ps(fp.centre.x));
+    let xl = _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(mid, r), inv_a), cx);
+    let xh = _mm256_add_ps(_mm256_mul_ps(_mm256_add_ps(mid, r), inv_a), cx);
+    // ⌈x⌉ = trunc(x) + (trunc(x) < x), ⌊x⌋ = trunc(x) − (trunc(x) > x); a true compare is −1.
+    let il = _mm256_cvttps_epi32(xl);
+    let lo = _mm256_sub_epi32(il, _mm256_castps_si256(_mm256_cmp_ps::<_CMP_LT_OQ>(_mm256_cvtepi32_ps(il), xl)));
+    let ih = _mm256_cvttps_epi32(xh);
+    let hi = _mm256_add_epi32(ih, _mm256_castps_si256(_mm256_cmp_ps::<_CMP_GT_OQ>(_mm256_cvtepi32_ps(ih), xh)));
+    let lo = _mm256_blendv_epi8(_mm256_set1_epi32(1), lo, ok);
+    let hi = _mm256_blendv_epi8(_mm256_setzero_si256(), hi, ok);
+    (lo, hi)
+}
+
+/// [`Footprint::count`] eight rows at a time: the texels inside, the spans of the first
+/// [`STORED_ROWS`] rows kept in `store`; stops once the count passes `limit` (after a group
+/// of eight rows, so a count past `limit` may be larger than the scalar one's, never one
+/// within it).
+///
+/// # Safety
+/// The CPU must have AVX2.
+#[inline]
+#[target_feature(enable = "avx2")]
+pub(super) unsafe fn count(fp: &Footprint, limit: u64, store: &mut [(i32, i32); STORED_ROWS]) -> u64 {
+    let (j0, j1) = fp.rows();
+    let lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    let one = _mm256_set1_epi32(1);
+    let mut n = 0u64;
+    let mut j = j0;
+    while j <= j1 {
+        let (lo, hi) = spans8(fp, j);
+        let r = (j - j0) as usize;
+        if r + 8 <= STORED_ROWS {
+            // Rows r .. r + 8 as (lo, hi) pairs, in order (rows past j1 are stored too and
+            // never read).
+            let (a, b) = (_mm256_unpacklo_epi32(lo, hi), _mm256_unpackhi_epi32(lo, hi));
+            let p = store[r..r + 8].as_mut_ptr() as *mut __m256i;
+            // SAFETY: `store[r..r + 8]` is 64 bytes.
+            unsafe {
+                _mm256_storeu_si256(p, _mm256_permute2x128_si256::<0x20>(a, b));
+                _mm256_storeu_si256(p.add(1), _mm256_permute2x128_si256::<0x31>(a, b));
+            }
+        }
+        // max(hi − lo + 1, 0) on the rows up to j1.
+        let rows_left = _mm256_set1_epi32((j1 - j + 1).min(8) as i32);
+        let k = _mm256_max_epi32(_mm256_add_epi32(_mm256_sub_epi32(hi, lo), one), _mm256_setzero_si256());
+        let k = _mm256_and_si256(k, _mm256_cmpgt_epi32(rows_left, lane));
+        let h = _mm_add_epi32(_mm256_castsi256_si128(k), _mm256_extracti128_si256::<1>(k));
+        let h = _mm_add_epi32(h, _mm_shuffle_epi32::<0b01_00_11_10>(h));
+        let h = _mm_add_epi32(h, _mm_shuffle_epi32::<0b10_11_00_01>(h));
+        n += _mm_cvtsi128_si32(h) as u64;
+        if n > limit {
+            break;
+        }
+        j += 8;
+    }
+    n
+}
