@@ -24,9 +24,9 @@
 //!   between levels), plus the bilinear bound: checked pixel by pixel.
 //! - **EWA** runs the CPU's operations in WGSL on exact texels (`textureLoad`: no sampler
 //!   arithmetic), so only f32 rounding differs (fused multiply–adds, a GPU's `exp` and `sqrt`
-//!   within a few ulp): a weight's table index moves by one entry (a factor e^(1/128), < 0.8 %
-//!   of that texel's weight) where the exponent lies within rounding of an integer, which
-//!   moves the result by far less than 2⁻⁸; a level or span decision flips only where its
+//!   within a few ulp): a weight `2^(−y)` moves by a few ulp of its exponent (the CPU's short
+//!   series is within 4·10⁻⁷ of `exp2`, the GPU's `exp2` within its own ulp), which moves the
+//!   result by far less than 2⁻⁸; a level or span decision flips only where its
 //!   quantity lies within rounding of the threshold. Bounds: PSNR ≥ 60 dB, and at most 0.1 %
 //!   of pixels beyond 2⁻⁸.
 //! - **Hardware anisotropic** filtering is implementation-defined: how many probes, where,
