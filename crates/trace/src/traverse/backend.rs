@@ -12,13 +12,16 @@
 //! rounding can add a box the ray misses, never drop one it hits. So a ray aimed exactly at a
 //! vertex or edge reaches every triangle there, and the watertight test decides.
 
-use crate::node::{TriBlock, WideNode};
+use crate::node::{TriBlock, WideNode, WIDTH};
 use crate::ray::Ray;
 use crate::triangle::TriRay;
 use glam::Vec3;
 
 /// `1 + 2γ₃` with `γₙ = nε / (1 − nε)`, `ε = 2⁻²⁴`: Ize's factor for the far slab distance.
 pub const IZE: f32 = 1.0 + 2.0 * (3.0 * 5.960_464_5e-8 / (1.0 - 3.0 * 5.960_464_5e-8));
+
+/// Rays a packet query traces together.
+pub const PACKET: usize = 8;
 
 /// What every kernel needs of a ray: its slab-test and triangle-test forms.
 #[derive(Clone, Copy, Debug)]
@@ -85,7 +88,7 @@ pub struct BlockHits {
 /// the CPU has them (see [`crate::kernel::Kernel::available`]).
 pub trait Backend {
     /// The ray in the kernel's own form (broadcast into registers, say).
-    type Prepared;
+    type Prepared: Copy;
 
     /// The ray's kernel form.
     ///
@@ -105,6 +108,49 @@ pub trait Backend {
     /// # Safety
     /// The CPU has the kernel's features.
     unsafe fn block(p: &Self::Prepared, block: &TriBlock, t_max: f32) -> BlockHits;
+
+    /// A packet's test of a wide node: each ray `r` of `active` runs [`Backend::node`] with
+    /// its own `t_max[r]`. Returns which rays enter each child (bit `r` of byte `c`: ray `r`
+    /// enters child `c`) and, per child, the least entry distance among the rays that enter it
+    /// (+∞ where none does). Kernels may override it with a faster form of the same results.
+    ///
+    /// # Safety
+    /// The CPU has the kernel's features.
+    #[inline(always)]
+    unsafe fn node_packet(
+        p: &[Self::Prepared; PACKET],
+        node: &WideNode,
+        active: u32,
+        t_max: &[f32; PACKET],
+    ) -> (u64, [f32; WIDTH]) {
+        let mut rows = 0u64;
+        let mut dist = [f32::INFINITY; WIDTH];
+        let mut a = active;
+        while a != 0 {
+            let r = a.trailing_zeros() as usize;
+            a &= a - 1;
+            let (mask, d) = Self::node(p.get_unchecked(r), node, *t_max.get_unchecked(r));
+            rows |= (mask as u64) << (8 * r);
+            for c in 0..WIDTH {
+                if (mask >> c) & 1 != 0 && d[c] < dist[c] {
+                    dist[c] = d[c];
+                }
+            }
+        }
+        (transpose8(rows), dist)
+    }
+}
+
+/// Transposes an 8 × 8 bit matrix held in a `u64` (bit `c` of byte `r` goes to bit `r` of byte
+/// `c`), by three exchanges of off-diagonal blocks (Warren, "Hacker's Delight", 7-3).
+#[inline(always)]
+pub fn transpose8(mut x: u64) -> u64 {
+    let t = (x ^ (x >> 7)) & 0x00AA_00AA_00AA_00AA;
+    x ^= t ^ (t << 7);
+    let t = (x ^ (x >> 14)) & 0x0000_CCCC_0000_CCCC;
+    x ^= t ^ (t << 14);
+    let t = (x ^ (x >> 28)) & 0x0000_0000_F0F0_F0F0;
+    x ^ t ^ (t << 28)
 }
 
 /// `maxps(a, b)`: `b` unless `a > b` (so a NaN `a` is ignored).

@@ -7,7 +7,9 @@ use crate::hit::{Hit, HitFilter};
 use crate::kernel::Kernel;
 use crate::ray::Ray;
 use crate::tlas::Tlas;
+use crate::traverse::backend::PACKET;
 use crate::traverse::leaves;
+use crate::traverse::packet;
 use crate::traverse::scalar::Scalar;
 
 /// Which query.
@@ -38,6 +40,16 @@ mod simd {
             Query::Closest => leaves::tlas_closest::<Avx2, _>(tlas, ray, filter),
             Query::Any => leaves::tlas_any::<Avx2, _>(tlas, ray, filter),
         }
+    }
+
+    #[target_feature(enable = "avx2")]
+    pub unsafe fn closest_packet(blas: &Blas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
+        packet::closest::<Avx2>(blas, rays)
+    }
+
+    #[target_feature(enable = "avx2")]
+    pub unsafe fn any_packet(blas: &Blas, rays: &[Ray]) -> [bool; PACKET] {
+        packet::any::<Avx2>(blas, rays)
     }
 }
 
@@ -73,5 +85,29 @@ pub fn tlas(tlas: &Tlas, ray: &Ray, filter: &mut impl HitFilter, query: Query) -
                 Query::Any => leaves::tlas_any::<Scalar, _>(tlas, ray, filter),
             }
         },
+    }
+}
+
+/// The closest hits of a packet of rays (at most [`PACKET`]) in one mesh, with its kernel.
+#[inline]
+pub fn closest_packet(blas: &Blas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
+    match blas.kernel {
+        // SAFETY: as in [`blas`].
+        #[cfg(target_arch = "x86_64")]
+        Kernel::Simd => unsafe { simd::closest_packet(blas, rays) },
+        // SAFETY: the scalar kernel needs no CPU feature.
+        _ => unsafe { packet::closest::<Scalar>(blas, rays) },
+    }
+}
+
+/// Whether each ray of a packet (at most [`PACKET`]) hits anything in one mesh.
+#[inline]
+pub fn any_packet(blas: &Blas, rays: &[Ray]) -> [bool; PACKET] {
+    match blas.kernel {
+        // SAFETY: as in [`blas`].
+        #[cfg(target_arch = "x86_64")]
+        Kernel::Simd => unsafe { simd::any_packet(blas, rays) },
+        // SAFETY: the scalar kernel needs no CPU feature.
+        _ => unsafe { packet::any::<Scalar>(blas, rays) },
     }
 }

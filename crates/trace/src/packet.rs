@@ -1,0 +1,45 @@
+//! Packet queries: up to [`PACKET`] rays traced through one mesh together, for coherent rays
+//! (primary rays of neighbouring pixels, shadow rays from neighbouring points to one light).
+//!
+//! The rays share one walk of the hierarchy: a node is visited when any of them enters it, by
+//! those that do, and a packet that has thinned out continues ray by ray
+//! ([`crate::traverse::packet`]). Each ray keeps its own interval and gets exactly the hit the
+//! single-ray query gives it (the same triangle, distance and barycentrics, bit for bit), so a
+//! caller may batch or not without changing an image.
+//!
+//! How to batch: put rays that start near each other and point the same way in one packet,
+//! e.g. the primary rays of a 4 × 2 block of pixels (walk the image in tiles, pixels in Morton
+//! order inside a tile, and take eight consecutive rays), or the shadow rays of such a block
+//! towards the same light. Rays that diverge (diffuse bounces) gain nothing: trace them one by
+//! one. A short last packet is fine; lanes past the slice's end report no hit.
+
+use crate::blas::Blas;
+use crate::hit::Hit;
+use crate::ray::Ray;
+use crate::traverse::dispatch;
+
+pub use crate::traverse::backend::PACKET;
+
+impl Blas {
+    /// The closest hit of each ray of `rays` in `[t_min, t_max]`, as [`Blas::closest_hit`]
+    /// would return it; entries past `rays.len()` are `None`.
+    ///
+    /// # Panics
+    /// If `rays` holds more than [`PACKET`] rays.
+    #[inline]
+    pub fn closest_packet(&self, rays: &[Ray]) -> [Option<Hit>; PACKET] {
+        assert!(rays.len() <= PACKET, "a packet holds at most {PACKET} rays, not {}", rays.len());
+        dispatch::closest_packet(self, rays)
+    }
+
+    /// Whether anything lies on each ray of `rays` in `[t_min, t_max]`, as [`Blas::any_hit`]
+    /// would say (for shadow rays); entries past `rays.len()` are `false`.
+    ///
+    /// # Panics
+    /// If `rays` holds more than [`PACKET`] rays.
+    #[inline]
+    pub fn any_packet(&self, rays: &[Ray]) -> [bool; PACKET] {
+        assert!(rays.len() <= PACKET, "a packet holds at most {PACKET} rays, not {}", rays.len());
+        dispatch::any_packet(self, rays)
+    }
+}
