@@ -1,5 +1,7 @@
 //! Our BVH against `obvhs` (a fast Rust BVH: PLOC build, compressed 8-wide CWBVH nodes): the
-//! same triangles, the same rays, one thread tracing (rays per second per core).
+//! same triangles, the same rays, one thread tracing (rays per second per core); and our
+//! packet queries beside our single-ray queries on primary and shadow rays (packets of
+//! [`PACKET`] consecutive rays: 4 × 4 pixel blocks for primary rays).
 //!
 //! Scene and rays: [`common`] (a 1M-triangle terrain; primary rays in tiled Morton order, one
 //! diffuse bounce, shadow segments).
@@ -21,7 +23,7 @@ use glam::{Affine3A, Vec3};
 use obvhs::cwbvh::builder::build_cwbvh_from_tris;
 use obvhs::cwbvh::CwBvh;
 use obvhs::{ray as ob, BvhBuildParams};
-use renderlab_trace::{Blas, Instance, Kernel, Ray, Tlas};
+use renderlab_trace::{Blas, Instance, Kernel, Ray, Tlas, PACKET};
 use std::hint::black_box;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
@@ -61,6 +63,11 @@ fn ob_closest(o: &Obvhs, r: &ob::Ray) -> Option<(f32, u32)> {
 /// Sums of hit distances, so that no trace is optimised away.
 fn trace_ours(blas: &Blas, rays: &[Ray]) -> f32 {
     rays.iter().map(|r| blas.closest_hit(r).map_or(0.0, |h| h.t)).sum()
+}
+
+/// The same with packets of consecutive rays.
+fn trace_packets(blas: &Blas, rays: &[Ray]) -> f32 {
+    rays.chunks(PACKET).map(|c| blas.closest_packet(c).iter().flatten().map(|h| h.t).sum::<f32>()).sum()
 }
 
 fn trace_obvhs(o: &Obvhs, rays: &[ob::Ray]) -> f32 {
@@ -188,6 +195,7 @@ fn bench(c: &mut Criterion) {
     g.throughput(Throughput::Elements(primary.len() as u64));
     rays(&mut g, "primary", "ours", primary.len(), || trace_ours(&blas, black_box(&primary)));
     rays(&mut g, "primary", "obvhs", primary.len(), || trace_obvhs(&obvhs, black_box(&ob_primary)));
+    rays(&mut g, "primary", "ours-packet", primary.len(), || trace_packets(&blas, black_box(&primary)));
     rays(&mut g, "primary", "ours-scalar", primary.len(), || trace_ours(&scalar, black_box(&primary)));
     rays(&mut g, "primary", "ours-tlas", primary.len(), || {
         black_box(&primary).iter().map(|r| tlas.closest_hit(r).map_or(0.0, |h| h.t)).sum::<f32>()
@@ -210,6 +218,12 @@ fn bench(c: &mut Criterion) {
     g.throughput(Throughput::Elements(shadow.len() as u64));
     rays(&mut g, "shadow", "ours", shadow.len(), || {
         black_box(&shadow).iter().filter(|r| blas.any_hit(r)).count() as f32
+    });
+    rays(&mut g, "shadow", "ours-packet", shadow.len(), || {
+        black_box(&shadow)
+            .chunks(PACKET)
+            .map(|c| blas.any_packet(c).iter().filter(|&&o| o).count())
+            .sum::<usize>() as f32
     });
     rays(&mut g, "shadow", "obvhs", shadow.len(), || {
         black_box(&ob_shadow)

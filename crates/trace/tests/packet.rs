@@ -84,7 +84,7 @@ proptest! {
 }
 
 /// A height field of a few thousand triangles (many wide levels) and packets of primary-like
-/// rays over 4 × 2 blocks of a small image, some shortened into shadow-like segments.
+/// rays over 4-pixel-wide blocks of a small image ([`PACKET`] / 4 rows), some shortened into shadow-like segments.
 #[test]
 fn coherent_packets_on_a_larger_mesh() {
     let mut tris = Vec::new();
@@ -107,7 +107,7 @@ fn coherent_packets_on_a_larger_mesh() {
     let eye = Vec3::new(0.5, 1.2, -0.6);
     let (w, hgt) = (64, 48);
     let mut hits = 0;
-    for by in (0..hgt).step_by(2) {
+    for by in (0..hgt).step_by(PACKET / 4) {
         for bx in (0..w).step_by(4) {
             let rays: Vec<Ray> = (0..PACKET)
                 .map(|k| {
@@ -115,7 +115,7 @@ fn coherent_packets_on_a_larger_mesh() {
                     let target =
                         Vec3::new(x as f32 / w as f32 * 0.9 + 0.05, 0.0, y as f32 / hgt as f32 * 0.9 + 0.05);
                     let mut r = Ray::new(eye, target - eye);
-                    if (bx / 4 + by / 2) % 3 == 0 {
+                    if (bx / 4 + by) % 3 == 0 {
                         r.t_max = 0.9;
                     }
                     r
@@ -133,4 +133,20 @@ fn coherent_packets_on_a_larger_mesh() {
 fn a_packet_of_more_than_packet_rays_is_refused() {
     let blas = Blas::from_triangles(&[[Vec3::ZERO, Vec3::X, Vec3::Y]]).unwrap();
     blas.closest_packet(&[Ray::new(Vec3::Z, -Vec3::Z); PACKET + 1]);
+}
+
+#[test]
+fn transpose8_moves_bit_c_of_byte_r_to_bit_r_of_byte_c() {
+    use renderlab_trace::traverse::backend::transpose8;
+    let mut state = 99u64;
+    for _ in 0..100 {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        let x = state;
+        let t = transpose8(x);
+        for r in 0..8 {
+            for c in 0..8 {
+                assert_eq!((t >> (8 * c + r)) & 1, (x >> (8 * r + c)) & 1, "{x:#x} r {r} c {c}");
+            }
+        }
+    }
 }

@@ -4,8 +4,8 @@
 //! Scene: a procedural terrain of 708 × 708 quads (1,002,528 triangles), displaced by a sum of
 //! ridged sine octaves into hills and canyons. Primary rays: a 512 × 512 pinhole camera looking
 //! across it, in tiles of 8 × 8 pixels (tiles row by row, pixels in Morton order inside a
-//! tile), so that every 8 consecutive rays are a 4 × 2 block of pixels and every 16 a 4 × 4
-//! block. Incoherent rays: one cosine-weighted diffuse bounce from every primary hit. Shadow
+//! tile), so that every 8 consecutive rays are a 4 × 2 block of pixels, every 16 a 4 × 4 block
+//! and every 32 an 8 × 4 block. Incoherent rays: one cosine-weighted diffuse bounce from every primary hit. Shadow
 //! rays: segments from every primary hit to a point light (any-hit).
 
 #![allow(dead_code)]

@@ -1,12 +1,13 @@
 //! The AVX2 kernel: a wide node's eight slab tests in one 256-bit register per plane, a leaf's
-//! four watertight triangle tests in one 128-bit register per quantity. Each lane performs
+//! four watertight triangle tests in one 128-bit register per quantity; a packet's node test
+//! runs the node test for each of its rays and keeps the masks and least distances in registers. Each lane performs
 //! exactly the scalar kernel's operations (no fused multiply-adds, `maxps`/`minps` operand
 //! order as the scalar `max_ps`/`min_ps`), so both kernels produce the same bits.
 
 #![cfg(target_arch = "x86_64")]
 
 use crate::node::{TriBlock, WideNode, WIDTH};
-use crate::traverse::backend::{transpose8, Backend, BlockHits, RayQuery, IZE, PACKET};
+use crate::traverse::backend::{Backend, BlockHits, PacketNode, RayQuery, IZE, PACKET};
 use crate::triangle::{edge_functions_f64, TriRay};
 use std::arch::x86_64::*;
 
@@ -68,21 +69,21 @@ impl Backend for Avx2 {
         node: &WideNode,
         active: u32,
         t_max: &[f32; PACKET],
-    ) -> (u64, [f32; WIDTH]) {
+    ) -> PacketNode {
         let inf = _mm256_set1_ps(f32::INFINITY);
         let mut least = inf;
-        let mut rows = 0u64;
+        let mut rows = [0u64; PACKET / 8];
         let mut a = active;
         while a != 0 {
             let r = a.trailing_zeros() as usize;
             a &= a - 1;
             let (near, hit) = slabs(p.get_unchecked(r), node, *t_max.get_unchecked(r));
-            rows |= (_mm256_movemask_ps(hit) as u32 as u64) << (8 * r);
+            *rows.get_unchecked_mut(r / 8) |= (_mm256_movemask_ps(hit) as u32 as u64) << (8 * (r % 8));
             least = _mm256_min_ps(_mm256_blendv_ps(inf, near, hit), least);
         }
         let mut dist = [0.0f32; WIDTH];
         _mm256_storeu_ps(dist.as_mut_ptr(), least);
-        (transpose8(rows), dist)
+        PacketNode::from_rows(&rows, dist)
     }
 
     #[inline]
