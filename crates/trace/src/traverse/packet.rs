@@ -41,39 +41,54 @@ struct Entry {
 
 /// The packet's rays in kernel form, with their intervals.
 struct Packet<B: Backend> {
-    prepared: [B::Prepared; PACKET],
+    /// Every lane written by [`Packet::new`].
+    prepared: [MaybeUninit<B::Prepared>; PACKET],
     t_max: [f32; PACKET],
     /// Bit `i` set for each ray that can hit something.
     valid: u32,
 }
 
 impl<B: Backend> Packet<B> {
+    /// A packet of no rays, to be filled in place by [`Packet::load`].
+    #[inline(always)]
+    fn empty() -> Packet<B> {
+        Packet {
+            prepared: [const { MaybeUninit::uninit() }; PACKET],
+            t_max: [f32::NEG_INFINITY; PACKET],
+            valid: 0,
+        }
+    }
+
+    /// Fills the packet with `rays` (written in place: the packet is several kilobytes).
+    ///
     /// # Safety
     /// The CPU has `B`'s features.
     #[inline(always)]
-    unsafe fn new(rays: &[Ray]) -> Packet<B> {
+    unsafe fn load(&mut self, rays: &[Ray]) {
         // Lanes without a valid ray get a harmless query and stay out of every mask.
-        let idle = B::prepare(&RayQuery::new(&Ray::new(Vec3::ZERO, Vec3::X)).expect("a valid ray"));
-        let mut p = Packet::<B> { prepared: [idle; PACKET], t_max: [f32::NEG_INFINITY; PACKET], valid: 0 };
-        for (i, ray) in rays.iter().enumerate().take(PACKET) {
-            if let Some(q) = RayQuery::new(ray) {
-                p.valid |= 1 << i;
-                p.t_max[i] = q.t_max;
-                p.prepared[i] = B::prepare(&q);
+        let idle = RayQuery::new(&Ray::new(Vec3::ZERO, Vec3::X)).expect("a valid ray");
+        for i in 0..PACKET {
+            let q = rays.get(i).and_then(RayQuery::new);
+            if let Some(q) = &q {
+                self.valid |= 1 << i;
+                self.t_max[i] = q.t_max;
             }
+            self.prepared[i].write(B::prepare(q.as_ref().unwrap_or(&idle)));
         }
-        p
     }
 
     #[inline(always)]
     unsafe fn ray(&self, i: usize) -> &B::Prepared {
-        self.prepared.get_unchecked(i)
+        self.prepared.get_unchecked(i).assume_init_ref()
     }
 
     /// Which rays of `active` enter each child, and their least entry distance.
     #[inline(always)]
     unsafe fn node(&self, node: &WideNode, active: u32) -> PacketNode {
-        B::node_packet(&self.prepared, node, active, &self.t_max)
+        // SAFETY: every lane is initialised, and `MaybeUninit<T>` has the layout of `T`.
+        let prepared =
+            &*(&self.prepared as *const [MaybeUninit<B::Prepared>; PACKET] as *const [B::Prepared; PACKET]);
+        B::node_packet(prepared, node, active, &self.t_max)
     }
 
     /// The rays of `rays` whose interval still reaches distance `dist`.
@@ -115,7 +130,8 @@ unsafe fn triangles<'a, B: Backend>(
 /// The CPU has `B`'s features.
 #[inline(always)]
 pub unsafe fn closest<B: Backend>(blas: &Blas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
-    let mut p = Packet::<B>::new(rays);
+    let mut p = Packet::<B>::empty();
+    p.load(rays);
     let mut best = p.t_max.map(no_hit);
     let mut opaque = Opaque;
     if blas.root != EMPTY {
@@ -201,7 +217,8 @@ pub unsafe fn closest<B: Backend>(blas: &Blas, rays: &[Ray]) -> [Option<Hit>; PA
 /// The CPU has `B`'s features.
 #[inline(always)]
 pub unsafe fn any<B: Backend>(blas: &Blas, rays: &[Ray]) -> [bool; PACKET] {
-    let mut p = Packet::<B>::new(rays);
+    let mut p = Packet::<B>::empty();
+    p.load(rays);
     let mut done = 0u32;
     let mut scratch = no_hit(0.0);
     let mut opaque = Opaque;
