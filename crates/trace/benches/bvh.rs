@@ -1,7 +1,7 @@
 //! Our BVH against `obvhs` (a fast Rust BVH: PLOC build, compressed 8-wide CWBVH nodes): the
 //! same triangles, the same rays, one thread tracing (rays per second per core); and our
 //! packet queries beside our single-ray queries on primary and shadow rays (packets of
-//! [`PACKET`] consecutive rays: 4 × 4 pixel blocks for primary rays).
+//! [`PACKET`] consecutive rays: 8 × 4 pixel blocks for primary rays).
 //!
 //! Scene and rays: [`common`] (a 1M-triangle terrain; primary rays in tiled Morton order, one
 //! diffuse bounce, shadow segments).

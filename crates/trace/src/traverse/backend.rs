@@ -21,7 +21,7 @@ use glam::Vec3;
 pub const IZE: f32 = 1.0 + 2.0 * (3.0 * 5.960_464_5e-8 / (1.0 - 3.0 * 5.960_464_5e-8));
 
 /// Rays a packet query traces together (a multiple of 8, at most 32: ray masks are `u32`).
-pub const PACKET: usize = 16;
+pub const PACKET: usize = 32;
 
 /// What a packet's node test finds.
 #[derive(Clone, Copy, Debug)]
