@@ -11,9 +11,12 @@
 //! e.g. the primary rays of an 8 × 4 block of pixels (walk the image in tiles, pixels in Morton
 //! order inside a tile, and take [`PACKET`] consecutive rays), or the shadow rays from such a
 //! block's surface points towards the same light, in the same order. Rays that diverge
-//! (diffuse bounces) gain nothing: trace them one by one. A short last packet is fine; lanes
+//! (diffuse bounces, even from neighbouring pixels) share only the top of the walk and then
+//! continue ray by ray, so they gain less; measure before batching them. A short last packet
+//! is fine; lanes
 //! past the slice's end report no hit, and invalid rays in a packet hit nothing, as alone.
-//! A query keeps each ray's kernel form on the stack: about 15 KB with the AVX2 kernel.
+//! A query keeps its rays' kernel forms and its stack on the thread's stack: about 20 KB with the
+//! AVX2 kernel.
 
 use crate::blas::Blas;
 use crate::hit::Hit;

@@ -150,3 +150,74 @@ fn transpose8_moves_bit_c_of_byte_r_to_bit_r_of_byte_c() {
         }
     }
 }
+
+/// The AVX2 packet node test against the scalar one on every node of a hierarchy: the same
+/// rays per child and the same least distances, bit for bit.
+#[test]
+#[cfg(target_arch = "x86_64")]
+fn packet_node_tests_agree_between_kernels() {
+    use renderlab_trace::traverse::avx2::Avx2;
+    use renderlab_trace::traverse::backend::{Backend, RayQuery};
+    use renderlab_trace::traverse::scalar::Scalar;
+    if !renderlab_trace::Kernel::Simd.available() {
+        return;
+    }
+    let mut tris = Vec::new();
+    let n = 24;
+    for i in 0..n {
+        for j in 0..n {
+            let p = |x: usize, z: usize| {
+                let (x, z) = (x as f32 / n as f32, z as f32 / n as f32);
+                Vec3::new(x, (x * 9.0).sin() * (z * 7.0).cos() * 0.2, z)
+            };
+            tris.push([p(i, j), p(i + 1, j), p(i + 1, j + 1)]);
+            tris.push([p(i, j), p(i + 1, j + 1), p(i, j + 1)]);
+        }
+    }
+    let blas = Blas::from_triangles(&tris).unwrap();
+    let mut state = 7u64;
+    let mut rnd = move || {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (state >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let idle = RayQuery::new(&Ray::new(Vec3::ZERO, Vec3::X)).unwrap();
+    for packet in 0..40 {
+        // Even packets share an origin and look down at the mesh; odd ones are random.
+        let eye = Vec3::new(rnd(), 1.0 + rnd(), rnd() - 1.0);
+        let queries: [RayQuery; PACKET] = std::array::from_fn(|_| {
+            let (o, d) = if packet % 2 == 0 {
+                (eye, Vec3::new(rnd() - 0.2, -1.0 - rnd(), rnd() + 0.5))
+            } else {
+                (Vec3::new(rnd(), rnd(), rnd()) * 2.0 - 0.5, Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5))
+            };
+            let mut r = Ray::new(o, d);
+            if rnd() < 0.3 {
+                r.t_max = rnd() * 2.0;
+            }
+            RayQuery::new(&r).unwrap_or(idle)
+        });
+        let t_max: [f32; PACKET] = std::array::from_fn(|i| queries[i].t_max);
+        let all = u32::MAX >> (32 - PACKET);
+        // SAFETY: the CPU has AVX2 (checked above).
+        unsafe {
+            let ps: [_; PACKET] = std::array::from_fn(|i| Scalar::prepare(&queries[i]));
+            let pa: [_; PACKET] = std::array::from_fn(|i| Avx2::prepare(&queries[i]));
+            for node in blas.nodes() {
+                for active in [all, all & 0x5a5a_a5a5, all & 0x0000_0007, all & 0x8000_0001] {
+                    let s = Scalar::node_packet(&ps, node, active, &t_max);
+                    let a = Avx2::node_packet(&pa, node, active, &t_max);
+                    assert_eq!(
+                        (s.children, s.rays),
+                        (a.children, a.rays),
+                        "packet {packet} active {active:#x}"
+                    );
+                    assert_eq!(s.dist.map(f32::to_bits), a.dist.map(f32::to_bits), "packet {packet}");
+                    for c in 0..8 {
+                        assert_eq!(s.rays[c] & !active, 0, "only active rays enter children");
+                        assert_eq!(s.children >> c & 1 != 0, s.rays[c] != 0);
+                    }
+                }
+            }
+        }
+    }
+}
