@@ -200,6 +200,12 @@ fn bench(c: &mut Criterion) {
     rays(&mut g, "primary", "ours-tlas", primary.len(), || {
         black_box(&primary).iter().map(|r| tlas.closest_hit(r).map_or(0.0, |h| h.t)).sum::<f32>()
     });
+    rays(&mut g, "primary", "ours-tlas-packet", primary.len(), || {
+        black_box(&primary)
+            .chunks(PACKET)
+            .map(|c| tlas.closest_packet(c).iter().flatten().map(|h| h.t).sum::<f32>())
+            .sum::<f32>()
+    });
     g.finish();
     loads.push(("primary".to_string(), before, load_average()));
 

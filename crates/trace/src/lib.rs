@@ -57,8 +57,9 @@
 //! triangle tests: [`traverse::avx2`] in vector registers, [`traverse::scalar`] lane by lane
 //! with the same operations in the same order, so both give the same hits bit for bit; the
 //! kernel is chosen at run time from the CPU's features ([`Kernel`]). Packet queries
-//! ([`Blas::closest_packet`], [`Blas::any_packet`]) walk up to [`PACKET`] coherent rays
-//! together over the same kernels ([`traverse::packet`]) and give each ray the single-ray hit.
+//! ([`Blas::closest_packet`], [`Blas::any_packet`], and the same on a [`Tlas`]) walk up to
+//! [`PACKET`] coherent rays together over the same kernels ([`traverse::packet`]) and give each
+//! ray the single-ray hit.
 //!
 //! # Exactness
 //!

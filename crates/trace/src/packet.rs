@@ -1,4 +1,5 @@
-//! Packet queries: up to [`PACKET`] rays traced through one mesh together, for coherent rays
+//! Packet queries: up to [`PACKET`] rays traced through one mesh ([`Blas`]) or a scene
+//! ([`Tlas`]) together, for coherent rays
 //! (primary rays of neighbouring pixels, shadow rays from neighbouring points to one light).
 //!
 //! The rays share one walk of the hierarchy: a node is visited when any of them enters it, by
@@ -21,6 +22,7 @@
 use crate::blas::Blas;
 use crate::hit::Hit;
 use crate::ray::Ray;
+use crate::tlas::Tlas;
 use crate::traverse::dispatch;
 
 pub use crate::traverse::backend::PACKET;
@@ -46,5 +48,29 @@ impl Blas {
     pub fn any_packet(&self, rays: &[Ray]) -> [bool; PACKET] {
         assert!(rays.len() <= PACKET, "a packet holds at most {PACKET} rays, not {}", rays.len());
         dispatch::any_packet(self, rays)
+    }
+}
+
+impl Tlas {
+    /// The closest hit of each ray of `rays` among all instances, as [`Tlas::closest_hit`]
+    /// would return it; entries past `rays.len()` are `None`.
+    ///
+    /// # Panics
+    /// If `rays` holds more than [`PACKET`] rays.
+    #[inline]
+    pub fn closest_packet(&self, rays: &[Ray]) -> [Option<Hit>; PACKET] {
+        assert!(rays.len() <= PACKET, "a packet holds at most {PACKET} rays, not {}", rays.len());
+        dispatch::tlas_closest_packet(self, rays)
+    }
+
+    /// Whether anything lies on each ray of `rays`, as [`Tlas::any_hit`] would say (for
+    /// shadow rays); entries past `rays.len()` are `false`.
+    ///
+    /// # Panics
+    /// If `rays` holds more than [`PACKET`] rays.
+    #[inline]
+    pub fn any_packet(&self, rays: &[Ray]) -> [bool; PACKET] {
+        assert!(rays.len() <= PACKET, "a packet holds at most {PACKET} rays, not {}", rays.len());
+        dispatch::tlas_any_packet(self, rays)
     }
 }

@@ -8,7 +8,7 @@ mod common;
 use common::*;
 use glam::{Affine3A, Vec3};
 use proptest::prelude::*;
-use renderlab_trace::{brute, Blas, Hit, Instance, Ray, PACKET};
+use renderlab_trace::{brute, Blas, Hit, Instance, Ray, Tlas, PACKET};
 
 /// Checks one packet on every kernel's hierarchy.
 fn check_packet(blases: &[Blas], tris: &[[Vec3; 3]], rays: &[Ray]) -> Result<(), TestCaseError> {
@@ -55,6 +55,38 @@ proptest! {
         check_packet(&blases, &tris, &rays)?;
     }
 
+    /// Packets in scenes of instanced meshes: each ray's hit equals the single-ray scene
+    /// query's and brute force's, instance included.
+    #[test]
+    fn scene_packets_match_single_rays(
+        meshes in prop::collection::vec(mesh(40), 1..4),
+        placements in prop::collection::vec((0u32..4, transform()), 0..6),
+        seeds in prop::collection::vec(ray_seed(), 1..=PACKET),
+        shared_origin in any::<bool>(),
+    ) {
+        let instances: Vec<Instance> =
+            placements.iter().map(|&(m, t)| Instance::new(m % meshes.len() as u32, t)).collect();
+        let tlases: Vec<Tlas> = kernels().into_iter().map(|k| scene(&meshes, &instances, k)).collect();
+        let origin = seeds[0].1;
+        let rays: Vec<Ray> = seeds
+            .iter()
+            .map(|&(seed, o)| ray(&meshes, &instances, seed, if shared_origin { origin } else { o }))
+            .collect();
+        for tlas in &tlases {
+            let closest = tlas.closest_packet(&rays);
+            let any = tlas.any_packet(&rays);
+            for (i, r) in rays.iter().enumerate() {
+                let expected = brute::closest_hit(&meshes, &instances, r);
+                prop_assert_eq!(closest[i], tlas.closest_hit(r), "kernel {} lane {} ray {:?}", tlas.kernel(), i, r);
+                prop_assert_eq!(closest[i], expected, "kernel {} lane {} against brute force", tlas.kernel(), i);
+                prop_assert_eq!(any[i], expected.is_some(), "kernel {} lane {} any-hit", tlas.kernel(), i);
+            }
+            for i in rays.len()..PACKET {
+                prop_assert_eq!((closest[i], any[i]), (None, false));
+            }
+        }
+    }
+
     /// Invalid rays (zero or non-finite direction, empty interval) beside valid ones.
     #[test]
     fn invalid_rays_hit_nothing_in_a_packet(
@@ -83,8 +115,8 @@ proptest! {
     }
 }
 
-/// A height field of a few thousand triangles (many wide levels) and packets of primary-like
-/// rays over 4-pixel-wide blocks of a small image ([`PACKET`] / 4 rows), some shortened into shadow-like segments.
+/// A height field of a few thousand triangles (many wide levels), alone and twice in a scene,
+/// and packets of primary-like rays over 4-pixel-wide blocks of a small image ([`PACKET`] / 4 rows), some shortened into shadow-like segments.
 #[test]
 fn coherent_packets_on_a_larger_mesh() {
     let mut tris = Vec::new();
@@ -104,6 +136,16 @@ fn coherent_packets_on_a_larger_mesh() {
         }
     }
     let blases = blases(&tris);
+    // The same mesh twice in a scene, the second turned and raised (packets enter both).
+    let meshes = vec![tris.clone()];
+    let instances = [
+        Instance::new(0, Affine3A::IDENTITY),
+        Instance::new(
+            0,
+            Affine3A::from_rotation_y(0.3) * Affine3A::from_translation(Vec3::new(0.1, 0.15, -0.1)),
+        ),
+    ];
+    let tlases: Vec<Tlas> = kernels().into_iter().map(|k| scene(&meshes, &instances, k)).collect();
     let eye = Vec3::new(0.5, 1.2, -0.6);
     let (w, hgt) = (64, 48);
     let mut hits = 0;
@@ -123,6 +165,15 @@ fn coherent_packets_on_a_larger_mesh() {
                 .collect();
             hits += rays.iter().filter(|r| blases[0].closest_hit(r).is_some()).count();
             check_packet(&blases, &tris, &rays).unwrap();
+            for tlas in &tlases {
+                let (closest, any) = (tlas.closest_packet(&rays), tlas.any_packet(&rays));
+                for (i, r) in rays.iter().enumerate() {
+                    let expected = brute::closest_hit(&meshes, &instances, r);
+                    assert_eq!(closest[i], expected, "kernel {} lane {i} ray {r:?}", tlas.kernel());
+                    assert_eq!(closest[i], tlas.closest_hit(r));
+                    assert_eq!(any[i], expected.is_some());
+                }
+            }
         }
     }
     assert!(hits > w * hgt / 2, "only {hits} of {} rays hit", w * hgt);

@@ -9,7 +9,7 @@ use crate::ray::Ray;
 use crate::tlas::Tlas;
 use crate::traverse::backend::PACKET;
 use crate::traverse::leaves;
-use crate::traverse::packet;
+use crate::traverse::packet_leaves;
 use crate::traverse::scalar::Scalar;
 
 /// Which query.
@@ -44,12 +44,22 @@ mod simd {
 
     #[target_feature(enable = "avx2")]
     pub unsafe fn closest_packet(blas: &Blas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
-        packet::closest::<Avx2>(blas, rays)
+        packet_leaves::blas_closest::<Avx2>(blas, rays)
     }
 
     #[target_feature(enable = "avx2")]
     pub unsafe fn any_packet(blas: &Blas, rays: &[Ray]) -> [bool; PACKET] {
-        packet::any::<Avx2>(blas, rays)
+        packet_leaves::blas_any::<Avx2>(blas, rays)
+    }
+
+    #[target_feature(enable = "avx2")]
+    pub unsafe fn tlas_closest_packet(tlas: &Tlas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
+        packet_leaves::tlas_closest::<Avx2>(tlas, rays)
+    }
+
+    #[target_feature(enable = "avx2")]
+    pub unsafe fn tlas_any_packet(tlas: &Tlas, rays: &[Ray]) -> [bool; PACKET] {
+        packet_leaves::tlas_any::<Avx2>(tlas, rays)
     }
 }
 
@@ -96,7 +106,7 @@ pub fn closest_packet(blas: &Blas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
         #[cfg(target_arch = "x86_64")]
         Kernel::Simd => unsafe { simd::closest_packet(blas, rays) },
         // SAFETY: the scalar kernel needs no CPU feature.
-        _ => unsafe { packet::closest::<Scalar>(blas, rays) },
+        _ => unsafe { packet_leaves::blas_closest::<Scalar>(blas, rays) },
     }
 }
 
@@ -108,6 +118,30 @@ pub fn any_packet(blas: &Blas, rays: &[Ray]) -> [bool; PACKET] {
         #[cfg(target_arch = "x86_64")]
         Kernel::Simd => unsafe { simd::any_packet(blas, rays) },
         // SAFETY: the scalar kernel needs no CPU feature.
-        _ => unsafe { packet::any::<Scalar>(blas, rays) },
+        _ => unsafe { packet_leaves::blas_any::<Scalar>(blas, rays) },
+    }
+}
+
+/// The closest hits of a packet of rays (at most [`PACKET`]) in a scene, with its kernel.
+#[inline]
+pub fn tlas_closest_packet(tlas: &Tlas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
+    match tlas.kernel {
+        // SAFETY: as in [`blas`].
+        #[cfg(target_arch = "x86_64")]
+        Kernel::Simd => unsafe { simd::tlas_closest_packet(tlas, rays) },
+        // SAFETY: the scalar kernel needs no CPU feature.
+        _ => unsafe { packet_leaves::tlas_closest::<Scalar>(tlas, rays) },
+    }
+}
+
+/// Whether each ray of a packet (at most [`PACKET`]) hits anything in a scene.
+#[inline]
+pub fn tlas_any_packet(tlas: &Tlas, rays: &[Ray]) -> [bool; PACKET] {
+    match tlas.kernel {
+        // SAFETY: as in [`blas`].
+        #[cfg(target_arch = "x86_64")]
+        Kernel::Simd => unsafe { simd::tlas_any_packet(tlas, rays) },
+        // SAFETY: the scalar kernel needs no CPU feature.
+        _ => unsafe { packet_leaves::tlas_any::<Scalar>(tlas, rays) },
     }
 }

@@ -76,12 +76,12 @@ impl<B: Backend, F: HitFilter> Leaves for Triangles<'_, B, F> {
 }
 
 /// Leaves of the top level: instances.
-struct Instances<'a, B: Backend, F> {
-    tlas: &'a Tlas,
-    ray: &'a Ray,
-    best: &'a mut Hit,
-    filter: &'a mut F,
-    backend: PhantomData<B>,
+pub(crate) struct Instances<'a, B: Backend, F> {
+    pub(crate) tlas: &'a Tlas,
+    pub(crate) ray: &'a Ray,
+    pub(crate) best: &'a mut Hit,
+    pub(crate) filter: &'a mut F,
+    pub(crate) backend: PhantomData<B>,
 }
 
 impl<'a, B: Backend, F: HitFilter> Instances<'a, B, F> {

@@ -1,4 +1,5 @@
-//! The packet walk: up to [`PACKET`] rays share one traversal of a bottom level.
+//! The packet walk: up to [`PACKET`] rays share one traversal of a hierarchy, written once for
+//! both levels (`PacketLeaves` says what a leaf is: [`crate::traverse::packet_leaves`]).
 //!
 //! Every ray keeps its own interval, best hit and kernel form. At a node, each ray still
 //! active runs the kernel's own single-ray node test ([`Backend::node`], so every box decision
@@ -9,9 +10,10 @@
 //! bound in place of the ray's own distance, so it can keep a ray the single walk would drop,
 //! never drop one it would keep. Children are entered nearest first by that least distance, and
 //! the ones pushed are prefetched (the walk waits on memory more than on arithmetic). At
-//! a leaf each active ray runs the single-ray block test. When a node is reached by at most
-//! [`SPARSE`] rays the packet has diverged: each of them walks the subtree alone with the
-//! single-ray walk.
+//! a leaf the active rays go on together (a bottom-level leaf: each runs the single-ray block
+//! test; an instance: they are carried into its space and walk its bottom level as a packet).
+//! When a node is reached by at most [`SPARSE`] rays the packet has diverged: each of them
+//! walks the subtree alone with the single-ray walk.
 //!
 //! Why the hits equal the single-ray query's: a ray tests a leaf's triangles only after its
 //! own conservative box test accepted every node on the way (with an interval no shorter than
@@ -19,13 +21,11 @@
 //! hit is chosen by [`Hit::precedes`], which does not depend on the order in which leaves are
 //! tested. The any-hit walk retires a ray at its first hit.
 
-use crate::blas::Blas;
-use crate::hit::{Hit, Opaque};
+use crate::hit::Hit;
 use crate::node::{WideNode, EMPTY, LEAF_BIT};
 use crate::ray::Ray;
-use crate::traverse::backend::{prefetch, Backend, PacketNode, RayQuery, IZE, PACKET};
-use crate::traverse::leaves::{no_hit, Triangles};
-use crate::traverse::walk::{self, Leaves, STACK};
+use crate::traverse::backend::{Backend, PacketNode, RayQuery, IZE, PACKET};
+use crate::traverse::walk::STACK;
 use glam::Vec3;
 use std::mem::MaybeUninit;
 
@@ -39,19 +39,21 @@ struct Entry {
     dist: f32,
 }
 
-/// The packet's rays in kernel form, with their intervals.
-struct Packet<B: Backend> {
-    /// Every lane written by [`Packet::new`].
+/// A packet's rays in kernel form, with their intervals.
+pub(crate) struct Packet<B: Backend> {
+    /// Every lane written by [`Packet::finish`].
     prepared: [MaybeUninit<B::Prepared>; PACKET],
-    t_max: [f32; PACKET],
+    /// Each ray's interval end, lowered by its hits (−∞ once it takes no further part).
+    pub(crate) t_max: [f32; PACKET],
     /// Bit `i` set for each ray that can hit something.
-    valid: u32,
+    pub(crate) valid: u32,
 }
 
 impl<B: Backend> Packet<B> {
-    /// A packet of no rays, to be filled in place by [`Packet::load`].
+    /// A packet of no rays, to be filled in place by [`Packet::set`] and [`Packet::finish`]
+    /// (it is several kilobytes).
     #[inline(always)]
-    fn empty() -> Packet<B> {
+    pub(crate) fn empty() -> Packet<B> {
         Packet {
             prepared: [const { MaybeUninit::uninit() }; PACKET],
             t_max: [f32::NEG_INFINITY; PACKET],
@@ -59,27 +61,52 @@ impl<B: Backend> Packet<B> {
         }
     }
 
-    /// Fills the packet with `rays` (written in place: the packet is several kilobytes).
+    /// Puts the ray of `q` in lane `r`.
     ///
     /// # Safety
     /// The CPU has `B`'s features.
     #[inline(always)]
-    unsafe fn load(&mut self, rays: &[Ray]) {
-        // Lanes without a valid ray get a harmless query and stay out of every mask.
+    pub(crate) unsafe fn set(&mut self, r: usize, q: &RayQuery) {
+        self.valid |= 1 << r;
+        self.t_max[r] = q.t_max;
+        self.prepared[r].write(B::prepare(q));
+    }
+
+    /// Gives every lane without a ray a harmless query that stays out of every mask.
+    ///
+    /// # Safety
+    /// The CPU has `B`'s features.
+    #[inline(always)]
+    pub(crate) unsafe fn finish(&mut self) {
         let idle = RayQuery::new(&Ray::new(Vec3::ZERO, Vec3::X)).expect("a valid ray");
-        for i in 0..PACKET {
-            let q = rays.get(i).and_then(RayQuery::new);
-            if let Some(q) = &q {
-                self.valid |= 1 << i;
-                self.t_max[i] = q.t_max;
+        for r in 0..PACKET {
+            if self.valid & (1 << r) == 0 {
+                self.prepared[r].write(B::prepare(&idle));
             }
-            self.prepared[i].write(B::prepare(q.as_ref().unwrap_or(&idle)));
         }
     }
 
+    /// The packet of `rays` (at most [`PACKET`]; invalid rays leave their lane empty).
+    ///
+    /// # Safety
+    /// The CPU has `B`'s features.
     #[inline(always)]
-    unsafe fn ray(&self, i: usize) -> &B::Prepared {
-        self.prepared.get_unchecked(i).assume_init_ref()
+    pub(crate) unsafe fn load(&mut self, rays: &[Ray]) {
+        for (r, ray) in rays.iter().enumerate().take(PACKET) {
+            if let Some(q) = RayQuery::new(ray) {
+                self.set(r, &q);
+            }
+        }
+        self.finish();
+    }
+
+    /// Ray `r`'s kernel form.
+    ///
+    /// # Safety
+    /// The packet is finished.
+    #[inline(always)]
+    pub(crate) unsafe fn ray(&self, r: usize) -> &B::Prepared {
+        self.prepared.get_unchecked(r).assume_init_ref()
     }
 
     /// Which rays of `active` enter each child, and their least entry distance.
@@ -102,184 +129,192 @@ impl<B: Backend> Packet<B> {
     }
 }
 
-/// Starts loading the node or leaf block that `child` refers to.
-#[inline(always)]
-unsafe fn fetch(blas: &Blas, child: u32) {
-    if child & LEAF_BIT == 0 {
-        prefetch(blas.nodes.get_unchecked(child as usize));
-    } else {
-        prefetch(blas.blocks.get_unchecked((child & !LEAF_BIT) as usize));
-    }
+/// What a packet walk does at the leaves of one level, and for a ray that goes on alone.
+pub(crate) trait PacketLeaves<B: Backend> {
+    /// The hierarchy's nodes.
+    fn nodes(&self) -> &[WideNode];
+
+    /// Starts loading what `child` refers to.
+    ///
+    /// # Safety
+    /// `child` comes from this hierarchy.
+    unsafe fn fetch(&self, child: u32);
+
+    /// The rays of `active` look for closer hits in leaf `leaf` (its reference without
+    /// [`LEAF_BIT`]), lowering their `t_max` to them.
+    ///
+    /// # Safety
+    /// The CPU has `B`'s features; the packet is finished.
+    unsafe fn closest_leaf(&mut self, p: &mut Packet<B>, best: &mut [Hit; PACKET], leaf: u32, active: u32);
+
+    /// Ray `r` looks for closer hits in the subtree at `node` with the single-ray walk.
+    ///
+    /// # Safety
+    /// As for [`PacketLeaves::closest_leaf`].
+    unsafe fn closest_alone(&mut self, p: &mut Packet<B>, best: &mut [Hit; PACKET], node: u32, r: usize);
+
+    /// The rays of `active` that have a hit in leaf `leaf`.
+    ///
+    /// # Safety
+    /// As for [`PacketLeaves::closest_leaf`].
+    unsafe fn any_leaf(&mut self, p: &Packet<B>, leaf: u32, active: u32) -> u32;
+
+    /// Whether ray `r` has a hit in the subtree at `node` (single-ray walk).
+    ///
+    /// # Safety
+    /// As for [`PacketLeaves::closest_leaf`].
+    unsafe fn any_alone(&mut self, p: &Packet<B>, node: u32, r: usize) -> bool;
 }
 
-/// Ray `r`'s leaves: the bottom level's blocks, tested with its kernel form.
-#[inline(always)]
-unsafe fn triangles<'a, B: Backend>(
-    blas: &'a Blas,
-    p: &'a Packet<B>,
-    r: usize,
-    best: &'a mut Hit,
-    filter: &'a mut Opaque,
-) -> Triangles<'a, B, Opaque> {
-    Triangles { blocks: &blas.blocks, prepared: p.ray(r), instance: Hit::NO_INSTANCE, best, filter }
-}
-
-/// The closest hit of each ray of `rays` (at most [`PACKET`]) in `blas`.
+/// Walks the hierarchy from `root` for each ray's closest hit, updating `best` and `p.t_max`.
 ///
 /// # Safety
-/// The CPU has `B`'s features.
+/// The CPU has `B`'s features; the packet is finished; `root` and the leaves come from one
+/// build.
 #[inline(always)]
-pub unsafe fn closest<B: Backend>(blas: &Blas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
-    let mut p = Packet::<B>::empty();
-    p.load(rays);
-    let mut best = p.t_max.map(no_hit);
-    let mut opaque = Opaque;
-    if blas.root != EMPTY {
-        let mut stack = [const { MaybeUninit::<Entry>::uninit() }; STACK];
-        let mut sp = 0usize;
-        let (mut cur, mut active) = (blas.root, p.valid);
-        'walk: loop {
-            if active.count_ones() <= SPARSE {
-                // Diverged: each remaining ray walks this subtree alone.
-                while active != 0 {
-                    let r = active.trailing_zeros() as usize;
-                    active &= active - 1;
-                    let mut t_max = p.t_max[r];
-                    let mut leaves = triangles(blas, &p, r, &mut best[r], &mut opaque);
-                    walk::closest::<B, _>(&blas.nodes, cur, p.ray(r), &mut leaves, &mut t_max);
-                    p.t_max[r] = t_max;
-                }
-            } else if cur & LEAF_BIT == 0 {
-                debug_assert!((cur as usize) < blas.nodes.len());
-                let node = blas.nodes.get_unchecked(cur as usize);
-                let n = p.node(node, active);
-                let mut children = n.children;
-                if children.count_ones() == 1 {
-                    let c = children.trailing_zeros() as usize;
-                    (cur, active) = (node.children[c], n.rays[c]);
-                    continue 'walk;
-                }
-                let base = sp;
-                while children != 0 {
-                    let c = children.trailing_zeros() as usize;
-                    children &= children - 1;
-                    let child = node.children[c];
-                    fetch(blas, child);
-                    debug_assert!(sp < STACK);
-                    stack.get_unchecked_mut(sp).write(Entry {
-                        node: child,
-                        rays: n.rays[c],
-                        dist: n.dist[c],
-                    });
-                    sp += 1;
-                }
-                // Nearest on top (and, at equal distances, the lowest slot), as the single walk.
-                for k in base + 1..sp {
-                    let x = stack.get_unchecked(k).assume_init();
-                    let mut j = k;
-                    while j > base && stack.get_unchecked(j - 1).assume_init().dist <= x.dist {
-                        let y = stack.get_unchecked(j - 1).assume_init();
-                        stack.get_unchecked_mut(j).write(y);
-                        j -= 1;
-                    }
-                    stack.get_unchecked_mut(j).write(x);
-                }
-            } else {
-                let leaf = cur & !LEAF_BIT;
-                while active != 0 {
-                    let r = active.trailing_zeros() as usize;
-                    active &= active - 1;
-                    let mut t_max = p.t_max[r];
-                    triangles(blas, &p, r, &mut best[r], &mut opaque).closest(leaf, &mut t_max);
-                    p.t_max[r] = t_max;
-                }
+pub(crate) unsafe fn closest<B: Backend, L: PacketLeaves<B>>(
+    root: u32,
+    p: &mut Packet<B>,
+    best: &mut [Hit; PACKET],
+    leaves: &mut L,
+) {
+    if root == EMPTY {
+        return;
+    }
+    let mut stack = [const { MaybeUninit::<Entry>::uninit() }; STACK];
+    let mut sp = 0usize;
+    let (mut cur, mut active) = (root, p.valid);
+    'walk: loop {
+        if active.count_ones() <= SPARSE {
+            // Diverged: each remaining ray walks this subtree alone.
+            while active != 0 {
+                let r = active.trailing_zeros() as usize;
+                active &= active - 1;
+                leaves.closest_alone(p, best, cur, r);
             }
-            loop {
-                if sp == 0 {
-                    break 'walk;
+        } else if cur & LEAF_BIT == 0 {
+            debug_assert!((cur as usize) < leaves.nodes().len());
+            let node = leaves.nodes().get_unchecked(cur as usize);
+            let n = p.node(node, active);
+            let mut children = n.children;
+            if children.count_ones() == 1 {
+                let c = children.trailing_zeros() as usize;
+                (cur, active) = (node.children[c], n.rays[c]);
+                continue 'walk;
+            }
+            let base = sp;
+            while children != 0 {
+                let c = children.trailing_zeros() as usize;
+                children &= children - 1;
+                let child = node.children[c];
+                leaves.fetch(child);
+                debug_assert!(sp < STACK);
+                stack.get_unchecked_mut(sp).write(Entry { node: child, rays: n.rays[c], dist: n.dist[c] });
+                sp += 1;
+            }
+            // Nearest on top (and, at equal distances, the lowest slot), as the single walk.
+            for k in base + 1..sp {
+                let x = stack.get_unchecked(k).assume_init();
+                let mut j = k;
+                while j > base && stack.get_unchecked(j - 1).assume_init().dist <= x.dist {
+                    let y = stack.get_unchecked(j - 1).assume_init();
+                    stack.get_unchecked_mut(j).write(y);
+                    j -= 1;
                 }
-                sp -= 1;
-                let e = stack.get_unchecked(sp).assume_init();
-                active = p.reaching(e.rays, e.dist);
-                if active != 0 {
-                    cur = e.node;
-                    continue 'walk;
-                }
+                stack.get_unchecked_mut(j).write(x);
+            }
+        } else {
+            leaves.closest_leaf(p, best, cur & !LEAF_BIT, active);
+        }
+        loop {
+            if sp == 0 {
+                break 'walk;
+            }
+            sp -= 1;
+            let e = stack.get_unchecked(sp).assume_init();
+            active = p.reaching(e.rays, e.dist);
+            if active != 0 {
+                cur = e.node;
+                continue 'walk;
             }
         }
     }
-    std::array::from_fn(|i| (p.valid & (1 << i) != 0 && best[i].primitive != u32::MAX).then_some(best[i]))
 }
 
-/// Whether each ray of `rays` (at most [`PACKET`]) hits anything in `blas`.
+/// Walks the hierarchy from `root` until every ray has a hit or none is left to find; returns
+/// the rays that have one (each then has `t_max` −∞).
 ///
 /// # Safety
-/// The CPU has `B`'s features.
+/// As for [`closest`].
 #[inline(always)]
-pub unsafe fn any<B: Backend>(blas: &Blas, rays: &[Ray]) -> [bool; PACKET] {
-    let mut p = Packet::<B>::empty();
-    p.load(rays);
+pub(crate) unsafe fn any<B: Backend, L: PacketLeaves<B>>(
+    root: u32,
+    p: &mut Packet<B>,
+    leaves: &mut L,
+) -> u32 {
     let mut done = 0u32;
-    let mut scratch = no_hit(0.0);
-    let mut opaque = Opaque;
-    if blas.root != EMPTY {
-        let mut stack = [const { MaybeUninit::<Entry>::uninit() }; STACK];
-        let mut sp = 0usize;
-        let (mut cur, mut active) = (blas.root, p.valid);
-        'walk: loop {
-            if active.count_ones() <= SPARSE || cur & LEAF_BIT != 0 {
-                // A leaf, or a diverged packet: each remaining ray on its own.
+    if root == EMPTY {
+        return done;
+    }
+    let mut stack = [const { MaybeUninit::<Entry>::uninit() }; STACK];
+    let mut sp = 0usize;
+    let (mut cur, mut active) = (root, p.valid);
+    'walk: loop {
+        if active.count_ones() <= SPARSE || cur & LEAF_BIT != 0 {
+            // A leaf, or a diverged packet.
+            let hits = if cur & LEAF_BIT != 0 {
+                leaves.any_leaf(p, cur & !LEAF_BIT, active)
+            } else {
+                let mut hits = 0;
                 while active != 0 {
                     let r = active.trailing_zeros() as usize;
                     active &= active - 1;
-                    let mut leaves = triangles(blas, &p, r, &mut scratch, &mut opaque);
-                    let hit = if cur & LEAF_BIT != 0 {
-                        leaves.any(cur & !LEAF_BIT, p.t_max[r])
-                    } else {
-                        walk::any::<B, _>(&blas.nodes, cur, p.ray(r), &mut leaves, p.t_max[r])
-                    };
-                    if hit {
-                        done |= 1 << r;
-                        // An interval no box test accepts: the ray takes no further part.
-                        p.t_max[r] = f32::NEG_INFINITY;
-                    }
+                    hits |= (leaves.any_alone(p, cur, r) as u32) << r;
                 }
-                if done == p.valid {
-                    break 'walk;
-                }
-            } else {
-                debug_assert!((cur as usize) < blas.nodes.len());
-                let node = blas.nodes.get_unchecked(cur as usize);
-                let n = p.node(node, active);
-                let mut children = n.children;
-                if children.count_ones() == 1 {
-                    let c = children.trailing_zeros() as usize;
-                    (cur, active) = (node.children[c], n.rays[c]);
-                    continue 'walk;
-                }
-                while children != 0 {
-                    let c = children.trailing_zeros() as usize;
-                    children &= children - 1;
-                    let child = node.children[c];
-                    fetch(blas, child);
-                    debug_assert!(sp < STACK);
-                    stack.get_unchecked_mut(sp).write(Entry { node: child, rays: n.rays[c], dist: 0.0 });
-                    sp += 1;
-                }
+                hits
+            };
+            done |= hits;
+            let mut h = hits;
+            while h != 0 {
+                // An interval no box test accepts: the ray takes no further part.
+                p.t_max[h.trailing_zeros() as usize] = f32::NEG_INFINITY;
+                h &= h - 1;
             }
-            loop {
-                if sp == 0 {
-                    break 'walk;
-                }
-                sp -= 1;
-                let e = stack.get_unchecked(sp).assume_init();
-                active = e.rays & !done;
-                if active != 0 {
-                    cur = e.node;
-                    continue 'walk;
-                }
+            if done == p.valid {
+                break 'walk;
+            }
+        } else {
+            debug_assert!((cur as usize) < leaves.nodes().len());
+            let node = leaves.nodes().get_unchecked(cur as usize);
+            let n = p.node(node, active);
+            let mut children = n.children;
+            if children.count_ones() == 1 {
+                let c = children.trailing_zeros() as usize;
+                (cur, active) = (node.children[c], n.rays[c]);
+                continue 'walk;
+            }
+            while children != 0 {
+                let c = children.trailing_zeros() as usize;
+                children &= children - 1;
+                let child = node.children[c];
+                leaves.fetch(child);
+                debug_assert!(sp < STACK);
+                stack.get_unchecked_mut(sp).write(Entry { node: child, rays: n.rays[c], dist: 0.0 });
+                sp += 1;
+            }
+        }
+        loop {
+            if sp == 0 {
+                break 'walk;
+            }
+            sp -= 1;
+            let e = stack.get_unchecked(sp).assume_init();
+            active = e.rays & !done;
+            if active != 0 {
+                cur = e.node;
+                continue 'walk;
             }
         }
     }
-    std::array::from_fn(|i| done & (1 << i) != 0)
+    done
 }
