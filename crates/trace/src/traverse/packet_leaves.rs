@@ -2,10 +2,10 @@
 //!
 //! A bottom-level leaf is a block of four triangles: each active ray runs the single-ray block
 //! test on it (the single-ray walk's `Triangles` leaves). A top-level leaf is an instance: the
-//! active rays are carried into its object space one by one (by [`Ray::transformed`], as the single-ray query carries
-//! them, with their current intervals) and walk its bottom level together as a packet, whose
-//! lanes are the same rays, so their hits and intervals come back to the same lanes. A ray
-//! that goes on alone takes the single-ray walk of its level.
+//! active rays are carried into its object space one by one (by [`Ray::transformed`], as the
+//! single-ray query carries them, with their current intervals) and walk its bottom level
+//! together as a packet whose lanes are the same rays, so their hits and intervals come back
+//! to the same lanes. A ray that goes on alone takes the single-ray walk of its level.
 
 use crate::blas::Blas;
 use crate::hit::{Hit, Opaque};
