@@ -1,10 +1,10 @@
 //! Our BVH against `obvhs` (a fast Rust BVH: PLOC build, compressed 8-wide CWBVH nodes): the
-//! same triangles, the same rays, one thread tracing (rays per second per core).
+//! same triangles, the same rays, one thread tracing (rays per second per core); and our
+//! packet queries beside our single-ray queries on primary and shadow rays (packets of
+//! [`PACKET`] consecutive rays: 8 × 4 pixel blocks for primary rays).
 //!
-//! Scene: a procedural terrain of 708 × 708 quads (1,002,528 triangles), displaced by a sum of
-//! ridged sine octaves into hills and canyons. Primary rays: a 512 × 512 pinhole camera looking
-//! across it. Incoherent rays: one cosine-weighted diffuse bounce from every primary hit.
-//! Shadow rays: from every primary hit towards a point light (any-hit).
+//! Scene and rays: [`common`] (a 1M-triangle terrain; primary rays in tiled Morton order, one
+//! diffuse bounce, shadow segments).
 //!
 //! Builds run on the global rayon pool (all cores) for both libraries and are timed by the wall
 //! clock; obvhs is built with its `medium_build` preset ("around the same build time as Embree
@@ -15,110 +15,18 @@
 //! library; the summary printed at the end gives both CPU-time and wall-clock rates and the
 //! load average, and the ratio to obvhs within each group.
 
+mod common;
+
+use common::{camera_rays, load_average, secondary_rays, terrain, thread_cpu};
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 use glam::{Affine3A, Vec3};
 use obvhs::cwbvh::builder::build_cwbvh_from_tris;
 use obvhs::cwbvh::CwBvh;
 use obvhs::{ray as ob, BvhBuildParams};
-use renderlab_trace::{Blas, Instance, Kernel, Ray, Tlas};
+use renderlab_trace::{Blas, Instance, Kernel, Ray, Tlas, PACKET};
 use std::hint::black_box;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
-
-const GRID: usize = 708;
-const SIZE: f32 = 100.0;
-const WIDTH: usize = 512;
-const HEIGHT: usize = 512;
-
-fn height(x: f32, z: f32) -> f32 {
-    let mut h = 0.0;
-    let (mut amp, mut freq) = (9.0f32, 0.045f32);
-    for o in 0..7 {
-        let a = o as f32 * 1.7 + 0.3;
-        let (s, c) = a.sin_cos();
-        let u = (x * c + z * s) * freq;
-        let v = (z * c - x * s) * freq;
-        // Ridged: sharp crests and round valleys.
-        h += amp * (1.0 - (u.sin() * (v * 0.8 + o as f32).cos()).abs() * 2.0);
-        amp *= 0.5;
-        freq *= 2.03;
-    }
-    h
-}
-
-/// The terrain: positions and indexed triangles.
-fn terrain() -> (Vec<Vec3>, Vec<[u32; 3]>) {
-    let n = GRID;
-    let mut pos = Vec::with_capacity((n + 1) * (n + 1));
-    for j in 0..=n {
-        for i in 0..=n {
-            let (x, z) = (i as f32 / n as f32 * SIZE, j as f32 / n as f32 * SIZE);
-            pos.push(Vec3::new(x, height(x, z), z));
-        }
-    }
-    let mut tris = Vec::with_capacity(2 * n * n);
-    let at = |i: usize, j: usize| (j * (n + 1) + i) as u32;
-    for j in 0..n {
-        for i in 0..n {
-            tris.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
-            tris.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
-        }
-    }
-    (pos, tris)
-}
-
-fn camera_rays() -> Vec<Ray> {
-    let eye = Vec3::new(50.0, 32.0, -12.0);
-    let forward = (Vec3::new(50.0, 0.0, 45.0) - eye).normalize();
-    let right = forward.cross(Vec3::Y).normalize();
-    let up = right.cross(forward);
-    let half = (55f32.to_radians() / 2.0).tan();
-    let mut rays = Vec::with_capacity(WIDTH * HEIGHT);
-    for y in 0..HEIGHT {
-        for x in 0..WIDTH {
-            let sx = ((x as f32 + 0.5) / WIDTH as f32 * 2.0 - 1.0) * half;
-            let sy = (1.0 - (y as f32 + 0.5) / HEIGHT as f32 * 2.0) * half;
-            rays.push(Ray::new(eye, (forward + right * sx + up * sy).normalize()));
-        }
-    }
-    rays
-}
-
-/// A small deterministic generator for the bounce directions.
-struct Pcg(u64);
-
-impl Pcg {
-    fn next(&mut self) -> f32 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        ((self.0 >> 40) as f32) / (1u64 << 24) as f32
-    }
-}
-
-/// From every primary hit: a cosine-weighted bounce about the facing geometric normal, and a
-/// shadow ray towards a point light.
-fn secondary_rays(blas: &Blas, pos: &[Vec3], tris: &[[u32; 3]], primary: &[Ray]) -> (Vec<Ray>, Vec<Ray>) {
-    let light = Vec3::new(20.0, 60.0, 80.0);
-    let mut rng = Pcg(7);
-    let (mut bounce, mut shadow) = (Vec::new(), Vec::new());
-    for ray in primary {
-        let Some(hit) = blas.closest_hit(ray) else { continue };
-        let [a, b, c] = tris[hit.primitive as usize].map(|i| pos[i as usize]);
-        let mut n = (b - a).cross(c - a).normalize();
-        if n.dot(ray.dir) > 0.0 {
-            n = -n;
-        }
-        let p = ray.at(hit.t) + n * 1e-3;
-        let (t, s) = n.any_orthonormal_pair();
-        let (r1, r2) = (rng.next(), rng.next());
-        let (sin_phi, cos_phi) = (2.0 * std::f32::consts::PI * r1).sin_cos();
-        let r = r2.sqrt();
-        let d = t * (r * cos_phi) + s * (r * sin_phi) + n * (1.0 - r2).max(0.0).sqrt();
-        bounce.push(Ray::new(p, d.normalize()));
-        let to_light = light - p;
-        shadow.push(Ray::segment(p, to_light.normalize(), 0.0, to_light.length()));
-    }
-    (bounce, shadow)
-}
 
 fn ob_ray(r: &Ray) -> ob::Ray {
     let v = |v: Vec3| glam_obvhs::vec3a(v.x, v.y, v.z);
@@ -157,6 +65,11 @@ fn trace_ours(blas: &Blas, rays: &[Ray]) -> f32 {
     rays.iter().map(|r| blas.closest_hit(r).map_or(0.0, |h| h.t)).sum()
 }
 
+/// The same with packets of consecutive rays.
+fn trace_packets(blas: &Blas, rays: &[Ray]) -> f32 {
+    rays.chunks(PACKET).map(|c| blas.closest_packet(c).iter().flatten().map(|h| h.t).sum::<f32>()).sum()
+}
+
 fn trace_obvhs(o: &Obvhs, rays: &[ob::Ray]) -> f32 {
     rays.iter().map(|r| ob_closest(o, r).map_or(0.0, |h| h.0)).sum()
 }
@@ -175,20 +88,6 @@ fn agreement(blas: &Blas, o: &Obvhs, rays: &[Ray]) -> (usize, usize, f64) {
         };
     }
     (rays.len(), ours_hits, agree as f64 / rays.len() as f64)
-}
-
-/// This thread's CPU time.
-fn thread_cpu() -> Duration {
-    let mut ts = libc::timespec { tv_sec: 0, tv_nsec: 0 };
-    // SAFETY: `ts` is a valid timespec to write to.
-    unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-    Duration::new(ts.tv_sec as u64, ts.tv_nsec as u32)
-}
-
-fn load_average() -> String {
-    std::fs::read_to_string("/proc/loadavg")
-        .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
-        .unwrap_or_default()
 }
 
 /// Per benchmark: rays traced, wall time, CPU time.
@@ -296,9 +195,16 @@ fn bench(c: &mut Criterion) {
     g.throughput(Throughput::Elements(primary.len() as u64));
     rays(&mut g, "primary", "ours", primary.len(), || trace_ours(&blas, black_box(&primary)));
     rays(&mut g, "primary", "obvhs", primary.len(), || trace_obvhs(&obvhs, black_box(&ob_primary)));
+    rays(&mut g, "primary", "ours-packet", primary.len(), || trace_packets(&blas, black_box(&primary)));
     rays(&mut g, "primary", "ours-scalar", primary.len(), || trace_ours(&scalar, black_box(&primary)));
     rays(&mut g, "primary", "ours-tlas", primary.len(), || {
         black_box(&primary).iter().map(|r| tlas.closest_hit(r).map_or(0.0, |h| h.t)).sum::<f32>()
+    });
+    rays(&mut g, "primary", "ours-tlas-packet", primary.len(), || {
+        black_box(&primary)
+            .chunks(PACKET)
+            .map(|c| tlas.closest_packet(c).iter().flatten().map(|h| h.t).sum::<f32>())
+            .sum::<f32>()
     });
     g.finish();
     loads.push(("primary".to_string(), before, load_average()));
@@ -318,6 +224,12 @@ fn bench(c: &mut Criterion) {
     g.throughput(Throughput::Elements(shadow.len() as u64));
     rays(&mut g, "shadow", "ours", shadow.len(), || {
         black_box(&shadow).iter().filter(|r| blas.any_hit(r)).count() as f32
+    });
+    rays(&mut g, "shadow", "ours-packet", shadow.len(), || {
+        black_box(&shadow)
+            .chunks(PACKET)
+            .map(|c| blas.any_packet(c).iter().filter(|&&o| o).count())
+            .sum::<usize>() as f32
     });
     rays(&mut g, "shadow", "obvhs", shadow.len(), || {
         black_box(&ob_shadow)

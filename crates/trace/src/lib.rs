@@ -56,7 +56,10 @@
 //! kernel ([`traverse::backend::Backend`]) computes a node's eight slab tests and a block's four
 //! triangle tests: [`traverse::avx2`] in vector registers, [`traverse::scalar`] lane by lane
 //! with the same operations in the same order, so both give the same hits bit for bit; the
-//! kernel is chosen at run time from the CPU's features ([`Kernel`]).
+//! kernel is chosen at run time from the CPU's features ([`Kernel`]). Packet queries
+//! ([`Blas::closest_packet`], [`Blas::any_packet`], and the same on a [`Tlas`]) walk up to
+//! [`PACKET`] coherent rays together over the same kernels ([`traverse::packet`]) and give each
+//! ray the single-ray hit.
 //!
 //! # Exactness
 //!
@@ -82,6 +85,7 @@ pub mod error;
 pub mod hit;
 pub mod kernel;
 pub mod node;
+pub mod packet;
 pub mod query;
 pub mod ray;
 pub mod tlas;
@@ -93,5 +97,6 @@ pub use blas::Blas;
 pub use error::BuildError;
 pub use hit::{Hit, HitFilter, Opaque};
 pub use kernel::Kernel;
+pub use packet::PACKET;
 pub use ray::Ray;
 pub use tlas::{Instance, Tlas};

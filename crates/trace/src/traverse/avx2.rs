@@ -1,12 +1,13 @@
 //! The AVX2 kernel: a wide node's eight slab tests in one 256-bit register per plane, a leaf's
-//! four watertight triangle tests in one 128-bit register per quantity. Each lane performs
+//! four watertight triangle tests in one 128-bit register per quantity; a packet's node test
+//! runs the node test for each of its rays and keeps the masks and least distances in registers. Each lane performs
 //! exactly the scalar kernel's operations (no fused multiply-adds, `maxps`/`minps` operand
 //! order as the scalar `max_ps`/`min_ps`), so both kernels produce the same bits.
 
 #![cfg(target_arch = "x86_64")]
 
-use crate::node::{TriBlock, WideNode};
-use crate::traverse::backend::{Backend, BlockHits, RayQuery, IZE};
+use crate::node::{TriBlock, WideNode, WIDTH};
+use crate::traverse::backend::{Backend, BlockHits, PacketNode, RayQuery, IZE, PACKET};
 use crate::triangle::{edge_functions_f64, TriRay};
 use std::arch::x86_64::*;
 
@@ -55,33 +56,34 @@ impl Backend for Avx2 {
     #[inline]
     #[target_feature(enable = "avx2")]
     unsafe fn node(p: &Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; 8]) {
-        let b = &node.bounds;
-        // Rows are 32-byte aligned ([`WideNode`] is `align(32)`, rows are 32 bytes); the row
-        // indices are 0..6 by construction of [`RayQuery`]. (Macros rather than closures keep
-        // every intrinsic inside this function's target features.)
-        macro_rules! slab {
-            ($a:expr, $r:expr) => {
-                _mm256_mul_ps(
-                    _mm256_sub_ps(_mm256_load_ps(b.get_unchecked($r).as_ptr()), p.org[$a]),
-                    p.inv[$a],
-                )
-            };
-        }
-        let near = _mm256_max_ps(
-            slab!(0, p.near[0]),
-            _mm256_max_ps(slab!(1, p.near[1]), _mm256_max_ps(slab!(2, p.near[2]), p.t_min)),
-        );
-        let far = _mm256_mul_ps(
-            _mm256_min_ps(
-                slab!(0, p.far[0]),
-                _mm256_min_ps(slab!(1, p.far[1]), _mm256_min_ps(slab!(2, p.far[2]), _mm256_set1_ps(t_max))),
-            ),
-            _mm256_set1_ps(IZE),
-        );
-        let hit = _mm256_cmp_ps::<_CMP_LE_OQ>(near, far);
+        let (near, hit) = slabs(p, node, t_max);
         let mut dist = [0.0f32; 8];
         _mm256_storeu_ps(dist.as_mut_ptr(), near);
         (_mm256_movemask_ps(hit) as u32, dist)
+    }
+
+    #[inline]
+    #[target_feature(enable = "avx2")]
+    unsafe fn node_packet(
+        p: &[Prepared; PACKET],
+        node: &WideNode,
+        active: u32,
+        t_max: &[f32; PACKET],
+    ) -> PacketNode {
+        let inf = _mm256_set1_ps(f32::INFINITY);
+        let mut least = inf;
+        let mut rows = [0u64; PACKET / 8];
+        let mut a = active;
+        while a != 0 {
+            let r = a.trailing_zeros() as usize;
+            a &= a - 1;
+            let (near, hit) = slabs(p.get_unchecked(r), node, *t_max.get_unchecked(r));
+            *rows.get_unchecked_mut(r / 8) |= (_mm256_movemask_ps(hit) as u32 as u64) << (8 * (r % 8));
+            least = _mm256_min_ps(_mm256_blendv_ps(inf, near, hit), least);
+        }
+        let mut dist = [0.0f32; WIDTH];
+        _mm256_storeu_ps(dist.as_mut_ptr(), least);
+        PacketNode::from_rows(&rows, dist)
     }
 
     #[inline]
@@ -139,6 +141,34 @@ impl Backend for Avx2 {
         }
         hits
     }
+}
+
+/// The slab tests of a node's eight children: the entry distances and which children the
+/// ray enters before `t_max`.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn slabs(p: &Prepared, node: &WideNode, t_max: f32) -> (__m256, __m256) {
+    let b = &node.bounds;
+    // Rows are 32-byte aligned ([`WideNode`] is `align(32)`, rows are 32 bytes); the row
+    // indices are 0..6 by construction of [`RayQuery`]. (Macros rather than closures keep
+    // every intrinsic inside this function's target features.)
+    macro_rules! slab {
+        ($a:expr, $r:expr) => {
+            _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b.get_unchecked($r).as_ptr()), p.org[$a]), p.inv[$a])
+        };
+    }
+    let near = _mm256_max_ps(
+        slab!(0, p.near[0]),
+        _mm256_max_ps(slab!(1, p.near[1]), _mm256_max_ps(slab!(2, p.near[2]), p.t_min)),
+    );
+    let far = _mm256_mul_ps(
+        _mm256_min_ps(
+            slab!(0, p.far[0]),
+            _mm256_min_ps(slab!(1, p.far[1]), _mm256_min_ps(slab!(2, p.far[2]), _mm256_set1_ps(t_max))),
+        ),
+        _mm256_set1_ps(IZE),
+    );
+    (near, _mm256_cmp_ps::<_CMP_LE_OQ>(near, far))
 }
 
 /// Recomputes the edge functions of the lanes in `lanes` in f64, as the scalar test does.

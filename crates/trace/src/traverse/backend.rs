@@ -12,13 +12,46 @@
 //! rounding can add a box the ray misses, never drop one it hits. So a ray aimed exactly at a
 //! vertex or edge reaches every triangle there, and the watertight test decides.
 
-use crate::node::{TriBlock, WideNode};
+use crate::node::{TriBlock, WideNode, WIDTH};
 use crate::ray::Ray;
 use crate::triangle::TriRay;
 use glam::Vec3;
 
 /// `1 + 2γ₃` with `γₙ = nε / (1 − nε)`, `ε = 2⁻²⁴`: Ize's factor for the far slab distance.
 pub const IZE: f32 = 1.0 + 2.0 * (3.0 * 5.960_464_5e-8 / (1.0 - 3.0 * 5.960_464_5e-8));
+
+/// Rays a packet query traces together (a multiple of 8, at most 32: ray masks are `u32`).
+pub const PACKET: usize = 32;
+
+/// What a packet's node test finds.
+#[derive(Clone, Copy, Debug)]
+pub struct PacketNode {
+    /// Bit `c` set for each child that some ray enters.
+    pub children: u32,
+    /// Per child, the rays that enter it (bit `r`: ray `r`).
+    pub rays: [u32; WIDTH],
+    /// Per child, the least entry distance among the rays that enter it (+∞ where none does).
+    pub dist: [f32; WIDTH],
+}
+
+impl PacketNode {
+    /// The result from each ray's child mask, eight rays to a `u64` (bit `c` of byte `r % 8`
+    /// of `rows[r / 8]`: ray `r` enters child `c`), and the distances.
+    #[inline(always)]
+    pub fn from_rows(rows: &[u64; PACKET / 8], dist: [f32; WIDTH]) -> PacketNode {
+        let mut rays = [0u32; WIDTH];
+        let mut any = 0u64;
+        for (h, &x) in rows.iter().enumerate() {
+            any |= x;
+            let t = transpose8(x);
+            for (c, r) in rays.iter_mut().enumerate() {
+                *r |= (((t >> (8 * c)) & 0xff) as u32) << (8 * h);
+            }
+        }
+        let children = (0..8).fold(0u64, |acc, b| acc | (any >> (8 * b))) as u32 & 0xff;
+        PacketNode { children, rays, dist }
+    }
+}
 
 /// What every kernel needs of a ray: its slab-test and triangle-test forms.
 #[derive(Clone, Copy, Debug)]
@@ -85,7 +118,7 @@ pub struct BlockHits {
 /// the CPU has them (see [`crate::kernel::Kernel::available`]).
 pub trait Backend {
     /// The ray in the kernel's own form (broadcast into registers, say).
-    type Prepared;
+    type Prepared: Copy;
 
     /// The ray's kernel form.
     ///
@@ -105,6 +138,48 @@ pub trait Backend {
     /// # Safety
     /// The CPU has the kernel's features.
     unsafe fn block(p: &Self::Prepared, block: &TriBlock, t_max: f32) -> BlockHits;
+
+    /// A packet's test of a wide node: each ray `r` of `active` runs [`Backend::node`] with
+    /// its own `t_max[r]`; which rays enter each child, and the least distance at which they
+    /// do. Kernels may override it with a faster form of the same results.
+    ///
+    /// # Safety
+    /// The CPU has the kernel's features.
+    #[inline(always)]
+    unsafe fn node_packet(
+        p: &[Self::Prepared; PACKET],
+        node: &WideNode,
+        active: u32,
+        t_max: &[f32; PACKET],
+    ) -> PacketNode {
+        let mut rows = [0u64; PACKET / 8];
+        let mut dist = [f32::INFINITY; WIDTH];
+        let mut a = active;
+        while a != 0 {
+            let r = a.trailing_zeros() as usize;
+            a &= a - 1;
+            let (mask, d) = Self::node(p.get_unchecked(r), node, *t_max.get_unchecked(r));
+            *rows.get_unchecked_mut(r / 8) |= (mask as u64) << (8 * (r % 8));
+            for c in 0..WIDTH {
+                if (mask >> c) & 1 != 0 && d[c] < dist[c] {
+                    dist[c] = d[c];
+                }
+            }
+        }
+        PacketNode::from_rows(&rows, dist)
+    }
+}
+
+/// Transposes an 8 × 8 bit matrix held in a `u64` (bit `c` of byte `r` goes to bit `r` of byte
+/// `c`), by three exchanges of off-diagonal blocks (Warren, "Hacker's Delight", 7-3).
+#[inline(always)]
+pub fn transpose8(mut x: u64) -> u64 {
+    let t = (x ^ (x >> 7)) & 0x00AA_00AA_00AA_00AA;
+    x ^= t ^ (t << 7);
+    let t = (x ^ (x >> 14)) & 0x0000_CCCC_0000_CCCC;
+    x ^= t ^ (t << 14);
+    let t = (x ^ (x >> 28)) & 0x0000_0000_F0F0_F0F0;
+    x ^ t ^ (t << 28)
 }
 
 /// `maxps(a, b)`: `b` unless `a > b` (so a NaN `a` is ignored).
@@ -124,5 +199,22 @@ pub fn min_ps(a: f32, b: f32) -> f32 {
         a
     } else {
         b
+    }
+}
+
+/// Asks the CPU to start loading every cache line of `x` (a node or leaf block about to be
+/// visited), so that the walk does not wait for it when it gets there. Does nothing on other
+/// architectures.
+#[inline(always)]
+pub fn prefetch<T>(x: &T) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        let p = x as *const T as *const i8;
+        let mut at = 0;
+        while at < std::mem::size_of::<T>() {
+            // SAFETY: prefetching is a hint that never faults; the address is inside `x`.
+            unsafe { std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(p.add(at)) };
+            at += 64;
+        }
     }
 }

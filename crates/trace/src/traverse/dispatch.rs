@@ -7,7 +7,9 @@ use crate::hit::{Hit, HitFilter};
 use crate::kernel::Kernel;
 use crate::ray::Ray;
 use crate::tlas::Tlas;
+use crate::traverse::backend::PACKET;
 use crate::traverse::leaves;
+use crate::traverse::packet_leaves;
 use crate::traverse::scalar::Scalar;
 
 /// Which query.
@@ -38,6 +40,26 @@ mod simd {
             Query::Closest => leaves::tlas_closest::<Avx2, _>(tlas, ray, filter),
             Query::Any => leaves::tlas_any::<Avx2, _>(tlas, ray, filter),
         }
+    }
+
+    #[target_feature(enable = "avx2")]
+    pub unsafe fn closest_packet(blas: &Blas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
+        packet_leaves::blas_closest::<Avx2>(blas, rays)
+    }
+
+    #[target_feature(enable = "avx2")]
+    pub unsafe fn any_packet(blas: &Blas, rays: &[Ray]) -> [bool; PACKET] {
+        packet_leaves::blas_any::<Avx2>(blas, rays)
+    }
+
+    #[target_feature(enable = "avx2")]
+    pub unsafe fn tlas_closest_packet(tlas: &Tlas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
+        packet_leaves::tlas_closest::<Avx2>(tlas, rays)
+    }
+
+    #[target_feature(enable = "avx2")]
+    pub unsafe fn tlas_any_packet(tlas: &Tlas, rays: &[Ray]) -> [bool; PACKET] {
+        packet_leaves::tlas_any::<Avx2>(tlas, rays)
     }
 }
 
@@ -73,5 +95,53 @@ pub fn tlas(tlas: &Tlas, ray: &Ray, filter: &mut impl HitFilter, query: Query) -
                 Query::Any => leaves::tlas_any::<Scalar, _>(tlas, ray, filter),
             }
         },
+    }
+}
+
+/// The closest hits of a packet of rays (at most [`PACKET`]) in one mesh, with its kernel.
+#[inline]
+pub fn closest_packet(blas: &Blas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
+    match blas.kernel {
+        // SAFETY: as in [`blas`].
+        #[cfg(target_arch = "x86_64")]
+        Kernel::Simd => unsafe { simd::closest_packet(blas, rays) },
+        // SAFETY: the scalar kernel needs no CPU feature.
+        _ => unsafe { packet_leaves::blas_closest::<Scalar>(blas, rays) },
+    }
+}
+
+/// Whether each ray of a packet (at most [`PACKET`]) hits anything in one mesh.
+#[inline]
+pub fn any_packet(blas: &Blas, rays: &[Ray]) -> [bool; PACKET] {
+    match blas.kernel {
+        // SAFETY: as in [`blas`].
+        #[cfg(target_arch = "x86_64")]
+        Kernel::Simd => unsafe { simd::any_packet(blas, rays) },
+        // SAFETY: the scalar kernel needs no CPU feature.
+        _ => unsafe { packet_leaves::blas_any::<Scalar>(blas, rays) },
+    }
+}
+
+/// The closest hits of a packet of rays (at most [`PACKET`]) in a scene, with its kernel.
+#[inline]
+pub fn tlas_closest_packet(tlas: &Tlas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
+    match tlas.kernel {
+        // SAFETY: as in [`blas`].
+        #[cfg(target_arch = "x86_64")]
+        Kernel::Simd => unsafe { simd::tlas_closest_packet(tlas, rays) },
+        // SAFETY: the scalar kernel needs no CPU feature.
+        _ => unsafe { packet_leaves::tlas_closest::<Scalar>(tlas, rays) },
+    }
+}
+
+/// Whether each ray of a packet (at most [`PACKET`]) hits anything in a scene.
+#[inline]
+pub fn tlas_any_packet(tlas: &Tlas, rays: &[Ray]) -> [bool; PACKET] {
+    match tlas.kernel {
+        // SAFETY: as in [`blas`].
+        #[cfg(target_arch = "x86_64")]
+        Kernel::Simd => unsafe { simd::tlas_any_packet(tlas, rays) },
+        // SAFETY: the scalar kernel needs no CPU feature.
+        _ => unsafe { packet_leaves::tlas_any::<Scalar>(tlas, rays) },
     }
 }

@@ -16,17 +16,17 @@ use std::marker::PhantomData;
 
 /// The best hit so far, starting as a sentinel at the ray's `t_max` that every real hit there
 /// precedes.
-fn no_hit(t_max: f32) -> Hit {
+pub(crate) fn no_hit(t_max: f32) -> Hit {
     Hit { t: t_max, u: 0.0, v: 0.0, primitive: u32::MAX, instance: u32::MAX }
 }
 
 /// Leaves of a bottom level: triangle blocks.
-struct Triangles<'a, B: Backend, F> {
-    blocks: &'a [TriBlock],
-    prepared: &'a B::Prepared,
-    instance: u32,
-    best: &'a mut Hit,
-    filter: &'a mut F,
+pub(crate) struct Triangles<'a, B: Backend, F> {
+    pub(crate) blocks: &'a [TriBlock],
+    pub(crate) prepared: &'a B::Prepared,
+    pub(crate) instance: u32,
+    pub(crate) best: &'a mut Hit,
+    pub(crate) filter: &'a mut F,
 }
 
 impl<B: Backend, F: HitFilter> Leaves for Triangles<'_, B, F> {
@@ -76,12 +76,12 @@ impl<B: Backend, F: HitFilter> Leaves for Triangles<'_, B, F> {
 }
 
 /// Leaves of the top level: instances.
-struct Instances<'a, B: Backend, F> {
-    tlas: &'a Tlas,
-    ray: &'a Ray,
-    best: &'a mut Hit,
-    filter: &'a mut F,
-    backend: PhantomData<B>,
+pub(crate) struct Instances<'a, B: Backend, F> {
+    pub(crate) tlas: &'a Tlas,
+    pub(crate) ray: &'a Ray,
+    pub(crate) best: &'a mut Hit,
+    pub(crate) filter: &'a mut F,
+    pub(crate) backend: PhantomData<B>,
 }
 
 impl<'a, B: Backend, F: HitFilter> Instances<'a, B, F> {

@@ -1,0 +1,320 @@
+//! The packet walk: up to [`PACKET`] rays share one traversal of a hierarchy, written once for
+//! both levels (`PacketLeaves` says what a leaf is: [`crate::traverse::packet_leaves`]).
+//!
+//! Every ray keeps its own interval, best hit and kernel form. At a node, each ray still
+//! active runs the kernel's own single-ray node test ([`Backend::node`], so every box decision
+//! is bit for bit the one the single-ray walk makes); a child is visited when any ray enters
+//! it, and only by the rays that do. A stack entry carries the child, the rays that entered
+//! it and the least entry distance among them; on popping, a ray stays only if that distance
+//! is within its own (possibly shortened) interval, the single-ray walk's test with a lower
+//! bound in place of the ray's own distance, so it can keep a ray the single walk would drop,
+//! never drop one it would keep. Children are entered nearest first by that least distance, and
+//! the ones pushed are prefetched (the walk waits on memory more than on arithmetic). At
+//! a leaf the active rays go on together (a bottom-level leaf: each runs the single-ray block
+//! test; an instance: they are carried into its space and walk its bottom level as a packet).
+//! When a node is reached by at most [`SPARSE`] rays the packet has diverged: each of them
+//! walks the subtree alone with the single-ray walk.
+//!
+//! Why the hits equal the single-ray query's: a ray tests a leaf's triangles only after its
+//! own conservative box test accepted every node on the way (with an interval no shorter than
+//! its final hit), so it reaches every leaf holding a hit it could return; and the closest
+//! hit is chosen by [`Hit::precedes`], which does not depend on the order in which leaves are
+//! tested. The any-hit walk retires a ray at its first hit.
+
+use crate::hit::Hit;
+use crate::node::{WideNode, EMPTY, LEAF_BIT};
+use crate::ray::Ray;
+use crate::traverse::backend::{Backend, PacketNode, RayQuery, IZE, PACKET};
+use crate::traverse::walk::STACK;
+use glam::Vec3;
+use std::mem::MaybeUninit;
+
+/// A node reached by this many active rays or fewer is walked by each of them alone.
+pub const SPARSE: u32 = 2;
+
+#[derive(Clone, Copy)]
+struct Entry {
+    node: u32,
+    rays: u32,
+    dist: f32,
+}
+
+/// A packet's rays in kernel form, with their intervals.
+pub(crate) struct Packet<B: Backend> {
+    /// Every lane written by [`Packet::finish`].
+    prepared: [MaybeUninit<B::Prepared>; PACKET],
+    /// Each ray's interval end, lowered by its hits (−∞ once it takes no further part).
+    pub(crate) t_max: [f32; PACKET],
+    /// Bit `i` set for each ray that can hit something.
+    pub(crate) valid: u32,
+}
+
+impl<B: Backend> Packet<B> {
+    /// A packet of no rays, to be filled in place by [`Packet::set`] and [`Packet::finish`]
+    /// (it is several kilobytes).
+    #[inline(always)]
+    pub(crate) fn empty() -> Packet<B> {
+        Packet {
+            prepared: [const { MaybeUninit::uninit() }; PACKET],
+            t_max: [f32::NEG_INFINITY; PACKET],
+            valid: 0,
+        }
+    }
+
+    /// Puts the ray of `q` in lane `r`.
+    ///
+    /// # Safety
+    /// The CPU has `B`'s features.
+    #[inline(always)]
+    pub(crate) unsafe fn set(&mut self, r: usize, q: &RayQuery) {
+        self.valid |= 1 << r;
+        self.t_max[r] = q.t_max;
+        self.prepared[r].write(B::prepare(q));
+    }
+
+    /// Gives every lane without a ray a harmless query that stays out of every mask.
+    ///
+    /// # Safety
+    /// The CPU has `B`'s features.
+    #[inline(always)]
+    pub(crate) unsafe fn finish(&mut self) {
+        let idle = RayQuery::new(&Ray::new(Vec3::ZERO, Vec3::X)).expect("a valid ray");
+        for r in 0..PACKET {
+            if self.valid & (1 << r) == 0 {
+                self.prepared[r].write(B::prepare(&idle));
+            }
+        }
+    }
+
+    /// The packet of `rays` (at most [`PACKET`]; invalid rays leave their lane empty).
+    ///
+    /// # Safety
+    /// The CPU has `B`'s features.
+    #[inline(always)]
+    pub(crate) unsafe fn load(&mut self, rays: &[Ray]) {
+        for (r, ray) in rays.iter().enumerate().take(PACKET) {
+            if let Some(q) = RayQuery::new(ray) {
+                self.set(r, &q);
+            }
+        }
+        self.finish();
+    }
+
+    /// Ray `r`'s kernel form.
+    ///
+    /// # Safety
+    /// The packet is finished.
+    #[inline(always)]
+    pub(crate) unsafe fn ray(&self, r: usize) -> &B::Prepared {
+        self.prepared.get_unchecked(r).assume_init_ref()
+    }
+
+    /// Which rays of `active` enter each child, and their least entry distance.
+    #[inline(always)]
+    unsafe fn node(&self, node: &WideNode, active: u32) -> PacketNode {
+        // SAFETY: every lane is initialised, and `MaybeUninit<T>` has the layout of `T`.
+        let prepared =
+            &*(&self.prepared as *const [MaybeUninit<B::Prepared>; PACKET] as *const [B::Prepared; PACKET]);
+        B::node_packet(prepared, node, active, &self.t_max)
+    }
+
+    /// The rays of `rays` whose interval still reaches distance `dist`.
+    #[inline(always)]
+    fn reaching(&self, rays: u32, dist: f32) -> u32 {
+        let mut keep = 0;
+        for (i, t) in self.t_max.iter().enumerate() {
+            keep |= ((dist <= *t * IZE) as u32) << i;
+        }
+        rays & keep
+    }
+}
+
+/// What a packet walk does at the leaves of one level, and for a ray that goes on alone.
+pub(crate) trait PacketLeaves<B: Backend> {
+    /// The hierarchy's nodes.
+    fn nodes(&self) -> &[WideNode];
+
+    /// Starts loading what `child` refers to.
+    ///
+    /// # Safety
+    /// `child` comes from this hierarchy.
+    unsafe fn fetch(&self, child: u32);
+
+    /// The rays of `active` look for closer hits in leaf `leaf` (its reference without
+    /// [`LEAF_BIT`]), lowering their `t_max` to them.
+    ///
+    /// # Safety
+    /// The CPU has `B`'s features; the packet is finished.
+    unsafe fn closest_leaf(&mut self, p: &mut Packet<B>, best: &mut [Hit; PACKET], leaf: u32, active: u32);
+
+    /// Ray `r` looks for closer hits in the subtree at `node` with the single-ray walk.
+    ///
+    /// # Safety
+    /// As for [`PacketLeaves::closest_leaf`].
+    unsafe fn closest_alone(&mut self, p: &mut Packet<B>, best: &mut [Hit; PACKET], node: u32, r: usize);
+
+    /// The rays of `active` that have a hit in leaf `leaf`.
+    ///
+    /// # Safety
+    /// As for [`PacketLeaves::closest_leaf`].
+    unsafe fn any_leaf(&mut self, p: &Packet<B>, leaf: u32, active: u32) -> u32;
+
+    /// Whether ray `r` has a hit in the subtree at `node` (single-ray walk).
+    ///
+    /// # Safety
+    /// As for [`PacketLeaves::closest_leaf`].
+    unsafe fn any_alone(&mut self, p: &Packet<B>, node: u32, r: usize) -> bool;
+}
+
+/// Walks the hierarchy from `root` for each ray's closest hit, updating `best` and `p.t_max`.
+///
+/// # Safety
+/// The CPU has `B`'s features; the packet is finished; `root` and the leaves come from one
+/// build.
+#[inline(always)]
+pub(crate) unsafe fn closest<B: Backend, L: PacketLeaves<B>>(
+    root: u32,
+    p: &mut Packet<B>,
+    best: &mut [Hit; PACKET],
+    leaves: &mut L,
+) {
+    if root == EMPTY {
+        return;
+    }
+    let mut stack = [const { MaybeUninit::<Entry>::uninit() }; STACK];
+    let mut sp = 0usize;
+    let (mut cur, mut active) = (root, p.valid);
+    'walk: loop {
+        if active.count_ones() <= SPARSE {
+            // Diverged: each remaining ray walks this subtree alone.
+            while active != 0 {
+                let r = active.trailing_zeros() as usize;
+                active &= active - 1;
+                leaves.closest_alone(p, best, cur, r);
+            }
+        } else if cur & LEAF_BIT == 0 {
+            debug_assert!((cur as usize) < leaves.nodes().len());
+            let node = leaves.nodes().get_unchecked(cur as usize);
+            let n = p.node(node, active);
+            let mut children = n.children;
+            if children.count_ones() == 1 {
+                let c = children.trailing_zeros() as usize;
+                (cur, active) = (node.children[c], n.rays[c]);
+                continue 'walk;
+            }
+            let base = sp;
+            while children != 0 {
+                let c = children.trailing_zeros() as usize;
+                children &= children - 1;
+                let child = node.children[c];
+                leaves.fetch(child);
+                debug_assert!(sp < STACK);
+                stack.get_unchecked_mut(sp).write(Entry { node: child, rays: n.rays[c], dist: n.dist[c] });
+                sp += 1;
+            }
+            // Nearest on top (and, at equal distances, the lowest slot), as the single walk.
+            for k in base + 1..sp {
+                let x = stack.get_unchecked(k).assume_init();
+                let mut j = k;
+                while j > base && stack.get_unchecked(j - 1).assume_init().dist <= x.dist {
+                    let y = stack.get_unchecked(j - 1).assume_init();
+                    stack.get_unchecked_mut(j).write(y);
+                    j -= 1;
+                }
+                stack.get_unchecked_mut(j).write(x);
+            }
+        } else {
+            leaves.closest_leaf(p, best, cur & !LEAF_BIT, active);
+        }
+        loop {
+            if sp == 0 {
+                break 'walk;
+            }
+            sp -= 1;
+            let e = stack.get_unchecked(sp).assume_init();
+            active = p.reaching(e.rays, e.dist);
+            if active != 0 {
+                cur = e.node;
+                continue 'walk;
+            }
+        }
+    }
+}
+
+/// Walks the hierarchy from `root` until every ray has a hit or none is left to find; returns
+/// the rays that have one (each then has `t_max` −∞).
+///
+/// # Safety
+/// As for [`closest`].
+#[inline(always)]
+pub(crate) unsafe fn any<B: Backend, L: PacketLeaves<B>>(
+    root: u32,
+    p: &mut Packet<B>,
+    leaves: &mut L,
+) -> u32 {
+    let mut done = 0u32;
+    if root == EMPTY {
+        return done;
+    }
+    let mut stack = [const { MaybeUninit::<Entry>::uninit() }; STACK];
+    let mut sp = 0usize;
+    let (mut cur, mut active) = (root, p.valid);
+    'walk: loop {
+        if active.count_ones() <= SPARSE || cur & LEAF_BIT != 0 {
+            // A leaf, or a diverged packet.
+            let hits = if cur & LEAF_BIT != 0 {
+                leaves.any_leaf(p, cur & !LEAF_BIT, active)
+            } else {
+                let mut hits = 0;
+                while active != 0 {
+                    let r = active.trailing_zeros() as usize;
+                    active &= active - 1;
+                    hits |= (leaves.any_alone(p, cur, r) as u32) << r;
+                }
+                hits
+            };
+            done |= hits;
+            let mut h = hits;
+            while h != 0 {
+                // An interval no box test accepts: the ray takes no further part.
+                p.t_max[h.trailing_zeros() as usize] = f32::NEG_INFINITY;
+                h &= h - 1;
+            }
+            if done == p.valid {
+                break 'walk;
+            }
+        } else {
+            debug_assert!((cur as usize) < leaves.nodes().len());
+            let node = leaves.nodes().get_unchecked(cur as usize);
+            let n = p.node(node, active);
+            let mut children = n.children;
+            if children.count_ones() == 1 {
+                let c = children.trailing_zeros() as usize;
+                (cur, active) = (node.children[c], n.rays[c]);
+                continue 'walk;
+            }
+            while children != 0 {
+                let c = children.trailing_zeros() as usize;
+                children &= children - 1;
+                let child = node.children[c];
+                leaves.fetch(child);
+                debug_assert!(sp < STACK);
+                stack.get_unchecked_mut(sp).write(Entry { node: child, rays: n.rays[c], dist: 0.0 });
+                sp += 1;
+            }
+        }
+        loop {
+            if sp == 0 {
+                break 'walk;
+            }
+            sp -= 1;
+            let e = stack.get_unchecked(sp).assume_init();
+            active = e.rays & !done;
+            if active != 0 {
+                cur = e.node;
+                continue 'walk;
+            }
+        }
+    }
+    done
+}

@@ -1,0 +1,274 @@
+//! Packet queries against single-ray queries and brute force: every ray of a packet gets the
+//! single-ray hit bit for bit (distance, barycentrics, primitive: tolerance zero, since each ray
+//! runs the same triangle test on the same triangles), and occlusion exactly when a closest
+//! hit exists, on both kernels; packets may be short and hold invalid rays.
+
+mod common;
+
+use common::*;
+use glam::{Affine3A, Vec3};
+use proptest::prelude::*;
+use renderlab_trace::{brute, Blas, Hit, Instance, Ray, Tlas, PACKET};
+
+/// Checks one packet on every kernel's hierarchy.
+fn check_packet(blases: &[Blas], tris: &[[Vec3; 3]], rays: &[Ray]) -> Result<(), TestCaseError> {
+    for blas in blases {
+        let closest = blas.closest_packet(rays);
+        let any = blas.any_packet(rays);
+        for (i, (c, a)) in closest.iter().zip(any).enumerate() {
+            let Some(ray) = rays.get(i) else {
+                prop_assert_eq!((*c, a), (None, false), "lane {} past the packet's end", i);
+                continue;
+            };
+            let expected = brute::closest_hit_mesh(tris, ray, Hit::NO_INSTANCE);
+            prop_assert_eq!(*c, blas.closest_hit(ray), "kernel {} lane {} ray {:?}", blas.kernel(), i, ray);
+            prop_assert_eq!(*c, expected, "kernel {} lane {} against brute force", blas.kernel(), i);
+            prop_assert_eq!(a, expected.is_some(), "kernel {} lane {} any-hit", blas.kernel(), i);
+        }
+    }
+    Ok(())
+}
+
+fn blases(tris: &[[Vec3; 3]]) -> Vec<Blas> {
+    kernels().into_iter().map(|k| Blas::from_triangles(tris).unwrap().with_kernel(k)).collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 192, ..ProptestConfig::default() })]
+
+    /// Coherent packets: rays from one origin towards points of the mesh (some with finite
+    /// intervals), and incoherent ones from random origins.
+    #[test]
+    fn packets_match_single_rays(
+        tris in mesh(80),
+        seeds in prop::collection::vec(ray_seed(), 1..=PACKET),
+        shared_origin in any::<bool>(),
+    ) {
+        let blases = blases(&tris);
+        let instances = [Instance::new(0, Affine3A::IDENTITY)];
+        let meshes = [tris.clone()];
+        let origin = seeds[0].1;
+        let rays: Vec<Ray> = seeds
+            .iter()
+            .map(|&(seed, o)| ray(&meshes, &instances, seed, if shared_origin { origin } else { o }))
+            .collect();
+        check_packet(&blases, &tris, &rays)?;
+    }
+
+    /// Packets in scenes of instanced meshes: each ray's hit equals the single-ray scene
+    /// query's and brute force's, instance included.
+    #[test]
+    fn scene_packets_match_single_rays(
+        meshes in prop::collection::vec(mesh(40), 1..4),
+        placements in prop::collection::vec((0u32..4, transform()), 0..6),
+        seeds in prop::collection::vec(ray_seed(), 1..=PACKET),
+        shared_origin in any::<bool>(),
+    ) {
+        let instances: Vec<Instance> =
+            placements.iter().map(|&(m, t)| Instance::new(m % meshes.len() as u32, t)).collect();
+        let tlases: Vec<Tlas> = kernels().into_iter().map(|k| scene(&meshes, &instances, k)).collect();
+        let origin = seeds[0].1;
+        let rays: Vec<Ray> = seeds
+            .iter()
+            .map(|&(seed, o)| ray(&meshes, &instances, seed, if shared_origin { origin } else { o }))
+            .collect();
+        for tlas in &tlases {
+            let closest = tlas.closest_packet(&rays);
+            let any = tlas.any_packet(&rays);
+            for (i, r) in rays.iter().enumerate() {
+                let expected = brute::closest_hit(&meshes, &instances, r);
+                prop_assert_eq!(closest[i], tlas.closest_hit(r), "kernel {} lane {} ray {:?}", tlas.kernel(), i, r);
+                prop_assert_eq!(closest[i], expected, "kernel {} lane {} against brute force", tlas.kernel(), i);
+                prop_assert_eq!(any[i], expected.is_some(), "kernel {} lane {} any-hit", tlas.kernel(), i);
+            }
+            for i in rays.len()..PACKET {
+                prop_assert_eq!((closest[i], any[i]), (None, false));
+            }
+        }
+    }
+
+    /// Invalid rays (zero or non-finite direction, empty interval) beside valid ones.
+    #[test]
+    fn invalid_rays_hit_nothing_in_a_packet(
+        tris in mesh(40),
+        seeds in prop::collection::vec(ray_seed(), PACKET),
+        broken in prop::collection::vec(0u8..5, PACKET),
+    ) {
+        let blases = blases(&tris);
+        let instances = [Instance::new(0, Affine3A::IDENTITY)];
+        let meshes = [tris.clone()];
+        let rays: Vec<Ray> = seeds
+            .iter()
+            .zip(&broken)
+            .map(|(&(seed, o), &b)| {
+                let mut r = ray(&meshes, &instances, seed, o);
+                match b {
+                    0 => r.dir = Vec3::ZERO,
+                    1 => r.origin.x = f32::NAN,
+                    2 => (r.t_min, r.t_max) = (2.0, 1.0),
+                    _ => {}
+                }
+                r
+            })
+            .collect();
+        check_packet(&blases, &tris, &rays)?;
+    }
+}
+
+/// A height field of a few thousand triangles (many wide levels), alone and twice in a scene,
+/// and packets of primary-like rays over 4-pixel-wide blocks of a small image ([`PACKET`] / 4 rows), some shortened into shadow-like segments.
+#[test]
+fn coherent_packets_on_a_larger_mesh() {
+    let mut tris = Vec::new();
+    let n = 40;
+    let h = |x: f32, z: f32| (x * 7.3).sin() * (z * 5.1).cos() * 0.3;
+    for i in 0..n {
+        for j in 0..n {
+            let (x0, z0, x1, z1) = (
+                i as f32 / n as f32,
+                j as f32 / n as f32,
+                (i + 1) as f32 / n as f32,
+                (j + 1) as f32 / n as f32,
+            );
+            let p = |x: f32, z: f32| Vec3::new(x, h(x, z), z);
+            tris.push([p(x0, z0), p(x1, z0), p(x1, z1)]);
+            tris.push([p(x0, z0), p(x1, z1), p(x0, z1)]);
+        }
+    }
+    let blases = blases(&tris);
+    // The same mesh twice in a scene, the second turned and raised (packets enter both).
+    let meshes = vec![tris.clone()];
+    let instances = [
+        Instance::new(0, Affine3A::IDENTITY),
+        Instance::new(
+            0,
+            Affine3A::from_rotation_y(0.3) * Affine3A::from_translation(Vec3::new(0.1, 0.15, -0.1)),
+        ),
+    ];
+    let tlases: Vec<Tlas> = kernels().into_iter().map(|k| scene(&meshes, &instances, k)).collect();
+    let eye = Vec3::new(0.5, 1.2, -0.6);
+    let (w, hgt) = (64, 48);
+    let mut hits = 0;
+    for by in (0..hgt).step_by(PACKET / 4) {
+        for bx in (0..w).step_by(4) {
+            let rays: Vec<Ray> = (0..PACKET)
+                .map(|k| {
+                    let (x, y) = (bx + k % 4, by + k / 4);
+                    let target =
+                        Vec3::new(x as f32 / w as f32 * 0.9 + 0.05, 0.0, y as f32 / hgt as f32 * 0.9 + 0.05);
+                    let mut r = Ray::new(eye, target - eye);
+                    if (bx / 4 + by) % 3 == 0 {
+                        r.t_max = 0.9;
+                    }
+                    r
+                })
+                .collect();
+            hits += rays.iter().filter(|r| blases[0].closest_hit(r).is_some()).count();
+            check_packet(&blases, &tris, &rays).unwrap();
+            for tlas in &tlases {
+                let (closest, any) = (tlas.closest_packet(&rays), tlas.any_packet(&rays));
+                for (i, r) in rays.iter().enumerate() {
+                    let expected = brute::closest_hit(&meshes, &instances, r);
+                    assert_eq!(closest[i], expected, "kernel {} lane {i} ray {r:?}", tlas.kernel());
+                    assert_eq!(closest[i], tlas.closest_hit(r));
+                    assert_eq!(any[i], expected.is_some());
+                }
+            }
+        }
+    }
+    assert!(hits > w * hgt / 2, "only {hits} of {} rays hit", w * hgt);
+}
+
+#[test]
+#[should_panic(expected = "at most")]
+fn a_packet_of_more_than_packet_rays_is_refused() {
+    let blas = Blas::from_triangles(&[[Vec3::ZERO, Vec3::X, Vec3::Y]]).unwrap();
+    blas.closest_packet(&[Ray::new(Vec3::Z, -Vec3::Z); PACKET + 1]);
+}
+
+#[test]
+fn transpose8_moves_bit_c_of_byte_r_to_bit_r_of_byte_c() {
+    use renderlab_trace::traverse::backend::transpose8;
+    let mut state = 99u64;
+    for _ in 0..100 {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        let x = state;
+        let t = transpose8(x);
+        for r in 0..8 {
+            for c in 0..8 {
+                assert_eq!((t >> (8 * c + r)) & 1, (x >> (8 * r + c)) & 1, "{x:#x} r {r} c {c}");
+            }
+        }
+    }
+}
+
+/// The AVX2 packet node test against the scalar one on every node of a hierarchy: the same
+/// rays per child and the same least distances, bit for bit.
+#[test]
+#[cfg(target_arch = "x86_64")]
+fn packet_node_tests_agree_between_kernels() {
+    use renderlab_trace::traverse::avx2::Avx2;
+    use renderlab_trace::traverse::backend::{Backend, RayQuery};
+    use renderlab_trace::traverse::scalar::Scalar;
+    if !renderlab_trace::Kernel::Simd.available() {
+        return;
+    }
+    let mut tris = Vec::new();
+    let n = 24;
+    for i in 0..n {
+        for j in 0..n {
+            let p = |x: usize, z: usize| {
+                let (x, z) = (x as f32 / n as f32, z as f32 / n as f32);
+                Vec3::new(x, (x * 9.0).sin() * (z * 7.0).cos() * 0.2, z)
+            };
+            tris.push([p(i, j), p(i + 1, j), p(i + 1, j + 1)]);
+            tris.push([p(i, j), p(i + 1, j + 1), p(i, j + 1)]);
+        }
+    }
+    let blas = Blas::from_triangles(&tris).unwrap();
+    let mut state = 7u64;
+    let mut rnd = move || {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (state >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let idle = RayQuery::new(&Ray::new(Vec3::ZERO, Vec3::X)).unwrap();
+    for packet in 0..40 {
+        // Even packets share an origin and look down at the mesh; odd ones are random.
+        let eye = Vec3::new(rnd(), 1.0 + rnd(), rnd() - 1.0);
+        let queries: [RayQuery; PACKET] = std::array::from_fn(|_| {
+            let (o, d) = if packet % 2 == 0 {
+                (eye, Vec3::new(rnd() - 0.2, -1.0 - rnd(), rnd() + 0.5))
+            } else {
+                (Vec3::new(rnd(), rnd(), rnd()) * 2.0 - 0.5, Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5))
+            };
+            let mut r = Ray::new(o, d);
+            if rnd() < 0.3 {
+                r.t_max = rnd() * 2.0;
+            }
+            RayQuery::new(&r).unwrap_or(idle)
+        });
+        let t_max: [f32; PACKET] = std::array::from_fn(|i| queries[i].t_max);
+        let all = u32::MAX >> (32 - PACKET);
+        // SAFETY: the CPU has AVX2 (checked above).
+        unsafe {
+            let ps: [_; PACKET] = std::array::from_fn(|i| Scalar::prepare(&queries[i]));
+            let pa: [_; PACKET] = std::array::from_fn(|i| Avx2::prepare(&queries[i]));
+            for node in blas.nodes() {
+                for active in [all, all & 0x5a5a_a5a5, all & 0x0000_0007, all & 0x8000_0001] {
+                    let s = Scalar::node_packet(&ps, node, active, &t_max);
+                    let a = Avx2::node_packet(&pa, node, active, &t_max);
+                    assert_eq!(
+                        (s.children, s.rays),
+                        (a.children, a.rays),
+                        "packet {packet} active {active:#x}"
+                    );
+                    assert_eq!(s.dist.map(f32::to_bits), a.dist.map(f32::to_bits), "packet {packet}");
+                    for c in 0..8 {
+                        assert_eq!(s.rays[c] & !active, 0, "only active rays enter children");
+                        assert_eq!(s.children >> c & 1 != 0, s.rays[c] != 0);
+                    }
+                }
+            }
+        }
+    }
+}
