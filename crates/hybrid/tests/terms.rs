@@ -374,3 +374,30 @@ fn a_broken_shadow_stage_shows_in_its_own_term() {
     let (whole_ok, whole_bad) = (psnr(&good.hdr), psnr(&broken.hdr));
     assert!((whole_ok - whole_bad).abs() < 1.0, "whole frame: working {whole_ok} dB, broken {whole_bad} dB");
 }
+
+/// A path handed its first hit (as the reference hands every path of a pixel the hit of the
+/// pixel's one camera ray) is the path that finds it itself, bit for bit, one ray fewer.
+#[test]
+fn a_shared_first_hit_changes_nothing_but_the_ray_count() {
+    use renderlab_hybrid::rng::{Rng, Stream};
+    let (scene, cam) = mixed();
+    let r = HybridRenderer::new(&scene).unwrap();
+    let g = renderlab_scene::GBuffer::empty(cam);
+    let pt = r.path_tracer;
+    for i in (0..g.opaque.len()).step_by(7) {
+        let dir = g.view_dir(i);
+        let first = r.accel().closest(cam.position, dir, f32::INFINITY);
+        for k in 0..4 {
+            let (mut a, mut b) = (Rng::new(3, i as u64, Stream(6)), Rng::new(3, i as u64, Stream(6)));
+            for _ in 0..k {
+                a.f32();
+                b.f32();
+            }
+            let (mut ra, mut rb) = (0, 0);
+            let own = pt.trace(&scene, r.accel(), cam.position, dir, &mut a, &mut ra);
+            let shared = pt.trace_from(&scene, r.accel(), cam.position, dir, first, &mut b, &mut rb);
+            assert_eq!(own, shared, "pixel {i}");
+            assert_eq!(ra, rb + 1, "pixel {i}");
+        }
+    }
+}

@@ -111,9 +111,11 @@ impl PathTracer {
             let rays = par_pixels(&mut img, camera.width, |i, out| {
                 let mut rng = Rng::new(seed, i as u64, stream);
                 let dir = g.view_dir(i);
-                let mut rays = 0;
+                // The pixel-centre ray is the same for every path: traced once.
+                let mut rays = 1;
+                let first = accel.closest(camera.position, dir, f32::INFINITY);
                 for _ in 0..half {
-                    let p = self.trace(scene, accel, camera.position, dir, &mut rng, &mut rays);
+                    let p = self.trace_from(scene, accel, camera.position, dir, first, &mut rng, &mut rays);
                     for (sum, t) in out.terms.iter_mut().zip(p.terms) {
                         *sum += t;
                     }

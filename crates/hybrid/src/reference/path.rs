@@ -23,6 +23,7 @@ use crate::terms::score::PixelKind;
 use crate::terms::term::Term;
 use glam::Vec3;
 use renderlab_scene::HybridScene;
+use renderlab_trace::Hit;
 
 /// One path's estimate, by term.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -64,6 +65,27 @@ impl PathTracer {
         rng: &mut Rng,
         rays: &mut u64,
     ) -> PathSample {
+        *rays += 1;
+        let first = accel.closest(origin, dir, f32::INFINITY);
+        self.trace_from(scene, accel, origin, dir, first, rng, rays)
+    }
+
+    /// [`Self::trace`] with its first segment's hit already found (`first`: the closest hit
+    /// along `origin + t·dir`, not counted in `rays`). Every path of a pixel starts with the
+    /// same pixel-centre ray, which draws no random number, so the reference traces it once
+    /// per pixel and hands its hit to every path: the same estimate, one ray fewer per path.
+    #[allow(clippy::too_many_arguments)]
+    pub fn trace_from(
+        &self,
+        scene: &HybridScene,
+        accel: &Accel,
+        origin: Vec3,
+        dir: Vec3,
+        first: Option<Hit>,
+        rng: &mut Rng,
+        rays: &mut u64,
+    ) -> PathSample {
+        let mut first = Some(first);
         let slot = |t: Term| t.slot().expect("a radiance term");
         let mut out = PathSample { terms: [Vec3::ZERO; 5], kind: PixelKind::Sky };
         let mut route = Route::Camera;
@@ -83,8 +105,13 @@ impl PathTracer {
         // directly).
         let mut gathers_area = false;
         for depth in 0..self.max_depth {
-            *rays += 1;
-            let hit = accel.closest(origin, dir, f32::INFINITY);
+            let hit = match first.take() {
+                Some(hit) => hit,
+                None => {
+                    *rays += 1;
+                    accel.closest(origin, dir, f32::INFINITY)
+                }
+            };
             if gathers_area {
                 let t_max = hit.as_ref().map_or(f32::INFINITY, |h| h.t);
                 let c = throughput * area_lights_on_segment(scene, origin, dir, t_max);
