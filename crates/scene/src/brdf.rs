@@ -61,11 +61,24 @@ pub fn f0(sp: &ShadingPoint) -> Vec3 {
 /// horizon. Transmitted light (glass) is not part of it: `kd` also loses the transmitted
 /// fraction, which the translucency stages handle.
 pub fn eval(sp: &ShadingPoint, v: Vec3, l: Vec3) -> Vec3 {
+    eval_lobes(sp, v, l).0
+}
+
+/// The diffuse lobe of [`eval`] alone, `kd · base_colour / π · (n·l)` with the same `kd`: the
+/// share of `eval` that the diffuse indirect term gathers (the rest is the specular lobe's).
+pub fn eval_diffuse(sp: &ShadingPoint, v: Vec3, l: Vec3) -> Vec3 {
+    eval_lobes(sp, v, l).1
+}
+
+/// [`eval`] and [`eval_diffuse`] from one evaluation (the path tracer splits each scattered
+/// ray's weight by lobe): `(whole, diffuse lobe)`.
+#[inline]
+pub fn eval_lobes(sp: &ShadingPoint, v: Vec3, l: Vec3) -> (Vec3, Vec3) {
     let n = sp.normal;
     let n_dot_l = n.dot(l);
     let n_dot_v = n.dot(v);
     if n_dot_l <= 0.0 || n_dot_v <= 0.0 {
-        return Vec3::ZERO;
+        return (Vec3::ZERO, Vec3::ZERO);
     }
     let h = (v + l).normalize();
     let n_dot_h = n.dot(h).max(0.0);
@@ -75,21 +88,8 @@ pub fn eval(sp: &ShadingPoint, v: Vec3, l: Vec3) -> Vec3 {
     let g = g_smith(n_dot_v, n_dot_l, sp.roughness);
     let specular = f * (d * g / (4.0 * n_dot_v * n_dot_l).max(1e-7));
     let kd = (Vec3::ONE - f) * ((1.0 - sp.metallic) * (1.0 - sp.transmission));
-    (kd * sp.base_color / PI + specular) * n_dot_l
-}
-
-/// The diffuse lobe of [`eval`] alone, `kd · base_colour / π · (n·l)` with the same `kd`: the
-/// share of `eval` that the diffuse indirect term gathers (the rest is the specular lobe's).
-pub fn eval_diffuse(sp: &ShadingPoint, v: Vec3, l: Vec3) -> Vec3 {
-    let n = sp.normal;
-    let n_dot_l = n.dot(l);
-    if n_dot_l <= 0.0 || n.dot(v) <= 0.0 {
-        return Vec3::ZERO;
-    }
-    let h = (v + l).normalize();
-    let f = fresnel_schlick(v.dot(h).max(0.0), f0(sp));
-    let kd = (Vec3::ONE - f) * ((1.0 - sp.metallic) * (1.0 - sp.transmission));
-    kd * sp.base_color / PI * n_dot_l
+    let diffuse = kd * sp.base_color / PI;
+    ((diffuse + specular) * n_dot_l, diffuse * n_dot_l)
 }
 
 #[cfg(test)]

@@ -16,6 +16,16 @@ pub const FPS: Whole<u32> = Whole::new(1, 1000);
 /// The range of `--time-step`, seconds between frames.
 pub const TIME_STEP: Interval = Interval::above(0.0, 60.0);
 
+/// Refuses a sequence of `frames` frames of `(width, height)` holding more than `max`
+/// pixels in all, naming the flags.
+pub fn check_sequence_pixels(frames: u32, (width, height): (u32, u32), max: u64) -> Result<()> {
+    let total = u64::from(frames) * u64::from(width) * u64::from(height);
+    if total > max {
+        anyhow::bail!("--frames/--size: {total} pixels in all exceeds {max} (fewer or smaller frames)");
+    }
+    Ok(())
+}
+
 /// Renders a `water` or `smoke` sequence into `out` (PNG frames and the APNG, see
 /// [`FrameSink`]) with a progress bar, mapping a noise-parameter error to its flag with
 /// `flag_error` (a command's use of [`flag_error`]). Returns the milliseconds per frame.

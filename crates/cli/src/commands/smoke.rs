@@ -2,7 +2,7 @@
 
 use crate::args::range::{finite_in, in_range, Interval, Whole};
 use crate::args::size::size_in;
-use crate::commands::sequence::{flag_error, write_sequence, FPS, TIME_STEP};
+use crate::commands::sequence::{check_sequence_pixels, flag_error, write_sequence, FPS, TIME_STEP};
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
 use glam::Vec3;
@@ -164,10 +164,7 @@ fn smoke_flag_error(e: renderlab_noise::NoiseError) -> anyhow::Error {
 /// by the library, each error naming its flag).
 fn smoke_params(a: &SmokeArgs) -> Result<renderlab_noise::SmokeParams> {
     let (width, height) = a.size;
-    let total = u64::from(a.frames) * u64::from(width) * u64::from(height);
-    if total > MAX_SMOKE_PIXELS {
-        bail!("--frames/--size: {total} pixels in all exceeds {MAX_SMOKE_PIXELS} (fewer or smaller frames)");
-    }
+    check_sequence_pixels(a.frames, a.size, MAX_SMOKE_PIXELS)?;
     let voxels = u64::from(a.frames) * u64::from(a.grid).pow(3);
     if voxels > MAX_SMOKE_VOXELS {
         bail!("--frames/--grid: {voxels} voxels in all exceeds {MAX_SMOKE_VOXELS} (fewer frames or a smaller grid)");

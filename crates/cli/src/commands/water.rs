@@ -2,7 +2,7 @@
 
 use crate::args::range::{finite_in, in_range, Interval, Whole};
 use crate::args::size::size_in;
-use crate::commands::sequence::{flag_error, write_sequence, FPS, TIME_STEP};
+use crate::commands::sequence::{check_sequence_pixels, flag_error, write_sequence, FPS, TIME_STEP};
 use anyhow::{bail, Result};
 use clap::Args;
 use renderlab_noise::water::{MAX_WATER_SIDE, MAX_WATER_TIME};
@@ -96,10 +96,7 @@ fn water_flag_error(e: renderlab_noise::NoiseError) -> anyhow::Error {
 /// by the library, each error naming its flag).
 fn water_params(a: &WaterArgs) -> Result<renderlab_noise::WaterParams> {
     let (width, height) = a.size;
-    let total = u64::from(a.frames) * u64::from(width) * u64::from(height);
-    if total > MAX_WATER_PIXELS {
-        bail!("--frames/--size: {total} pixels in all exceeds {MAX_WATER_PIXELS} (fewer frames or smaller frames)");
-    }
+    check_sequence_pixels(a.frames, a.size, MAX_WATER_PIXELS)?;
     let [vx, vy] = a.wind[..] else {
         bail!("--wind: give two numbers VX,VY (got {})", a.wind.len());
     };

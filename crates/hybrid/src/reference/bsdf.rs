@@ -3,7 +3,7 @@
 
 use crate::rng::Rng;
 use glam::Vec3;
-use renderlab_scene::brdf::{alpha, d_ggx, eval, eval_diffuse, f0, fresnel_schlick};
+use renderlab_scene::brdf::{alpha, d_ggx, eval_lobes, f0, fresnel_schlick};
 use renderlab_scene::sampling::{cosine_hemisphere, ggx_g1, ggx_visible_normal, reflect, refract, Frame};
 use renderlab_scene::{HybridScene, LightKind, ShadingPoint};
 use std::f32::consts::PI;
@@ -105,5 +105,6 @@ pub fn sample_bsdf(sp: &ShadingPoint, v: Vec3, rng: &mut Rng) -> Option<Scatter>
         return None;
     }
     let norm = (1.0 - p_t) * pdf;
-    Some(Scatter { dir: l, weight: eval(sp, v, l) / norm, diffuse: eval_diffuse(sp, v, l) / norm })
+    let (whole, diffuse) = eval_lobes(sp, v, l);
+    Some(Scatter { dir: l, weight: whole / norm, diffuse: diffuse / norm })
 }

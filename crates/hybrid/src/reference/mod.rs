@@ -47,14 +47,15 @@ pub mod tracer;
 
 use crate::accel::{resolve, Accel};
 use crate::lighting::unshadowed_direct_parts;
-use crate::rng::{stratified, Rng, Stream};
+use crate::rng::{Rng, Stream};
+use crate::stages::ao::openness;
 use crate::stages::context::par_pixels;
 use crate::terms::score::{luminance, PixelKind};
 use crate::terms::term::{Term, TermImages};
 use glam::Vec3;
 use renderlab_core::Camera;
-use renderlab_scene::sampling::{cosine_hemisphere, Frame};
 use renderlab_scene::{GBuffer, HybridScene};
+use renderlab_trace::Hit;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 pub use bsdf::{area_lights_on_segment, sample_bsdf, Scatter};
@@ -128,7 +129,7 @@ impl PathTracer {
                 if out.kind == PixelKind::Opaque {
                     let mut ao_rng = Rng::new(seed, i as u64, ao_stream);
                     (out.occlusion, out.area_share) =
-                        self.first_surface(scene, accel, camera.position, dir, half, &mut ao_rng, &mut rays);
+                        self.first_surface(scene, accel, first, dir, half, &mut ao_rng, &mut rays);
                 }
                 if i % w == w - 1 {
                     let done = rows_done.fetch_add(1, Ordering::Relaxed) + 1;
@@ -181,7 +182,8 @@ impl PathTracer {
         self.trace(scene, accel, origin, dir, rng, rays).total()
     }
 
-    /// Two facts of the first surface along the camera ray `origin + t·dir`: its
+    /// Two facts of the first surface `first` met by the camera ray along `dir` (the hit the
+    /// pixel's paths share): its
     /// ambient-occlusion integral `(1/π) ∫ V(ω) cos θ dω` (visibility within
     /// [`PathTracer::ao_radius`]), estimated by `samples` stratified cosine-distributed rays
     /// (a direction below the surface's face counts as occluded, as in the AO stage), and
@@ -191,32 +193,18 @@ impl PathTracer {
         &self,
         scene: &HybridScene,
         accel: &Accel,
-        origin: Vec3,
+        first: Option<Hit>,
         dir: Vec3,
         samples: u32,
         rng: &mut Rng,
         rays: &mut u64,
     ) -> (f32, f32) {
-        *rays += 1;
-        let Some(hit) = accel.closest(origin, dir, f32::INFINITY) else { return (1.0, 0.0) };
+        let Some(hit) = first else { return (1.0, 0.0) };
         let sp = resolve(scene, &hit, dir);
         let parts = unshadowed_direct_parts(scene, &sp, -dir, 4);
         let total = luminance(parts.total);
         let share = if total > 0.0 { luminance(parts.area) / total } else { 0.0 };
-        let frame = Frame::new(sp.normal);
-        let shift = rng.vec2();
-        let mut open = 0u32;
-        for s in 0..samples {
-            let d = frame.to_world(cosine_hemisphere(stratified(s, samples, shift)).0);
-            if d.dot(sp.geometric_normal) <= 0.0 {
-                continue;
-            }
-            *rays += 1;
-            if !accel.occluded(sp.offset_origin(d), d, self.ao_radius) {
-                open += 1;
-            }
-        }
-        (open as f32 / samples as f32, share)
+        (openness(accel, &sp, samples, self.ao_radius, rng, rays), share)
     }
 }
 

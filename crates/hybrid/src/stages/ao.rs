@@ -32,7 +32,7 @@ use crate::terms::term::Term;
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use renderlab_scene::sampling::{cosine_hemisphere, Frame};
-use renderlab_scene::GBuffer;
+use renderlab_scene::{GBuffer, ShadingPoint};
 use serde::{Deserialize, Serialize};
 
 /// The stage's random stream.
@@ -263,27 +263,35 @@ pub fn run(
     par_pixels(ao, g.width(), |i, out| {
         let Some(sp) = &g.opaque[i] else { return 0 };
         let mut rng = Rng::new(seed, i as u64, STREAM);
-        let frame = Frame::new(sp.normal);
-        let shift = rng.vec2();
-        let n = samples_per_pixel.max(1);
-        let mut open = 0u32;
         let mut rays = 0;
-        for s in 0..n {
-            let (local, _) = cosine_hemisphere(stratified(s, n, shift));
-            let dir = frame.to_world(local);
-            if dir.dot(sp.geometric_normal) <= 0.0 {
-                // A shading normal tilted from the face sends some rays into the surface:
-                // they count as occluded, without a ray.
-                continue;
-            }
-            rays += 1;
-            if !accel.occluded(sp.offset_origin(dir), dir, radius) {
-                open += 1;
-            }
-        }
-        *out = open as f32 / n as f32;
+        *out = openness(accel, sp, samples_per_pixel, radius, &mut rng, &mut rays);
         rays
     })
+}
+
+/// The fraction of `samples` stratified cosine-distributed rays of length `radius` from
+/// `sp` (one random rotation drawn from `rng`) that escape: the estimate of
+/// `(1/π) ∫ V(ω) cos θ dω` the AO stage writes and the reference converges. Adds the rays
+/// traced to `rays`.
+pub fn openness(accel: &Accel, sp: &ShadingPoint, samples: u32, radius: f32, rng: &mut Rng, rays: &mut u64) -> f32 {
+    let frame = Frame::new(sp.normal);
+    let shift = rng.vec2();
+    let n = samples.max(1);
+    let mut open = 0u32;
+    for s in 0..n {
+        let (local, _) = cosine_hemisphere(stratified(s, n, shift));
+        let dir = frame.to_world(local);
+        if dir.dot(sp.geometric_normal) <= 0.0 {
+            // A shading normal tilted from the face sends some rays into the surface: they
+            // count as occluded, without a ray.
+            continue;
+        }
+        *rays += 1;
+        if !accel.occluded(sp.offset_origin(dir), dir, radius) {
+            open += 1;
+        }
+    }
+    open as f32 / n as f32
 }
 
 #[cfg(test)]

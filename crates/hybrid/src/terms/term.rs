@@ -49,8 +49,15 @@ impl Term {
     }
 
     /// The slot of a radiance term in [`TermImages::radiance`] (`None` for occlusion).
-    pub fn slot(self) -> Option<usize> {
-        Term::RADIANCE.iter().position(|&t| t == self)
+    pub const fn slot(self) -> Option<usize> {
+        match self {
+            Term::Emitted => Some(0),
+            Term::Direct => Some(1),
+            Term::Diffuse => Some(2),
+            Term::Specular => Some(3),
+            Term::Translucent => Some(4),
+            Term::Occlusion => None,
+        }
     }
 }
 
