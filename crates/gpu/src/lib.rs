@@ -38,6 +38,7 @@ mod material;
 mod mesh;
 mod readback;
 pub mod relief;
+pub mod rt;
 pub mod shader;
 pub mod timing;
 mod upload;

@@ -99,4 +99,4 @@ pub use hit::{Hit, HitFilter, Opaque};
 pub use kernel::Kernel;
 pub use packet::PACKET;
 pub use ray::Ray;
-pub use tlas::{Instance, Tlas};
+pub use tlas::{Instance, Placed, Tlas};

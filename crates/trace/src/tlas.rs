@@ -43,11 +43,18 @@ impl Instance {
     }
 }
 
-/// What a query needs of an instance.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Placed {
-    pub(crate) mesh: u32,
-    pub(crate) world_to_object: Affine3A,
+/// An instance as the queries see it (and as a GPU copy of the structure needs it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Placed {
+    /// Index of the instance's mesh in [`Tlas::meshes`].
+    pub mesh: u32,
+    /// World to object (the identity for an instance that is never hit).
+    pub world_to_object: Affine3A,
+    /// Object to world, as given to the build.
+    pub object_to_world: Affine3A,
+    /// Whether the instance is in the hierarchy (an invertible transform and a mesh with
+    /// something to hit): only these are ever hit.
+    pub live: bool,
 }
 
 /// The scene's acceleration structure: its meshes' bottom levels and a top level over the
@@ -81,12 +88,19 @@ impl Tlas {
                 });
             };
             let w2o = inst.world_to_object();
-            placed.push(Placed { mesh: inst.mesh, world_to_object: w2o.unwrap_or(Affine3A::IDENTITY) });
+            let mut live = false;
             if let Some(bounds) = w2o.map(|_| blas.bounds().transformed(&inst.object_to_world)) {
                 if !bounds.is_empty() && bounds.min.is_finite() && bounds.max.is_finite() {
                     refs.push(PrimRef::new(&bounds, i as u32));
+                    live = true;
                 }
             }
+            placed.push(Placed {
+                mesh: inst.mesh,
+                world_to_object: w2o.unwrap_or(Affine3A::IDENTITY),
+                object_to_world: inst.object_to_world,
+                live,
+            });
         }
         let live = refs.len();
         let bvh = binned::build(refs, &TLAS_SAH);
@@ -134,5 +148,22 @@ impl Tlas {
     /// Top-level wide nodes.
     pub fn node_count(&self) -> usize {
         self.nodes.len()
+    }
+
+    /// The top level's wide nodes (leaf references are instance indices), for inspection and
+    /// for uploading to a GPU.
+    pub fn nodes(&self) -> &[WideNode] {
+        &self.nodes
+    }
+
+    /// The top level's root reference: node 0, a leaf (a single instance) or
+    /// [`crate::node::EMPTY`].
+    pub fn root(&self) -> u32 {
+        self.root
+    }
+
+    /// The instances in the order given to the build (instance `i` reports `instance == i`).
+    pub fn placed(&self) -> &[Placed] {
+        &self.placed
     }
 }
