@@ -63,3 +63,18 @@ pub(crate) fn read_texture(
         out
     })
 }
+
+/// The first `size` bytes of `buffer` (which needs `COPY_SRC`), copied into a mappable
+/// buffer after the work already submitted, and read back.
+pub fn read_buffer(ctx: &GpuContext, buffer: &wgpu::Buffer, size: u64) -> Result<Vec<u8>> {
+    let read = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback"),
+        size: size.max(4),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    encoder.copy_buffer_to_buffer(buffer, 0, &read, 0, size);
+    ctx.queue.submit([encoder.finish()]);
+    map_read(ctx, &read, |b| b[..size as usize].to_vec())
+}

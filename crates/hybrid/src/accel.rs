@@ -23,7 +23,7 @@ pub struct Accel {
 
 /// A shadow ray stops this fraction short of the light sample so that it does not hit the
 /// light's own geometry (an emissive panel placed at an area light).
-const SHADOW_END: f32 = 1.0 - 1e-4;
+pub const SHADOW_END: f32 = 1.0 - 1e-4;
 
 impl Accel {
     /// Builds the two levels for `scene` (which must have passed `validate`).

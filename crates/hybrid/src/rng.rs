@@ -40,8 +40,19 @@ pub struct Rng {
 impl Rng {
     /// The stream of `pixel` in `stream` for the frame seed `seed`.
     pub fn new(seed: u64, pixel: u64, stream: Stream) -> Self {
-        let s = mix(seed ^ mix(pixel.wrapping_add(0x9e37_79b9_7f4a_7c15)) ^ mix(stream.0 << 56));
-        Self { state: s }
+        Self::from_base(Self::stream_base(seed, stream), pixel)
+    }
+
+    /// What every pixel's stream of `stream` shares in a frame seeded `seed`: computed once
+    /// per frame (the GPU stages receive it and derive each pixel's stream as
+    /// [`Rng::from_base`] does).
+    pub fn stream_base(seed: u64, stream: Stream) -> u64 {
+        seed ^ mix(stream.0 << 56)
+    }
+
+    /// The stream of `pixel` from the frame's [`Rng::stream_base`].
+    pub fn from_base(base: u64, pixel: u64) -> Self {
+        Self { state: mix(base ^ mix(pixel.wrapping_add(0x9e37_79b9_7f4a_7c15))) }
     }
 
     /// The next 64 random bits.

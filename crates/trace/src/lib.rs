@@ -91,6 +91,7 @@ pub mod ray;
 pub mod tlas;
 pub mod traverse;
 pub mod triangle;
+pub mod workload;
 
 pub use aabb::Aabb;
 pub use blas::Blas;
