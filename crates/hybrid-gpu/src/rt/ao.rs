@@ -3,7 +3,9 @@
 //! same per-pixel random shift (the AO stream), of the same length, through the GPU ray
 //! tracer's any-hit query.
 
-use super::{buffer_entry, random, GpuSurfaces, PixelPass};
+use super::pass::{buffer_entry, PixelPass};
+use super::random;
+use super::surfaces::GpuSurfaces;
 use renderlab_gpu::rt::{GpuAccel, ALL_INSTANCES};
 use renderlab_gpu::timing::PassTimer;
 use renderlab_gpu::{read_buffer, GpuContext, GpuError};
