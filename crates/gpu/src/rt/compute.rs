@@ -31,7 +31,8 @@
 //! mesh are measured at upload and written into the shader as constants, and a hierarchy
 //! deeper than [`MAX_STACK`] allows is refused.
 
-use super::{AccelStats, GpuAccel, ALL_INSTANCES};
+use super::accel::{AccelStats, GpuAccel, ALL_INSTANCES};
+use super::path::RtPath;
 use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
 use renderlab_trace::node::{TriBlock, WideNode, EMPTY, WIDTH};
@@ -224,5 +225,5 @@ pub(crate) fn build(ctx: &GpuContext, tlas: &Tlas, masks: &[u8], group: u32) -> 
         triangles: flat.triangles,
         build_ms: start.elapsed().as_secs_f64() * 1e3,
     };
-    Ok(GpuAccel { path: super::RtPath::Compute, group, layout, bind_group, wgsl: flat.wgsl(group), stats })
+    Ok(GpuAccel { path: RtPath::Compute, group, layout, bind_group, wgsl: flat.wgsl(group), stats })
 }
