@@ -27,7 +27,13 @@
 //! Instance masks are DXR's and Vulkan's 8-bit inclusion masks: the CPU's instance filters
 //! (skip translucent surfaces, say) become a mask bit per instance given at build time.
 //! Stage shaders are written once against this contract and compiled after the prelude of
-//! either path.
+//! either path. The prelude must come before every declaration: the query path's begins with
+//! WGSL's `enable wgpu_ray_query;` directive, which may follow no declaration (a stage
+//! shader's own `enable` directives go before the prelude).
+//!
+//! [`RtPath::preferred`] picks the query path where the device has ray queries (the driver's
+//! traversal, in hardware where there is hardware) and the compute path elsewhere; the query
+//! path is refused with [`crate::GpuError::MissingFeature`] on a device without them.
 
 pub mod accel;
 pub mod batch;

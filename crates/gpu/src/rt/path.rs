@@ -40,11 +40,12 @@ impl RtPath {
     }
 
     /// Whether `ctx` can run this path: the compute path everywhere, the query path where
-    /// the device was opened with ray queries.
+    /// the device was opened with ray queries (read from the device itself, which
+    /// [`crate::AdapterReport::ray_query`] reports).
     pub fn available(self, ctx: &GpuContext) -> bool {
         match self {
             RtPath::Compute => true,
-            RtPath::Query => ctx.report.ray_query,
+            RtPath::Query => ctx.device.features().contains(wgpu::Features::EXPERIMENTAL_RAY_QUERY),
         }
     }
 }

@@ -100,7 +100,7 @@ fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
 
 /// Refuses the query path on a device opened without ray queries.
 pub(crate) fn require(ctx: &GpuContext) -> Result<()> {
-    if ctx.report.ray_query {
+    if RtPath::Query.available(ctx) {
         Ok(())
     } else {
         Err(GpuError::MissingFeature {
@@ -167,6 +167,13 @@ pub(crate) fn build(ctx: &GpuContext, tlas: &Tlas, masks: &[u8], group: u32) -> 
             return Err(GpuError::Scene(format!(
                 "mesh {k} has {count} triangles, more than this device's {} per bottom level",
                 limits.max_blas_primitive_count
+            )));
+        }
+        let bytes = m.vertices.len() as u64 * 12;
+        if bytes > limits.max_buffer_size {
+            return Err(GpuError::Scene(format!(
+                "mesh {k}'s triangles take {bytes} bytes of vertices, over this device's {}-byte buffers",
+                limits.max_buffer_size
             )));
         }
         let size = wgpu::BlasTriangleGeometrySizeDescriptor {
