@@ -134,10 +134,11 @@ impl GpuContext {
     /// enabled token, and the token is given only where one is requested.
     pub fn experimental_for(features: wgpu::Features) -> wgpu::ExperimentalFeatures {
         if features.intersects(wgpu::Features::all_experimental_mask()) {
-            // SAFETY: wgpu asks its caller to accept that its experimental features may have
-            // bugs. The only one requested is ray queries, used by the query path alone, which
-            // builds its structures through wgpu's validated API (no raw instance buffers) and
-            // is tested against the CPU's hierarchy; devices opened without it are unchanged.
+            // SAFETY: the token is the caller's acceptance that wgpu's experimental features
+            // may still have bugs. The renderer requests one, ray queries (`features_for`),
+            // used by the ray tracer's query path alone, which builds its structures through
+            // wgpu's validated API (no raw instance buffers) and is tested against the CPU's
+            // hierarchy; a device without experimental features never gets the token.
             unsafe { wgpu::ExperimentalFeatures::enabled() }
         } else {
             wgpu::ExperimentalFeatures::disabled()
@@ -148,7 +149,7 @@ impl GpuContext {
     /// library opens the device that draws the window, and the renderer must draw on that
     /// same device to hand its frames to the window without a copy through the CPU). The
     /// device must have `FLOAT32_FILTERABLE` (see [`GpuContext::features_for`]); timestamps
-    /// are used where the device was opened with them. Installs the error handler that
+    /// and ray queries are used where the device was opened with them. Installs the error handler that
     /// [`GpuContext::check`] reads, in place of wgpu's default panic.
     pub fn from_parts(adapter: &wgpu::Adapter, device: wgpu::Device, queue: wgpu::Queue) -> Result<Self> {
         let info = adapter.get_info();
