@@ -26,6 +26,9 @@ pub struct AdapterReport {
     pub software: bool,
     /// Whether the device can time passes with timestamp queries.
     pub timestamps: bool,
+    /// Whether the device was opened with ray queries (wgpu's `EXPERIMENTAL_RAY_QUERY`): the
+    /// GPU ray tracer's query path needs them, its compute path does not.
+    pub ray_query: bool,
 }
 
 impl std::fmt::Display for AdapterReport {
@@ -37,6 +40,7 @@ impl std::fmt::Display for AdapterReport {
         if !self.timestamps {
             f.write_str(", no timestamp queries")?;
         }
+        f.write_str(if self.ray_query { ", ray queries" } else { ", no ray queries" })?;
         f.write_str(")")
     }
 }
@@ -68,9 +72,7 @@ pub fn rank(t: wgpu::DeviceType) -> u8 {
 
 impl GpuContext {
     /// Opens the best Vulkan adapter: a discrete GPU, then an integrated or virtual one, then
-    /// a software adapter. Requests timestamp queries where the adapter has them, and
-    /// `FLOAT32_FILTERABLE`, which the renderer needs (its maps are 32-bit float textures,
-    /// filtered by the sampler as the CPU filters them).
+    /// a software adapter, with the features of [`GpuContext::features_for`].
     pub fn new() -> Result<Self> {
         // Mesa's device-select layer, loaded with the instance, prints an XDG_RUNTIME_DIR error
         // where there is no desktop session; the renderlab binary turns it off first thing in
@@ -87,6 +89,7 @@ impl GpuContext {
             label: Some("renderlab"),
             required_features: features,
             required_limits: adapter.limits(),
+            experimental_features: Self::experimental_for(features),
             ..Default::default()
         };
         let name = adapter.get_info().name;
@@ -98,9 +101,11 @@ impl GpuContext {
     /// The features the renderer asks of `adapter`: `FLOAT32_FILTERABLE`, which it needs (its
     /// maps are 32-bit float textures, filtered by the sampler as the CPU filters them), and
     /// timestamp queries where the adapter has them (with timestamps inside passes, where it
-    /// has those too). An adapter without the first is refused.
+    /// has those too), and ray queries (`EXPERIMENTAL_RAY_QUERY`, for the ray tracer's query
+    /// path) where it has them. An adapter without the first is refused.
     /// A program that opens the device itself (the viewer, through its window library)
-    /// requests these so that [`GpuContext::from_parts`] accepts its device.
+    /// requests these, with [`GpuContext::experimental_for`] of them, so that
+    /// [`GpuContext::from_parts`] accepts its device and reports the same capabilities.
     pub fn features_for(adapter: &wgpu::Adapter) -> Result<wgpu::Features> {
         let have = adapter.features();
         if !have.contains(wgpu::Features::FLOAT32_FILTERABLE) {
@@ -118,14 +123,33 @@ impl GpuContext {
                 features |= wgpu::Features::TIMESTAMP_QUERY_INSIDE_PASSES;
             }
         }
+        if have.contains(wgpu::Features::EXPERIMENTAL_RAY_QUERY) {
+            features |= wgpu::Features::EXPERIMENTAL_RAY_QUERY;
+        }
         Ok(features)
+    }
+
+    /// The token a device descriptor requesting `features` needs: wgpu refuses a device whose
+    /// features include an experimental one (ray queries) unless the descriptor carries the
+    /// enabled token, and the token is given only where one is requested.
+    pub fn experimental_for(features: wgpu::Features) -> wgpu::ExperimentalFeatures {
+        if features.intersects(wgpu::Features::all_experimental_mask()) {
+            // SAFETY: the token is the caller's acceptance that wgpu's experimental features
+            // may still have bugs. The renderer requests one, ray queries (`features_for`),
+            // used by the ray tracer's query path alone, which builds its structures through
+            // wgpu's validated API (no raw instance buffers) and is tested against the CPU's
+            // hierarchy; a device without experimental features never gets the token.
+            unsafe { wgpu::ExperimentalFeatures::enabled() }
+        } else {
+            wgpu::ExperimentalFeatures::disabled()
+        }
     }
 
     /// A context over a device that someone else opened on `adapter` (the viewer's window
     /// library opens the device that draws the window, and the renderer must draw on that
     /// same device to hand its frames to the window without a copy through the CPU). The
     /// device must have `FLOAT32_FILTERABLE` (see [`GpuContext::features_for`]); timestamps
-    /// are used where the device was opened with them. Installs the error handler that
+    /// and ray queries are used where the device was opened with them. Installs the error handler that
     /// [`GpuContext::check`] reads, in place of wgpu's default panic.
     pub fn from_parts(adapter: &wgpu::Adapter, device: wgpu::Device, queue: wgpu::Queue) -> Result<Self> {
         let info = adapter.get_info();
@@ -157,6 +181,7 @@ impl GpuContext {
             backend: info.backend.to_string(),
             software: info.device_type == wgpu::DeviceType::Cpu,
             timestamps,
+            ray_query: features.contains(wgpu::Features::EXPERIMENTAL_RAY_QUERY),
         };
         Ok(Self { device, queue, report, errors, lost })
     }

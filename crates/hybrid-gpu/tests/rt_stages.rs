@@ -7,7 +7,7 @@
 
 mod common;
 
-use renderlab_gpu::rt::{GpuAccel, RtPath};
+use renderlab_gpu::rt::GpuAccel;
 use renderlab_hybrid::deferred::{geometry_pass, PreparedScene};
 use renderlab_hybrid::stages::ao;
 use renderlab_hybrid::Accel;
@@ -24,30 +24,35 @@ fn rt_ao_matches_the_cpu_stage_on_every_builtin_scene() {
         let prepared = PreparedScene::new(&scene);
         let g = geometry_pass(&prepared, &camera, 1).gbuffer;
         let accel = Accel::build(&scene).unwrap();
-        let gpu_accel = GpuAccel::build(&ctx, accel.tlas(), &[], RtPath::Compute, 1).unwrap();
         let surfaces = GpuSurfaces::from_gbuffer(&ctx, &g).unwrap();
-        let pass = RtAo::new(&ctx, &gpu_accel).unwrap();
-        for (spp, radius, seed) in [(1, 0.5, 7), (4, 0.5, 11), (16, 2.0, 3)] {
-            let mut cpu = vec![1.0f32; g.opaque.len()];
-            let cpu_rays = ao::run(&accel, &g, spp, radius, seed, &mut cpu);
-            let gpu = pass.run(&ctx, &gpu_accel, &surfaces, spp, radius, seed).unwrap();
-            let differ = cpu.iter().zip(&gpu.ao).filter(|(a, b)| a != b).count();
-            let worst = cpu.iter().zip(&gpu.ao).map(|(a, b)| (a - b).abs()).fold(0.0, f32::max);
-            eprintln!(
-                "{name} spp {spp} r {radius}: {differ} of {} pixels differ (worst {worst}), rays {cpu_rays} / {}, {:?} ms",
+        for path in common::paths(&ctx, "rt ao") {
+            let gpu_accel = GpuAccel::build(&ctx, accel.tlas(), &[], path, 1).unwrap();
+            let pass = RtAo::new(&ctx, &gpu_accel).unwrap();
+            for (spp, radius, seed) in [(1, 0.5, 7), (4, 0.5, 11), (16, 2.0, 3)] {
+                let mut cpu = vec![1.0f32; g.opaque.len()];
+                let cpu_rays = ao::run(&accel, &g, spp, radius, seed, &mut cpu);
+                let gpu = pass.run(&ctx, &gpu_accel, &surfaces, spp, radius, seed).unwrap();
+                let differ = cpu.iter().zip(&gpu.ao).filter(|(a, b)| a != b).count();
+                let worst = cpu.iter().zip(&gpu.ao).map(|(a, b)| (a - b).abs()).fold(0.0, f32::max);
+                eprintln!(
+                "{name} {path} spp {spp} r {radius}: {differ} of {} pixels differ (worst {worst}), rays {cpu_rays} / {}, {:?} ms",
                 cpu.len(),
                 gpu.rays,
                 gpu.gpu_ms
             );
-            // One sample flipped is 1/spp; more than one on a pixel would not be rounding.
-            assert!(worst <= 1.0 / spp as f32 + 1e-6, "{name} spp {spp}: a pixel differs by {worst}");
-            assert!(differ * 100 <= cpu.len(), "{name} spp {spp}: {differ} pixels differ");
-            let ray_gap = (cpu_rays as i64 - gpu.rays as i64).unsigned_abs();
-            assert!(
-                ray_gap * 1000 <= cpu_rays.max(1000),
-                "{name}: {cpu_rays} rays on the CPU, {} on the GPU",
-                gpu.rays
-            );
+                // One sample flipped is 1/spp; more than one on a pixel would not be rounding.
+                assert!(
+                    worst <= 1.0 / spp as f32 + 1e-6,
+                    "{name} {path} spp {spp}: a pixel differs by {worst}"
+                );
+                assert!(differ * 100 <= cpu.len(), "{name} {path} spp {spp}: {differ} pixels differ");
+                let ray_gap = (cpu_rays as i64 - gpu.rays as i64).unsigned_abs();
+                assert!(
+                    ray_gap * 1000 <= cpu_rays.max(1000),
+                    "{name}: {cpu_rays} rays on the CPU, {} on the GPU",
+                    gpu.rays
+                );
+            }
         }
     }
 }

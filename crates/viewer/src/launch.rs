@@ -125,13 +125,17 @@ pub fn wgpu_setup() -> egui_wgpu::WgpuSetup {
                 .cloned()
                 .ok_or_else(|| "Vulkan lists no adapter".to_string())
         }));
-    setup.device_descriptor = Arc::new(|adapter: &wgpu::Adapter| wgpu::DeviceDescriptor {
-        label: Some("renderlab viewer"),
+    setup.device_descriptor = Arc::new(|adapter: &wgpu::Adapter| {
         // An adapter without the features is refused later, in one line, by
         // `GpuContext::from_parts`; here the request asks only for what it has.
-        required_features: GpuContext::features_for(adapter).unwrap_or(wgpu::Features::empty()),
-        required_limits: adapter.limits(),
-        ..Default::default()
+        let features = GpuContext::features_for(adapter).unwrap_or(wgpu::Features::empty());
+        wgpu::DeviceDescriptor {
+            label: Some("renderlab viewer"),
+            required_features: features,
+            required_limits: adapter.limits(),
+            experimental_features: GpuContext::experimental_for(features),
+            ..Default::default()
+        }
     });
     egui_wgpu::WgpuSetup::CreateNew(setup)
 }

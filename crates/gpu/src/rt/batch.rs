@@ -2,7 +2,7 @@
 //! invocation: how the tests compare the GPU structures with the CPU's, and how the ray-rate
 //! benchmark times them (timestamps around the one compute pass that traces).
 
-use super::types::GpuAccel;
+use super::accel::{GpuAccel, ALL_INSTANCES};
 use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
 use crate::readback::map_read;
@@ -255,7 +255,7 @@ impl RayBatch {
         warmup: u32,
         reps: u32,
     ) -> Result<BatchTiming> {
-        let b = self.buffers(ctx, rays, super::types::ALL_INSTANCES)?;
+        let b = self.buffers(ctx, rays, ALL_INSTANCES)?;
         let timer = PassTimer::new(ctx);
         let mut out = BatchTiming::default();
         for rep in 0..warmup + reps {

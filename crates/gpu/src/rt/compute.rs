@@ -31,7 +31,8 @@
 //! mesh are measured at upload and written into the shader as constants, and a hierarchy
 //! deeper than [`MAX_STACK`] allows is refused.
 
-use super::types::{AccelStats, GpuAccel, RtPath, ALL_INSTANCES};
+use super::accel::{AccelStats, GpuAccel, ALL_INSTANCES};
+use super::path::RtPath;
 use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
 use renderlab_trace::node::{TriBlock, WideNode, EMPTY, WIDTH};

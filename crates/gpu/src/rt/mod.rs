@@ -27,12 +27,37 @@
 //! Instance masks are DXR's and Vulkan's 8-bit inclusion masks: the CPU's instance filters
 //! (skip translucent surfaces, say) become a mask bit per instance given at build time.
 //! Stage shaders are written once against this contract and compiled after the prelude of
-//! either path.
+//! either path. The prelude must come before every declaration: the query path's begins with
+//! WGSL's `enable wgpu_ray_query;` directive, which may follow no declaration (a stage
+//! shader's own `enable` directives go before the prelude).
+//!
+//! [`RtPath::preferred`] picks the query path where the device has ray queries (the driver's
+//! traversal, in hardware where there is hardware) and the compute path elsewhere; the query
+//! path is refused with [`crate::GpuError::MissingFeature`] on a device without them.
 
+pub mod accel;
 pub mod batch;
-mod build;
 pub mod compute;
-pub mod types;
+pub mod path;
+pub mod query;
 
+pub use accel::{AccelStats, GpuAccel, ALL_INSTANCES};
 pub use batch::{BatchQuery, BatchTiming, RayBatch};
-pub use types::{AccelStats, GpuAccel, RtPath, ALL_INSTANCES};
+pub use path::RtPath;
+
+use crate::context::GpuContext;
+use crate::error::Result;
+use renderlab_trace::Tlas;
+
+impl GpuAccel {
+    /// Copies `tlas` to the device for `path`, its WGSL declaring its bindings in bind group
+    /// `group`; `masks[i]` is instance `i`'s 8-bit inclusion mask (missing entries:
+    /// [`ALL_INSTANCES`]). Refuses a structure beyond the device's limits, and the query path
+    /// where the device was opened without ray queries.
+    pub fn build(ctx: &GpuContext, tlas: &Tlas, masks: &[u8], path: RtPath, group: u32) -> Result<GpuAccel> {
+        match path {
+            RtPath::Compute => compute::build(ctx, tlas, masks, group),
+            RtPath::Query => query::build(ctx, tlas, masks, group),
+        }
+    }
+}

@@ -74,6 +74,11 @@ fn rt_min4(a: vec4<f32>, b: vec4<f32>) -> vec4<f32> {
     return select(b, a, a < b);
 }
 
+// NaN by its bits: compilers may assume x == x.
+fn rt_is_nan(x: f32) -> bool {
+    return (bitcast<u32>(x) & 0x7fffffffu) > 0x7f800000u;
+}
+
 fn rt_finite3(x: vec3<f32>) -> bool {
     return all(abs(x) <= vec3<f32>(RT_BIG));
 }
@@ -323,7 +328,7 @@ fn rt_closest(origin: vec3<f32>, dir: vec3<f32>, t_min_in: f32, t_max_in: f32, m
     var t_max = min(t_max_in, RT_BIG);
     var best = RtHit(t_max, 0.0, 0.0, RT_NO_HIT, RT_NO_HIT);
     let r = rt_prepare(origin, dir, t_min, t_max);
-    if !r.ok || RT_TLAS_ROOT == RT_EMPTY || t_min_in != t_min_in {
+    if !r.ok || RT_TLAS_ROOT == RT_EMPTY || rt_is_nan(t_min_in) || rt_is_nan(t_max_in) {
         return best;
     }
     var stack_node: array<u32, RT_TLAS_STACK>;
@@ -390,7 +395,7 @@ fn rt_any(origin: vec3<f32>, dir: vec3<f32>, t_min_in: f32, t_max_in: f32, mask:
     let t_min = max(t_min_in, 0.0);
     let t_max = min(t_max_in, RT_BIG);
     let r = rt_prepare(origin, dir, t_min, t_max);
-    if !r.ok || RT_TLAS_ROOT == RT_EMPTY || t_min_in != t_min_in {
+    if !r.ok || RT_TLAS_ROOT == RT_EMPTY || rt_is_nan(t_min_in) || rt_is_nan(t_max_in) {
         return false;
     }
     var stack: array<u32, RT_TLAS_STACK>;

@@ -1,5 +1,6 @@
 //! What the GPU tests share: opening the device, or saying why a test cannot run.
 
+use renderlab_gpu::rt::RtPath;
 use renderlab_gpu::GpuContext;
 
 /// Opens the device. Without one, a test fails with the reason when the environment variable
@@ -17,4 +18,19 @@ pub fn context() -> Option<GpuContext> {
             None
         }
     }
+}
+
+/// The ray-tracing paths this device runs: the compute path always, the query path where the
+/// device has ray queries; a path left out is printed as skipped, never silently.
+pub fn paths(ctx: &GpuContext, test: &str) -> Vec<RtPath> {
+    RtPath::ALL
+        .into_iter()
+        .filter(|p| {
+            let ok = p.available(ctx);
+            if !ok {
+                eprintln!("SKIPPED {test} for the {p} path: {} has no ray queries", ctx.report);
+            }
+            ok
+        })
+        .collect()
 }

@@ -26,6 +26,7 @@ mod tests {
             backend: "vulkan".into(),
             software,
             timestamps: true,
+            ray_query: false,
         }
     }
 

@@ -1,37 +1,8 @@
-//! The ray tracer's types: the two paths, a built structure and what it holds.
+//! A scene's acceleration structure on the device, whichever path built it: its bind group,
+//! the WGSL prelude that queries it (the contract in the parent module's docs), and what it
+//! holds.
 
-/// How the GPU traces rays.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum RtPath {
-    /// The project's 8-wide two-level BVH in storage buffers, walked by WGSL code.
-    Compute,
-    /// The driver's acceleration structures and WGSL's `rayQuery`.
-    Query,
-}
-
-impl RtPath {
-    /// Both paths, compute first.
-    pub const ALL: [RtPath; 2] = [RtPath::Compute, RtPath::Query];
-
-    /// The name records and flags use (`compute`, `query`).
-    pub fn name(self) -> &'static str {
-        match self {
-            RtPath::Compute => "compute",
-            RtPath::Query => "query",
-        }
-    }
-
-    /// The path named `s` (`compute` or `query`).
-    pub fn parse(s: &str) -> Option<RtPath> {
-        RtPath::ALL.into_iter().find(|p| p.name() == s)
-    }
-}
-
-impl std::fmt::Display for RtPath {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
+use super::path::RtPath;
 
 /// Every instance included: the mask of a CPU query without a filter.
 pub const ALL_INSTANCES: u32 = 0xff;
