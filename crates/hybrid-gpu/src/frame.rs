@@ -1,0 +1,423 @@
+//! The all-raster deferred frame on the device, pass for pass the CPU's
+//! `deferred::frame::render`: geometry (visibility buffer, depth peel, resolve), shadow
+//! maps, direct lighting, ambient and SSAO, the lit image and SSR, composition with the
+//! sorted forward translucent pass, and tone mapping. Each stage is one timestamped pass or
+//! group of passes, so that [`GpuStageTimings`] reports GPU milliseconds per stage like the
+//! CPU's [`StageTimings`].
+//!
+//! The frame's buffers stay on the device ([`GpuDeferred::targets`]) for later compute
+//! passes; [`GpuDeferred::render`] also reads everything back for comparison with the CPU.
+
+use crate::download::{read_points, read_vec, read_vec3};
+use crate::error::{GpuDeferredError, Result};
+use crate::gbuffer::{GBufferPass, PeelGroups};
+use crate::pipeline::{compute_pipelines, groups, Layouts};
+use crate::raster::{RasterPipelines, RasterView, Views};
+use crate::scene::GpuScene;
+use crate::shadows::ShadowPass;
+use crate::targets::{FrameTargets, FrameUniform};
+use crate::timing::StageTimer;
+use glam::Vec3;
+use renderlab_core::image::check_dimensions;
+use renderlab_core::{Camera, Image};
+use renderlab_gpu::GpuContext;
+use renderlab_hybrid::deferred::{PreparedScene, RasterSettings, StageTimings};
+use renderlab_scene::{LightingTerms, ShadingPoint};
+
+/// GPU time of each stage of one frame, milliseconds (timestamp queries).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct GpuStageTimings {
+    /// Visibility buffer, translucent depth peel and G-buffer resolve.
+    pub geometry_ms: f64,
+    /// Shadow maps of every light.
+    pub shadows_ms: f64,
+    /// Direct lighting with the shadow maps.
+    pub lighting_ms: f64,
+    /// View depth, ambient diffuse term and SSAO.
+    pub ambient_ms: f64,
+    /// The lit opaque image and screen-space reflections.
+    pub reflections_ms: f64,
+    /// Composition and the forward translucent pass.
+    pub translucent_ms: f64,
+    /// Tone mapping to 8-bit sRGB.
+    pub tonemap_ms: f64,
+}
+
+/// The stages in frame order, as [`GpuStageTimings`] names them.
+pub const STAGES: [&str; 7] =
+    ["geometry", "shadows", "lighting", "ambient", "reflections", "translucent", "tonemap"];
+
+impl GpuStageTimings {
+    fn from_slice(ms: &[f64]) -> Self {
+        Self {
+            geometry_ms: ms[0],
+            shadows_ms: ms[1],
+            lighting_ms: ms[2],
+            ambient_ms: ms[3],
+            reflections_ms: ms[4],
+            translucent_ms: ms[5],
+            tonemap_ms: ms[6],
+        }
+    }
+
+    /// The stages' times in [`STAGES`] order.
+    pub fn as_array(&self) -> [f64; 7] {
+        [
+            self.geometry_ms,
+            self.shadows_ms,
+            self.lighting_ms,
+            self.ambient_ms,
+            self.reflections_ms,
+            self.translucent_ms,
+            self.tonemap_ms,
+        ]
+    }
+
+    /// The sum of the stages.
+    pub fn total_ms(&self) -> f64 {
+        self.as_array().iter().sum()
+    }
+
+    /// The stages the CPU frame times, in its struct (tone mapping, which the CPU does
+    /// outside its frame, left out).
+    pub fn to_stage_timings(&self) -> StageTimings {
+        StageTimings {
+            geometry_ms: self.geometry_ms,
+            shadows_ms: self.shadows_ms,
+            lighting_ms: self.lighting_ms,
+            ambient_ms: self.ambient_ms,
+            reflections_ms: self.reflections_ms,
+            translucent_ms: self.translucent_ms,
+        }
+    }
+}
+
+/// One frame read back from the device.
+#[derive(Clone, Debug)]
+pub struct GpuRasterFrame {
+    /// The final image in linear radiance, row-major.
+    pub hdr: Vec<Vec3>,
+    /// The tone-mapped image.
+    pub srgb: Image<[u8; 3]>,
+    /// The opaque G-buffer.
+    pub gbuffer: Vec<Option<ShadingPoint>>,
+    /// Translucent layers, `layers` per pixel, nearest first (the CPU's order).
+    pub translucent_layers: Vec<Option<ShadingPoint>>,
+    /// The lighting terms.
+    pub terms: LightingTerms,
+    /// Per-stage GPU times, where the device has timestamps.
+    pub timings: Option<GpuStageTimings>,
+}
+
+/// The frame-size-dependent state: targets, peel groups, the frame group.
+struct Sized {
+    targets: FrameTargets,
+    peel: PeelGroups,
+    frame_group: wgpu::BindGroup,
+}
+
+/// The compute pipelines after the geometry pass.
+struct Passes {
+    direct: wgpu::ComputePipeline,
+    depth: wgpu::ComputePipeline,
+    ambient: wgpu::ComputePipeline,
+    lit: wgpu::ComputePipeline,
+    ssr: wgpu::ComputePipeline,
+    compose: wgpu::ComputePipeline,
+    tonemap: wgpu::ComputePipeline,
+}
+
+impl Passes {
+    fn new(ctx: &GpuContext, layouts: &Layouts) -> Result<Self> {
+        let shading = include_str!("shaders/shading.wgsl");
+        let with = |own: &str| format!("{shading}\n{own}");
+        let mut direct = compute_pipelines(
+            ctx,
+            layouts,
+            "lighting",
+            &with(include_str!("shaders/lighting.wgsl")),
+            &["direct_main"],
+        )?;
+        let mut ambient = compute_pipelines(
+            ctx,
+            layouts,
+            "ambient",
+            &with(include_str!("shaders/ambient.wgsl")),
+            &["depth_main", "ambient_main"],
+        )?;
+        let mut ssr = compute_pipelines(
+            ctx,
+            layouts,
+            "reflections",
+            &with(include_str!("shaders/ssr.wgsl")),
+            &["lit_main", "ssr_main"],
+        )?;
+        let mut compose = compute_pipelines(
+            ctx,
+            layouts,
+            "composition",
+            &with(include_str!("shaders/compose.wgsl")),
+            &["compose_main"],
+        )?;
+        let mut tonemap = compute_pipelines(
+            ctx,
+            layouts,
+            "tone map",
+            include_str!("shaders/tonemap.wgsl"),
+            &["tonemap_main"],
+        )?;
+        Ok(Self {
+            direct: direct.remove(0),
+            depth: ambient.remove(0),
+            ambient: ambient.remove(0),
+            lit: ssr.remove(0),
+            ssr: ssr.remove(0),
+            compose: compose.remove(0),
+            tonemap: tonemap.remove(0),
+        })
+    }
+}
+
+/// The deferred frame of one scene on the device.
+pub struct GpuDeferred<'c> {
+    ctx: &'c GpuContext,
+    settings: RasterSettings,
+    layouts: Layouts,
+    scene: GpuScene,
+    scene_group: wgpu::BindGroup,
+    raster: RasterPipelines,
+    camera_view: Views,
+    gbuffer: GBufferPass,
+    shadows: ShadowPass,
+    passes: Passes,
+    timer: Option<StageTimer>,
+    shadowed: bool,
+    sized: Option<Sized>,
+}
+
+impl<'c> GpuDeferred<'c> {
+    /// Uploads `prepared` and builds every pipeline. The scene is validated and the
+    /// settings checked first: bad input is an error, never a panic.
+    pub fn new(ctx: &'c GpuContext, prepared: &PreparedScene, settings: &RasterSettings) -> Result<Self> {
+        settings.validate().map_err(GpuDeferredError::Settings)?;
+        prepared.scene.validate().map_err(|e| GpuDeferredError::Scene(e.to_string()))?;
+        let layouts = Layouts::new(ctx);
+        let scene = GpuScene::upload(ctx, prepared)?;
+        let buffers = [
+            &scene.world_positions,
+            &scene.draw_indices,
+            &scene.triangle_refs,
+            &scene.instances,
+            &scene.vertices,
+            &scene.indices,
+            &scene.materials,
+            &scene.texture_info,
+            &scene.texels,
+            &scene.lights,
+        ];
+        let entries: Vec<_> = buffers
+            .iter()
+            .enumerate()
+            .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
+            .collect();
+        let scene_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("scene"),
+            layout: &layouts.scene,
+            entries: &entries,
+        });
+        let raster = RasterPipelines::new(ctx)?;
+        let camera_view = Views::new(ctx, &raster, &scene, 1);
+        let gbuffer = GBufferPass::new(ctx, &layouts)?;
+        let shadows = ShadowPass::new(ctx, &raster, &scene, prepared, &settings.shadows)?;
+        let passes = Passes::new(ctx, &layouts)?;
+        ctx.check()?;
+        Ok(Self {
+            ctx,
+            settings: settings.clone(),
+            layouts,
+            scene,
+            scene_group,
+            raster,
+            camera_view,
+            gbuffer,
+            shadows,
+            passes,
+            timer: StageTimer::new(ctx, STAGES.len()),
+            shadowed: true,
+            sized: None,
+        })
+    }
+
+    /// Turns the shadow maps off (`false`: every light sample visible, the CPU's
+    /// `Unshadowed`) or on (the default), for measuring the lighting alone.
+    pub fn set_shadows(&mut self, on: bool) {
+        self.shadowed = on;
+    }
+
+    /// The buffers of the last frame (G-buffer, terms, images), for later compute passes;
+    /// `None` before the first frame.
+    pub fn targets(&self) -> Option<&FrameTargets> {
+        self.sized.as_ref().map(|s| &s.targets)
+    }
+
+    /// The scene's buffers.
+    pub fn scene(&self) -> &GpuScene {
+        &self.scene
+    }
+
+    /// Targets for `camera`'s size, made when the size changes.
+    fn size_for(&mut self, camera: &Camera) -> Result<()> {
+        let layers = self.settings.translucent_layers as u32;
+        if let Some(s) = &self.sized {
+            if s.targets.width == camera.width && s.targets.height == camera.height {
+                return Ok(());
+            }
+        }
+        self.sized = None;
+        let ctx = self.ctx;
+        let targets = FrameTargets::new(ctx, camera.width, camera.height, layers)?;
+        let peel = PeelGroups::new(ctx, &self.raster, &targets);
+        let ids = targets.ids.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D2Array),
+            ..Default::default()
+        });
+        let maps = [0, 1, 2].map(|a| self.shadows.array_view(a));
+        fn buffer(binding: u32, b: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+            wgpu::BindGroupEntry { binding, resource: b.as_entire_binding() }
+        }
+        fn view(binding: u32, v: &wgpu::TextureView) -> wgpu::BindGroupEntry<'_> {
+            wgpu::BindGroupEntry { binding, resource: wgpu::BindingResource::TextureView(v) }
+        }
+        let t = &targets;
+        let entries = [
+            buffer(0, &t.uniform),
+            buffer(1, &t.gbuffer),
+            buffer(2, &t.layer_points),
+            buffer(3, &t.direct),
+            buffer(4, &t.ambient),
+            buffer(5, &t.specular),
+            buffer(6, &t.lit),
+            buffer(7, &t.hdr),
+            buffer(8, &t.ldr),
+            buffer(9, &self.shadows.records),
+            view(10, &maps[0]),
+            buffer(11, &self.shadows.light_table),
+            buffer(12, &t.depth),
+            view(13, &ids),
+            view(14, &maps[1]),
+            view(15, &maps[2]),
+        ];
+        let frame_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("frame"),
+            layout: &self.layouts.frame,
+            entries: &entries,
+        });
+        ctx.check()?;
+        self.sized = Some(Sized { targets, peel, frame_group });
+        Ok(())
+    }
+
+    /// Records and submits one frame of `camera`; waits for it and returns the stage
+    /// times where the device has timestamps.
+    pub fn run(&mut self, camera: &Camera) -> Result<Option<GpuStageTimings>> {
+        check_dimensions("camera", camera.width as u64, camera.height as u64)
+            .map_err(|e| GpuDeferredError::Size(e.to_string()))?;
+        self.size_for(camera)?;
+        let ctx = self.ctx;
+        let sized = self.sized.as_ref().expect("sized above");
+        let t = &sized.targets;
+        let uniform =
+            FrameUniform::new(camera, &self.scene, &self.settings, self.shadowed && !self.shadows.is_empty());
+        ctx.queue.write_buffer(&t.uniform, 0, bytemuck::bytes_of(&uniform));
+        self.camera_view.write(
+            ctx,
+            0,
+            &RasterView::new(camera.view_projection(), camera.position, camera.forward),
+        );
+
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        let timer = self.timer.as_ref();
+        let bind = (&self.scene_group, &sized.frame_group);
+        self.gbuffer.encode(
+            &mut encoder,
+            &self.raster,
+            &self.camera_view,
+            &sized.peel,
+            &self.scene,
+            t,
+            bind,
+            timer.map(|t| (t, 0)),
+        );
+        let drew = self.shadowed
+            && self.shadows.encode(&mut encoder, &self.raster, &self.scene, timer.map(|t| (t, 1)));
+        let (gx, gy) = groups(t.width, t.height);
+        let stage = |encoder: &mut wgpu::CommandEncoder,
+                     index: usize,
+                     label: &str,
+                     pipelines: &[&wgpu::ComputePipeline]| {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some(label),
+                timestamp_writes: timer.and_then(|t| t.compute_writes(index, true, true)),
+            });
+            pass.set_bind_group(0, bind.0, &[]);
+            pass.set_bind_group(1, bind.1, &[]);
+            for p in pipelines {
+                pass.set_pipeline(p);
+                pass.dispatch_workgroups(gx, gy, 1);
+            }
+        };
+        if !drew {
+            // No map drawn: an empty pass keeps the stage's timestamps defined.
+            stage(&mut encoder, 1, "no shadow maps", &[]);
+        }
+        let p = &self.passes;
+        stage(&mut encoder, 2, "lighting", &[&p.direct]);
+        stage(&mut encoder, 3, "ambient", &[&p.depth, &p.ambient]);
+        stage(&mut encoder, 4, "reflections", &[&p.lit, &p.ssr]);
+        stage(&mut encoder, 5, "translucent", &[&p.compose]);
+        stage(&mut encoder, 6, "tone map", &[&p.tonemap]);
+        if let Some(timer) = timer {
+            timer.resolve(&mut encoder);
+        }
+        ctx.queue.submit([encoder.finish()]);
+        ctx.wait()?;
+        match timer {
+            Some(timer) => Ok(Some(GpuStageTimings::from_slice(&timer.read_ms(ctx)?))),
+            None => Ok(None),
+        }
+    }
+
+    /// Renders one frame of `camera` and reads all of it back.
+    pub fn render(&mut self, camera: &Camera) -> Result<GpuRasterFrame> {
+        let timings = self.run(camera)?;
+        let ctx = self.ctx;
+        let t = &self.sized.as_ref().expect("sized by run").targets;
+        let n = t.pixels() as usize;
+        let ambient: Vec<[f32; 4]> = read_vec(ctx, &t.ambient, n)?;
+        let terms = LightingTerms {
+            direct: read_vec3(ctx, &t.direct, n)?,
+            diffuse_indirect: ambient.iter().map(|a| Vec3::new(a[0], a[1], a[2])).collect(),
+            ambient_occlusion: ambient.iter().map(|a| a[3]).collect(),
+            specular_indirect: read_vec3(ctx, &t.specular, n)?,
+        };
+        let ldr: Vec<u32> = read_vec(ctx, &t.ldr, n)?;
+        let w = t.width as usize;
+        let srgb = Image::from_fn(t.width, t.height, |x, y| {
+            let c = ldr[y as usize * w + x as usize];
+            [c as u8, (c >> 8) as u8, (c >> 16) as u8]
+        });
+        let layers = read_points(ctx, &t.layer_points, n * t.layers as usize)?;
+        // Layer-major on the device, pixel-major on the CPU.
+        let layer_count = t.layers as usize;
+        let translucent_layers =
+            (0..n * layer_count).map(|k| layers[(k % layer_count) * n + k / layer_count]).collect();
+        Ok(GpuRasterFrame {
+            hdr: read_vec3(ctx, &t.hdr, n)?,
+            srgb,
+            gbuffer: read_points(ctx, &t.gbuffer, n)?,
+            translucent_layers,
+            terms,
+            timings,
+        })
+    }
+}
