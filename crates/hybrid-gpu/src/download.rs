@@ -2,6 +2,7 @@
 //! (`renderlab_gpu::readback::map_read`), and the bytes decoded into the CPU's types.
 
 use crate::error::Result;
+use crate::scene::GpuScene;
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
 use renderlab_gpu::readback::map_read;
@@ -43,37 +44,54 @@ pub fn read_vec3(ctx: &GpuContext, buffer: &wgpu::Buffer, count: usize) -> Resul
 pub struct GPointRaw {
     p: [f32; 4],
     n: [f32; 4],
-    g: [f32; 4],
     c: [f32; 4],
-    e: [f32; 4],
     ids: [u32; 4],
+}
+
+/// WGSL's `unpack2x16snorm` of one half.
+fn snorm16(bits: u32) -> f32 {
+    ((bits as u16 as i16) as f32 / 32767.0).clamp(-1.0, 1.0)
+}
+
+/// `oct_decode` of `common.wgsl`.
+fn oct_decode(bits: u32) -> Vec3 {
+    let e = Vec2::new(snorm16(bits), snorm16(bits >> 16));
+    let mut n = Vec3::new(e.x, e.y, 1.0 - e.x.abs() - e.y.abs());
+    if n.z < 0.0 {
+        let sign = |v: f32| if v >= 0.0 { 1.0 } else { -1.0 };
+        n = Vec3::new((1.0 - n.y.abs()) * sign(n.x), (1.0 - n.x.abs()) * sign(n.y), n.z);
+    }
+    n.normalize()
 }
 
 impl GPointRaw {
     /// The drawn triangle + 1 (0 where nothing was drawn).
     pub fn drawn(&self) -> u32 {
-        self.ids[1]
+        self.ids[1] & 0x7fff_ffff
     }
 
-    /// The texel as the CPU's shading point, `None` where nothing was drawn.
-    pub fn shading_point(&self) -> Option<ShadingPoint> {
-        if self.ids[1] == 0 {
+    /// The texel as the CPU's shading point (emission, transmission and ior from its
+    /// material in `scene`), `None` where nothing was drawn.
+    pub fn shading_point(&self, scene: &GpuScene) -> Option<ShadingPoint> {
+        if self.drawn() == 0 {
             return None;
         }
+        let m = scene.material_constants.get(self.ids[0] as usize)?;
+        let front_face = self.ids[1] >> 31 != 0;
         let v3 = |a: [f32; 4]| Vec3::new(a[0], a[1], a[2]);
         Some(ShadingPoint {
             position: v3(self.p),
             normal: v3(self.n),
-            geometric_normal: v3(self.g),
+            geometric_normal: oct_decode(self.ids[2]),
             uv: Vec2::new(self.p[3], self.n[3]),
             base_color: v3(self.c),
-            roughness: self.g[3],
-            metallic: self.c[3],
-            transmission: self.e[3],
-            ior: f32::from_bits(self.ids[3]),
-            emissive: v3(self.e),
+            roughness: self.c[3],
+            metallic: f32::from_bits(self.ids[3]),
+            transmission: m.transmission,
+            ior: m.ior,
+            emissive: if front_face || m.double_sided { m.emissive } else { Vec3::ZERO },
             material: self.ids[0],
-            front_face: self.ids[2] != 0,
+            front_face,
         })
     }
 }
@@ -81,9 +99,10 @@ impl GPointRaw {
 /// `count` G-buffer texels as shading points.
 pub fn read_points(
     ctx: &GpuContext,
+    scene: &GpuScene,
     buffer: &wgpu::Buffer,
     count: usize,
 ) -> Result<Vec<Option<ShadingPoint>>> {
     let raw: Vec<GPointRaw> = read_vec(ctx, buffer, count)?;
-    Ok(raw.iter().map(GPointRaw::shading_point).collect())
+    Ok(raw.iter().map(|p| p.shading_point(scene)).collect())
 }

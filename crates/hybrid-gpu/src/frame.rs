@@ -8,7 +8,7 @@
 //! The frame's buffers stay on the device ([`GpuDeferred::targets`]) for later compute
 //! passes; [`GpuDeferred::render`] also reads everything back for comparison with the CPU.
 
-use crate::download::{read_points, read_vec, read_vec3};
+use crate::download::{read_points, read_vec, read_vec3, GPointRaw};
 use crate::error::{GpuDeferredError, Result};
 use crate::gbuffer::{GBufferPass, PeelGroups};
 use crate::pipeline::{compute_pipelines, groups, Layouts};
@@ -101,6 +101,9 @@ pub struct GpuRasterFrame {
     pub srgb: Image<[u8; 3]>,
     /// The opaque G-buffer.
     pub gbuffer: Vec<Option<ShadingPoint>>,
+    /// The opaque visibility buffer: (instance, mesh triangle) per pixel, `None` where the
+    /// sky shows.
+    pub visibility: Vec<Option<(u32, u32)>>,
     /// Translucent layers, `layers` per pixel, nearest first (the CPU's order).
     pub translucent_layers: Vec<Option<ShadingPoint>>,
     /// The lighting terms.
@@ -156,7 +159,11 @@ impl Passes {
             ctx,
             layouts,
             "composition",
-            &with(include_str!("shaders/compose.wgsl")),
+            &format!(
+                "{}\n{}",
+                with(include_str!("shaders/surface.wgsl")),
+                include_str!("shaders/compose.wgsl")
+            ),
             &["compose_main"],
         )?;
         let mut tonemap = compute_pipelines(
@@ -387,6 +394,33 @@ impl<'c> GpuDeferred<'c> {
         }
     }
 
+    /// The last frame's translucent layers, nearest first, each resolved on its own into
+    /// `layer_points` and read back.
+    fn read_layers(&self, camera: &Camera) -> Result<Vec<Vec<Option<ShadingPoint>>>> {
+        let ctx = self.ctx;
+        let sized = self.sized.as_ref().expect("sized by run");
+        let t = &sized.targets;
+        let base =
+            FrameUniform::new(camera, &self.scene, &self.settings, self.shadowed && !self.shadows.is_empty());
+        let (gx, gy) = groups(t.width, t.height);
+        let mut layers = Vec::with_capacity(t.layers as usize);
+        for k in 1..=t.layers {
+            ctx.queue.write_buffer(&t.uniform, 0, bytemuck::bytes_of(&base.with_readback_layer(k)));
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            {
+                let mut pass = encoder.begin_compute_pass(&Default::default());
+                pass.set_pipeline(&self.gbuffer.resolve_layer);
+                pass.set_bind_group(0, &self.scene_group, &[]);
+                pass.set_bind_group(1, &sized.frame_group, &[]);
+                pass.dispatch_workgroups(gx, gy, 1);
+            }
+            ctx.queue.submit([encoder.finish()]);
+            layers.push(read_points(ctx, &self.scene, &t.layer_points, t.pixels() as usize)?);
+        }
+        ctx.queue.write_buffer(&t.uniform, 0, bytemuck::bytes_of(&base));
+        Ok(layers)
+    }
+
     /// Renders one frame of `camera` and reads all of it back.
     pub fn render(&mut self, camera: &Camera) -> Result<GpuRasterFrame> {
         let timings = self.run(camera)?;
@@ -406,15 +440,21 @@ impl<'c> GpuDeferred<'c> {
             let c = ldr[y as usize * w + x as usize];
             [c as u8, (c >> 8) as u8, (c >> 16) as u8]
         });
-        let layers = read_points(ctx, &t.layer_points, n * t.layers as usize)?;
-        // Layer-major on the device, pixel-major on the CPU.
-        let layer_count = t.layers as usize;
+        let layers = self.read_layers(camera)?;
+        // Layer by layer on the device, pixel by pixel on the CPU.
+        let layer_count = layers.len();
         let translucent_layers =
-            (0..n * layer_count).map(|k| layers[(k % layer_count) * n + k / layer_count]).collect();
+            (0..n * layer_count).map(|k| layers[k % layer_count][k / layer_count]).collect();
+        let t = &self.sized.as_ref().expect("sized by run").targets;
+        let raw: Vec<GPointRaw> = read_vec(ctx, &t.gbuffer, n)?;
         Ok(GpuRasterFrame {
             hdr: read_vec3(ctx, &t.hdr, n)?,
             srgb,
-            gbuffer: read_points(ctx, &t.gbuffer, n)?,
+            gbuffer: raw.iter().map(|p| p.shading_point(&self.scene)).collect(),
+            visibility: raw
+                .iter()
+                .map(|p| p.drawn().checked_sub(1).and_then(|d| self.scene.triangle_ref(d)))
+                .collect(),
             translucent_layers,
             terms,
             timings,

@@ -11,9 +11,11 @@
 //!    k keeps, per pixel, the nearest fragment in front of the opaque key and behind layer
 //!    k − 1 (after it in (key, triangle) order, so that equal keys keep submission order as
 //!    the CPU's sorted insertion does).
-//! 3. One compute dispatch resolves every layer's ids into `GPoint`s (`shaders/resolve.wgsl`):
-//!    layer 0 into the G-buffer, the others into the translucent layers buffer. The
-//!    layout of both is documented in `targets.rs`; later compute passes read them.
+//! 3. A compute dispatch resolves the opaque ids into the G-buffer (`shaders/resolve.wgsl`
+//!    over `shaders/surface.wgsl`), laid out as `targets.rs` documents; later compute passes
+//!    read it. The translucent layers stay as ids: the translucent pass resolves them where
+//!    it blends them (a visibility buffer, so that no per-layer G-buffer is stored), and
+//!    read-back resolves one layer at a time.
 
 use crate::error::Result;
 use crate::pipeline::{compute_pipelines, groups, Layouts};
@@ -30,9 +32,11 @@ struct PeelUniform {
     layer: [u32; 4],
 }
 
-/// The resolve pipeline.
+/// The resolve pipelines: the G-buffer's, and one translucent layer's for read-back.
 pub(crate) struct GBufferPass {
     resolve: wgpu::ComputePipeline,
+    /// Resolves the layer the frame constants name into `layer_points`.
+    pub resolve_layer: wgpu::ComputePipeline,
 }
 
 /// The per-layer bind groups of the depth peel for one set of frame targets.
@@ -119,16 +123,18 @@ fn layer_pass<'e>(
 }
 
 impl GBufferPass {
-    /// Builds the resolve pipeline.
+    /// Builds the resolve pipelines.
     pub fn new(ctx: &renderlab_gpu::GpuContext, layouts: &Layouts) -> Result<Self> {
+        let source =
+            format!("{}\n{}", include_str!("shaders/surface.wgsl"), include_str!("shaders/resolve.wgsl"));
         let mut p = compute_pipelines(
             ctx,
             layouts,
             "g-buffer resolve",
-            include_str!("shaders/resolve.wgsl"),
-            &["resolve_main"],
+            &source,
+            &["resolve_main", "resolve_layer_main"],
         )?;
-        Ok(Self { resolve: p.remove(0) })
+        Ok(Self { resolve: p.remove(0), resolve_layer: p.remove(0) })
     }
 
     /// Records the geometry pass (timed as stage `stage` of `timer`).
@@ -172,6 +178,6 @@ impl GBufferPass {
         pass.set_bind_group(0, bind.0, &[]);
         pass.set_bind_group(1, bind.1, &[]);
         let (gx, gy) = groups(targets.width, targets.height);
-        pass.dispatch_workgroups(gx, gy, targets.layers + 1);
+        pass.dispatch_workgroups(gx, gy, 1);
     }
 }

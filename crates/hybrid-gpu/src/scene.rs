@@ -108,10 +108,30 @@ pub struct GpuScene {
     pub light_count: u32,
     /// The sky's radiance.
     pub sky: Vec3,
+    /// (instance, mesh triangle) per drawn triangle, as `triangle_refs` holds them.
+    refs: Vec<[u32; 2]>,
+    /// Per material: what a G-buffer texel leaves to it.
+    pub(crate) material_constants: Vec<MaterialConstants>,
 }
 
-/// A read-only storage buffer holding `bytes` (at least 16 bytes, so that an empty list
-/// still binds).
+/// What a G-buffer texel takes from its material rather than storing it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct MaterialConstants {
+    /// Emitted radiance.
+    pub emissive: Vec3,
+    /// Transmitted fraction.
+    pub transmission: f32,
+    /// Index of refraction.
+    pub ior: f32,
+    /// Whether the back face emits too.
+    pub double_sided: bool,
+}
+
+/// Smallest storage buffer: one element of the largest struct an array holds, so that an
+/// empty list still binds.
+const MIN_STORAGE: usize = 256;
+
+/// A read-only storage buffer holding `bytes` (padded to [`MIN_STORAGE`] bytes).
 pub(crate) fn storage(ctx: &GpuContext, label: &str, bytes: &[u8]) -> Result<wgpu::Buffer> {
     let max = ctx.device.limits().max_storage_buffer_binding_size as usize;
     if bytes.len() > max {
@@ -121,9 +141,9 @@ pub(crate) fn storage(ctx: &GpuContext, label: &str, bytes: &[u8]) -> Result<wgp
         )));
     }
     let mut padded;
-    let contents = if bytes.len() < 16 {
+    let contents = if bytes.len() < MIN_STORAGE {
         padded = bytes.to_vec();
-        padded.resize(16, 0);
+        padded.resize(MIN_STORAGE, 0);
         &padded[..]
     } else {
         bytes
@@ -252,6 +272,22 @@ impl GpuScene {
             translucent_triangles: counts[1],
             light_count: scene.lights.len() as u32,
             sky: scene.sky,
+            refs,
+            material_constants: scene
+                .materials
+                .iter()
+                .map(|m| MaterialConstants {
+                    emissive: m.emissive,
+                    transmission: m.transmission,
+                    ior: m.ior,
+                    double_sided: m.double_sided,
+                })
+                .collect(),
         })
+    }
+
+    /// The instance and mesh triangle of drawn triangle `drawn` (a G-buffer id minus one).
+    pub fn triangle_ref(&self, drawn: u32) -> Option<(u32, u32)> {
+        self.refs.get(drawn as usize).map(|r| (r[0], r[1]))
     }
 }

@@ -6,8 +6,8 @@
 //! | binding | WGSL | element (one per pixel, row-major, unless said) |
 //! |---|---|---|
 //! | 0 | `frame: Frame` | camera (matrix, eye, unit forward/right/up, `tan(fov/2)`, aspect), sky, sizes, settings |
-//! | 1 | `gbuf: array<GPoint>` | nearest opaque surface: position + u, shading normal + v, geometric normal + roughness, base colour + metallic, emissive + transmission, (material, drawn triangle + 1 — 0 where the sky shows —, front face, ior bits) |
-//! | 2 | `layer_points: array<GPoint>` | translucent layers, layer-major (`layer · pixels + pixel`), nearest first |
+//! | 1 | `gbuf: array<GPoint>` | nearest opaque surface, 64 bytes: (position, u), (shading normal, v), (base colour, roughness), (material, drawn triangle + 1 — 0 where the sky shows — with the front-face flag in bit 31, geometric normal octahedron-encoded in two 16-bit snorms, bits of metallic); emission, transmission and ior are the material's (`unpack_surface` in `common.wgsl`) |
+//! | 2 | `layer_points: array<GPoint>` | one translucent layer, resolved for read-back only (the frame resolves the layers from `ids` where it blends them) |
 //! | 3 | `direct: array<vec4f>` | direct light (xyz) |
 //! | 4 | `ambient: array<vec4f>` | diffuse indirect (xyz), ambient occlusion (w) |
 //! | 5 | `specular: array<vec4f>` | specular indirect (xyz) |
@@ -26,7 +26,7 @@ use renderlab_gpu::GpuContext;
 use renderlab_hybrid::deferred::{RasterSettings, ToneMap};
 
 /// Bytes of one G-buffer texel (`GPoint`).
-pub const GPOINT_BYTES: u64 = 96;
+pub const GPOINT_BYTES: u64 = 64;
 
 /// The frame's constants, laid out as `Frame` in `common.wgsl`.
 #[repr(C)]
@@ -83,8 +83,15 @@ impl FrameUniform {
                 settings.ssr.thickness,
                 settings.ssr.max_distance,
             ],
-            ssr_steps: [settings.ssr.max_steps, settings.ssr.refine_steps, shadows as u32, 0],
+            ssr_steps: [settings.ssr.max_steps, settings.ssr.refine_steps, shadows as u32, 1],
         }
+    }
+
+    /// The same constants asking the read-back resolve for translucent layer `layer`
+    /// (1: nearest).
+    pub fn with_readback_layer(mut self, layer: u32) -> Self {
+        self.ssr_steps[3] = layer;
+        self
     }
 }
 
@@ -100,7 +107,7 @@ pub struct FrameTargets {
     pub uniform: wgpu::Buffer,
     /// The opaque G-buffer (`GPoint` per pixel).
     pub gbuffer: wgpu::Buffer,
-    /// The translucent layers (`GPoint` per layer and pixel).
+    /// One translucent layer (`GPoint` per pixel), resolved for read-back.
     pub layer_points: wgpu::Buffer,
     /// Direct light.
     pub direct: wgpu::Buffer,
@@ -130,18 +137,17 @@ impl FrameTargets {
         ctx.check_size("the frame", width, height)?;
         let n = width as u64 * height as u64;
         let limits = ctx.device.limits();
-        let largest = n * layers as u64 * GPOINT_BYTES;
-        let max = (limits.max_storage_buffer_binding_size as u64).min(limits.max_buffer_size);
+        let largest = n * GPOINT_BYTES;
+        let max = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
         if largest > max {
             return Err(GpuDeferredError::TooLarge(format!(
-                "{width}×{height} pixels with {layers} translucent layers take {largest} bytes of G-buffer, \
-                 above this device's {max}-byte buffers"
+                "{width}×{height} pixels take {largest} bytes of G-buffer, above this device's {max}-byte buffers"
             )));
         }
         let buffer = |label: &str, size: u64, usage: wgpu::BufferUsages| {
             ctx.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
-                size: size.max(16),
+                size: size.max(256),
                 usage,
                 mapped_at_creation: false,
             })

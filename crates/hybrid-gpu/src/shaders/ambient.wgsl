@@ -14,7 +14,7 @@ fn depth_main(@builtin(global_invocation_id) id: vec3u) {
         return;
     }
     let i = pixel_index(id.x, id.y);
-    let sp = gbuf[i];
+    let sp = unpack_surface(gbuf[i]);
     var d = F32_MAX;
     if gp_valid(sp) {
         d = dot(sp.p.xyz - frame.eye.xyz, frame.forward.xyz);
@@ -43,7 +43,7 @@ fn kernel_sample(k: u32, samples: u32) -> vec3f {
     return dir * (0.1 + 0.9 * f * f);
 }
 
-fn ssao(i: u32, sp: GPoint) -> f32 {
+fn ssao(i: u32, sp: Surface) -> f32 {
     let samples = frame.params.w;
     if samples == 0u {
         return 1.0;
@@ -89,7 +89,7 @@ fn ambient_main(@builtin(global_invocation_id) id: vec3u) {
         return;
     }
     let i = pixel_index(id.x, id.y);
-    let sp = gbuf[i];
+    let sp = unpack_surface(gbuf[i]);
     var out = vec4f(0.0, 0.0, 0.0, 1.0);
     if gp_valid(sp) {
         out = vec4f(frame.sky.xyz * diffuse_albedo(sp, -view_dir(id.x, id.y)), ssao(i, sp));

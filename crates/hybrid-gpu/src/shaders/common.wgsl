@@ -30,14 +30,23 @@ struct Light {
     half_v_outer: vec4f,
 }
 
-// One G-buffer texel: a resolved shading point (the CPU's `ShadingPoint`).
-struct GPoint {
+// A resolved shading point (the CPU's `ShadingPoint`), as the shading code reads it.
+struct Surface {
     p: vec4f,   // position, uv.x
     n: vec4f,   // shading normal, uv.y
     g: vec4f,   // geometric normal, roughness
     c: vec4f,   // base colour, metallic
     e: vec4f,   // emissive, transmission
     ids: vec4u, // material, drawn triangle + 1 (0: sky), front face (1/0), bits of the ior
+}
+
+// One G-buffer texel, 64 bytes: a `Surface` without what its material holds (emission,
+// transmission, ior), its geometric normal octahedron-encoded in two 16-bit snorms.
+struct GPoint {
+    p: vec4f,   // position, uv.x
+    n: vec4f,   // shading normal, uv.y
+    c: vec4f,   // base colour, roughness
+    ids: vec4u, // material, drawn triangle + 1 (0: sky) | front face << 31, octahedral geometric normal, bits of metallic
 }
 
 struct Frame {
@@ -51,7 +60,7 @@ struct Frame {
     params: vec4u,   // translucent layers, tone map (0 ACES, 1 Reinhard, 2 clamp), PCF radius, SSAO samples
     shadow: vec4f,   // bias constant, bias slope, SSAO radius, SSAO bias
     ssr: vec4f,      // max roughness, stride (px), thickness, max distance
-    ssr_steps: vec4u, // max steps, refinements, shadow maps present (1/0), 0
+    ssr_steps: vec4u, // max steps, refinements, shadow maps present (1/0), translucent layer to resolve for read-back
 }
 
 const NONE: u32 = 0xffffffffu;
@@ -104,10 +113,67 @@ fn view_dir(x: u32, y: u32) -> vec3f {
     return normalize_exact(d);
 }
 
-fn gp_valid(g: GPoint) -> bool {
+fn gp_valid(g: Surface) -> bool {
     return g.ids.y != 0u;
 }
 
-fn gp_ior(g: GPoint) -> f32 {
+fn gp_ior(g: Surface) -> f32 {
     return bitcast<f32>(g.ids.w);
+}
+
+fn packed_valid(g: GPoint) -> bool {
+    return (g.ids.y & 0x7fffffffu) != 0u;
+}
+
+fn sign_not_zero(v: vec2f) -> vec2f {
+    return select(vec2f(-1.0), vec2f(1.0), v >= vec2f(0.0));
+}
+
+// Octahedral encoding of a unit vector in two 16-bit snorms.
+fn oct_encode(n: vec3f) -> u32 {
+    var e = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
+    if n.z < 0.0 {
+        e = (vec2f(1.0) - abs(e.yx)) * sign_not_zero(e);
+    }
+    return pack2x16snorm(e);
+}
+
+fn oct_decode(bits: u32) -> vec3f {
+    let e = unpack2x16snorm(bits);
+    var n = vec3f(e, 1.0 - abs(e.x) - abs(e.y));
+    if n.z < 0.0 {
+        n = vec3f((vec2f(1.0) - abs(n.yx)) * sign_not_zero(n.xy), n.z);
+    }
+    return normalize(n);
+}
+
+fn pack_surface(s: Surface) -> GPoint {
+    var g: GPoint;
+    g.p = s.p;
+    g.n = s.n;
+    g.c = vec4f(s.c.xyz, s.g.w);
+    g.ids = vec4u(s.ids.x, s.ids.y | (s.ids.z << 31u), oct_encode(s.g.xyz), bitcast<u32>(s.c.w));
+    return g;
+}
+
+// The surface of a G-buffer texel; emission, transmission and ior from its material
+// (no emission from the back of a single-sided one).
+fn unpack_surface(g: GPoint) -> Surface {
+    var s: Surface;
+    if !packed_valid(g) {
+        return s;
+    }
+    let m = materials[g.ids.x];
+    let front = g.ids.y >> 31u;
+    s.p = g.p;
+    s.n = g.n;
+    s.g = vec4f(oct_decode(g.ids.z), g.c.w);
+    s.c = vec4f(g.c.xyz, bitcast<f32>(g.ids.w));
+    var emissive = m.emissive_metal.xyz;
+    if front == 0u && m.transmission_ior.z == 0.0 {
+        emissive = vec3f(0.0);
+    }
+    s.e = vec4f(emissive, m.transmission_ior.x);
+    s.ids = vec4u(g.ids.x, g.ids.y & 0x7fffffffu, front, bitcast<u32>(m.transmission_ior.y));
+    return s;
 }

@@ -3,9 +3,9 @@
 // surface is), then each pixel's translucent layers blended over it back to front
 // (`forward_translucent`): `c ← layer + base_colour · transmitted · c`, each layer lit by
 // the same direct light and shadows, the ambient term and a Fresnel reflection of the sky.
+// The layers are resolved here from their visibility ids (`surface.wgsl`), not stored.
 
 @group(1) @binding(1) var<storage, read_write> gbuf: array<GPoint>;
-@group(1) @binding(2) var<storage, read_write> layer_points: array<GPoint>;
 @group(1) @binding(3) var<storage, read_write> direct: array<vec4f>;
 @group(1) @binding(4) var<storage, read_write> ambient: array<vec4f>;
 @group(1) @binding(5) var<storage, read_write> specular: array<vec4f>;
@@ -17,17 +17,16 @@ fn compose_main(@builtin(global_invocation_id) id: vec3u) {
         return;
     }
     let i = pixel_index(id.x, id.y);
-    let sp = gbuf[i];
+    let sp = unpack_surface(gbuf[i]);
     var c = frame.sky.xyz;
     if gp_valid(sp) {
         c = sp.e.xyz + direct[i].xyz + ambient[i].xyz * ambient[i].w + specular[i].xyz;
     }
-    let n = frame.size.x * frame.size.y;
     let layers = frame.params.x;
-    if layers > 0u && gp_valid(layer_points[i]) {
+    if layers > 0u && textureLoad(ids, vec2i(id.xy), 1, 0).x != 0u {
         let v = -view_dir(id.x, id.y);
         for (var k = layers; k > 0u; k--) {
-            let lp = layer_points[(k - 1u) * n + i];
+            let lp = surface_at(id.x, id.y, k);
             if !gp_valid(lp) {
                 continue;
             }

@@ -10,7 +10,7 @@ fn direct_main(@builtin(global_invocation_id) id: vec3u) {
         return;
     }
     let i = pixel_index(id.x, id.y);
-    let sp = gbuf[i];
+    let sp = unpack_surface(gbuf[i]);
     var c = vec3f(0.0);
     if gp_valid(sp) {
         c = shade_direct(sp, -view_dir(id.x, id.y));

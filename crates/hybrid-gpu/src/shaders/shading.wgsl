@@ -44,13 +44,13 @@ fn fresnel_schlick(cos_theta: f32, f0: vec3f) -> vec3f {
     return f0 + (vec3f(1.0) - f0) * (m2 * m2 * m);
 }
 
-fn f0_of(sp: GPoint) -> vec3f {
+fn f0_of(sp: Surface) -> vec3f {
     let r = (gp_ior(sp) - 1.0) / (gp_ior(sp) + 1.0);
     let s = sp.c.w;
     return vec3f(r * r) * (1.0 - s) + sp.c.xyz * s;
 }
 
-fn brdf_eval(sp: GPoint, v: vec3f, l: vec3f) -> vec3f {
+fn brdf_eval(sp: Surface, v: vec3f, l: vec3f) -> vec3f {
     let n = sp.n.xyz;
     let n_dot_l = dot(n, l);
     let n_dot_v = dot(n, v);
@@ -71,12 +71,12 @@ fn brdf_eval(sp: GPoint, v: vec3f, l: vec3f) -> vec3f {
 
 // ---- weights of the raster pipeline's indirect terms ----
 
-fn diffuse_albedo(sp: GPoint, v: vec3f) -> vec3f {
+fn diffuse_albedo(sp: Surface, v: vec3f) -> vec3f {
     let f = fresnel_schlick(max(dot(sp.n.xyz, v), 0.0), f0_of(sp));
     return (vec3f(1.0) - f) * ((1.0 - sp.c.w) * (1.0 - sp.e.w)) * sp.c.xyz;
 }
 
-fn specular_weight(sp: GPoint, n_dot_v: f32) -> vec3f {
+fn specular_weight(sp: Surface, n_dot_v: f32) -> vec3f {
     let c0 = vec4f(-1.0, -0.0275, -0.572, 0.022);
     let c1 = vec4f(1.0, 0.0425, 1.04, -0.04);
     let r = c0 * sp.g.w + c1;
@@ -240,7 +240,7 @@ fn shadow_visibility(li: u32, l: Light, point: vec3f, normal: vec3f) -> f32 {
 
 // ---- direct light ----
 
-fn shade_direct(sp: GPoint, v: vec3f) -> vec3f {
+fn shade_direct(sp: Surface, v: vec3f) -> vec3f {
     var sum = vec3f(0.0);
     let p = sp.p.xyz;
     for (var li = 0u; li < frame.size.z; li++) {

@@ -19,7 +19,7 @@ fn lit_main(@builtin(global_invocation_id) id: vec3u) {
         return;
     }
     let i = pixel_index(id.x, id.y);
-    let sp = gbuf[i];
+    let sp = unpack_surface(gbuf[i]);
     var c = frame.sky.xyz;
     if gp_valid(sp) {
         c = sp.e.xyz + direct[i].xyz + ambient[i].xyz * ambient[i].w;
@@ -64,7 +64,7 @@ fn at(s0: vec2f, delta: vec2f, k0: f32, k1: f32, t: f32) -> Step {
     return out;
 }
 
-fn offset_origin(sp: GPoint, dir: vec3f) -> vec3f {
+fn offset_origin(sp: Surface, dir: vec3f) -> vec3f {
     let p = sp.p.xyz;
     let a = abs(p);
     let scale = 1e-4 * (1.0 + max(a.x, max(a.y, a.z)));
@@ -122,7 +122,7 @@ fn march(o: vec3f, r: vec3f) -> u32 {
             if !sb.ok {
                 return NONE;
             }
-            let hit = gbuf[sb.k];
+            let hit = unpack_surface(gbuf[sb.k]);
             let front = gp_valid(hit) && dot(hit.n.xyz, r) < 0.0;
             if front && sb.z - depth[sb.k] < frame.ssr.z {
                 return sb.k;
@@ -139,7 +139,7 @@ fn ssr_main(@builtin(global_invocation_id) id: vec3u) {
         return;
     }
     let i = pixel_index(id.x, id.y);
-    let sp = gbuf[i];
+    let sp = unpack_surface(gbuf[i]);
     var c = vec3f(0.0);
     if gp_valid(sp) {
         let v = -view_dir(id.x, id.y);
