@@ -11,6 +11,7 @@
 //! extension (and `-cpu` after it for the CPU's image).
 
 use renderlab_core::Image;
+use renderlab_gpu::timing::median;
 use renderlab_gpu::GpuContext;
 use renderlab_hybrid::deferred::{render, PreparedScene, RasterSettings};
 use renderlab_hybrid_gpu::{GpuDeferred, GpuStageTimings, STAGES};
@@ -65,11 +66,6 @@ fn with_suffix(out: &Path, suffix: &str) -> PathBuf {
     out.with_file_name(format!("{stem}-{suffix}.{ext}"))
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
-
 fn run(a: &Args) -> Result<(), String> {
     let ctx = GpuContext::new().map_err(|e| e.to_string())?;
     println!("adapter: {}", ctx.report);
@@ -105,7 +101,7 @@ fn run(a: &Args) -> Result<(), String> {
         } else {
             let mut total = 0.0;
             for (k, stage) in STAGES.iter().enumerate() {
-                let ms = median(samples.iter().map(|t| t.as_array()[k]).collect());
+                let ms = median(&mut samples.iter().map(|t| t.as_array()[k]).collect::<Vec<_>>());
                 total += ms;
                 println!(
                     "  {stage:<12} {ms:9.2} ms GPU (median of {} after {} warm-up)",
@@ -113,7 +109,7 @@ fn run(a: &Args) -> Result<(), String> {
                     a.warmup
                 );
             }
-            let frame_total = median(samples.iter().map(GpuStageTimings::total_ms).collect());
+            let frame_total = median(&mut samples.iter().map(GpuStageTimings::total_ms).collect::<Vec<_>>());
             println!(
                 "  {:<12} {frame_total:9.2} ms GPU (median of frame totals; sum of medians {total:.2})",
                 "total"

@@ -11,86 +11,19 @@
 use crate::download::{read_points, read_vec, read_vec3, GPointRaw};
 use crate::error::{GpuDeferredError, Result};
 use crate::gbuffer::{GBufferPass, PeelGroups};
-use crate::pipeline::{compute_pipelines, groups, Layouts};
+use crate::passes::Passes;
+use crate::pipeline::{groups, Layouts};
 use crate::raster::{RasterPipelines, RasterView, Views};
 use crate::scene::GpuScene;
 use crate::shadows::ShadowPass;
 use crate::targets::{FrameTargets, FrameUniform};
-use crate::timing::StageTimer;
+use crate::timing::{GpuStageTimings, StageTimer, STAGES};
 use glam::Vec3;
 use renderlab_core::image::check_dimensions;
 use renderlab_core::{Camera, Image};
 use renderlab_gpu::GpuContext;
-use renderlab_hybrid::deferred::{PreparedScene, RasterSettings, StageTimings};
+use renderlab_hybrid::deferred::{PreparedScene, RasterSettings};
 use renderlab_scene::{LightingTerms, ShadingPoint};
-
-/// GPU time of each stage of one frame, milliseconds (timestamp queries).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct GpuStageTimings {
-    /// Visibility buffer, translucent depth peel and G-buffer resolve.
-    pub geometry_ms: f64,
-    /// Shadow maps of every light.
-    pub shadows_ms: f64,
-    /// Direct lighting with the shadow maps.
-    pub lighting_ms: f64,
-    /// View depth, ambient diffuse term and SSAO.
-    pub ambient_ms: f64,
-    /// The lit opaque image and screen-space reflections.
-    pub reflections_ms: f64,
-    /// Composition and the forward translucent pass.
-    pub translucent_ms: f64,
-    /// Tone mapping to 8-bit sRGB.
-    pub tonemap_ms: f64,
-}
-
-/// The stages in frame order, as [`GpuStageTimings`] names them.
-pub const STAGES: [&str; 7] =
-    ["geometry", "shadows", "lighting", "ambient", "reflections", "translucent", "tonemap"];
-
-impl GpuStageTimings {
-    fn from_slice(ms: &[f64]) -> Self {
-        Self {
-            geometry_ms: ms[0],
-            shadows_ms: ms[1],
-            lighting_ms: ms[2],
-            ambient_ms: ms[3],
-            reflections_ms: ms[4],
-            translucent_ms: ms[5],
-            tonemap_ms: ms[6],
-        }
-    }
-
-    /// The stages' times in [`STAGES`] order.
-    pub fn as_array(&self) -> [f64; 7] {
-        [
-            self.geometry_ms,
-            self.shadows_ms,
-            self.lighting_ms,
-            self.ambient_ms,
-            self.reflections_ms,
-            self.translucent_ms,
-            self.tonemap_ms,
-        ]
-    }
-
-    /// The sum of the stages.
-    pub fn total_ms(&self) -> f64 {
-        self.as_array().iter().sum()
-    }
-
-    /// The stages the CPU frame times, in its struct (tone mapping, which the CPU does
-    /// outside its frame, left out).
-    pub fn to_stage_timings(&self) -> StageTimings {
-        StageTimings {
-            geometry_ms: self.geometry_ms,
-            shadows_ms: self.shadows_ms,
-            lighting_ms: self.lighting_ms,
-            ambient_ms: self.ambient_ms,
-            reflections_ms: self.reflections_ms,
-            translucent_ms: self.translucent_ms,
-        }
-    }
-}
 
 /// One frame read back from the device.
 #[derive(Clone, Debug)]
@@ -117,72 +50,6 @@ struct Sized {
     targets: FrameTargets,
     peel: PeelGroups,
     frame_group: wgpu::BindGroup,
-}
-
-/// The compute pipelines after the geometry pass.
-struct Passes {
-    direct: wgpu::ComputePipeline,
-    depth: wgpu::ComputePipeline,
-    ambient: wgpu::ComputePipeline,
-    lit: wgpu::ComputePipeline,
-    ssr: wgpu::ComputePipeline,
-    compose: wgpu::ComputePipeline,
-    tonemap: wgpu::ComputePipeline,
-}
-
-impl Passes {
-    fn new(ctx: &GpuContext, layouts: &Layouts) -> Result<Self> {
-        let shading = include_str!("shaders/shading.wgsl");
-        let with = |own: &str| format!("{shading}\n{own}");
-        let mut direct = compute_pipelines(
-            ctx,
-            layouts,
-            "lighting",
-            &with(include_str!("shaders/lighting.wgsl")),
-            &["direct_main"],
-        )?;
-        let mut ambient = compute_pipelines(
-            ctx,
-            layouts,
-            "ambient",
-            &with(include_str!("shaders/ambient.wgsl")),
-            &["depth_main", "ambient_main"],
-        )?;
-        let mut ssr = compute_pipelines(
-            ctx,
-            layouts,
-            "reflections",
-            &with(include_str!("shaders/ssr.wgsl")),
-            &["lit_main", "ssr_main"],
-        )?;
-        let mut compose = compute_pipelines(
-            ctx,
-            layouts,
-            "composition",
-            &format!(
-                "{}\n{}",
-                with(include_str!("shaders/surface.wgsl")),
-                include_str!("shaders/compose.wgsl")
-            ),
-            &["compose_main"],
-        )?;
-        let mut tonemap = compute_pipelines(
-            ctx,
-            layouts,
-            "tone map",
-            include_str!("shaders/tonemap.wgsl"),
-            &["tonemap_main"],
-        )?;
-        Ok(Self {
-            direct: direct.remove(0),
-            depth: ambient.remove(0),
-            ambient: ambient.remove(0),
-            lit: ssr.remove(0),
-            ssr: ssr.remove(0),
-            compose: compose.remove(0),
-            tonemap: tonemap.remove(0),
-        })
-    }
 }
 
 /// The deferred frame of one scene on the device.

@@ -31,14 +31,16 @@ pub mod download;
 pub mod error;
 pub mod frame;
 pub mod gbuffer;
+mod passes;
 mod pipeline;
 mod raster;
 pub mod scene;
 pub mod shadows;
 pub mod targets;
-mod timing;
+pub mod timing;
 
 pub use error::{GpuDeferredError, Result};
-pub use frame::{GpuDeferred, GpuRasterFrame, GpuStageTimings, STAGES};
+pub use frame::{GpuDeferred, GpuRasterFrame};
 pub use scene::GpuScene;
 pub use targets::FrameTargets;
+pub use timing::{GpuStageTimings, STAGES};

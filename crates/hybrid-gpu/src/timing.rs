@@ -1,11 +1,13 @@
 //! Per-stage GPU time from timestamp queries: each stage (one pass or a group of passes)
 //! writes a timestamp where its first pass begins and where its last pass ends; the pairs
 //! are resolved into a buffer after the frame and read back, and each difference times the
-//! queue's period is the stage's GPU time.
+//! queue's period is the stage's GPU time ([`GpuStageTimings`], the CPU's `StageTimings`
+//! with tone mapping added).
 
 use crate::error::Result;
 use renderlab_gpu::readback::map_read;
 use renderlab_gpu::GpuContext;
+use renderlab_hybrid::deferred::StageTimings;
 
 /// A query pair per stage and the buffers that bring them back.
 pub(crate) struct StageTimer {
@@ -101,5 +103,73 @@ impl StageTimer {
             t.chunks(2).map(|p| p[1].wrapping_sub(p[0])).collect::<Vec<u64>>()
         })?;
         Ok(ticks.into_iter().map(|t| t as f64 * self.period_ns * 1e-6).collect())
+    }
+}
+
+/// GPU time of each stage of one frame, milliseconds (timestamp queries).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct GpuStageTimings {
+    /// Visibility buffer, translucent depth peel and G-buffer resolve.
+    pub geometry_ms: f64,
+    /// Shadow maps of every light.
+    pub shadows_ms: f64,
+    /// Direct lighting with the shadow maps.
+    pub lighting_ms: f64,
+    /// View depth, ambient diffuse term and SSAO.
+    pub ambient_ms: f64,
+    /// The lit opaque image and screen-space reflections.
+    pub reflections_ms: f64,
+    /// Composition and the forward translucent pass.
+    pub translucent_ms: f64,
+    /// Tone mapping to 8-bit sRGB.
+    pub tonemap_ms: f64,
+}
+
+/// The stages in frame order, as [`GpuStageTimings`] names them.
+pub const STAGES: [&str; 7] =
+    ["geometry", "shadows", "lighting", "ambient", "reflections", "translucent", "tonemap"];
+
+impl GpuStageTimings {
+    pub(crate) fn from_slice(ms: &[f64]) -> Self {
+        Self {
+            geometry_ms: ms[0],
+            shadows_ms: ms[1],
+            lighting_ms: ms[2],
+            ambient_ms: ms[3],
+            reflections_ms: ms[4],
+            translucent_ms: ms[5],
+            tonemap_ms: ms[6],
+        }
+    }
+
+    /// The stages' times in [`STAGES`] order.
+    pub fn as_array(&self) -> [f64; 7] {
+        [
+            self.geometry_ms,
+            self.shadows_ms,
+            self.lighting_ms,
+            self.ambient_ms,
+            self.reflections_ms,
+            self.translucent_ms,
+            self.tonemap_ms,
+        ]
+    }
+
+    /// The sum of the stages.
+    pub fn total_ms(&self) -> f64 {
+        self.as_array().iter().sum()
+    }
+
+    /// The stages the CPU frame times, in its struct (tone mapping, which the CPU does
+    /// outside its frame, left out).
+    pub fn to_stage_timings(&self) -> StageTimings {
+        StageTimings {
+            geometry_ms: self.geometry_ms,
+            shadows_ms: self.shadows_ms,
+            lighting_ms: self.lighting_ms,
+            ambient_ms: self.ambient_ms,
+            reflections_ms: self.reflections_ms,
+            translucent_ms: self.translucent_ms,
+        }
     }
 }
