@@ -134,6 +134,18 @@ impl<'c> GpuDeferred<'c> {
         self.sized.as_ref().map(|s| &s.targets)
     }
 
+    /// The pipeline layout of the frame's compute passes (group 0 the scene, group 1 the
+    /// frame), for compute stages over the G-buffer ([`crate::wgsl`]).
+    pub fn compute_layout(&self) -> &wgpu::PipelineLayout {
+        &self.layouts.pipeline
+    }
+
+    /// The scene's and the last frame's bind groups (groups 0 and 1 of
+    /// [`GpuDeferred::compute_layout`]); `None` before the first frame.
+    pub fn bind_groups(&self) -> Option<(&wgpu::BindGroup, &wgpu::BindGroup)> {
+        self.sized.as_ref().map(|s| (&self.scene_group, &s.frame_group))
+    }
+
     /// The scene's buffers.
     pub fn scene(&self) -> &GpuScene {
         &self.scene

@@ -23,6 +23,7 @@ use crate::raster::{RasterPipelines, Views};
 use crate::scene::GpuScene;
 use crate::targets::FrameTargets;
 use crate::timing::StageTimer;
+use crate::wgsl::SURFACE;
 use bytemuck::{Pod, Zeroable};
 
 /// The peel's per-layer constant, laid out as `Peel` in `raster.wgsl`.
@@ -125,8 +126,7 @@ fn layer_pass<'e>(
 impl GBufferPass {
     /// Builds the resolve pipelines.
     pub fn new(ctx: &renderlab_gpu::GpuContext, layouts: &Layouts) -> Result<Self> {
-        let source =
-            format!("{}\n{}", include_str!("shaders/surface.wgsl"), include_str!("shaders/resolve.wgsl"));
+        let source = format!("{SURFACE}\n{}", include_str!("shaders/resolve.wgsl"));
         let mut p = compute_pipelines(
             ctx,
             layouts,

@@ -17,7 +17,9 @@
 //!   and `shading.wgsl` for what they share).
 //! * The frame's buffers stay on the device ([`GpuDeferred::targets`], laid out as
 //!   [`targets`] documents) so that compute stages written later (the ray-traced ones) can
-//!   read the G-buffer and write their terms in place.
+//!   read the G-buffer and write their terms in place: their shaders start with the shared
+//!   WGSL of [`wgsl`] and run over [`GpuDeferred::compute_layout`] with
+//!   [`GpuDeferred::bind_groups`].
 //!
 //! Agreement with the CPU: every shader is written with the operations of its CPU twin
 //! (the BRDF, `Light::sample`, `shading_point`, the PCF lookup, the SSAO kernel and hash, the
@@ -38,6 +40,7 @@ pub mod scene;
 pub mod shadows;
 pub mod targets;
 pub mod timing;
+pub mod wgsl;
 
 pub use error::{GpuDeferredError, Result};
 pub use frame::{GpuDeferred, GpuRasterFrame};

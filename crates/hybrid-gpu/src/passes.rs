@@ -6,6 +6,7 @@
 
 use crate::error::Result;
 use crate::pipeline::{compute_pipelines, Layouts};
+use crate::wgsl::{SHADING, SURFACE};
 use renderlab_gpu::GpuContext;
 
 /// The compute pipelines after the geometry pass.
@@ -21,7 +22,7 @@ pub(crate) struct Passes {
 
 impl Passes {
     pub fn new(ctx: &GpuContext, layouts: &Layouts) -> Result<Self> {
-        let shading = include_str!("shaders/shading.wgsl");
+        let shading = SHADING;
         let with = |own: &str| format!("{shading}\n{own}");
         let mut direct = compute_pipelines(
             ctx,
@@ -48,11 +49,7 @@ impl Passes {
             ctx,
             layouts,
             "composition",
-            &format!(
-                "{}\n{}",
-                with(include_str!("shaders/surface.wgsl")),
-                include_str!("shaders/compose.wgsl")
-            ),
+            &format!("{}\n{}", with(SURFACE), include_str!("shaders/compose.wgsl")),
             &["compose_main"],
         )?;
         let mut tonemap = compute_pipelines(

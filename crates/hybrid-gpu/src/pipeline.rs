@@ -10,8 +10,7 @@ use crate::error::Result;
 use renderlab_gpu::shader::build_checked;
 use renderlab_gpu::GpuContext;
 
-/// The WGSL every compute pass starts with.
-pub(crate) const COMMON_WGSL: &str = include_str!("shaders/common.wgsl");
+use crate::wgsl::COMMON;
 
 /// Bindings of the scene group (group 0), in order.
 pub(crate) const SCENE_BINDINGS: u32 = 10;
@@ -130,7 +129,7 @@ impl Layouts {
     }
 }
 
-/// Compute pipelines of the entry points `entries` of `source` (after [`COMMON_WGSL`]) over
+/// Compute pipelines of the entry points `entries` of `source` (after [`COMMON`]) over
 /// the shared layouts; a shader that fails to compile or validate is an error naming
 /// `what`, not a panic.
 pub(crate) fn compute_pipelines(
@@ -140,7 +139,7 @@ pub(crate) fn compute_pipelines(
     source: &str,
     entries: &[&str],
 ) -> Result<Vec<wgpu::ComputePipeline>> {
-    let code = format!("{COMMON_WGSL}\n{source}");
+    let code = format!("{COMMON}\n{source}");
     let built = build_checked(ctx, &format!("deferred {what}"), &code, |module| {
         entries
             .iter()

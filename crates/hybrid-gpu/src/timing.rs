@@ -119,7 +119,8 @@ pub struct GpuStageTimings {
     pub ambient_ms: f64,
     /// The lit opaque image and screen-space reflections.
     pub reflections_ms: f64,
-    /// Composition and the forward translucent pass.
+    /// Composition and the forward translucent pass (which resolves the translucent
+    /// layers from their visibility ids: the CPU's geometry pass resolves them instead).
     pub translucent_ms: f64,
     /// Tone mapping to 8-bit sRGB.
     pub tonemap_ms: f64,

@@ -3,7 +3,10 @@
 // `HybridScene::shading_point` resolves it. The barycentrics at the pixel centre are those
 // of the camera ray's crossing of the triangle's plane (the perspective-correct
 // barycentrics the CPU rasterizer computes, in f32), weights of the drawn triangle's second
-// and third vertex, applied to the mesh's own vertex order as the CPU applies them.
+// and third vertex, applied to the mesh's own vertex order as the CPU's geometry pass
+// applies them. (Under a mirroring instance the drawn triangle is re-wound, so these
+// weights land on the swapped vertices and the point is not the ray's hit; the CPU's
+// geometry pass does the same, and the two must change together.)
 
 @group(1) @binding(13) var ids: texture_2d_array<u32>;
 
