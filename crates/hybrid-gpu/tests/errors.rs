@@ -20,6 +20,11 @@ fn a_zero_size_or_oversized_camera_is_refused_with_its_size() {
         assert!(matches!(e, GpuDeferredError::Size(_)), "{w}×{h}: {e:?}");
         assert!(e.to_string().contains("camera"), "{e}");
     }
+    // 8192² pixels pass the image limits, but their G-buffer (64 bytes a pixel, 4 GiB) is
+    // beyond any device's storage buffers (Vulkan's range is a 32-bit count of bytes).
+    let e = gpu.run(&Camera { width: 8192, height: 8192, ..camera }).unwrap_err();
+    assert!(matches!(e, GpuDeferredError::TooLarge(_)), "{e:?}");
+    assert!(e.to_string().contains("8192×8192"), "{e}");
     // The renderer is still usable after a refusal.
     assert!(gpu.render(&camera).is_ok());
 }
