@@ -36,7 +36,7 @@ pub mod export;
 pub mod filter;
 mod material;
 mod mesh;
-mod readback;
+pub mod readback;
 pub mod relief;
 pub mod rt;
 pub mod shader;

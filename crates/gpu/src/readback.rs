@@ -5,7 +5,7 @@ use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
 
 /// Maps `buffer` for reading, waits for it, and returns `f(bytes)`.
-pub(crate) fn map_read<T>(ctx: &GpuContext, buffer: &wgpu::Buffer, f: impl FnOnce(&[u8]) -> T) -> Result<T> {
+pub fn map_read<T>(ctx: &GpuContext, buffer: &wgpu::Buffer, f: impl FnOnce(&[u8]) -> T) -> Result<T> {
     let (tx, rx) = std::sync::mpsc::channel();
     buffer.slice(..).map_async(wgpu::MapMode::Read, move |r| {
         let _ = tx.send(r);
@@ -26,11 +26,7 @@ pub(crate) fn map_read<T>(ctx: &GpuContext, buffer: &wgpu::Buffer, f: impl FnOnc
 
 /// The texels of level 0 of `texture` (`width × height`, `bytes_per_texel` each), tightly
 /// packed, row 0 first.
-pub(crate) fn read_texture(
-    ctx: &GpuContext,
-    texture: &wgpu::Texture,
-    bytes_per_texel: u32,
-) -> Result<Vec<u8>> {
+pub fn read_texture(ctx: &GpuContext, texture: &wgpu::Texture, bytes_per_texel: u32) -> Result<Vec<u8>> {
     let (w, h) = (texture.width(), texture.height());
     let row = w * bytes_per_texel;
     let padded = row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;

@@ -1,11 +1,50 @@
-//! The hybrid frame on the GPU: the CPU renderer's stages (`renderlab-hybrid`) written again
-//! as wgpu passes over the same scene, camera, materials and lights, each timed with
-//! timestamp queries so that its GPU milliseconds can be set beside the thesis's tables.
+//! The hybrid lab's all-raster deferred frame on wgpu: the CPU's
+//! `renderlab_hybrid::deferred::frame::render` computed again on the device, pass for pass,
+//! each stage timed with timestamp queries.
 //!
-//! [`rt`] holds the ray-traced stages: compute passes over the G-buffer's surfaces that
-//! trace through either GPU ray-tracing path of `renderlab-gpu` ([`renderlab_gpu::rt`]), with
-//! the CPU stages' parameters and the CPU's per-pixel random streams ([`rt::random`]).
+//! * [`GpuDeferred::new`] uploads a [`PreparedScene`](renderlab_hybrid::deferred::PreparedScene)
+//!   ([`scene`]: world-space triangles for the rasterizer, object-space meshes, instances,
+//!   materials, textures and lights in storage buffers) and builds the pipelines;
+//!   [`GpuDeferred::render`] draws a frame and reads it back ([`GpuRasterFrame`]),
+//!   [`GpuDeferred::run`] draws one and returns only its per-stage GPU times
+//!   ([`GpuStageTimings`]).
+//! * The geometry pass ([`gbuffer`]) is a visibility buffer drawn by the GPU rasterizer at
+//!   pixel centres (opaque, back faces culled; translucent layers by depth peeling) and a
+//!   compute resolve into a G-buffer of shading points; every later stage is a compute pass
+//!   over it, in the CPU's order: shadow maps ([`shadows`], drawn by the rasterizer),
+//!   direct lighting, ambient and SSAO, the lit image and SSR, composition with the sorted
+//!   forward translucency, tone mapping (WGSL under `src/shaders/`, one file per pass
+//!   and `shading.wgsl` for what they share).
+//! * The frame's buffers stay on the device ([`GpuDeferred::targets`], laid out as
+//!   [`targets`] documents) so that compute stages written later (the ray-traced ones) can
+//!   read the G-buffer and write their terms in place: their shaders start with the shared
+//!   WGSL of [`wgsl`] and run over [`GpuDeferred::compute_layout`] with
+//!   [`GpuDeferred::bind_groups`].
+//!
+//! Agreement with the CPU: every shader is written with the operations of its CPU twin
+//! (the BRDF, `Light::sample`, `shading_point`, the PCF lookup, the SSAO kernel and hash, the
+//! SSR march), in f32 where the CPU rasterizer's setup is f64; the GPU's fill rule differs
+//! from the CPU's fixed-point one on edge pixels, and its transcendental functions by a few
+//! ulps. The tests in `tests/` bound each stage's difference.
 
 #![warn(missing_docs)]
 
+pub mod download;
+pub mod error;
+pub mod frame;
+pub mod gbuffer;
+mod passes;
+mod pipeline;
+mod raster;
 pub mod rt;
+pub mod scene;
+pub mod shadows;
+pub mod targets;
+pub mod timing;
+pub mod wgsl;
+
+pub use error::{GpuDeferredError, Result};
+pub use frame::{GpuDeferred, GpuRasterFrame};
+pub use scene::GpuScene;
+pub use targets::FrameTargets;
+pub use timing::{GpuStageTimings, STAGES};

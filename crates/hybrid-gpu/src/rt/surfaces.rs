@@ -1,5 +1,5 @@
 //! The G-buffer's opaque layer on the device as the ray-traced stages read it: a storage
-//! buffer of one 96-byte record per pixel, row-major (`shaders/surface.wgsl` declares it):
+//! buffer of one 96-byte record per pixel, row-major (`shaders/rt_surface.wgsl` declares it):
 //! position and presence flags, shading normal and material, geometric normal and
 //! roughness, base colour and metallic, emission and transmission, texture coordinates and
 //! index of refraction — the fields of the CPU's `ShadingPoint`.
@@ -13,7 +13,7 @@ use renderlab_scene::{GBuffer, ShadingPoint};
 use wgpu::util::DeviceExt;
 
 /// The WGSL declaration of a surface record and its helpers.
-pub const WGSL: &str = include_str!("../shaders/surface.wgsl");
+pub const WGSL: &str = include_str!("../shaders/rt_surface.wgsl");
 
 /// Bytes per pixel.
 pub const SURFACE_BYTES: u64 = 96;

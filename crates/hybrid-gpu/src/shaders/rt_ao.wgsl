@@ -14,7 +14,7 @@ struct AoParams {
     pad: u32,
 }
 
-@group(0) @binding(0) var<storage, read> surfaces: array<Surface>;
+@group(0) @binding(0) var<storage, read> surfaces: array<RtSurface>;
 @group(0) @binding(1) var<storage, read_write> ao_out: array<f32>;
 @group(0) @binding(2) var<uniform> ao: AoParams;
 @group(0) @binding(3) var<storage, read_write> ao_rays: atomic<u32>;

@@ -1,7 +1,13 @@
-//! What the GPU tests share: opening the device, or saying why a test cannot run.
+//! What the GPU deferred tests share: the device (or why the test cannot run), the built-in
+//! scenes at small sizes, and the comparisons.
+#![allow(dead_code)]
 
+use glam::Vec3;
+use renderlab_core::{Camera, Image};
 use renderlab_gpu::rt::RtPath;
 use renderlab_gpu::GpuContext;
+use renderlab_hybrid::deferred::RasterSettings;
+use renderlab_scene::{procedural, HybridScene};
 
 /// Opens the device. Without one, a test fails with the reason when the environment variable
 /// `CI` is set (CI installs lavapipe, so a missing adapter there is a broken set-up), and
@@ -20,8 +26,31 @@ pub fn context() -> Option<GpuContext> {
     }
 }
 
+/// The built-in scene `name` and its first camera at `width × height`.
+pub fn scene(name: &str, width: u32, height: u32) -> (HybridScene, Camera) {
+    let scene = procedural::builtin(name).expect("a built-in scene");
+    let mut camera = scene.cameras[0].camera;
+    camera.width = width;
+    camera.height = height;
+    (scene, camera)
+}
+
+/// The tests' settings: shadow maps of 256 texels a side (fast on a software device, the
+/// same on both sides).
+pub fn settings() -> RasterSettings {
+    RasterSettings::with_shadow_resolution(256)
+}
+
+/// PSNR (dB) of two linear images after clamping to [0, 1] and sRGB encoding (the metrics
+/// crate's), over every pixel.
+pub fn psnr(test: &[Vec3], reference: &[Vec3], width: u32, height: u32) -> f64 {
+    let img = |v: &[Vec3]| Image::from_fn(width, height, |x, y| v[(y * width + x) as usize]);
+    renderlab_measure::metrics::psnr(&img(test), &img(reference), None)
+}
+
 /// The ray-tracing paths this device runs: the compute path always, the query path where the
 /// device has ray queries; a path left out is printed as skipped, never silently.
+#[allow(dead_code)]
 pub fn paths(ctx: &GpuContext, test: &str) -> Vec<RtPath> {
     RtPath::ALL
         .into_iter()
