@@ -74,12 +74,10 @@ fn stratified(i: u32, n: u32, shift: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(min(fract(x + shift.x), top), min(fract(y + shift.y), top));
 }
 
-const PI: f32 = 3.14159265358979;
-
 // A cosine-weighted direction about local +Z.
 fn cosine_hemisphere(u: vec2<f32>) -> vec3<f32> {
     let r = sqrt(u.x);
-    let phi = 2.0 * PI * u.y;
+    let phi = 6.28318530717959 * u.y;
     return vec3<f32>(r * cos(phi), r * sin(phi), sqrt(max(1.0 - u.x, 0.0)));
 }
 

@@ -72,14 +72,29 @@ fn ray_barycentrics(o: vec3f, d: vec3f, a: vec3f, b: vec3f, c: vec3f) -> vec2f {
 
 fn resolve(drawn: u32, dir: vec3f) -> Surface {
     let r = triangle_refs[drawn];
-    let inst = instances[r.x];
-    let tri = r.y;
     // Barycentrics against the drawn (world) triangle.
     let wa = world_positions[draw_indices[3u * drawn]].xyz;
     let wb = world_positions[draw_indices[3u * drawn + 1u]].xyz;
     let wc = world_positions[draw_indices[3u * drawn + 2u]].xyz;
     let bary = ray_barycentrics(frame.eye.xyz, dir, wa, wb, wc);
+    return shading_point(r.x, r.y, bary, dir, drawn + 1u);
+}
 
+// What `ids.y` holds for a surface found by a ray rather than drawn: not 0 (a surface is
+// there), and no drawn triangle.
+const HIT_NOT_DRAWN: u32 = 0xffffffffu;
+
+// `HybridScene::shading_point` of a ray's hit (`Accel::surface`): mesh triangle `tri` of scene
+// instance `instance`, `bary` the weights of its second and third vertex in the mesh's own
+// order (the ray tracer's `u`, `v`), seen along `dir`.
+fn surface_from_hit(instance: u32, tri: u32, bary: vec2f, dir: vec3f) -> Surface {
+    return shading_point(instance, tri, bary, dir, HIT_NOT_DRAWN);
+}
+
+// The shading point of mesh triangle `tri` of instance `instance` at barycentrics `bary` seen
+// along `dir`; `drawn` goes to `ids.y` (the drawn triangle + 1, or HIT_NOT_DRAWN).
+fn shading_point(instance: u32, tri: u32, bary: vec2f, dir: vec3f, drawn: u32) -> Surface {
+    let inst = instances[instance];
     let ib = inst.refs.y + 3u * tri;
     let va = vertices[inst.refs.x + indices[ib]];
     let vb = vertices[inst.refs.x + indices[ib + 1u]];
@@ -140,7 +155,7 @@ fn resolve(drawn: u32, dir: vec3f) -> Surface {
     out.g = vec4f(geometric, roughness);
     out.c = vec4f(base, metallic);
     out.e = vec4f(emissive, m.transmission_ior.x);
-    out.ids = vec4u(inst.refs.z, drawn + 1u, select(0u, 1u, front), bitcast<u32>(m.transmission_ior.y));
+    out.ids = vec4u(inst.refs.z, drawn, select(0u, 1u, front), bitcast<u32>(m.transmission_ior.y));
     return out;
 }
 
