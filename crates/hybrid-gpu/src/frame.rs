@@ -23,7 +23,7 @@ use renderlab_core::image::check_dimensions;
 use renderlab_core::{Camera, Image};
 use renderlab_gpu::GpuContext;
 use renderlab_hybrid::deferred::{PreparedScene, RasterSettings};
-use renderlab_scene::{LightingTerms, ShadingPoint};
+use renderlab_scene::{HybridScene, LightingTerms, ShadingPoint};
 
 /// One frame read back from the device.
 #[derive(Clone, Debug)]
@@ -120,6 +120,13 @@ impl<'c> GpuDeferred<'c> {
             shadowed: true,
             sized: None,
         })
+    }
+
+    /// [`GpuDeferred::new`] from the scene itself: validated first (a bad scene is an error
+    /// before anything indexes it), then prepared as the CPU prepares it.
+    pub fn from_scene(ctx: &'c GpuContext, scene: &HybridScene, settings: &RasterSettings) -> Result<Self> {
+        scene.validate().map_err(|e| GpuDeferredError::Scene(e.to_string()))?;
+        Self::new(ctx, &PreparedScene::new(scene), settings)
     }
 
     /// Turns the shadow maps off (`false`: every light sample visible, the CPU's

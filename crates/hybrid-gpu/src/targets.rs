@@ -14,9 +14,10 @@
 //! | 6 | `lit: array<vec4f>` | the lit opaque image the reflections reflect |
 //! | 7 | `hdr: array<vec4f>` | the final linear image |
 //! | 8 | `ldr: array<u32>` | the tone-mapped sRGB image, RGBA8 packed |
-//! | 9–11 | shadow maps | `shadows.rs` |
+//! | 9, 11 | `shadow_maps`, `light_shadows` | the shadow maps' records and each light's maps (`shadows.rs`) |
 //! | 12 | `depth: array<f32>` | distance of the opaque surface along the view axis (`F32_MAX` for sky) |
 //! | 13 | `ids: texture_2d_array<u32>` | layer 0: the opaque visibility buffer; layer k: translucent layer k (drawn triangle + 1) |
+//! | 10, 14, 15 | `directional_maps`, `cube_maps`, `area_maps: texture_2d_array<f32>` | the shadow maps' distances (`shadows.rs`) |
 
 use crate::error::{GpuDeferredError, Result};
 use crate::scene::GpuScene;

@@ -63,6 +63,11 @@ fn bad_settings_and_an_invalid_scene_are_refused() {
         .err()
         .expect("a missing material refused");
     assert!(matches!(e, GpuDeferredError::Scene(_)) && e.to_string().contains("material"), "{e}");
+    // A mesh reference out of range would stop the CPU's preparation itself; from the scene,
+    // validation comes first.
+    bad.instances[0].mesh = 9;
+    let e = GpuDeferred::from_scene(&ctx, &bad, &settings).err().expect("a missing mesh refused");
+    assert!(matches!(e, GpuDeferredError::Scene(_)) && e.to_string().contains("mesh"), "{e}");
 }
 
 #[test]
