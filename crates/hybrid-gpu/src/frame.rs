@@ -13,6 +13,7 @@ use crate::error::{GpuDeferredError, Result};
 use crate::gbuffer::{GBufferPass, PeelGroups};
 use crate::passes::Passes;
 use crate::pipeline::{groups, Layouts};
+use crate::plan::{Plan, Step};
 use crate::raster::{RasterPipelines, RasterView, Views};
 use crate::scene::GpuScene;
 use crate::shadows::ShadowPass;
@@ -210,17 +211,57 @@ impl<'c> GpuDeferred<'c> {
         Ok(())
     }
 
-    /// Records and submits one frame of `camera`; waits for it and returns the stage
-    /// times where the device has timestamps.
+    /// Records and submits one all-raster frame of `camera`; waits for it and returns the
+    /// stage times where the device has timestamps.
     pub fn run(&mut self, camera: &Camera) -> Result<Option<GpuStageTimings>> {
+        self.prepare(camera)?;
+        let p = &self.passes;
+        let plan = Plan {
+            maps: true,
+            shadows: vec![Step::Raster(&p.direct)],
+            ambient: vec![Step::Raster(&p.ambient)],
+            ao: vec![Step::Raster(&p.ssao)],
+            reflections: vec![Step::Raster(&p.lit), Step::Raster(&p.ssr)],
+            translucent: vec![Step::Raster(&p.compose)],
+            accel: None,
+        };
+        self.submit(camera, &self.settings, &plan)
+    }
+
+    /// Checks `camera` and makes the frame's targets for its size (before [`Self::submit`]).
+    pub(crate) fn prepare(&mut self, camera: &Camera) -> Result<()> {
         check_dimensions("camera", camera.width as u64, camera.height as u64)
             .map_err(|e| GpuDeferredError::Size(e.to_string()))?;
-        self.size_for(camera)?;
+        self.size_for(camera)
+    }
+
+    /// The raster passes a plan may name (direct lighting, ambient, SSAO, the lit image,
+    /// SSR, composition).
+    pub(crate) fn passes(&self) -> &Passes {
+        &self.passes
+    }
+
+    /// The layouts of the frame's compute passes (for the ray-traced stages' pipelines).
+    pub(crate) fn layouts(&self) -> &Layouts {
+        &self.layouts
+    }
+
+    /// Records and submits one frame of `camera` as `plan` says, with `settings`' frame
+    /// constants (SSAO samples and radius, say; the shadow maps keep the settings they were
+    /// built with), after [`Self::prepare`]; waits for it and returns the stage times where
+    /// the device has timestamps.
+    pub(crate) fn submit(
+        &self,
+        camera: &Camera,
+        settings: &RasterSettings,
+        plan: &Plan<'_>,
+    ) -> Result<Option<GpuStageTimings>> {
         let ctx = self.ctx;
-        let sized = self.sized.as_ref().expect("sized above");
+        let sized =
+            self.sized.as_ref().ok_or_else(|| GpuDeferredError::Size("no targets: prepare first".into()))?;
         let t = &sized.targets;
-        let uniform =
-            FrameUniform::new(camera, &self.scene, &self.settings, self.shadowed && !self.shadows.is_empty());
+        let shadowed = self.shadowed && plan.maps && !self.shadows.is_empty();
+        let uniform = FrameUniform::new(camera, &self.scene, settings, shadowed);
         ctx.queue.write_buffer(&t.uniform, 0, bytemuck::bytes_of(&uniform));
         self.camera_view.write(
             ctx,
@@ -241,21 +282,27 @@ impl<'c> GpuDeferred<'c> {
             bind,
             timer.map(|t| (t, 0)),
         );
-        let drew = self.shadowed
-            && self.shadows.encode(&mut encoder, &self.raster, &self.scene, timer.map(|t| (t, 1)));
+        let drew =
+            shadowed && self.shadows.encode(&mut encoder, &self.raster, &self.scene, timer.map(|t| (t, 1)));
         let (gx, gy) = groups(t.width, t.height);
-        let stage = |encoder: &mut wgpu::CommandEncoder,
-                     index: usize,
-                     label: &str,
-                     pipelines: &[&wgpu::ComputePipeline]| {
+        let stage = |encoder: &mut wgpu::CommandEncoder, index: usize, label: &str, steps: &[Step<'_>]| {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some(label),
                 timestamp_writes: timer.and_then(|t| t.compute_writes(index, true, true)),
             });
             pass.set_bind_group(0, bind.0, &[]);
             pass.set_bind_group(1, bind.1, &[]);
-            for p in pipelines {
-                pass.set_pipeline(p);
+            if let Some(accel) = plan.accel {
+                pass.set_bind_group(2, accel, &[]);
+            }
+            for step in steps {
+                match step {
+                    Step::Raster(p) => pass.set_pipeline(p),
+                    Step::Traced(p, own) => {
+                        pass.set_pipeline(p);
+                        pass.set_bind_group(3, *own, &[]);
+                    }
+                }
                 pass.dispatch_workgroups(gx, gy, 1);
             }
         };
@@ -264,11 +311,14 @@ impl<'c> GpuDeferred<'c> {
             stage(&mut encoder, 1, "no shadow maps", &[]);
         }
         let p = &self.passes;
-        stage(&mut encoder, 2, "lighting", &[&p.direct]);
-        stage(&mut encoder, 3, "ambient", &[&p.depth, &p.ambient]);
-        stage(&mut encoder, 4, "reflections", &[&p.lit, &p.ssr]);
-        stage(&mut encoder, 5, "translucent", &[&p.compose]);
-        stage(&mut encoder, 6, "tone map", &[&p.tonemap]);
+        stage(&mut encoder, 2, "lighting", &plan.shadows);
+        let mut ambient = vec![Step::Raster(&p.depth)];
+        ambient.extend(plan.ambient.iter().copied());
+        stage(&mut encoder, 3, "ambient", &ambient);
+        stage(&mut encoder, 7, "ambient occlusion", &plan.ao);
+        stage(&mut encoder, 4, "reflections", &plan.reflections);
+        stage(&mut encoder, 5, "translucent", &plan.translucent);
+        stage(&mut encoder, 6, "tone map", &[Step::Raster(&p.tonemap)]);
         if let Some(timer) = timer {
             timer.resolve(&mut encoder);
         }
@@ -310,6 +360,15 @@ impl<'c> GpuDeferred<'c> {
     /// Renders one frame of `camera` and reads all of it back.
     pub fn render(&mut self, camera: &Camera) -> Result<GpuRasterFrame> {
         let timings = self.run(camera)?;
+        self.read_frame(camera, timings)
+    }
+
+    /// Reads back the frame just run for `camera` (its stage times given).
+    pub(crate) fn read_frame(
+        &self,
+        camera: &Camera,
+        timings: Option<GpuStageTimings>,
+    ) -> Result<GpuRasterFrame> {
         let ctx = self.ctx;
         let t = &self.sized.as_ref().expect("sized by run").targets;
         let n = t.pixels() as usize;

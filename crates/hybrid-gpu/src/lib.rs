@@ -33,8 +33,10 @@ pub mod download;
 pub mod error;
 pub mod frame;
 pub mod gbuffer;
+pub mod hybrid;
 mod passes;
 mod pipeline;
+mod plan;
 mod raster;
 pub mod rt;
 pub mod scene;
@@ -45,6 +47,7 @@ pub mod wgsl;
 
 pub use error::{GpuDeferredError, Result};
 pub use frame::{GpuDeferred, GpuRasterFrame};
+pub use hybrid::{GpuHybrid, GpuHybridFrame};
 pub use scene::GpuScene;
 pub use targets::FrameTargets;
 pub use timing::{GpuStageTimings, STAGES};

@@ -9,11 +9,19 @@ use crate::pipeline::{compute_pipelines, Layouts};
 use crate::wgsl::{SHADING, SURFACE};
 use renderlab_gpu::GpuContext;
 
+/// The composition and forward translucent pass (`layer_direct` defined before it).
+pub(crate) const COMPOSE: &str = include_str!("shaders/compose.wgsl");
+
+/// A translucent layer's direct light with the shadow maps.
+const RASTER_LAYER_DIRECT: &str =
+    "fn layer_direct(sp: Surface, v: vec3f) -> vec3f {\n    return shade_direct(sp, v);\n}";
+
 /// The compute pipelines after the geometry pass.
 pub(crate) struct Passes {
     pub direct: wgpu::ComputePipeline,
     pub depth: wgpu::ComputePipeline,
     pub ambient: wgpu::ComputePipeline,
+    pub ssao: wgpu::ComputePipeline,
     pub lit: wgpu::ComputePipeline,
     pub ssr: wgpu::ComputePipeline,
     pub compose: wgpu::ComputePipeline,
@@ -36,7 +44,7 @@ impl Passes {
             layouts,
             "ambient",
             &with(include_str!("shaders/ambient.wgsl")),
-            &["depth_main", "ambient_main"],
+            &["depth_main", "ambient_main", "ssao_main"],
         )?;
         let mut ssr = compute_pipelines(
             ctx,
@@ -49,7 +57,7 @@ impl Passes {
             ctx,
             layouts,
             "composition",
-            &format!("{}\n{}", with(SURFACE), include_str!("shaders/compose.wgsl")),
+            &format!("{}\n{RASTER_LAYER_DIRECT}\n{COMPOSE}", with(SURFACE)),
             &["compose_main"],
         )?;
         let mut tonemap = compute_pipelines(
@@ -63,6 +71,7 @@ impl Passes {
             direct: direct.remove(0),
             depth: ambient.remove(0),
             ambient: ambient.remove(0),
+            ssao: ambient.remove(0),
             lit: ssr.remove(0),
             ssr: ssr.remove(0),
             compose: compose.remove(0),

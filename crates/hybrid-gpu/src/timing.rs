@@ -115,7 +115,7 @@ pub struct GpuStageTimings {
     pub shadows_ms: f64,
     /// Direct lighting with the shadow maps.
     pub lighting_ms: f64,
-    /// View depth, ambient diffuse term and SSAO.
+    /// View depth and the ambient diffuse term (or ray-traced GI in a hybrid frame).
     pub ambient_ms: f64,
     /// The lit opaque image and screen-space reflections.
     pub reflections_ms: f64,
@@ -124,11 +124,14 @@ pub struct GpuStageTimings {
     pub translucent_ms: f64,
     /// Tone mapping to 8-bit sRGB.
     pub tonemap_ms: f64,
+    /// Ambient occlusion (SSAO, or ray-traced AO in a hybrid frame; an empty pass when off).
+    pub ao_ms: f64,
 }
 
 /// The stages in frame order, as [`GpuStageTimings`] names them.
-pub const STAGES: [&str; 7] =
-    ["geometry", "shadows", "lighting", "ambient", "reflections", "translucent", "tonemap"];
+/// (AO, the last slot, runs after the ambient term and before the reflections.)
+pub const STAGES: [&str; 8] =
+    ["geometry", "shadows", "lighting", "ambient", "reflections", "translucent", "tonemap", "ao"];
 
 impl GpuStageTimings {
     pub(crate) fn from_slice(ms: &[f64]) -> Self {
@@ -140,11 +143,12 @@ impl GpuStageTimings {
             reflections_ms: ms[4],
             translucent_ms: ms[5],
             tonemap_ms: ms[6],
+            ao_ms: ms[7],
         }
     }
 
     /// The stages' times in [`STAGES`] order.
-    pub fn as_array(&self) -> [f64; 7] {
+    pub fn as_array(&self) -> [f64; 8] {
         [
             self.geometry_ms,
             self.shadows_ms,
@@ -153,6 +157,7 @@ impl GpuStageTimings {
             self.reflections_ms,
             self.translucent_ms,
             self.tonemap_ms,
+            self.ao_ms,
         ]
     }
 
@@ -168,7 +173,7 @@ impl GpuStageTimings {
             geometry_ms: self.geometry_ms,
             shadows_ms: self.shadows_ms,
             lighting_ms: self.lighting_ms,
-            ambient_ms: self.ambient_ms,
+            ambient_ms: self.ambient_ms + self.ao_ms,
             reflections_ms: self.reflections_ms,
             translucent_ms: self.translucent_ms,
         }

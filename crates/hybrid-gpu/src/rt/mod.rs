@@ -1,13 +1,11 @@
-//! The ray-traced stages on the GPU: compute passes over the G-buffer's surfaces
-//! ([`surfaces`]) that trace through a [`GpuAccel`] of either path (bound as group 1; the
-//! stage's own resources are group 0), one invocation per pixel in 8 × 8 workgroups, with the
-//! CPU stages' parameters and the CPU's per-pixel random streams ([`random`]), each pass
-//! timed with timestamp queries.
+//! The ray-traced stages on the GPU: compute passes over the deferred frame's G-buffer that
+//! trace through a [`GpuAccel`](renderlab_gpu::rt::GpuAccel) of either path, with the CPU
+//! stages' parameters and the CPU's per-pixel random streams ([`random`]), writing their
+//! terms in place of the raster passes' (see [`crate::hybrid`], which plans a frame from a
+//! stage configuration).
 
-pub mod ao;
 pub mod pass;
 pub mod random;
-pub mod surfaces;
+pub mod stages;
 
-pub use ao::RtAo;
-pub use surfaces::GpuSurfaces;
+pub use stages::RtStages;

@@ -92,7 +92,21 @@ fn ambient_main(@builtin(global_invocation_id) id: vec3u) {
     let sp = unpack_surface(gbuf[i]);
     var out = vec4f(0.0, 0.0, 0.0, 1.0);
     if gp_valid(sp) {
-        out = vec4f(frame.sky.xyz * diffuse_albedo(sp, -view_dir(id.x, id.y)), ssao(i, sp));
+        out = vec4f(frame.sky.xyz * diffuse_albedo(sp, -view_dir(id.x, id.y)), 1.0);
     }
     ambient[i] = out;
+}
+
+// SSAO into the ambient term's w (after `ambient_main` or a ray-traced GI pass, which leave
+// it 1: AO off).
+@compute @workgroup_size(8, 8, 1)
+fn ssao_main(@builtin(global_invocation_id) id: vec3u) {
+    if id.x >= frame.size.x || id.y >= frame.size.y {
+        return;
+    }
+    let i = pixel_index(id.x, id.y);
+    let sp = unpack_surface(gbuf[i]);
+    if gp_valid(sp) {
+        ambient[i].w = ssao(i, sp);
+    }
 }

@@ -4,6 +4,8 @@
 // (`forward_translucent`): `c ← layer + base_colour · transmitted · c`, each layer lit by
 // the same direct light and shadows, the ambient term and a Fresnel reflection of the sky.
 // The layers are resolved here from their visibility ids (`surface.wgsl`), not stored.
+// `layer_direct` (a layer's direct light) is defined before this file: with the shadow maps
+// (`shade_direct`) or, with ray-traced shadows, with a shadow ray per light sample.
 
 @group(1) @binding(1) var<storage, read_write> gbuf: array<GPoint>;
 @group(1) @binding(3) var<storage, read_write> direct: array<vec4f>;
@@ -32,7 +34,7 @@ fn compose_main(@builtin(global_invocation_id) id: vec3u) {
             }
             let f = fresnel_schlick(max(dot(lp.n.xyz, v), 0.0), f0_of(lp));
             let transmitted = lp.e.w * (1.0 - (f.x + f.y + f.z) / 3.0);
-            let radiance = lp.e.xyz + shade_direct(lp, v) + frame.sky.xyz * diffuse_albedo(lp, v) + f * frame.sky.xyz;
+            let radiance = lp.e.xyz + layer_direct(lp, v) + frame.sky.xyz * diffuse_albedo(lp, v) + f * frame.sky.xyz;
             c = radiance + lp.c.xyz * transmitted * c;
         }
     }

@@ -1,50 +1,37 @@
-// Ray-traced ambient occlusion (the CPU's `ao::openness`): per opaque pixel, `samples`
-// stratified cosine-distributed rays of length `radius` about the shading normal, rotated by
-// the pixel's random shift; AO is the fraction that escapes. Rays below the geometric
-// surface count as occluded without a ray. Follows the ray tracer's prelude (group 1), the
-// random streams and the surface record.
+// Ray-traced ambient occlusion (the CPU's `ao::openness`): per opaque pixel, `counts.x`
+// stratified cosine-distributed rays of length `values.x` about the shading normal, rotated
+// by the pixel's random shift; AO (`ambient.w`) is the fraction that escapes. Rays below the
+// geometric surface count as occluded without a ray.
 
-struct AoParams {
-    width: u32,
-    height: u32,
-    samples: u32,
-    mask: u32,
-    base: vec2<u32>,
-    radius: f32,
-    pad: u32,
-}
+@group(1) @binding(1) var<storage, read_write> gbuf: array<GPoint>;
+@group(1) @binding(4) var<storage, read_write> ambient: array<vec4f>;
 
-@group(0) @binding(0) var<storage, read> surfaces: array<RtSurface>;
-@group(0) @binding(1) var<storage, read_write> ao_out: array<f32>;
-@group(0) @binding(2) var<uniform> ao: AoParams;
-@group(0) @binding(3) var<storage, read_write> ao_rays: atomic<u32>;
-
-@compute @workgroup_size(8, 8)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x >= ao.width || id.y >= ao.height {
+@compute @workgroup_size(8, 8, 1)
+fn rt_ao_main(@builtin(global_invocation_id) id: vec3u) {
+    if id.x >= frame.size.x || id.y >= frame.size.y {
         return;
     }
-    let i = id.y * ao.width + id.x;
-    let s = surfaces[i];
-    if !surface_present(s) {
-        ao_out[i] = 1.0;
+    let i = pixel_index(id.x, id.y);
+    let sp = unpack_surface(gbuf[i]);
+    if !gp_valid(sp) {
         return;
     }
-    var rng = rng_new(ao.base, i);
+    var rng = rng_new(rtp.counts.zw, i);
     let shift = rng_vec2(&rng);
-    let n = max(ao.samples, 1u);
+    let n = max(rtp.counts.x, 1u);
+    let radius = rtp.values.x;
     var open = 0u;
     var traced = 0u;
     for (var k = 0u; k < n; k++) {
-        let dir = frame_to_world(s.normal.xyz, cosine_hemisphere(stratified(k, n, shift)));
-        if dot(dir, s.geometric.xyz) <= 0.0 {
+        let dir = frame_to_world(sp.n.xyz, cosine_hemisphere(stratified(k, n, shift)));
+        if dot(dir, sp.g.xyz) <= 0.0 {
             continue;
         }
         traced++;
-        if !rt_any(offset_origin(s, dir), dir, 0.0, ao.radius * SHADOW_END, ao.mask) {
+        if !rt_any(offset_origin(sp, dir), dir, 0.0, radius * SHADOW_END, 0xffu) {
             open++;
         }
     }
-    ao_out[i] = f32(open) / f32(n);
-    atomicAdd(&ao_rays, traced);
+    ambient[i].w = f32(open) / f32(n);
+    count_rays(traced);
 }

@@ -1,0 +1,183 @@
+//! The hybrid frame on the GPU: the deferred frame ([`GpuDeferred`]) with each stage's
+//! choice from a [`StageConfig`] — the raster pass, or the ray-traced compute pass in its
+//! place ([`crate::rt`]) — through the GPU ray tracer of either path, giving the CPU's
+//! [`HybridFrame`] (so that the lab scores a GPU frame as it scores a CPU one) with GPU
+//! milliseconds per stage from timestamps.
+//!
+//! Stage times map onto the CPU's [`PerStage`]: geometry (visibility buffer, depth peel,
+//! resolve, and the view-depth pass); shadows (the shadow maps and the lighting pass, or the
+//! ray-traced direct pass); GI (the ambient term or ray-traced GI); AO (SSAO, ray-traced AO,
+//! or nothing); reflections (the lit image and SSR, or ray-traced reflections); translucency
+//! (the composition and the forward translucent layers, one pass on the GPU, so `compose` is
+//! 0). Tone mapping is reported apart, as the CPU leaves it out of the frame.
+
+use crate::error::{GpuDeferredError, Result};
+use crate::frame::GpuDeferred;
+use crate::plan::{Plan, Step};
+use crate::rt::pass::COUNTERS;
+use crate::rt::RtStages;
+use crate::timing::GpuStageTimings;
+use renderlab_core::Camera;
+use renderlab_gpu::rt::{GpuAccel, RtPath};
+use renderlab_gpu::GpuContext;
+use renderlab_hybrid::deferred::{PreparedScene, RasterSettings};
+use renderlab_hybrid::stages::entry::Entry;
+use renderlab_hybrid::{
+    Accel, Ao, Gi, HybridFrame, PerStage, Reflections, Shadows, StageConfig, Translucency,
+};
+use renderlab_scene::GBuffer;
+use std::time::Instant;
+
+/// The bind group index of the ray tracer's structure in the frame's ray-traced passes.
+pub const ACCEL_GROUP: u32 = 2;
+
+/// One GPU hybrid frame.
+#[derive(Clone, Debug)]
+pub struct GpuHybridFrame {
+    /// The frame as the CPU renderer gives it; `stage_ms` holds GPU milliseconds (timestamps)
+    /// where the device has timestamps, else the frame's wall time in `compose`.
+    pub frame: HybridFrame,
+    /// Per-stage GPU times as the deferred frame reports them, where the device has
+    /// timestamps.
+    pub timings: Option<GpuStageTimings>,
+    /// Wall-clock milliseconds from recording the frame to its completion.
+    pub wall_ms: f64,
+}
+
+/// A scene on the device with its structure and every stage's passes.
+pub struct GpuHybrid<'c> {
+    ctx: &'c GpuContext,
+    deferred: GpuDeferred<'c>,
+    accel: GpuAccel,
+    rt: RtStages,
+    raster: RasterSettings,
+}
+
+impl<'c> GpuHybrid<'c> {
+    /// Uploads `prepared`, copies `accel` (the CPU structure of the same scene) to the device
+    /// for `path`, and compiles every pass.
+    pub fn new(
+        ctx: &'c GpuContext,
+        prepared: &PreparedScene,
+        accel: &Accel,
+        raster: &RasterSettings,
+        path: RtPath,
+    ) -> Result<Self> {
+        let deferred = GpuDeferred::new(ctx, prepared, raster)?;
+        let gpu_accel = GpuAccel::build(ctx, accel.tlas(), &[], path, ACCEL_GROUP)?;
+        let rt = RtStages::new(ctx, deferred.layouts(), &gpu_accel)?;
+        Ok(Self { ctx, deferred, accel: gpu_accel, rt, raster: raster.clone() })
+    }
+
+    /// Which ray-tracing path the frame's passes use.
+    pub fn path(&self) -> RtPath {
+        self.accel.path()
+    }
+
+    /// Refuses a configuration with a stage choice that has no GPU twin yet, naming it.
+    pub fn check(config: &StageConfig) -> Result<()> {
+        let missing = |what: &str, label: String| {
+            Err(GpuDeferredError::Unsupported(format!("{what} '{label}' has no GPU twin yet")))
+        };
+        if let Reflections::RayTraced { .. } = config.reflections {
+            return missing("reflections", config.reflections.label());
+        }
+        if let Translucency::RayTraced { .. } = config.translucency {
+            return missing("translucency", config.translucency.label());
+        }
+        if let Gi::RayTraced { .. } = config.gi {
+            return missing("gi", config.gi.label());
+        }
+        Ok(())
+    }
+
+    /// Runs one frame of `camera` with `config`'s stages, seeded by `seed`, without reading
+    /// it back: its stage times, wall time and rays per stage.
+    pub fn run(
+        &mut self,
+        camera: &Camera,
+        config: &StageConfig,
+        seed: u64,
+    ) -> Result<(Option<GpuStageTimings>, f64, PerStage<u64>)> {
+        Self::check(config)?;
+        config.validate().map_err(GpuDeferredError::Settings)?;
+        let mut raster = self.raster.clone();
+        config.adjust_raster(&mut raster);
+        raster.validate().map_err(GpuDeferredError::Settings)?;
+        self.deferred.prepare(camera)?;
+        let ctx = self.ctx;
+        let rt = &self.rt;
+        rt.reset(ctx);
+        let p = self.deferred.passes();
+        let mut plan = Plan {
+            maps: true,
+            shadows: vec![Step::Raster(&p.direct)],
+            ambient: vec![Step::Raster(&p.ambient)],
+            ao: vec![Step::Raster(&p.ssao)],
+            reflections: vec![Step::Raster(&p.lit), Step::Raster(&p.ssr)],
+            translucent: vec![Step::Raster(&p.compose)],
+            accel: Some(self.accel.bind_group()),
+        };
+        if let Shadows::RayTraced { samples_per_light } = config.shadows {
+            rt.shadows.set(ctx, samples_per_light, seed, Shadows::DESCRIPTOR.stream, [0.0; 2]);
+            plan.maps = false;
+            plan.shadows = vec![Step::Traced(&rt.shadows.pipelines[0], &rt.shadows.group)];
+            plan.translucent = vec![Step::Traced(&rt.compose.pipelines[0], &rt.compose.group)];
+        }
+        match config.ao {
+            Ao::ScreenSpace { .. } => {}
+            Ao::Off => plan.ao.clear(),
+            Ao::RayTraced { samples_per_pixel, radius } => {
+                rt.ao.set(ctx, samples_per_pixel, seed, Ao::DESCRIPTOR.stream, [radius, 0.0]);
+                plan.ao = vec![Step::Traced(&rt.ao.pipelines[0], &rt.ao.group)];
+            }
+        }
+        let start = Instant::now();
+        let timings = self.deferred.submit(camera, &raster, &plan)?;
+        let wall_ms = start.elapsed().as_secs_f64() * 1e3;
+        let r = rt.rays(ctx)?;
+        let rays = PerStage {
+            shadows: r[0],
+            reflections: r[1],
+            translucency: r[2],
+            gi: r[3],
+            ao: r[4],
+            ..PerStage::default()
+        };
+        debug_assert_eq!(COUNTERS, 5);
+        Ok((timings, wall_ms, rays))
+    }
+
+    /// Renders one frame of `camera` with `config`'s stages, seeded by `seed`, and reads it
+    /// back as the CPU renderer's [`HybridFrame`].
+    pub fn render(&mut self, camera: &Camera, config: &StageConfig, seed: u64) -> Result<GpuHybridFrame> {
+        let (timings, wall_ms, rays) = self.run(camera, config, seed)?;
+        let back = self.deferred.read_frame(camera, timings)?;
+        let n = back.hdr.len();
+        let layers = back.translucent_layers.len().checked_div(n).unwrap_or(0);
+        let translucent =
+            (0..n).map(|i| if layers > 0 { back.translucent_layers[i * layers] } else { None }).collect();
+        let stage_ms = match timings {
+            Some(t) => PerStage {
+                geometry: t.geometry_ms,
+                shadows: t.shadows_ms + t.lighting_ms,
+                reflections: t.reflections_ms,
+                translucency: t.translucent_ms,
+                gi: t.ambient_ms,
+                ao: t.ao_ms,
+                compose: 0.0,
+            },
+            None => PerStage { compose: wall_ms, ..PerStage::default() },
+        };
+        let frame = HybridFrame {
+            hdr: back.hdr,
+            width: camera.width,
+            height: camera.height,
+            stage_ms,
+            rays,
+            gbuffer: GBuffer { camera: *camera, opaque: back.gbuffer, translucent },
+            terms: back.terms,
+        };
+        Ok(GpuHybridFrame { frame, timings, wall_ms })
+    }
+}
