@@ -39,6 +39,9 @@ pub enum LabError {
     /// which and why).
     #[error("{0}")]
     Hybrid(String),
+    /// The GPU hybrid frame refused or failed.
+    #[error(transparent)]
+    GpuHybrid(#[from] renderlab_hybrid_gpu::GpuDeferredError),
     /// A value could not be turned into JSON or CSV (for CSV: a field that is not a scalar,
     /// or rows whose columns differ).
     #[error("{path}: cannot serialise results: {reason}")]

@@ -1,6 +1,7 @@
 //! What one hybrid run measures: scenes, cameras, resolution, sweep, reference, timing, and
 //! which shard of the rows this process renders.
 
+use super::backend::{HybridBackend, RtChoice};
 use super::sweep::SweepKind;
 use crate::error::{LabError, Result};
 use serde::{Deserialize, Serialize};
@@ -87,6 +88,24 @@ pub struct RunSettings {
     pub seed: u64,
     /// Whether to write each row's image and error image (the reference is always written).
     pub write_images: bool,
+    /// Which renderers draw the rows' frames.
+    #[serde(default)]
+    pub backend: HybridBackend,
+    /// How the GPU traces rays (with a GPU backend).
+    #[serde(default)]
+    pub rt: RtChoice,
+    /// Untimed GPU frames before each row's timed ones (with a GPU backend): a GPU's clocks
+    /// climb only under sustained work, so its first frames are slower than its settled
+    /// ones.
+    #[serde(default = "default_gpu_warmup")]
+    pub gpu_warmup: u32,
+}
+
+/// Untimed GPU frames before each row's timed ones, by default.
+pub const GPU_WARMUP: u32 = 10;
+
+fn default_gpu_warmup() -> u32 {
+    GPU_WARMUP
 }
 
 impl Default for RunSettings {
@@ -102,6 +121,9 @@ impl Default for RunSettings {
             reps: 3,
             seed: 1,
             write_images: true,
+            backend: HybridBackend::Cpu,
+            rt: RtChoice::Auto,
+            gpu_warmup: GPU_WARMUP,
         }
     }
 }
@@ -119,6 +141,10 @@ pub struct HybridBenchConfig {
     pub shard: Shard,
     /// What to do with rows already there.
     pub existing: Existing,
+    /// With a GPU backend: whether a missing adapter is an error (`hybrid bench --backend
+    /// gpu|both`) or a stated skip that runs the CPU alone (the report, which must run on any
+    /// machine).
+    pub gpu_required: bool,
 }
 
 impl Default for HybridBenchConfig {
@@ -131,6 +157,7 @@ impl Default for HybridBenchConfig {
             run: RunSettings::default(),
             shard: Shard::WHOLE,
             existing: Existing::Refuse,
+            gpu_required: true,
         }
     }
 }

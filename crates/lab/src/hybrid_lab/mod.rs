@@ -19,16 +19,19 @@
 //! linear radiance.
 
 mod assemble;
+pub mod backend;
 pub mod claims;
 pub mod compare;
 mod config;
 #[cfg(test)]
 mod fixtures;
 pub mod gains;
+pub mod gpu_side;
 mod merge;
 mod page;
 pub mod pareto;
 mod record;
+mod row;
 mod run;
 pub mod scenes;
 mod store;
@@ -37,7 +40,8 @@ pub mod terms;
 pub mod thesis;
 
 pub use assemble::{assemble, HybridSummary};
-pub use config::{Existing, HybridBenchConfig, RunSettings, Shard};
+pub use backend::{HybridBackend, RtChoice};
+pub use config::{Existing, HybridBenchConfig, RunSettings, Shard, GPU_WARMUP};
 pub use merge::merge_runs;
 pub use record::{by_view, HybridRecord, RowResult};
 pub use run::run_hybrid_bench;

@@ -2,6 +2,7 @@
 //! it ([`HybridRecord`], with the deltas against its view's baseline and the reference's
 //! noise floor beside its error).
 
+use super::backend::{GpuRow, HybridBackend};
 use super::sweep::{Stage, SweepRow};
 use renderlab_core::any_f64;
 use renderlab_hybrid::terms::Floor;
@@ -61,6 +62,16 @@ pub struct RowResult {
     /// below 10⁻⁴) where the reference does not (above 10⁻²).
     #[serde(default)]
     pub black_pixels: u64,
+    /// Which renderer drew the frame the fields above measure (`cpu` or `gpu`; a run on both
+    /// keeps the CPU's here and the GPU's in `gpu`).
+    #[serde(default)]
+    pub backend: HybridBackend,
+    /// What the GPU measured, where it ran.
+    #[serde(default)]
+    pub gpu: Option<GpuRow>,
+    /// Why the GPU did not run this row, where it was asked to.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gpu_note: Option<String>,
 }
 
 impl RowResult {
@@ -154,6 +165,29 @@ pub struct HybridRecord {
     pub term_at_floor: Option<bool>,
     /// Translucent pixels shown black where the reference is not.
     pub black_pixels: u64,
+    /// Which renderer drew the frame the row's times and errors measure (`cpu`, `gpu`;
+    /// with both, `cpu`, and the GPU's columns beside).
+    pub backend: &'static str,
+    /// The GPU adapter, where the GPU ran the row.
+    pub gpu_adapter: Option<String>,
+    /// Whether that adapter is a CPU emulating a GPU (lavapipe).
+    pub gpu_software: Option<bool>,
+    /// The GPU's ray-tracing path (`compute`, `query`).
+    pub gpu_rt_path: Option<String>,
+    /// Median GPU frame time, ms (timestamps).
+    pub gpu_frame_ms: Option<f64>,
+    /// Median GPU time of the swept stage, ms.
+    pub gpu_stage_ms: Option<f64>,
+    /// Median GPU frame wall time, ms.
+    pub gpu_wall_ms: Option<f64>,
+    /// PSNR of the GPU frame against the reference, dB.
+    pub gpu_psnr_db: Option<f64>,
+    /// The swept stage's term of the GPU frame, ranked error in dB.
+    pub gpu_term_rel_db: Option<f64>,
+    /// With both renderers: CPU frame time over GPU frame time (interleaved frames).
+    pub cpu_over_gpu: Option<f64>,
+    /// Why the GPU did not run the row, where it was asked to.
+    pub gpu_note: Option<String>,
     /// Every term's score (in `results.json`'s rows, not the CSV).
     #[serde(skip)]
     pub terms: Vec<TermScore>,
@@ -218,6 +252,23 @@ impl HybridRecord {
             term_floor_psnr_db: own.map(|t| t.floor_psnr_db),
             term_at_floor: own.map(|t| t.at_floor),
             black_pixels: row.black_pixels,
+            backend: match row.backend {
+                HybridBackend::Gpu => "gpu",
+                _ => "cpu",
+            },
+            gpu_adapter: row.gpu.as_ref().map(|g| g.device.adapter.clone()),
+            gpu_software: row.gpu.as_ref().map(|g| g.device.software),
+            gpu_rt_path: row.gpu.as_ref().map(|g| g.device.rt_path.clone()),
+            gpu_frame_ms: row.gpu.as_ref().map(|g| g.frame_ms),
+            gpu_stage_ms: row.gpu.as_ref().map(|g| g.stage_ms),
+            gpu_wall_ms: row.gpu.as_ref().map(|g| g.wall_ms),
+            gpu_psnr_db: row.gpu.as_ref().map(|g| g.psnr_db),
+            gpu_term_rel_db: row.gpu.as_ref().and_then(|g| {
+                let term = own?.term;
+                g.terms.iter().find(|t| t.term == term).map(|t| t.rel_db)
+            }),
+            cpu_over_gpu: row.gpu.as_ref().and_then(|g| g.cpu_over_gpu),
+            gpu_note: row.gpu_note.clone(),
             terms: row.terms.clone(),
             direct_area_lit: row.direct_area_lit.clone(),
         }

@@ -8,25 +8,24 @@
 //! stderr, and removes the temporary files a killed run left.
 
 use super::assemble::{assemble, HybridSummary};
+use super::backend::{GpuDevice, HybridBackend};
 use super::config::{Existing, HybridBenchConfig, RunSettings};
+use super::gpu_side::GpuScene;
 use super::record::RefInfo;
-use super::record::RowResult;
+use super::row::{measure_row, GpuSide};
 use super::scenes::{self, camera_names};
-use super::store::{
-    read_json, reference_image, row_images, view_id, Manifest, RowState, RunDir, Settings, View, FORMAT,
-};
-use super::sweep::{Stage, SweepRow};
+use super::store::{read_json, reference_image, view_id, Manifest, RowState, RunDir, Settings, View, FORMAT};
+use super::sweep::SweepRow;
 use super::terms::ViewTerms;
 use crate::error::{LabError, Result};
-use crate::heatmap::{heat_image, with_legend};
 use crate::lab::Progress;
 use crate::metrics::compare;
 use crate::results::write_json;
-use crate::timing::measure;
 use glam::Vec3;
-use renderlab_core::io::{load_color, save_color, save_exr, save_rgb8};
+use renderlab_core::io::{load_color, save_color, save_exr};
 use renderlab_core::{Camera, Image};
-use renderlab_hybrid::{HybridFrame, HybridRenderer};
+use renderlab_gpu::GpuContext;
+use renderlab_hybrid::HybridRenderer;
 use renderlab_scene::HybridScene;
 use std::path::Path;
 use std::time::Instant;
@@ -50,6 +49,23 @@ pub fn run_hybrid_bench(cfg: &HybridBenchConfig, out: &Path, progress: Progress)
         views,
     };
     let manifest = Manifest { settings, shard: cfg.shard };
+    // The GPU side, before anything is written: the device opened once (or why not; each
+    // scene is uploaded once below), and a GPU-only run refused if a row has no GPU twin.
+    let (ctx, mut notes) = open_gpu(cfg)?;
+    if ctx.is_some() && cfg.run.backend == HybridBackend::Gpu {
+        let missing: Vec<String> = manifest
+            .settings
+            .rows()
+            .iter()
+            .filter_map(|(_, _, row)| GpuScene::supports(&row.config).err())
+            .collect();
+        if let Some(first) = missing.first() {
+            return Err(LabError::Hybrid(format!(
+                "--backend gpu: {} of the rows cannot run on the GPU ({first}); --backend both runs them on the CPU",
+                missing.len()
+            )));
+        }
+    }
     let dir = RunDir::new(out);
     // Held to the end of the run, whatever ends it: a second process on the same directory
     // is refused before it reads or writes anything there.
@@ -106,6 +122,11 @@ pub fn run_hybrid_bench(cfg: &HybridBenchConfig, out: &Path, progress: Progress)
         eprintln!("resume: {r}");
     }
 
+    let device = match &ctx {
+        Some(c) => Some(GpuDevice::new(&c.report, cfg.run.rt.path(c)?)),
+        None => None,
+    };
+    let mut gpu_scene: Option<(String, GpuScene)> = None;
     let mut renderer: Option<(String, HybridRenderer)> = None;
     for (view, todo, state) in plan {
         if todo.is_empty() && matches!(state, RefState::Good | RefState::Repaired(_)) {
@@ -120,6 +141,12 @@ pub fn run_hybrid_bench(cfg: &HybridBenchConfig, out: &Path, progress: Progress)
             progress(done, total, &format!("{}: building the shadow maps", view.scene));
             r.prepare_shadow_maps();
             renderer = Some((view.scene.clone(), r));
+            gpu_scene = None;
+        }
+        if let (Some(ctx), None) = (&ctx, &gpu_scene) {
+            progress(done, total, &format!("{}: uploading to the GPU", view.scene));
+            let r = &renderer.as_ref().expect("renderer").1;
+            gpu_scene = Some((view.scene.clone(), GpuScene::new(ctx, r, cfg.run.rt.path(ctx)?)?));
         }
         let r = &renderer.as_ref().expect("renderer").1;
         let camera = scenes::camera_at(r.scene(), view.camera_index, cfg.run.width, cfg.run.height)?;
@@ -131,7 +158,15 @@ pub fn run_hybrid_bench(cfg: &HybridBenchConfig, out: &Path, progress: Progress)
         })?;
         for (id, _, row) in todo {
             progress(done, total, &format!("{}: {}", view.id, row.label()));
-            let result = measure_row(&dir, id, view, row, r, &camera, (&reference.0, &reference.1), cfg)?;
+            let (gpu, note) = match (&mut gpu_scene, &device) {
+                (Some((_, scene)), Some(device)) => match GpuScene::supports(&row.config) {
+                    Ok(()) => (Some(GpuSide { scene, device }), None),
+                    Err(why) => (None, Some(why)),
+                },
+                _ => (None, None),
+            };
+            let result =
+                measure_row(&dir, id, view, row, r, &camera, (&reference.0, &reference.1), cfg, gpu, note)?;
             dir.write_row(&result)?;
             done += 1;
         }
@@ -139,6 +174,7 @@ pub fn run_hybrid_bench(cfg: &HybridBenchConfig, out: &Path, progress: Progress)
     progress(total, total, "assembling results and report");
     let mut summary = assemble(out)?;
     summary.repairs = repairs;
+    summary.findings.append(&mut notes);
     drop(lock);
     Ok(summary)
 }
@@ -334,70 +370,20 @@ fn reference(
     Ok((hdr, terms))
 }
 
-/// The swept stage's own time and rays in `frame` (the baseline: the whole frame's).
-fn stage_cost(stage: Stage, f: &HybridFrame) -> (f64, u64) {
-    let (ms, rays) = (&f.stage_ms, &f.rays);
-    match stage {
-        Stage::Baseline => (ms.total(), rays.total()),
-        Stage::Swept(id) => (ms.get(id), rays.get(id)),
+/// Opens the GPU for a run whose backend uses it: the context, or (where the run may go on
+/// without it: the report) none and the note that says why; an error where it may not.
+fn open_gpu(cfg: &HybridBenchConfig) -> Result<(Option<GpuContext>, Vec<String>)> {
+    if !cfg.run.backend.gpu() {
+        return Ok((None, Vec::new()));
     }
-}
-
-/// Times one row, measures its error and writes its images.
-#[allow(clippy::too_many_arguments)]
-fn measure_row(
-    dir: &RunDir,
-    id: &str,
-    view: &View,
-    row: &SweepRow,
-    r: &HybridRenderer,
-    camera: &Camera,
-    (reference, terms): (&Image<Vec3>, &ViewTerms),
-    cfg: &HybridBenchConfig,
-) -> Result<RowResult> {
-    let mut stage_ms = Vec::with_capacity(cfg.run.reps as usize);
-    let (timing, frame) = measure(cfg.run.warmup, cfg.run.reps, || {
-        let f = r.render(camera, &row.config, cfg.run.seed);
-        if let Ok(f) = &f {
-            stage_ms.push(stage_cost(row.stage, f).0);
+    match GpuContext::new() {
+        Ok(ctx) => {
+            cfg.run.rt.path(&ctx)?;
+            Ok((Some(ctx), Vec::new()))
         }
-        f
-    });
-    let frame = frame?;
-    // The warm-up frames come first: the timed ones are the last `reps`.
-    let timed = &stage_ms[stage_ms.len().saturating_sub(cfg.run.reps as usize)..];
-    let stage_median = crate::timing::Timing::from_samples(timed).map_or(f64::NAN, |t| t.median_ms);
-    let stage_rays = stage_cost(row.stage, &frame).1;
-    let rays = frame.rays.total();
-    let (term_scores, direct_area_lit, black_pixels) = terms.score(&frame);
-    let image = Image::from_vec(frame.width, frame.height, frame.hdr)?;
-    let cmp = compare(&image, reference, None);
-    let (rel, err_rel) = row_images(id, cfg.run.write_images);
-    if cfg.run.write_images {
-        save_color(dir.root.join(&rel), &image)?;
-        let heat = with_legend(&heat_image(&cmp.flip_map, 1.0, None), 1.0, "FLIP");
-        save_rgb8(dir.root.join(&err_rel), &heat)?;
+        Err(e) if cfg.gpu_required => {
+            Err(LabError::Hybrid(format!("--backend {:?}: {e}", cfg.run.backend).to_lowercase()))
+        }
+        Err(e) => Ok((None, vec![format!("GPU side skipped: {e}")])),
     }
-    Ok(RowResult {
-        id: id.to_string(),
-        view: view.id.clone(),
-        scene: view.scene.clone(),
-        camera: view.camera.clone(),
-        row: *row,
-        reps: timing.reps,
-        frame_ms: timing.median_ms,
-        frame_min_ms: timing.min_ms,
-        frame_max_ms: timing.max_ms,
-        stage_ms: stage_median,
-        rays,
-        stage_rays,
-        psnr_db: cmp.metrics.psnr_db,
-        ssim: cmp.metrics.ssim,
-        flip: cmp.metrics.flip,
-        image: rel,
-        error_image: err_rel,
-        terms: term_scores,
-        direct_area_lit: Some(direct_area_lit),
-        black_pixels,
-    })
 }

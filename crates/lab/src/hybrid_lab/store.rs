@@ -432,6 +432,9 @@ mod tests {
             terms: Vec::new(),
             direct_area_lit: None,
             black_pixels: 0,
+            backend: Default::default(),
+            gpu: None,
+            gpu_note: None,
         }
     }
 

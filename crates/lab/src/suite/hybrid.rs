@@ -4,7 +4,9 @@
 //! The full sweep is `renderlab hybrid bench --resolution 1920x1080`.
 
 use crate::error::Result;
-use crate::hybrid_lab::{run_hybrid_bench, Existing, HybridBenchConfig, RunSettings, SweepKind};
+use crate::hybrid_lab::{
+    run_hybrid_bench, Existing, HybridBackend, HybridBenchConfig, RunSettings, SweepKind,
+};
 use crate::lab::{create_dir, files_under, Lab, LabSummary, Progress};
 use std::path::Path;
 use std::time::Instant;
@@ -38,9 +40,11 @@ impl Lab for HybridLab {
                     reference_spp: REPORT_REFERENCE_SPP,
                     warmup: 1,
                     reps: 3,
+                    backend: HybridBackend::Both,
                     ..RunSettings::default()
                 },
                 existing: Existing::Replace,
+                gpu_required: false,
                 ..HybridBenchConfig::default()
             },
         })

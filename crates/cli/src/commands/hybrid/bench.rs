@@ -8,7 +8,8 @@ use crate::progress::Progress;
 use anyhow::{Context, Result};
 use clap::Args;
 use renderlab_lab::hybrid_lab::{
-    run_hybrid_bench, scenes, Existing, HybridBenchConfig, RunSettings, Shard, SweepKind,
+    run_hybrid_bench, scenes, Existing, HybridBackend, HybridBenchConfig, RtChoice, RunSettings, Shard,
+    SweepKind, GPU_WARMUP,
 };
 use std::path::PathBuf;
 
@@ -55,6 +56,20 @@ pub struct HybridBenchArgs {
     /// Skip writing each row's image and FLIP map (references, results and report only).
     #[arg(long)]
     pub no_images: bool,
+    /// Which renderer draws the rows: cpu; gpu (wgpu on Vulkan: each row's times are GPU
+    /// milliseconds from timestamps, its errors the GPU frame's; refused if a row's choice has
+    /// no GPU twin); both (each row on the CPU and the GPU, their frames interleaved one for
+    /// one, the ratio of their frame times reported). The references are the CPU's.
+    #[arg(long, value_enum, default_value_t = HybridBackend::Cpu)]
+    pub backend: HybridBackend,
+    /// With a GPU backend: how the GPU traces rays (auto: hardware ray queries where the
+    /// adapter offers them, else compute).
+    #[arg(long, value_enum, default_value_t = RtChoice::Auto)]
+    pub rt: RtChoice,
+    /// With a GPU backend: untimed GPU frames before each row's timed ones (a GPU's clocks
+    /// climb only under sustained work).
+    #[arg(long, default_value_t = GPU_WARMUP)]
+    pub gpu_warmup: u32,
 }
 
 /// Reads `--shard K/N`.
@@ -82,9 +97,13 @@ pub(crate) fn run(a: HybridBenchArgs) -> Result<()> {
             reps: a.reps,
             seed: a.seed,
             write_images: !a.no_images,
+            backend: a.backend,
+            rt: a.rt,
+            gpu_warmup: a.gpu_warmup,
         },
         shard: a.shard.unwrap_or(Shard::WHOLE),
         existing: if a.resume { Existing::Resume } else { Existing::Refuse },
+        gpu_required: true,
     };
     // Settings are checked (and scenes loaded) before anything is written.
     cfg.validate().context("hybrid bench")?;

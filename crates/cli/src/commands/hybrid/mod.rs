@@ -3,6 +3,7 @@
 //! (`hybrid/limits.rs`) and the summary a run or a merge prints (`hybrid/summary.rs`) sit
 //! beside them. `renderlab merge` is its own command (`commands/merge.rs`).
 
+mod backend;
 pub(crate) mod bench;
 mod limits;
 pub(crate) mod render;

@@ -15,6 +15,8 @@ use renderlab_hybrid::{HybridRenderer, StageConfig, Term};
 use renderlab_lab::hybrid_lab::scenes;
 use std::path::PathBuf;
 
+pub use super::backend::{FrameBackend, RtChoice};
+
 /// The range of `--reference`, paths per pixel.
 const REFERENCE_SPP: Whole<u32> = Whole::new(1, 1 << 20);
 
@@ -45,6 +47,16 @@ pub struct HybridRenderArgs {
     /// Seed of the stages' (or the reference's) random numbers.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+    /// Which renderer draws the frame: the CPU's, or the GPU's (wgpu on Vulkan: a GPU, or
+    /// Mesa's lavapipe, a CPU emulating one), which prints its adapter and per-stage GPU
+    /// milliseconds from timestamps.
+    #[arg(long, value_enum, default_value_t = FrameBackend::Cpu)]
+    pub backend: FrameBackend,
+    /// With --backend gpu: how the GPU traces rays. auto: hardware ray queries where the
+    /// adapter offers them, else compute; compute: the project's BVH walked in compute
+    /// shaders; query: the driver's acceleration structures and ray queries.
+    #[arg(long, value_enum, default_value_t = RtChoice::Auto)]
+    pub rt: RtChoice,
     /// Output PNG (or EXR, linear radiance) file.
     #[arg(long, short)]
     pub out: PathBuf,
@@ -72,6 +84,9 @@ pub(crate) fn run(a: HybridRenderArgs) -> Result<()> {
     let renderer = HybridRenderer::new(&scene)?;
     let started = std::time::Instant::now();
     let mut passes = Vec::new();
+    if a.reference.is_some() && a.backend == FrameBackend::Gpu {
+        return Err(anyhow!("--reference renders on the CPU: leave out --backend gpu"));
+    }
     let (hdr, what) = match a.reference {
         Some(spp) => {
             let r = renderer.reference(&camera, spp, a.seed)?;
@@ -90,6 +105,9 @@ pub(crate) fn run(a: HybridRenderArgs) -> Result<()> {
                 ));
             }
             (r.hdr, what)
+        }
+        None if a.backend == FrameBackend::Gpu => {
+            super::backend::gpu_frame(&renderer, &camera, &config, a.seed, a.rt)?
         }
         None => {
             let f = renderer.render(&camera, &config, a.seed)?;

@@ -1,0 +1,59 @@
+//! `hybrid render --backend gpu`: one frame drawn by the GPU hybrid frame, with the adapter
+//! and the per-stage GPU times printed.
+
+use anyhow::{anyhow, Result};
+use glam::Vec3;
+use renderlab_core::Camera;
+use renderlab_gpu::GpuContext;
+use renderlab_hybrid::deferred::PreparedScene;
+use renderlab_hybrid::{HybridRenderer, StageConfig};
+use renderlab_hybrid_gpu::GpuHybrid;
+
+pub use renderlab_lab::hybrid_lab::RtChoice;
+
+/// Which renderer draws one frame (`hybrid render --backend`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum FrameBackend {
+    /// The CPU renderer.
+    Cpu,
+    /// The GPU renderer (wgpu on Vulkan).
+    Gpu,
+}
+
+/// The frame of `camera` with `config` on the GPU: its image, and what to print (adapter,
+/// ray-tracing path, rays and GPU ms per stage).
+pub fn gpu_frame(
+    cpu: &HybridRenderer,
+    camera: &Camera,
+    config: &StageConfig,
+    seed: u64,
+    rt: RtChoice,
+) -> Result<(Vec<Vec3>, String)> {
+    GpuHybrid::check(config)?;
+    let ctx = GpuContext::new()?;
+    let path = rt.path(&ctx).map_err(|e| anyhow!(e))?;
+    let prepared = PreparedScene::new(cpu.scene());
+    let mut gpu = GpuHybrid::new(&ctx, &prepared, cpu.accel(), &cpu.raster, path)?;
+    let f = gpu.render(camera, config, seed)?;
+    let times = match f.timings {
+        Some(_) => {
+            let ms: Vec<String> = f
+                .frame
+                .stage_ms
+                .in_frame_order()
+                .iter()
+                .map(|(pass, ms)| format!("{pass} {ms:.2}"))
+                .collect();
+            format!("GPU ms (timestamps, first frame: shaders compile on first use): {}", ms.join(", "))
+        }
+        None => format!("wall {:.1} ms (the adapter has no timestamps)", f.wall_ms),
+    };
+    let what = format!(
+        "{} on {} ({} ray tracing): {} rays; {times}",
+        config.label(),
+        ctx.report,
+        path,
+        f.frame.rays.total()
+    );
+    Ok((f.frame.hdr, what))
+}

@@ -1,0 +1,111 @@
+//! The hybrid lab on the GPU: `--backend both` runs every row the GPU can draw on both
+//! renderers and records the GPU's device, times and errors beside the CPU's; `--backend gpu`
+//! refuses, before writing anything, a sweep with a row the GPU cannot draw. Without an
+//! adapter the test says it skipped (and fails where `CI` is set).
+
+use renderlab_gpu::GpuContext;
+use renderlab_lab::hybrid_lab::{
+    run_hybrid_bench, HybridBackend, HybridBenchConfig, RowResult, RunSettings, SweepKind,
+};
+
+fn adapter() -> bool {
+    match GpuContext::new() {
+        Ok(_) => true,
+        Err(e) if std::env::var_os("CI").is_some() => panic!("CI is set but the GPU tests cannot run: {e}"),
+        Err(e) => {
+            eprintln!("SKIPPED (no GPU adapter, and CI is not set): {e}");
+            false
+        }
+    }
+}
+
+fn tiny(backend: HybridBackend) -> HybridBenchConfig {
+    HybridBenchConfig {
+        scenes: vec!["showcase".into()],
+        run: RunSettings {
+            width: 32,
+            height: 18,
+            sweep: SweepKind::Report,
+            reference_spp: 4,
+            warmup: 0,
+            reps: 2,
+            gpu_warmup: 1,
+            backend,
+            ..RunSettings::default()
+        },
+        ..HybridBenchConfig::default()
+    }
+}
+
+#[test]
+fn both_backends_record_the_gpu_beside_the_cpu() {
+    if !adapter() {
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("both");
+    let quiet = |_: usize, _: usize, _: &str| {};
+    let s = run_hybrid_bench(&tiny(HybridBackend::Both), &out, &quiet).unwrap();
+    assert_eq!(s.missing, 0);
+    let mut on_gpu = 0;
+    for entry in std::fs::read_dir(out.join("rows")).unwrap() {
+        let row: RowResult = serde_json::from_slice(&std::fs::read(entry.unwrap().path()).unwrap()).unwrap();
+        assert_eq!(row.backend, HybridBackend::Cpu, "both: the main fields are the CPU's");
+        match (&row.gpu, &row.gpu_note) {
+            (Some(g), None) => {
+                on_gpu += 1;
+                assert!(g.frame_ms > 0.0 && g.frame_ms.is_finite(), "{}: {}", row.id, g.frame_ms);
+                let ratio = g.cpu_over_gpu.expect("both renderers: a ratio");
+                assert!(ratio > 0.0 && ratio.is_finite(), "{}: {ratio}", row.id);
+                assert_eq!(g.reps, 2);
+                assert!(!g.device.adapter.is_empty() && !g.device.rt_path.is_empty());
+                // The same frame drawn twice: the GPU's error against the reference is the
+                // CPU's within what edge pixels and rounding change.
+                assert!(
+                    (g.psnr_db - row.psnr_db).abs() <= 1.0,
+                    "{}: GPU {} dB, CPU {} dB",
+                    row.id,
+                    g.psnr_db,
+                    row.psnr_db
+                );
+                assert_eq!(g.terms.len(), row.terms.len());
+            }
+            (None, Some(note)) => assert!(note.contains("no GPU twin"), "{}: {note}", row.id),
+            other => panic!("{}: {other:?}", row.id),
+        }
+    }
+    assert!(on_gpu >= 1, "some rows ran on the GPU");
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    let header = csv.lines().next().unwrap();
+    for column in ["backend", "gpu_adapter", "gpu_frame_ms", "gpu_stage_ms", "cpu_over_gpu", "gpu_rt_path"] {
+        assert!(header.split(',').any(|c| c == column), "results.csv lacks {column}: {header}");
+    }
+}
+
+#[test]
+fn a_gpu_run_is_refused_before_anything_is_written_when_a_row_cannot_run_there() {
+    if !adapter() {
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("gpu");
+    let quiet = |_: usize, _: usize, _: &str| {};
+    let cfg = tiny(HybridBackend::Gpu);
+    let unsupported = SweepKind::Report
+        .rows()
+        .iter()
+        .any(|row| renderlab_lab::hybrid_lab::gpu_side::GpuScene::supports(&row.config).is_err());
+    match run_hybrid_bench(&cfg, &out, &quiet) {
+        Err(e) => {
+            assert!(unsupported, "refused although every row has a GPU twin: {e}");
+            let e = e.to_string();
+            assert!(e.contains("--backend gpu") && e.contains("no GPU twin") && !e.contains('\n'), "{e}");
+            assert!(!out.exists(), "nothing written for a refused run");
+        }
+        Ok(s) => {
+            assert!(!unsupported, "a row without a GPU twin ran on the GPU");
+            assert_eq!(s.missing, 0);
+            assert!(s.records.iter().all(|r| r.backend == "gpu" && r.gpu_frame_ms.is_some()));
+        }
+    }
+}
