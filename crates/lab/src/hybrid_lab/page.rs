@@ -101,6 +101,8 @@ struct Page<'a> {
     claims: Vec<ClaimPage>,
     thesis: Vec<ThesisPage>,
     views: Vec<ViewPage>,
+    /// The GPU that drew GPU rows, its path and warm-up (empty when none ran).
+    gpu: String,
 }
 
 /// One scatter series per swept stage: (frame time, error) points labelled with the setting.
@@ -148,7 +150,27 @@ fn table_row(r: &HybridRecord) -> Vec<String> {
         own.map_or_else(dash, |t| format_number(t.psnr_db, 2)),
         own.map_or_else(String::new, |t| if t.at_floor { "at floor".into() } else { String::new() }),
         if shows_black { r.black_pixels.to_string() } else { dash() },
+        r.gpu_frame_ms.map_or_else(String::new, |v| format_number(v, 2)),
+        r.gpu_stage_ms.map_or_else(String::new, |v| format_number(v, 2)),
+        r.cpu_over_gpu.map_or_else(String::new, |v| format!("{}×", format_number(v, 2))),
+        r.gpu_note.clone().unwrap_or_default(),
     ]
+}
+
+/// Which GPU drew the run's GPU rows, by which ray-tracing path, after how many warm-up
+/// frames; empty when no row ran on a GPU.
+fn gpu_line(records: &[HybridRecord], warmup: u32) -> String {
+    let Some(r) = records.iter().find(|r| r.gpu_adapter.is_some()) else { return String::new() };
+    let adapter = r.gpu_adapter.clone().unwrap_or_default();
+    let kind = if r.gpu_software == Some(true) {
+        "a CPU emulating a GPU: its milliseconds are the CPU's, not a GPU's"
+    } else {
+        "a GPU"
+    };
+    format!(
+        "GPU rows ran on {adapter} ({kind}), ray tracing by the {} path; GPU times are the frame's timestamps (median of the timed frames after {warmup} warm-up frames), tone mapping left out as on the CPU.",
+        r.gpu_rt_path.clone().unwrap_or_default()
+    )
 }
 
 /// Each term's mask, the reference's floor on it, and the raster frame's score (from the
@@ -296,6 +318,7 @@ pub(super) fn write_page(
             })
             .collect(),
         views,
+        gpu: gpu_line(records, s.run.gpu_warmup),
     };
     render(path, TEMPLATE, "Hybrid lab: ray-traced stages against rasterization", &page)
 }

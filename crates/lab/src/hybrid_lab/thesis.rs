@@ -132,6 +132,24 @@ impl Cell {
         }
     }
 
+    /// Our mean GPU `× baseline` over the matching rows that ran on the GPU, each against its
+    /// view's baseline's GPU frame time (NaN without one).
+    pub fn our_gpu_ratio(&self, records: &[HybridRecord]) -> f64 {
+        let m: Vec<f64> = records
+            .iter()
+            .filter(|r| self.matches(r))
+            .filter_map(|r| {
+                let base = records.iter().find(|b| b.is_baseline() && b.same_view(r))?;
+                Some(r.gpu_frame_ms? / base.gpu_frame_ms?)
+            })
+            .collect();
+        if m.is_empty() {
+            f64::NAN
+        } else {
+            m.iter().sum::<f64>() / m.len() as f64
+        }
+    }
+
     /// Whether `r` is our row of this cell.
     pub fn matches(&self, r: &HybridRecord) -> bool {
         r.scene == THESIS_SCENES[self.scene]
@@ -160,7 +178,8 @@ pub struct ThesisTable {
 
 impl ThesisTable {
     /// The table's rows as the page prints them: per cell `thesis ms (×ratio) | ours ×ratio`,
-    /// `–` for ours where the run has no such row.
+    /// `–` for ours where the run has no such row, and `| GPU ×ratio` where rows ran on the
+    /// GPU.
     pub fn beside_ours(&self, records: &[HybridRecord]) -> Vec<Vec<String>> {
         self.rows
             .iter()
@@ -170,8 +189,14 @@ impl ThesisTable {
                     let ours = c.our_ratio(records);
                     let ours =
                         if ours.is_nan() { "–".into() } else { format!("×{}", format_number(ours, 2)) };
+                    let gpu = c.our_gpu_ratio(records);
+                    let gpu = if gpu.is_nan() {
+                        String::new()
+                    } else {
+                        format!(" | GPU ×{}", format_number(gpu, 2))
+                    };
                     row.push(format!(
-                        "{} ms (×{}) | {ours}",
+                        "{} ms (×{}) | {ours}{gpu}",
                         format_number(c.thesis_ms, 1),
                         format_number(c.thesis_ratio(), 2)
                     ));
