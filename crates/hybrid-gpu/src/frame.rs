@@ -67,6 +67,11 @@ pub struct GpuDeferred<'c> {
     passes: Passes,
     timer: Option<StageTimer>,
     shadowed: bool,
+    /// Whether the shadow maps are drawn once and kept (static lights, as the CPU's
+    /// `HybridRenderer` caches them) instead of every frame.
+    cache_maps: bool,
+    /// Whether the kept maps have been drawn.
+    maps_ready: std::cell::Cell<bool>,
     sized: Option<Sized>,
 }
 
@@ -119,6 +124,8 @@ impl<'c> GpuDeferred<'c> {
             passes,
             timer: StageTimer::new(ctx, STAGES.len()),
             shadowed: true,
+            cache_maps: false,
+            maps_ready: std::cell::Cell::new(false),
             sized: None,
         })
     }
@@ -134,6 +141,14 @@ impl<'c> GpuDeferred<'c> {
     /// `Unshadowed`) or on (the default), for measuring the lighting alone.
     pub fn set_shadows(&mut self, on: bool) {
         self.shadowed = on;
+    }
+
+    /// Draws the shadow maps once and keeps them for every later frame (`true`: the lights
+    /// are static, as the hybrid lab's CPU renderer treats them, so no frame's shadow stage
+    /// pays for them after the first) or draws them in every frame (`false`, the default).
+    pub fn set_cache_shadow_maps(&mut self, on: bool) {
+        self.cache_maps = on;
+        self.maps_ready.set(false);
     }
 
     /// The buffers of the last frame (G-buffer, terms, images), for later compute passes;
@@ -282,8 +297,13 @@ impl<'c> GpuDeferred<'c> {
             bind,
             timer.map(|t| (t, 0)),
         );
-        let drew =
-            shadowed && self.shadows.encode(&mut encoder, &self.raster, &self.scene, timer.map(|t| (t, 1)));
+        let kept = self.cache_maps && self.maps_ready.get();
+        let drew = shadowed
+            && !kept
+            && self.shadows.encode(&mut encoder, &self.raster, &self.scene, timer.map(|t| (t, 1)));
+        if drew && self.cache_maps {
+            self.maps_ready.set(true);
+        }
         let (gx, gy) = groups(t.width, t.height);
         let stage = |encoder: &mut wgpu::CommandEncoder, index: usize, label: &str, steps: &[Step<'_>]| {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {

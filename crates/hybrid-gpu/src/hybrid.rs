@@ -63,10 +63,19 @@ impl<'c> GpuHybrid<'c> {
         raster: &RasterSettings,
         path: RtPath,
     ) -> Result<Self> {
-        let deferred = GpuDeferred::new(ctx, prepared, raster)?;
+        let mut deferred = GpuDeferred::new(ctx, prepared, raster)?;
+        // Static lights: the maps are drawn once (the first frame with raster shadows), as
+        // the CPU renderer caches its own.
+        deferred.set_cache_shadow_maps(true);
         let gpu_accel = GpuAccel::build(ctx, accel.tlas(), &[], path, ACCEL_GROUP)?;
         let rt = RtStages::new(ctx, deferred.layouts(), &gpu_accel)?;
         Ok(Self { ctx, deferred, accel: gpu_accel, rt, raster: raster.clone() })
+    }
+
+    /// Draws the shadow maps now (one frame of `camera`, all raster), so that no timed frame
+    /// pays for them: the CPU lab's `prepare_shadow_maps`.
+    pub fn prepare_shadow_maps(&mut self, camera: &Camera) -> Result<()> {
+        self.run(camera, &StageConfig::all_raster(), 0).map(|_| ())
     }
 
     /// Which ray-tracing path the frame's passes use.

@@ -28,6 +28,7 @@ pub struct GpuTimes {
 /// A scene on the GPU: the device's hybrid frame for it.
 pub struct GpuScene<'c> {
     hybrid: GpuHybrid<'c>,
+    maps_ready: bool,
 }
 
 impl<'c> GpuScene<'c> {
@@ -35,12 +36,22 @@ impl<'c> GpuScene<'c> {
     pub fn new(ctx: &'c GpuContext, cpu: &HybridRenderer, path: RtPath) -> Result<Self> {
         let prepared = PreparedScene::new(cpu.scene());
         let hybrid = GpuHybrid::new(ctx, &prepared, cpu.accel(), &cpu.raster, path)?;
-        Ok(Self { hybrid })
+        Ok(Self { hybrid, maps_ready: false })
     }
 
     /// Whether `config` has a GPU twin for every stage choice (else why not).
     pub fn supports(config: &StageConfig) -> std::result::Result<(), String> {
         GpuHybrid::check(config).map_err(|e| e.to_string())
+    }
+
+    /// Draws the scene's shadow maps once, before the first frame (static lights: no timed
+    /// frame pays for them, as on the CPU).
+    fn prepare(&mut self, camera: &Camera) -> Result<()> {
+        if !self.maps_ready {
+            self.hybrid.prepare_shadow_maps(camera)?;
+            self.maps_ready = true;
+        }
+        Ok(())
     }
 
     /// One frame read back, and its times.
@@ -50,6 +61,7 @@ impl<'c> GpuScene<'c> {
         config: &StageConfig,
         seed: u64,
     ) -> Result<(HybridFrame, GpuTimes)> {
+        self.prepare(camera)?;
         let GpuHybridFrame { frame, timings, wall_ms } = self.hybrid.render(camera, config, seed)?;
         let frame_ms = match timings {
             Some(_) => frame.stage_ms.total(),
@@ -65,6 +77,7 @@ impl<'c> GpuScene<'c> {
         config: &StageConfig,
         seed: u64,
     ) -> Result<(GpuTimes, PerStage<f64>)> {
+        self.prepare(camera)?;
         let (timings, wall_ms, _) = self.hybrid.run(camera, config, seed)?;
         let stages = match timings {
             Some(t) => PerStage {

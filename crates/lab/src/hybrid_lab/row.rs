@@ -16,6 +16,7 @@ use glam::Vec3;
 use renderlab_core::io::{save_color, save_rgb8};
 use renderlab_core::{Camera, Image};
 use renderlab_hybrid::{HybridFrame, HybridRenderer};
+use std::time::Instant;
 
 /// The GPU side of a row: the scene on the device and what records name it by.
 pub(crate) struct GpuSide<'a, 'c> {
@@ -78,30 +79,27 @@ pub(crate) fn measure_row(
             (timing, frame, stage, Some(gr))
         }
         Some(g) => {
-            // Both: the GPU warms up, then every CPU frame (warm-up ones included) is followed
-            // by a GPU frame, so that both see the same load; the GPU's timed frames are those
-            // after the CPU's timed ones.
+            // Both: the GPU warms up, then each GPU frame is followed by a CPU frame (warm-up
+            // ones included), so that both see the same load; each is timed on its own clock.
             for _ in 0..run.gpu_warmup {
                 g.scene.time(camera, &row.config, seed)?;
             }
             let mut stage_ms = Vec::new();
-            let mut gpu_error = None;
-            let (timing, frame) = measure(run.warmup, run.reps, || {
-                let f = r.render(camera, &row.config, seed);
-                if let Ok(f) = &f {
-                    stage_ms.push(stage_cost(row.stage, f).0);
+            let mut cpu_ms = Vec::new();
+            let mut last = None;
+            for k in 0..run.warmup + run.reps.max(1) {
+                samples.time(g.scene, camera, &row.config, seed, row.stage)?;
+                let start = Instant::now();
+                let f = std::hint::black_box(r.render(camera, &row.config, seed))?;
+                let ms = start.elapsed().as_secs_f64() * 1e3;
+                if k >= run.warmup {
+                    cpu_ms.push(ms);
+                    stage_ms.push(stage_cost(row.stage, &f).0);
                 }
-                if gpu_error.is_none() {
-                    if let Err(e) = samples.time(g.scene, camera, &row.config, seed, row.stage) {
-                        gpu_error = Some(e);
-                    }
-                }
-                f
-            });
-            if let Some(e) = gpu_error {
-                return Err(e);
+                last = Some(f);
             }
-            let frame = frame?;
+            let timing = Timing::from_samples(&cpu_ms).ok_or_else(unreachable_frame)?;
+            let frame = last.ok_or_else(unreachable_frame)?;
             samples.keep_last(run.reps.max(1) as usize);
             let (gpu_frame, _) = g.scene.render(camera, &row.config, seed)?;
             let gr = samples.row(
@@ -162,6 +160,11 @@ pub(crate) fn measure_row(
         gpu: gpu_row,
         gpu_note,
     })
+}
+
+/// A loop of at least one iteration always leaves a frame.
+fn unreachable_frame() -> crate::error::LabError {
+    crate::error::LabError::Hybrid("no frame was rendered".into())
 }
 
 /// The median of the last `reps` of `samples` (the warm-up frames come first).
