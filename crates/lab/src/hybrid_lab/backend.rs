@@ -22,6 +22,15 @@ pub enum HybridBackend {
 }
 
 impl HybridBackend {
+    /// The name `--backend` takes.
+    pub fn name(self) -> &'static str {
+        match self {
+            HybridBackend::Cpu => "cpu",
+            HybridBackend::Gpu => "gpu",
+            HybridBackend::Both => "both",
+        }
+    }
+
     /// Whether the CPU renderer draws the row's main results.
     pub fn cpu(self) -> bool {
         self != HybridBackend::Gpu
