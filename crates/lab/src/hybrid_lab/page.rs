@@ -101,8 +101,11 @@ struct Page<'a> {
     claims: Vec<ClaimPage>,
     thesis: Vec<ThesisPage>,
     views: Vec<ViewPage>,
-    /// The GPU that drew GPU rows, its path and warm-up (empty when none ran).
+    /// The GPU that drew GPU rows, its path and warm-up, or why none ran (empty for a CPU
+    /// run).
     gpu: String,
+    /// Whether some row ran on a GPU.
+    gpu_ran: bool,
 }
 
 /// One scatter series per swept stage: (frame time, error) points labelled with the setting.
@@ -159,8 +162,15 @@ fn table_row(r: &HybridRecord) -> Vec<String> {
 
 /// Which GPU drew the run's GPU rows, by which ray-tracing path, after how many warm-up
 /// frames; empty when no row ran on a GPU.
-fn gpu_line(records: &[HybridRecord], warmup: u32) -> String {
-    let Some(r) = records.iter().find(|r| r.gpu_adapter.is_some()) else { return String::new() };
+fn gpu_line(records: &[HybridRecord], run: &super::config::RunSettings) -> String {
+    let warmup = run.gpu_warmup;
+    let Some(r) = records.iter().find(|r| r.gpu_adapter.is_some()) else {
+        return if run.backend.gpu() {
+            "The GPU side did not run: no GPU adapter opened, and the run went on with the CPU alone.".into()
+        } else {
+            String::new()
+        };
+    };
     let adapter = r.gpu_adapter.clone().unwrap_or_default();
     let kind = if r.gpu_software == Some(true) {
         "a CPU emulating a GPU: its milliseconds are the CPU's, not a GPU's"
@@ -318,7 +328,8 @@ pub(super) fn write_page(
             })
             .collect(),
         views,
-        gpu: gpu_line(records, s.run.gpu_warmup),
+        gpu: gpu_line(records, &s.run),
+        gpu_ran: records.iter().any(|r| r.gpu_frame_ms.is_some()),
     };
     render(path, TEMPLATE, "Hybrid lab: ray-traced stages against rasterization", &page)
 }
