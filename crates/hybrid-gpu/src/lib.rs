@@ -36,6 +36,7 @@ pub mod gbuffer;
 mod passes;
 mod pipeline;
 mod raster;
+pub mod reference;
 pub mod rt;
 pub mod scene;
 pub mod shadows;
