@@ -29,10 +29,11 @@
 //!
 //! One invocation per pixel and half runs a batch of paths and leaves the pixel's stream
 //! state, its term sums (f32, summed path by path in the CPU's order) and its ray count in
-//! storage buffers for the next batch. Batches are sized so that a submission holds about
-//! [`PATHS_PER_SUBMIT`] paths per half (and at most a sixteenth of the run, so that progress
-//! is reported often): no single submission runs long enough to meet a display driver's
-//! watchdog, and `progress` is called after each.
+//! storage buffers for the next batch, so that the image does not depend on how the paths
+//! are batched. Batches are sized so that a submission holds about
+//! [`GpuReference::paths_per_submit`] paths per half (and at most a sixteenth of the run, so
+//! that progress is reported often): no single submission runs long enough to meet a display
+//! driver's watchdog, and `progress` is called after each.
 
 use crate::error::{GpuDeferredError, Result};
 use crate::pipeline::{read_entry, uniform_entry, SCENE_BINDINGS};
@@ -63,7 +64,7 @@ const RANDOM: &str = include_str!("shaders/random.wgsl");
 /// frame's constants, group 3 the reference's own buffers).
 pub const ACCEL_GROUP: u32 = 2;
 
-/// Paths per half that one submission aims at.
+/// Paths per half that one submission aims at by default.
 pub const PATHS_PER_SUBMIT: u64 = 1 << 21;
 
 /// Floats per pixel in a half's sums: five radiance terms (xyz) and the area share.
@@ -102,6 +103,9 @@ pub struct GpuReference<'a> {
     accel: &'a GpuAccel,
     /// The estimator's settings: the CPU's own, so that both render the same estimator.
     pub tracer: PathTracer,
+    /// Paths per half that one submission aims at ([`PATHS_PER_SUBMIT`] by default; lower
+    /// it where a display driver's watchdog is short). The image does not depend on it.
+    pub paths_per_submit: u64,
     scene_group: wgpu::BindGroup,
     frame_layout: wgpu::BindGroupLayout,
     own_layout: wgpu::BindGroupLayout,
@@ -195,6 +199,7 @@ impl<'a> GpuReference<'a> {
             scene,
             accel,
             tracer: PathTracer::default(),
+            paths_per_submit: PATHS_PER_SUBMIT,
             scene_group,
             frame_layout,
             own_layout,
@@ -255,7 +260,7 @@ impl<'a> GpuReference<'a> {
                     };
                     HalfBuffers::new(ctx, &self.own_layout, params, n)
                 });
-        let batch = (PATHS_PER_SUBMIT / n).clamp(1, half.div_ceil(16).max(1) as u64) as u32;
+        let batch = (self.paths_per_submit / n).clamp(1, half.div_ceil(16).max(1) as u64) as u32;
         let (gx, gy) = (camera.width.div_ceil(TILE), camera.height.div_ceil(TILE));
         let mut first = 0;
         while first < half {
