@@ -53,9 +53,12 @@ use renderlab_hybrid::rng::{stratified, Rng, Stream};
 use renderlab_hybrid::terms::{PixelKind, TermImages};
 use wgpu::util::DeviceExt;
 
-/// The pass's own WGSL (after the ray tracer's prelude, [`COMMON`], the random streams,
-/// [`SHADING`] and [`SURFACE`]).
+/// The pass's own WGSL: its entry point, the paths and the lights (after the ray tracer's
+/// prelude, [`COMMON`], the random streams, [`SHADING`], [`SURFACE`] and [`BSDF`]).
 pub const WGSL: &str = include_str!("shaders/reference.wgsl");
+
+/// The pass's scattering: `sample_bsdf` and the sampling and BRDF helpers it needs.
+pub const BSDF: &str = include_str!("shaders/reference_bsdf.wgsl");
 
 /// The CPU's random streams in WGSL.
 const RANDOM: &str = include_str!("shaders/random.wgsl");
@@ -182,7 +185,8 @@ impl<'a> GpuReference<'a> {
             "const SHADOW_END: f32 = {SHADOW_END:?};\nconst SMOOTH_FOR_LIGHTS: f32 = {SMOOTH_FOR_LIGHTS:?};\nconst SHARE_U = array<vec2f, 4>({});\n",
             share_u.join(", ")
         );
-        let source = format!("{}\n{COMMON}\n{RANDOM}\n{SHADING}\n{SURFACE}\n{header}\n{WGSL}", accel.wgsl());
+        let source =
+            format!("{}\n{COMMON}\n{RANDOM}\n{SHADING}\n{SURFACE}\n{header}\n{BSDF}\n{WGSL}", accel.wgsl());
         let label = format!("path-traced reference ({})", accel.path());
         let pipeline = build_checked(ctx, &label, &source, |module| {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
