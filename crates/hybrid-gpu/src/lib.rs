@@ -38,6 +38,7 @@ mod passes;
 mod pipeline;
 mod plan;
 mod raster;
+pub mod reference;
 pub mod rt;
 pub mod scene;
 pub mod shadows;
