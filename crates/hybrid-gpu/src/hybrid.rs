@@ -14,6 +14,7 @@
 use crate::error::{GpuDeferredError, Result};
 use crate::frame::GpuDeferred;
 use crate::plan::{Plan, Step};
+use crate::reference::GpuReference;
 use crate::rt::pass::COUNTERS;
 use crate::rt::RtStages;
 use crate::timing::GpuStageTimings;
@@ -23,13 +24,15 @@ use renderlab_gpu::GpuContext;
 use renderlab_hybrid::deferred::{PreparedScene, RasterSettings};
 use renderlab_hybrid::stages::entry::Entry;
 use renderlab_hybrid::{
-    Accel, Ao, Gi, HybridFrame, PerStage, Reflections, Shadows, StageConfig, Translucency,
+    Accel, Ao, Gi, HybridFrame, PathTracer, PerStage, Reference, Reflections, Shadows, StageConfig,
+    Translucency,
 };
 use renderlab_scene::GBuffer;
 use std::time::Instant;
 
-/// The bind group index of the ray tracer's structure in the frame's ray-traced passes.
-pub const ACCEL_GROUP: u32 = 2;
+/// The bind group index of the ray tracer's structure in the frame's ray-traced passes (and
+/// the reference's).
+pub use crate::reference::ACCEL_GROUP;
 
 /// One GPU hybrid frame.
 #[derive(Clone, Debug)]
@@ -76,6 +79,22 @@ impl<'c> GpuHybrid<'c> {
     /// pays for them: the CPU lab's `prepare_shadow_maps`.
     pub fn prepare_shadow_maps(&mut self, camera: &Camera) -> Result<()> {
         self.run(camera, &StageConfig::all_raster(), 0).map(|_| ())
+    }
+
+    /// The path-traced reference of `camera` on the device ([`GpuReference`]) with the
+    /// estimator `tracer` (the CPU renderer's, so that both references are the same
+    /// estimator), `spp` paths per pixel in two halves, reporting its progress.
+    pub fn reference(
+        &self,
+        camera: &Camera,
+        spp: u32,
+        seed: u64,
+        tracer: &PathTracer,
+        progress: &dyn Fn(f64),
+    ) -> Result<Reference> {
+        let mut r = GpuReference::new(self.ctx, self.deferred.scene(), &self.accel)?;
+        r.tracer = *tracer;
+        r.render(camera, spp, seed, progress)
     }
 
     /// Which ray-tracing path the frame's passes use.

@@ -12,7 +12,7 @@ use renderlab_core::{Camera, Image};
 use renderlab_gpu::rt::RtPath;
 use renderlab_gpu::GpuContext;
 use renderlab_hybrid::deferred::PreparedScene;
-use renderlab_hybrid::{HybridFrame, HybridRenderer, PerStage, StageConfig};
+use renderlab_hybrid::{HybridFrame, HybridRenderer, PathTracer, PerStage, Reference, StageConfig};
 use renderlab_hybrid_gpu::{GpuHybrid, GpuHybridFrame};
 
 /// A GPU frame's times.
@@ -92,6 +92,18 @@ impl<'c> GpuScene<'c> {
             None => PerStage { compose: wall_ms, ..Default::default() },
         };
         Ok((GpuTimes { frame_ms: stages.total(), wall_ms }, stages))
+    }
+
+    /// The path-traced reference of `camera` on the GPU with the estimator `tracer`.
+    pub fn reference(
+        &self,
+        camera: &Camera,
+        spp: u32,
+        seed: u64,
+        tracer: &PathTracer,
+        progress: &(dyn Fn(f64) + Sync),
+    ) -> Result<Reference> {
+        Ok(self.hybrid.reference(camera, spp, seed, tracer, &|f| progress(f))?)
     }
 
     /// The path its passes trace by.

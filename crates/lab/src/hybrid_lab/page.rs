@@ -178,8 +178,13 @@ fn gpu_line(records: &[HybridRecord], run: &super::config::RunSettings) -> Strin
         "a GPU"
     };
     format!(
-        "GPU rows ran on {adapter} ({kind}), ray tracing by the {} path; GPU times are the frame's timestamps (median of the timed frames after {warmup} warm-up frames), tone mapping left out as on the CPU.",
-        r.gpu_rt_path.clone().unwrap_or_default()
+        "GPU rows ran on {adapter} ({kind}), ray tracing by the {} path; GPU times are the frame's timestamps (median of the timed frames after {warmup} warm-up frames), tone mapping left out as on the CPU.{}",
+        r.gpu_rt_path.clone().unwrap_or_default(),
+        if run.backend == super::backend::HybridBackend::Gpu {
+            " The references were path traced on the same GPU (the CPU's estimator and random streams)."
+        } else {
+            " The references were path traced on the CPU."
+        }
     )
 }
 

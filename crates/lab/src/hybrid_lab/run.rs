@@ -153,7 +153,8 @@ pub fn run_hybrid_bench(cfg: &HybridBenchConfig, out: &Path, progress: Progress)
         let spp = s.run.reference_spp;
         progress(done, total, &format!("{}: reference, {spp} spp", view.id));
         let stored = matches!(state, RefState::Good | RefState::Repaired(_));
-        let reference = reference(&dir, view, r, &camera, s, stored, &|f| {
+        let on_gpu = gpu_scene.as_ref().map(|(_, g)| g).filter(|_| cfg.run.backend == HybridBackend::Gpu);
+        let reference = reference(&dir, view, r, &camera, s, stored, on_gpu, &|f| {
             progress(done, total, &format!("{}: reference, {spp} spp, {:.0}%", view.id, 100.0 * f))
         })?;
         for (id, _, row) in todo {
@@ -331,6 +332,7 @@ fn reference(
     camera: &Camera,
     s: &Settings,
     stored: bool,
+    gpu: Option<&GpuScene>,
     progress: &(dyn Fn(f64) + Sync),
 ) -> Result<(Image<Vec3>, ViewTerms)> {
     let (exr, json) = (dir.ref_exr(view), dir.ref_json(view));
@@ -340,12 +342,12 @@ fn reference(
         return Ok((load_color(&exr)?, terms));
     }
     let started = Instant::now();
-    let reference = r.reference_with_progress(
-        camera,
-        s.run.reference_spp,
-        s.run.seed.wrapping_add(REFERENCE_SEED_OFFSET),
-        progress,
-    )?;
+    let seed = s.run.seed.wrapping_add(REFERENCE_SEED_OFFSET);
+    let reference = match gpu {
+        // A GPU run renders its references on the GPU too (the same estimator).
+        Some(g) => g.reference(camera, s.run.reference_spp, seed, &r.path_tracer, progress)?,
+        None => r.reference_with_progress(camera, s.run.reference_spp, seed, progress)?,
+    };
     let seconds = started.elapsed().as_secs_f64();
     let terms = ViewTerms::of_reference(&reference);
     terms.save(dir, view, s.run.width, s.run.height)?;

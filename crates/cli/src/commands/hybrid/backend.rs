@@ -6,7 +6,7 @@ use glam::Vec3;
 use renderlab_core::Camera;
 use renderlab_gpu::GpuContext;
 use renderlab_hybrid::deferred::PreparedScene;
-use renderlab_hybrid::{HybridRenderer, StageConfig};
+use renderlab_hybrid::{HybridRenderer, Reference, StageConfig};
 use renderlab_hybrid_gpu::GpuHybrid;
 
 pub use renderlab_lab::hybrid_lab::RtChoice;
@@ -56,4 +56,23 @@ pub fn gpu_frame(
         f.frame.rays.total()
     );
     Ok((f.frame.hdr, what))
+}
+
+/// The path-traced reference of `camera` on the GPU (the CPU renderer's estimator), with its
+/// progress on stderr, and the words that say where it ran.
+pub fn gpu_reference(
+    cpu: &HybridRenderer,
+    camera: &Camera,
+    spp: u32,
+    seed: u64,
+    rt: RtChoice,
+) -> Result<(Reference, String)> {
+    let ctx = GpuContext::new()?;
+    let path = rt.path(&ctx).map_err(|e| anyhow!(e))?;
+    let prepared = PreparedScene::new(cpu.scene());
+    let gpu = GpuHybrid::new(&ctx, &prepared, cpu.accel(), &cpu.raster, path)?;
+    let progress = |f: f64| eprint!("\rreference on the GPU: {:.0}%", 100.0 * f);
+    let r = gpu.reference(camera, spp, seed, &cpu.path_tracer, &progress)?;
+    eprintln!();
+    Ok((r, format!(" on {} ({path} ray tracing)", ctx.report)))
 }

@@ -84,14 +84,14 @@ pub(crate) fn run(a: HybridRenderArgs) -> Result<()> {
     let renderer = HybridRenderer::new(&scene)?;
     let started = std::time::Instant::now();
     let mut passes = Vec::new();
-    if a.reference.is_some() && a.backend == FrameBackend::Gpu {
-        return Err(anyhow!("--reference renders on the CPU: leave out --backend gpu"));
-    }
     let (hdr, what) = match a.reference {
         Some(spp) => {
-            let r = renderer.reference(&camera, spp, a.seed)?;
+            let (r, on) = match a.backend {
+                FrameBackend::Cpu => (renderer.reference(&camera, spp, a.seed)?, String::new()),
+                FrameBackend::Gpu => super::backend::gpu_reference(&renderer, &camera, spp, a.seed, a.rt)?,
+            };
             let what = format!(
-                "path-traced reference, {} spp, {} rays; noise floor: PSNR between halves {:.2} dB (linear, peak 1), full reference about {:.2} dB ({})",
+                "path-traced reference{on}, {} spp, {} rays; noise floor: PSNR between halves {:.2} dB (linear, peak 1), full reference about {:.2} dB ({})",
                 r.spp, r.rays, r.noise.psnr_halves, r.noise.psnr_full, FLOOR_CANNOT_SEE
             );
             if a.passes {
