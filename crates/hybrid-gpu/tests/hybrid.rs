@@ -226,11 +226,12 @@ const SEED: u64 = 5;
 
 /// Each GPU ray-traced stage against its CPU twin, two ways.
 ///
-/// **Over the same G-buffer** (the CPU stage run on the GPU frame's own G-buffer): the same
-/// surfaces, the same random numbers drawn in the same order, the same operations; what
-/// differs is rounding (fused multiply-adds, the device's `sin`/`cos`/`sqrt` within a few
-/// ulps, stratified points in f32 where the CPU uses f64, the ray tracers' intersection
-/// arithmetic), which moves a secondary ray by about 1e-6 of its length. A pixel changes only
+/// **Over the same G-buffer** (the CPU stage run on the GPU frame's own G-buffer, read back;
+/// the GPU pass resolves the translucent layer itself, so there only the geometric normal's
+/// 16-bit octahedral form differs): the same surfaces, the same random numbers drawn in the
+/// same order, the same operations; what differs is rounding (fused multiply-adds, the
+/// device's `sin`/`cos`/`sqrt` within a few ulps, stratified points in f32 where the CPU uses
+/// f64, the ray tracers' intersection arithmetic), which moves a secondary ray by a few ulps. A pixel changes only
 /// where that carries a ray across an edge or a shadow boundary, flips a comparison (below
 /// the face, Fresnel against a random number, total internal reflection) or lands in a
 /// near-mirror lobe whose peak it magnifies: at most 0.5 % of the pixels (plus one), and
