@@ -4,12 +4,20 @@
 //! [`HybridFrame`] (so that the lab scores a GPU frame as it scores a CPU one) with GPU
 //! milliseconds per stage from timestamps.
 //!
+//! Where the CPU stage keeps a raster result as its fallback, the GPU frame runs the raster
+//! pass and then the traced one over it: ray-traced reflections follow the lit image and
+//! SSR and overwrite the specular term of the pixels no rougher than their limit;
+//! ray-traced translucency follows the composition with the forward translucent pass and
+//! overwrites the pixels whose nearest translucent layer is no rougher than its limit (the
+//! CPU runs its forward pass only where some pixel is rougher; the pixels it keeps are the
+//! same either way). Ray-traced GI replaces the ambient pass.
+//!
 //! Stage times map onto the CPU's [`PerStage`]: geometry (visibility buffer, depth peel,
 //! resolve, and the view-depth pass); shadows (the shadow maps and the lighting pass, or the
 //! ray-traced direct pass); GI (the ambient term or ray-traced GI); AO (SSAO, ray-traced AO,
-//! or nothing); reflections (the lit image and SSR, or ray-traced reflections); translucency
-//! (the composition and the forward translucent layers, one pass on the GPU, so `compose` is
-//! 0). Tone mapping is reported apart, as the CPU leaves it out of the frame.
+//! or nothing); reflections (the lit image and SSR, then ray-traced reflections where
+//! chosen); translucency (the composition and the forward translucent layers, one pass on
+//! the GPU, so `compose` is 0, then ray-traced translucency where chosen). Tone mapping is reported apart, as the CPU leaves it out of the frame.
 
 use crate::error::{GpuDeferredError, Result};
 use crate::frame::GpuDeferred;
@@ -102,21 +110,10 @@ impl<'c> GpuHybrid<'c> {
         self.accel.path()
     }
 
-    /// Refuses a configuration with a stage choice that has no GPU twin yet, naming it.
+    /// Refuses a configuration the frame cannot run (a stage parameter out of its range),
+    /// naming it; every stage choice has a GPU twin.
     pub fn check(config: &StageConfig) -> Result<()> {
-        let missing = |what: &str, label: String| {
-            Err(GpuDeferredError::Unsupported(format!("{what} '{label}' has no GPU twin yet")))
-        };
-        if let Reflections::RayTraced { .. } = config.reflections {
-            return missing("reflections", config.reflections.label());
-        }
-        if let Translucency::RayTraced { .. } = config.translucency {
-            return missing("translucency", config.translucency.label());
-        }
-        if let Gi::RayTraced { .. } = config.gi {
-            return missing("gi", config.gi.label());
-        }
-        Ok(())
+        config.validate().map_err(GpuDeferredError::Settings)
     }
 
     /// Runs one frame of `camera` with `config`'s stages, seeded by `seed`, without reading
@@ -128,7 +125,6 @@ impl<'c> GpuHybrid<'c> {
         seed: u64,
     ) -> Result<(Option<GpuStageTimings>, f64, PerStage<u64>)> {
         Self::check(config)?;
-        config.validate().map_err(GpuDeferredError::Settings)?;
         let mut raster = self.raster.clone();
         config.adjust_raster(&mut raster);
         raster.validate().map_err(GpuDeferredError::Settings)?;
@@ -152,6 +148,10 @@ impl<'c> GpuHybrid<'c> {
             plan.shadows = vec![Step::Traced(&rt.shadows.pipelines[0], &rt.shadows.group)];
             plan.translucent = vec![Step::Traced(&rt.compose.pipelines[0], &rt.compose.group)];
         }
+        if let Gi::RayTraced { samples_per_pixel, regularize } = config.gi {
+            rt.gi.set(ctx, samples_per_pixel, seed, Gi::DESCRIPTOR.stream, [regularize, 0.0]);
+            plan.ambient = vec![Step::Traced(&rt.gi.pipelines[0], &rt.gi.group)];
+        }
         match config.ao {
             Ao::ScreenSpace { .. } => {}
             Ao::Off => plan.ao.clear(),
@@ -159,6 +159,16 @@ impl<'c> GpuHybrid<'c> {
                 rt.ao.set(ctx, samples_per_pixel, seed, Ao::DESCRIPTOR.stream, [radius, 0.0]);
                 plan.ao = vec![Step::Traced(&rt.ao.pipelines[0], &rt.ao.group)];
             }
+        }
+        if let Reflections::RayTraced { max_bounces, max_roughness } = config.reflections {
+            let stream = Reflections::DESCRIPTOR.stream;
+            rt.reflections.set(ctx, max_bounces, seed, stream, [max_roughness, 0.0]);
+            plan.reflections.push(Step::Traced(&rt.reflections.pipelines[0], &rt.reflections.group));
+        }
+        if let Translucency::RayTraced { max_refraction_rays, max_roughness } = config.translucency {
+            let stream = Translucency::DESCRIPTOR.stream;
+            rt.translucency.set(ctx, max_refraction_rays, seed, stream, [max_roughness, 0.0]);
+            plan.translucent.push(Step::Traced(&rt.translucency.pipelines[0], &rt.translucency.group));
         }
         let start = Instant::now();
         let timings = self.deferred.submit(camera, &raster, &plan)?;

@@ -5,8 +5,9 @@
 //!
 //! A stage's shader is the structure's prelude (first: the query path's begins with an
 //! `enable` directive), the frame's `common.wgsl`, `shading.wgsl` and `surface.wgsl`, the
-//! random streams, `rt_common.wgsl` (parameters, counters, `offset_origin`, `light_visible`)
-//! and the stage's own file.
+//! random streams, `rt_common.wgsl` (parameters, counters, `offset_origin`, `light_visible`,
+//! the nearest surface along a ray, direct light with shadow rays and the ambient term of a
+//! hit) and the stage's own file.
 
 use super::random;
 use crate::error::Result;

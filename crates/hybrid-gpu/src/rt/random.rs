@@ -1,7 +1,9 @@
 //! The CPU's per-pixel random streams in WGSL (`shaders/random.wgsl`): the same 64-bit
 //! generator (`renderlab_hybrid::rng::Rng`) in pairs of 32-bit words, so that a GPU stage
 //! draws, for each pixel, the very numbers the CPU stage draws; and the sampling helpers the
-//! stages share (stratified points, cosine-weighted directions, the normal's frame).
+//! stages share (stratified points, cosine-weighted directions, the normal's frame, GGX's
+//! visible normals, mirror reflection and refraction, as `renderlab_scene::sampling` has
+//! them).
 
 use renderlab_hybrid::rng::{Rng, Stream};
 

@@ -3,6 +3,9 @@
 //! | stage | entry point | writes |
 //! |---|---|---|
 //! | shadows | `rt_shadows_main` (`rt_shadows.wgsl`) | `direct`; and the composition is compiled again with the translucent layers' visibility from shadow rays (`rt_layer_direct.wgsl`) |
+//! | reflections | `rt_reflections_main` (`rt_reflections.wgsl`), after the lit image and SSR | `specular` of the pixels no rougher than the limit |
+//! | translucency | `rt_translucency_main` (`rt_translucency.wgsl`), after the composition and forward pass | `hdr` of the translucent pixels no rougher than the limit |
+//! | GI | `rt_gi_main` (`rt_gi.wgsl`) | `ambient.xyz` (and `ambient.w` = 1) |
 //! | AO | `rt_ao_main` (`rt_ao.wgsl`) | `ambient.w` |
 
 use super::pass::{params_layout, TracedStage, COUNTERS};
@@ -12,6 +15,7 @@ use crate::pipeline::Layouts;
 use renderlab_gpu::readback::read_buffer;
 use renderlab_gpu::rt::GpuAccel;
 use renderlab_gpu::GpuContext;
+use renderlab_hybrid::stages::reflections::MIRROR_ROUGHNESS;
 use wgpu::util::DeviceExt;
 
 /// Ray-traced shadows' WGSL.
@@ -20,6 +24,12 @@ pub const SHADOWS: &str = include_str!("../shaders/rt_shadows.wgsl");
 pub const LAYER_DIRECT: &str = include_str!("../shaders/rt_layer_direct.wgsl");
 /// Ray-traced AO's WGSL.
 pub const AO: &str = include_str!("../shaders/rt_ao.wgsl");
+/// Ray-traced reflections' WGSL.
+pub const REFLECTIONS: &str = include_str!("../shaders/rt_reflections.wgsl");
+/// Ray-traced GI's WGSL.
+pub const GI: &str = include_str!("../shaders/rt_gi.wgsl");
+/// Ray-traced translucency's WGSL.
+pub const TRANSLUCENCY: &str = include_str!("../shaders/rt_translucency.wgsl");
 
 /// Counter slot of each stage (the registry's order).
 pub mod slot {
@@ -42,6 +52,9 @@ pub struct RtStages {
     /// The composition with the translucent layers' visibility from shadow rays.
     pub(crate) compose: TracedStage,
     pub(crate) ao: TracedStage,
+    pub(crate) reflections: TracedStage,
+    pub(crate) gi: TracedStage,
+    pub(crate) translucency: TracedStage,
 }
 
 impl RtStages {
@@ -59,7 +72,13 @@ impl RtStages {
         let shadows = stage("rt shadows", "", SHADOWS, &["rt_shadows_main"], slot::SHADOWS)?;
         let compose = stage("composition, traced", LAYER_DIRECT, COMPOSE, &["compose_main"], slot::SHADOWS)?;
         let ao = stage("rt ao", "", AO, &["rt_ao_main"], slot::AO)?;
-        Ok(RtStages { counters, shadows, compose, ao })
+        let mirror = format!("const MIRROR_ROUGHNESS: f32 = {MIRROR_ROUGHNESS:?};");
+        let reflections =
+            stage("rt reflections", &mirror, REFLECTIONS, &["rt_reflections_main"], slot::REFLECTIONS)?;
+        let gi = stage("rt gi", "", GI, &["rt_gi_main"], slot::GI)?;
+        let translucency =
+            stage("rt translucency", "", TRANSLUCENCY, &["rt_translucency_main"], slot::TRANSLUCENCY)?;
+        Ok(RtStages { counters, shadows, compose, ao, reflections, gi, translucency })
     }
 
     /// Zeroes the ray counters (before a frame).

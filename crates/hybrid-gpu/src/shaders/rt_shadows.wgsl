@@ -1,5 +1,5 @@
-// Ray-traced shadows (the CPU's `shadows::run` through `lighting::direct_light`): per opaque
-// pixel and light, one shadow ray for a punctual light, `counts.x` stratified samples over an
+// Ray-traced shadows (the CPU's `shadows::run`): `direct_light` (rt_common.wgsl) of every
+// opaque pixel: per light, one shadow ray for a punctual light, `counts.x` stratified samples over an
 // area light rotated by the pixel's random shift (drawn for every light, as on the CPU);
 // `direct = Σ brdf · radiance · visible / n`.
 
@@ -19,32 +19,8 @@ fn rt_shadows_main(@builtin(global_invocation_id) id: vec3u) {
     }
     let v = -view_dir(id.x, id.y);
     var rng = rng_new(rtp.counts.zw, i);
-    var sum = vec3f(0.0);
     var traced = 0u;
-    for (var li = 0u; li < frame.size.z; li++) {
-        let l = lights[li];
-        var n = 1u;
-        if light_kind(l) == 3u {
-            n = max(rtp.counts.x, 1u);
-        }
-        let shift = rng_vec2(&rng);
-        var acc = vec3f(0.0);
-        for (var s = 0u; s < n; s++) {
-            let ls = light_sample(l, sp.p.xyz, stratified(s, n, shift));
-            if all(ls.radiance == vec3f(0.0)) {
-                continue;
-            }
-            let f = brdf_eval(sp, v, ls.to_light);
-            if all(f == vec3f(0.0)) {
-                continue;
-            }
-            traced++;
-            if light_visible(sp, ls) {
-                acc += f * ls.radiance;
-            }
-        }
-        sum += acc / f32(n);
-    }
+    let sum = direct_light(sp, v, rtp.counts.x, &rng, &traced);
     direct[i] = vec4f(sum, 0.0);
     count_rays(traced);
 }
