@@ -18,9 +18,6 @@ pub enum GpuDeferredError {
     /// The scene fails validation.
     #[error("GPU deferred frame: invalid scene: {0}")]
     Scene(String),
-    /// A stage choice without a GPU twin (yet).
-    #[error("GPU hybrid frame: {0}")]
-    Unsupported(String),
     /// The scene's CPU acceleration structure could not be built.
     #[error("GPU hybrid frame: {0}")]
     Hybrid(#[from] renderlab_hybrid::HybridError),

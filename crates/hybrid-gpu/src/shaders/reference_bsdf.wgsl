@@ -13,10 +13,8 @@ struct Basis {
 
 // `Frame::new`: glam's `any_orthonormal_pair` about the unit `n`.
 fn basis_of(n: vec3f) -> Basis {
-    let sign = select(1.0, -1.0, (bitcast<u32>(n.z) & 0x80000000u) != 0u);
-    let a = -1.0 / (sign + n.z);
-    let b = n.x * n.y * a;
-    return Basis(vec3f(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x), vec3f(b, sign + n.y * n.y * a, -n.y), n);
+    let ts = frame_axes(n);
+    return Basis(ts[0], ts[1], n);
 }
 
 fn to_world(f: Basis, v: vec3f) -> vec3f {
@@ -35,45 +33,10 @@ fn all_finite(v: vec3f) -> bool {
     return is_finite(v.x) && is_finite(v.y) && is_finite(v.z);
 }
 
-// `sampling::reflect`: `v` mirrored about `n`.
-fn mirror(v: vec3f, n: vec3f) -> vec3f {
-    return 2.0 * dot(v, n) * n - v;
-}
-
-// `sampling::refract`; w = 0 on total internal reflection.
-fn refract_dir(v: vec3f, n: vec3f, eta: f32) -> vec4f {
-    let cos_i = dot(v, n);
-    let sin2_t = eta * eta * max(1.0 - cos_i * cos_i, 0.0);
-    if sin2_t >= 1.0 {
-        return vec4f(0.0);
-    }
-    let cos_t = sqrt(1.0 - sin2_t);
-    return vec4f(normalize_exact(-v * eta + n * (eta * cos_i - cos_t)), 1.0);
-}
-
 fn ggx_g1(cos_theta: f32, alpha: f32) -> f32 {
     let c2 = max(cos_theta * cos_theta, 1e-12);
     let tan2 = max(1.0 - c2, 0.0) / c2;
     return 2.0 / (1.0 + sqrt(1.0 + alpha * alpha * tan2));
-}
-
-// `sampling::ggx_visible_normal` (Heitz 2018).
-fn ggx_visible_normal(v_local: vec3f, alpha: f32, u: vec2f) -> vec3f {
-    let vh = normalize_exact(vec3f(alpha * v_local.x, alpha * v_local.y, v_local.z));
-    let len2 = vh.x * vh.x + vh.y * vh.y;
-    var t1 = vec3f(1.0, 0.0, 0.0);
-    if len2 > 0.0 {
-        t1 = vec3f(-vh.y, vh.x, 0.0) / sqrt(len2);
-    }
-    let t2 = cross(vh, t1);
-    let r = sqrt(u.x);
-    let phi = 2.0 * PI * u.y;
-    let p1 = r * cos(phi);
-    var p2 = r * sin(phi);
-    let k = 0.5 * (1.0 + vh.z);
-    p2 = (1.0 - k) * sqrt(max(1.0 - p1 * p1, 0.0)) + k * p2;
-    let nh = t1 * p1 + t2 * p2 + vh * sqrt(max(1.0 - p1 * p1 - p2 * p2, 0.0));
-    return normalize_exact(vec3f(alpha * nh.x, alpha * nh.y, max(nh.z, 1e-6)));
 }
 
 // ShadingPoint::offset_origin.
@@ -145,13 +108,13 @@ fn sample_bsdf(sp: Surface, v: vec3f, rng: ptr<function, vec2<u32>>) -> Scatter 
         }
         let share = transmission * (vec3f(1.0) - f_m) / p_t;
         let r = refract_dir(v, m, eta);
-        if r.w > 0.0 {
-            if dot(r.xyz, g) < 0.0 {
-                out = Scatter(r.xyz, share * sp.c.xyz * ggx_g1(-dot(r.xyz, n), a), vec3f(0.0), true);
+        if r.ok {
+            if dot(r.dir, g) < 0.0 {
+                out = Scatter(r.dir, share * sp.c.xyz * ggx_g1(-dot(r.dir, n), a), vec3f(0.0), true);
             }
             return out;
         }
-        let l = mirror(v, m);
+        let l = mirror_dir(v, m);
         if dot(l, g) > 0.0 {
             out = Scatter(l, share * ggx_g1(dot(l, n), a), vec3f(0.0), true);
         }
@@ -165,7 +128,7 @@ fn sample_bsdf(sp: Surface, v: vec3f, rng: ptr<function, vec2<u32>>) -> Scatter 
     var l: vec3f;
     if rng_f32(rng) < p_spec {
         let m = to_world(frame_n, ggx_visible_normal(v_local, a, rng_vec2(rng)));
-        l = mirror(v, m);
+        l = mirror_dir(v, m);
     } else {
         l = to_world(frame_n, cosine_hemisphere(rng_vec2(rng)));
     }

@@ -85,7 +85,6 @@ pub fn record(
         gpu_psnr_db: None,
         gpu_term_rel_db: None,
         cpu_over_gpu: None,
-        gpu_note: None,
         terms,
         direct_area_lit: None,
     }

@@ -39,11 +39,6 @@ impl<'c> GpuScene<'c> {
         Ok(Self { hybrid, maps_ready: false })
     }
 
-    /// Whether `config` has a GPU twin for every stage choice (else why not).
-    pub fn supports(config: &StageConfig) -> std::result::Result<(), String> {
-        GpuHybrid::check(config).map_err(|e| e.to_string())
-    }
-
     /// Draws the scene's shadow maps once, before the first frame (static lights: no timed
     /// frame pays for them, as on the CPU).
     fn prepare(&mut self, camera: &Camera) -> Result<()> {

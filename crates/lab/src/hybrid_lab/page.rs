@@ -156,7 +156,6 @@ fn table_row(r: &HybridRecord) -> Vec<String> {
         r.gpu_frame_ms.map_or_else(String::new, |v| format_number(v, 2)),
         r.gpu_stage_ms.map_or_else(String::new, |v| format_number(v, 2)),
         r.cpu_over_gpu.map_or_else(String::new, |v| format!("{}×", format_number(v, 2))),
-        r.gpu_note.clone().unwrap_or_default(),
     ]
 }
 

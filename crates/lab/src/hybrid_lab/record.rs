@@ -69,9 +69,6 @@ pub struct RowResult {
     /// What the GPU measured, where it ran.
     #[serde(default)]
     pub gpu: Option<GpuRow>,
-    /// Why the GPU did not run this row, where it was asked to.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub gpu_note: Option<String>,
 }
 
 impl RowResult {
@@ -186,8 +183,6 @@ pub struct HybridRecord {
     pub gpu_term_rel_db: Option<f64>,
     /// With both renderers: CPU frame time over GPU frame time (interleaved frames).
     pub cpu_over_gpu: Option<f64>,
-    /// Why the GPU did not run the row, where it was asked to.
-    pub gpu_note: Option<String>,
     /// Every term's score (in `results.json`'s rows, not the CSV).
     #[serde(skip)]
     pub terms: Vec<TermScore>,
@@ -268,7 +263,6 @@ impl HybridRecord {
                 g.terms.iter().find(|t| t.term == term).map(|t| t.rel_db)
             }),
             cpu_over_gpu: row.gpu.as_ref().and_then(|g| g.cpu_over_gpu),
-            gpu_note: row.gpu_note.clone(),
             terms: row.terms.clone(),
             direct_area_lit: row.direct_area_lit.clone(),
         }

@@ -48,7 +48,6 @@ pub(crate) fn measure_row(
     (reference, terms): (&Image<Vec3>, &ViewTerms),
     cfg: &HybridBenchConfig,
     gpu: Option<GpuSide<'_, '_>>,
-    gpu_note: Option<String>,
 ) -> Result<RowResult> {
     let run = &cfg.run;
     let seed = run.seed;
@@ -158,7 +157,6 @@ pub(crate) fn measure_row(
         black_pixels,
         backend,
         gpu: gpu_row,
-        gpu_note,
     })
 }
 

@@ -50,22 +50,8 @@ pub fn run_hybrid_bench(cfg: &HybridBenchConfig, out: &Path, progress: Progress)
     };
     let manifest = Manifest { settings, shard: cfg.shard };
     // The GPU side, before anything is written: the device opened once (or why not; each
-    // scene is uploaded once below), and a GPU-only run refused if a row has no GPU twin.
+    // scene is uploaded once below).
     let (ctx, mut notes) = open_gpu(cfg)?;
-    if ctx.is_some() && cfg.run.backend == HybridBackend::Gpu {
-        let missing: Vec<String> = manifest
-            .settings
-            .rows()
-            .iter()
-            .filter_map(|(_, _, row)| GpuScene::supports(&row.config).err())
-            .collect();
-        if let Some(first) = missing.first() {
-            return Err(LabError::Hybrid(format!(
-                "--backend gpu: {} of the rows cannot run on the GPU ({first}); --backend both runs them on the CPU",
-                missing.len()
-            )));
-        }
-    }
     let dir = RunDir::new(out);
     // Held to the end of the run, whatever ends it: a second process on the same directory
     // is refused before it reads or writes anything there.
@@ -159,15 +145,12 @@ pub fn run_hybrid_bench(cfg: &HybridBenchConfig, out: &Path, progress: Progress)
         })?;
         for (id, _, row) in todo {
             progress(done, total, &format!("{}: {}", view.id, row.label()));
-            let (gpu, note) = match (&mut gpu_scene, &device) {
-                (Some((_, scene)), Some(device)) => match GpuScene::supports(&row.config) {
-                    Ok(()) => (Some(GpuSide { scene, device }), None),
-                    Err(why) => (None, Some(why)),
-                },
-                _ => (None, None),
+            let gpu = match (&mut gpu_scene, &device) {
+                (Some((_, scene)), Some(device)) => Some(GpuSide { scene, device }),
+                _ => None,
             };
             let result =
-                measure_row(&dir, id, view, row, r, &camera, (&reference.0, &reference.1), cfg, gpu, note)?;
+                measure_row(&dir, id, view, row, r, &camera, (&reference.0, &reference.1), cfg, gpu)?;
             dir.write_row(&result)?;
             done += 1;
         }

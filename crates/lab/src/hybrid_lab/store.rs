@@ -434,7 +434,6 @@ mod tests {
             black_pixels: 0,
             backend: Default::default(),
             gpu: None,
-            gpu_note: None,
         }
     }
 
