@@ -58,6 +58,8 @@ fn both_backends_record_the_gpu_beside_the_cpu() {
                 let ratio = g.cpu_over_gpu.expect("both renderers: a ratio");
                 assert!(ratio > 0.0 && ratio.is_finite(), "{}: {ratio}", row.id);
                 assert_eq!(g.reps, 2);
+                assert_eq!(g.stages_ms.len(), 7, "{}: geometry, five stages, composition", row.id);
+                assert!(g.stages_ms.iter().all(|(_, ms)| ms.is_finite() && *ms >= 0.0), "{}", row.id);
                 assert!(!g.device.adapter.is_empty() && !g.device.rt_path.is_empty());
                 // The same frame drawn twice: the GPU's error against the reference is the
                 // CPU's within what edge pixels and rounding change.

@@ -118,6 +118,10 @@ pub struct GpuRow {
     pub stage_ms: f64,
     /// Median wall time of a GPU frame from recording to completion, ms.
     pub wall_ms: f64,
+    /// Median GPU time of every stage of the frame, ms, in frame order (geometry, the five
+    /// stages, composition), from timestamps.
+    #[serde(default)]
+    pub stages_ms: Vec<(String, f64)>,
     /// Rays the GPU frame traced.
     pub rays: u64,
     /// PSNR of the GPU frame against the reference, dB (display images).

@@ -121,6 +121,7 @@ pub(crate) struct GpuSamples {
     frame: Vec<f64>,
     stage: Vec<f64>,
     wall: Vec<f64>,
+    stages: Vec<PerStage<f64>>,
 }
 
 impl GpuSamples {
@@ -137,7 +138,22 @@ impl GpuSamples {
         self.frame.push(t.frame_ms);
         self.stage.push(stage_ms(stage, &per_stage));
         self.wall.push(t.wall_ms);
+        self.stages.push(per_stage);
         Ok(())
+    }
+
+    /// Each stage's median over the kept frames, in frame order.
+    fn stage_medians(&self) -> Vec<(String, f64)> {
+        let Some(first) = self.stages.first() else { return Vec::new() };
+        first
+            .in_frame_order()
+            .iter()
+            .enumerate()
+            .map(|(k, (name, _))| {
+                let v: Vec<f64> = self.stages.iter().map(|s| s.in_frame_order()[k].1).collect();
+                (name.to_string(), Timing::from_samples(&v).map_or(f64::NAN, |t| t.median_ms))
+            })
+            .collect()
     }
 
     /// Keeps only the last `n` frames' times (the timed ones after warm-up frames).
@@ -146,6 +162,8 @@ impl GpuSamples {
             let k = v.len().saturating_sub(n);
             v.drain(..k);
         }
+        let k = self.stages.len().saturating_sub(n);
+        self.stages.drain(..k);
     }
 
     /// The row's GPU results: the medians of the kept times, `frame` (a GPU frame of the row
@@ -179,6 +197,7 @@ impl GpuSamples {
             frame_max_ms: t.max_ms,
             stage_ms: median(&self.stage),
             wall_ms: median(&self.wall),
+            stages_ms: self.stage_medians(),
             rays: frame.rays.total(),
             psnr_db: cmp.metrics.psnr_db,
             terms: scores,

@@ -18,6 +18,9 @@ pub enum FrameBackend {
     Cpu,
     /// The GPU renderer (wgpu on Vulkan).
     Gpu,
+    /// Both: the CPU's image to --out, the GPU's beside it (STEM.gpu.EXT), their times' ratio
+    /// and the PSNR between them printed.
+    Both,
 }
 
 /// The frame of `camera` with `config` on the GPU: its image, and what to print (adapter,

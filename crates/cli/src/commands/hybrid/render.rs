@@ -47,9 +47,11 @@ pub struct HybridRenderArgs {
     /// Seed of the stages' (or the reference's) random numbers.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// Which renderer draws the frame: the CPU's, or the GPU's (wgpu on Vulkan: a GPU, or
-    /// Mesa's lavapipe, a CPU emulating one), which prints its adapter and per-stage GPU
-    /// milliseconds from timestamps.
+    /// Which renderer draws the frame: the CPU's; the GPU's (wgpu on Vulkan: a GPU, or Mesa's
+    /// lavapipe, a CPU emulating one), which prints its adapter and per-stage GPU milliseconds
+    /// from timestamps; or both (the CPU's image to --out, the GPU's to STEM.gpu.EXT, the
+    /// ratio of their times and the PSNR between them printed). With --reference, gpu path
+    /// traces on the GPU.
     #[arg(long, value_enum, default_value_t = FrameBackend::Cpu)]
     pub backend: FrameBackend,
     /// With --backend gpu: how the GPU traces rays. auto: hardware ray queries where the
@@ -89,6 +91,9 @@ pub(crate) fn run(a: HybridRenderArgs) -> Result<()> {
             let (r, on) = match a.backend {
                 FrameBackend::Cpu => (renderer.reference(&camera, spp, a.seed)?, String::new()),
                 FrameBackend::Gpu => super::backend::gpu_reference(&renderer, &camera, spp, a.seed, a.rt)?,
+                FrameBackend::Both => {
+                    return Err(anyhow!("--reference takes --backend cpu or gpu, not both"));
+                }
             };
             let what = format!(
                 "path-traced reference{on}, {} spp, {} rays; noise floor: PSNR between halves {:.2} dB (linear, peak 1), full reference about {:.2} dB ({})",
@@ -110,7 +115,27 @@ pub(crate) fn run(a: HybridRenderArgs) -> Result<()> {
             super::backend::gpu_frame(&renderer, &camera, &config, a.seed, a.rt)?
         }
         None => {
+            let gpu = match a.backend {
+                FrameBackend::Both => {
+                    Some(super::backend::gpu_frame(&renderer, &camera, &config, a.seed, a.rt)?)
+                }
+                _ => None,
+            };
+            let cpu_start = std::time::Instant::now();
             let f = renderer.render(&camera, &config, a.seed)?;
+            let cpu_ms = cpu_start.elapsed().as_secs_f64() * 1e3;
+            if let Some((gpu_hdr, gpu_what)) = gpu {
+                let path = pass_path(&a.out, "gpu");
+                let gpu_image = Image::from_vec(w, h, gpu_hdr)?;
+                io::save_color(&path, &gpu_image)?;
+                let psnr =
+                    renderlab_lab::metrics::psnr(&gpu_image, &Image::from_vec(w, h, f.hdr.clone())?, None);
+                println!("GPU: {gpu_what}");
+                println!(
+                    "wrote {}; CPU frame {cpu_ms:.1} ms wall; the GPU image against the CPU's: PSNR {psnr:.2} dB",
+                    path.display()
+                );
+            }
             let ms: Vec<String> =
                 f.stage_ms.in_frame_order().iter().map(|(pass, ms)| format!("{pass} {ms:.1}")).collect();
             let what = format!("{}: {} rays; ms: {}", config.label(), f.rays.total(), ms.join(", "));
