@@ -83,28 +83,7 @@ impl<'c> GpuDeferred<'c> {
         prepared.scene.validate().map_err(|e| GpuDeferredError::Scene(e.to_string()))?;
         let layouts = Layouts::new(ctx);
         let scene = GpuScene::upload(ctx, prepared)?;
-        let buffers = [
-            &scene.world_positions,
-            &scene.draw_indices,
-            &scene.triangle_refs,
-            &scene.instances,
-            &scene.vertices,
-            &scene.indices,
-            &scene.materials,
-            &scene.texture_info,
-            &scene.texels,
-            &scene.lights,
-        ];
-        let entries: Vec<_> = buffers
-            .iter()
-            .enumerate()
-            .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
-            .collect();
-        let scene_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("scene"),
-            layout: &layouts.scene,
-            entries: &entries,
-        });
+        let scene_group = scene.bind_group(&ctx.device, &layouts.scene, "scene");
         let raster = RasterPipelines::new(ctx)?;
         let camera_view = Views::new(ctx, &raster, &scene, 1);
         let gbuffer = GBufferPass::new(ctx, &layouts)?;
@@ -231,15 +210,7 @@ impl<'c> GpuDeferred<'c> {
     pub fn run(&mut self, camera: &Camera) -> Result<Option<GpuStageTimings>> {
         self.prepare(camera)?;
         let p = &self.passes;
-        let plan = Plan {
-            maps: true,
-            shadows: vec![Step::Raster(&p.direct)],
-            ambient: vec![Step::Raster(&p.ambient)],
-            ao: vec![Step::Raster(&p.ssao)],
-            reflections: vec![Step::Raster(&p.lit), Step::Raster(&p.ssr)],
-            translucent: vec![Step::Raster(&p.compose)],
-            accel: None,
-        };
+        let plan = Plan::raster(p, None);
         self.submit(camera, &self.settings, &plan)
     }
 

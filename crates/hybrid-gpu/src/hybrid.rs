@@ -133,15 +133,7 @@ impl<'c> GpuHybrid<'c> {
         let rt = &self.rt;
         rt.reset(ctx);
         let p = self.deferred.passes();
-        let mut plan = Plan {
-            maps: true,
-            shadows: vec![Step::Raster(&p.direct)],
-            ambient: vec![Step::Raster(&p.ambient)],
-            ao: vec![Step::Raster(&p.ssao)],
-            reflections: vec![Step::Raster(&p.lit), Step::Raster(&p.ssr)],
-            translucent: vec![Step::Raster(&p.compose)],
-            accel: Some(self.accel.bind_group()),
-        };
+        let mut plan = Plan::raster(p, Some(self.accel.bind_group()));
         if let Shadows::RayTraced { samples_per_light } = config.shadows {
             rt.shadows.set(ctx, samples_per_light, seed, Shadows::DESCRIPTOR.stream, [0.0; 2]);
             plan.maps = false;
@@ -196,15 +188,7 @@ impl<'c> GpuHybrid<'c> {
         let translucent =
             (0..n).map(|i| if layers > 0 { back.translucent_layers[i * layers] } else { None }).collect();
         let stage_ms = match timings {
-            Some(t) => PerStage {
-                geometry: t.geometry_ms,
-                shadows: t.shadows_ms + t.lighting_ms,
-                reflections: t.reflections_ms,
-                translucency: t.translucent_ms,
-                gi: t.ambient_ms,
-                ao: t.ao_ms,
-                compose: 0.0,
-            },
+            Some(t) => t.per_stage(),
             None => PerStage { compose: wall_ms, ..PerStage::default() },
         };
         let frame = HybridFrame {

@@ -2,6 +2,8 @@
 //! in their place. The deferred frame's own `run` is the all-raster plan; the hybrid frame
 //! builds one from a stage configuration.
 
+use crate::passes::Passes;
+
 /// One compute dispatch over the frame.
 #[derive(Clone, Copy)]
 pub(crate) enum Step<'a> {
@@ -28,4 +30,20 @@ pub(crate) struct Plan<'a> {
     pub translucent: Vec<Step<'a>>,
     /// The ray tracer's bind group (group 2), where a step traces.
     pub accel: Option<&'a wgpu::BindGroup>,
+}
+
+impl<'a> Plan<'a> {
+    /// The all-raster frame: shadow maps and lighting, the ambient term, SSAO, the lit image
+    /// and SSR, the composition; `accel` bound for any ray-traced step put in later.
+    pub fn raster(p: &'a Passes, accel: Option<&'a wgpu::BindGroup>) -> Self {
+        Plan {
+            maps: true,
+            shadows: vec![Step::Raster(&p.direct)],
+            ambient: vec![Step::Raster(&p.ambient)],
+            ao: vec![Step::Raster(&p.ssao)],
+            reflections: vec![Step::Raster(&p.lit), Step::Raster(&p.ssr)],
+            translucent: vec![Step::Raster(&p.compose)],
+            accel,
+        }
+    }
 }

@@ -134,28 +134,7 @@ impl<'a> GpuReference<'a> {
             label: Some("reference scene"),
             entries: &scene_entries,
         });
-        let buffers = [
-            &scene.world_positions,
-            &scene.draw_indices,
-            &scene.triangle_refs,
-            &scene.instances,
-            &scene.vertices,
-            &scene.indices,
-            &scene.materials,
-            &scene.texture_info,
-            &scene.texels,
-            &scene.lights,
-        ];
-        let entries: Vec<_> = buffers
-            .iter()
-            .enumerate()
-            .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
-            .collect();
-        let scene_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("reference scene"),
-            layout: &scene_layout,
-            entries: &entries,
-        });
+        let scene_group = scene.bind_group(device, &scene_layout, "reference scene");
         // Of the frame group the pass reads only the constants (binding 0).
         let frame_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("reference frame"),

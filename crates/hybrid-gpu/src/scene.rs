@@ -156,6 +156,34 @@ pub(crate) fn storage(ctx: &GpuContext, label: &str, bytes: &[u8]) -> Result<wgp
 }
 
 impl GpuScene {
+    /// The scene's bind group (group 0 of the compute passes: its buffers at bindings 0–9
+    /// in the order `common.wgsl` declares them) over `layout`.
+    pub(crate) fn bind_group(
+        &self,
+        device: &wgpu::Device,
+        layout: &wgpu::BindGroupLayout,
+        label: &str,
+    ) -> wgpu::BindGroup {
+        let buffers = [
+            &self.world_positions,
+            &self.draw_indices,
+            &self.triangle_refs,
+            &self.instances,
+            &self.vertices,
+            &self.indices,
+            &self.materials,
+            &self.texture_info,
+            &self.texels,
+            &self.lights,
+        ];
+        let entries: Vec<_> = buffers
+            .iter()
+            .enumerate()
+            .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
+            .collect();
+        device.create_bind_group(&wgpu::BindGroupDescriptor { label: Some(label), layout, entries: &entries })
+    }
+
     /// Uploads `prepared` (whose scene has passed `validate`).
     pub fn upload(ctx: &GpuContext, prepared: &PreparedScene) -> Result<Self> {
         let scene: &HybridScene = prepared.scene;

@@ -8,6 +8,7 @@ use crate::error::Result;
 use renderlab_gpu::readback::map_read;
 use renderlab_gpu::GpuContext;
 use renderlab_hybrid::deferred::StageTimings;
+use renderlab_hybrid::PerStage;
 
 /// A query pair per stage and the buffers that bring them back.
 pub(crate) struct StageTimer {
@@ -164,6 +165,23 @@ impl GpuStageTimings {
     /// The sum of the stages.
     pub fn total_ms(&self) -> f64 {
         self.as_array().iter().sum()
+    }
+
+    /// The times as the hybrid frame's stages ([`PerStage`], the CPU's `HybridFrame::stage_ms`):
+    /// geometry; shadows = the shadow maps and the lighting pass (or the ray-traced direct
+    /// pass); GI = the view depth and the ambient pass (or ray-traced GI); AO; reflections;
+    /// translucency = the composition with the translucent layers (one pass on the GPU, so
+    /// `compose` is 0). Tone mapping is left out, as the CPU leaves it out of its frame.
+    pub fn per_stage(&self) -> PerStage<f64> {
+        PerStage {
+            geometry: self.geometry_ms,
+            shadows: self.shadows_ms + self.lighting_ms,
+            reflections: self.reflections_ms,
+            translucency: self.translucent_ms,
+            gi: self.ambient_ms,
+            ao: self.ao_ms,
+            compose: 0.0,
+        }
     }
 
     /// The stages the CPU frame times, in its struct (tone mapping, which the CPU does

@@ -75,15 +75,7 @@ impl<'c> GpuScene<'c> {
         self.prepare(camera)?;
         let (timings, wall_ms, _) = self.hybrid.run(camera, config, seed)?;
         let stages = match timings {
-            Some(t) => PerStage {
-                geometry: t.geometry_ms,
-                shadows: t.shadows_ms + t.lighting_ms,
-                reflections: t.reflections_ms,
-                translucency: t.translucent_ms,
-                gi: t.ambient_ms,
-                ao: t.ao_ms,
-                compose: 0.0,
-            },
+            Some(t) => t.per_stage(),
             None => PerStage { compose: wall_ms, ..Default::default() },
         };
         Ok((GpuTimes { frame_ms: stages.total(), wall_ms }, stages))
