@@ -18,8 +18,8 @@ pub enum FrameBackend {
     Cpu,
     /// The GPU renderer (wgpu on Vulkan).
     Gpu,
-    /// Both: the CPU's image to --out, the GPU's beside it (STEM.gpu.EXT), their times' ratio
-    /// and the PSNR between them printed.
+    /// Both: the CPU's image to --out, the GPU's beside it (STEM.gpu.EXT), both renderers'
+    /// times and the PSNR between the images printed.
     Both,
 }
 

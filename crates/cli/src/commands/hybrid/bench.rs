@@ -57,9 +57,9 @@ pub struct HybridBenchArgs {
     #[arg(long)]
     pub no_images: bool,
     /// Which renderer draws the rows: cpu; gpu (wgpu on Vulkan: each row's times are GPU
-    /// milliseconds from timestamps, its errors the GPU frame's; refused if a row's choice has
-    /// no GPU twin); both (each row on the CPU and the GPU, their frames interleaved one for
-    /// one, the ratio of their frame times reported). The references are the CPU's.
+    /// milliseconds from timestamps, its errors the GPU frame's, and the references are path
+    /// traced on the GPU too); both (each row on the CPU and the GPU, their frames interleaved
+    /// one for one, the ratio of their frame times reported; the references are the CPU's).
     #[arg(long, value_enum, default_value_t = HybridBackend::Cpu)]
     pub backend: HybridBackend,
     /// With a GPU backend: how the GPU traces rays (auto: hardware ray queries where the

@@ -49,8 +49,8 @@ pub struct HybridRenderArgs {
     pub seed: u64,
     /// Which renderer draws the frame: the CPU's; the GPU's (wgpu on Vulkan: a GPU, or Mesa's
     /// lavapipe, a CPU emulating one), which prints its adapter and per-stage GPU milliseconds
-    /// from timestamps; or both (the CPU's image to --out, the GPU's to STEM.gpu.EXT, the
-    /// ratio of their times and the PSNR between them printed). With --reference, gpu path
+    /// from timestamps; or both (the CPU's image to --out, the GPU's to STEM.gpu.EXT, both
+    /// renderers' times and the PSNR between the images printed). With --reference, gpu path
     /// traces on the GPU.
     #[arg(long, value_enum, default_value_t = FrameBackend::Cpu)]
     pub backend: FrameBackend,
