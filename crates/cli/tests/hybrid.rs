@@ -263,3 +263,80 @@ fn a_second_run_is_refused_and_an_interrupted_one_leaves_no_temporary_files() {
     assert_eq!(count_rows(&run), 55);
     assert!(temporaries(&run).is_empty(), "{:?}", temporaries(&run));
 }
+
+/// `--backend gpu|both` as a user meets it: a frame on the GPU prints its adapter and GPU
+/// milliseconds; `both` writes the GPU image beside the CPU's; no adapter, or an adapter
+/// without ray queries asked for them, is one line, exit code 1 and nothing written. (On a
+/// machine without an adapter the success cases say they skipped, unless `CI` is set.)
+#[test]
+fn the_gpu_backend_renders_or_refuses_in_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("gpu.png");
+    let out = out.to_str().unwrap();
+    let no_adapter = Command::new(env!("CARGO_BIN_EXE_renderlab"))
+        .env("VK_ICD_FILENAMES", "/nonexistent/icd.json")
+        .args([
+            "hybrid",
+            "render",
+            "--scene",
+            "showcase",
+            "--resolution",
+            "32x18",
+            "--backend",
+            "gpu",
+            "-o",
+            out,
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&no_adapter.stderr);
+    assert_eq!(no_adapter.status.code(), Some(1), "{err}");
+    assert_eq!(err.lines().filter(|l| !l.trim().is_empty()).count(), 1, "{err}");
+    assert!(err.contains("no GPU adapter"), "{err}");
+    assert!(!std::path::Path::new(out).exists(), "nothing written without an adapter");
+
+    if renderlab_gpu_available() {
+        let text = succeeds(&[
+            "hybrid",
+            "render",
+            "--scene",
+            "showcase",
+            "--resolution",
+            "32x18",
+            "--backend",
+            "both",
+            "--ao",
+            "rt:2",
+            "-o",
+            out,
+        ]);
+        assert!(text.contains("GPU ms") && text.contains("PSNR"), "{text}");
+        assert!(dir.path().join("gpu.gpu.png").exists() && dir.path().join("gpu.png").exists());
+    }
+}
+
+/// Whether a GPU adapter opens here (the binary's own check: `hybrid render --backend gpu`
+/// of one pixel); without one the caller skips, and fails where `CI` is set.
+fn renderlab_gpu_available() -> bool {
+    let dir = tempfile::tempdir().unwrap();
+    let probe = dir.path().join("probe.png");
+    let out = renderlab(&[
+        "hybrid",
+        "render",
+        "--scene",
+        "showcase",
+        "--resolution",
+        "1x1",
+        "--backend",
+        "gpu",
+        "-o",
+        probe.to_str().unwrap(),
+    ]);
+    if out.status.success() {
+        return true;
+    }
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(std::env::var_os("CI").is_none(), "CI is set but the GPU backend cannot run: {err}");
+    eprintln!("SKIPPED (no GPU adapter, and CI is not set): {err}");
+    false
+}
