@@ -23,7 +23,8 @@ use wgpu::util::DeviceExt;
 /// The stages' shared WGSL.
 pub const RT_COMMON: &str = include_str!("../shaders/rt_common.wgsl");
 
-/// Counter slots of the frame's ray counters, one per switchable stage (registry order).
+/// Counter slots of the frame's ray counters, one per switchable stage (registry order); each
+/// is a 64-bit count in two 32-bit words (low, high).
 pub const COUNTERS: usize = 5;
 
 /// The layout of group 3.

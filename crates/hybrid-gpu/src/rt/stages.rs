@@ -63,7 +63,7 @@ impl RtStages {
         let params = params_layout(ctx);
         let counters = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("ray counters"),
-            contents: &[0u8; 4 * COUNTERS],
+            contents: &[0u8; 8 * COUNTERS],
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
         });
         let stage = |label: &str, before: &str, source: &str, entries: &[&str], slot: u32| {
@@ -83,13 +83,14 @@ impl RtStages {
 
     /// Zeroes the ray counters (before a frame).
     pub(crate) fn reset(&self, ctx: &GpuContext) {
-        ctx.queue.write_buffer(&self.counters, 0, &[0u8; 4 * COUNTERS]);
+        ctx.queue.write_buffer(&self.counters, 0, &[0u8; 8 * COUNTERS]);
     }
 
     /// The rays each stage traced since the last reset, in registry order.
     pub(crate) fn rays(&self, ctx: &GpuContext) -> Result<[u64; COUNTERS]> {
-        let bytes = read_buffer(ctx, &self.counters, 4 * COUNTERS as u64)?;
+        let bytes = read_buffer(ctx, &self.counters, 8 * COUNTERS as u64)?;
         let words: &[u32] = bytemuck::cast_slice(&bytes);
-        Ok(std::array::from_fn(|k| words[k] as u64))
+        // Each count is two words, low then high.
+        Ok(std::array::from_fn(|k| words[2 * k] as u64 | (words[2 * k + 1] as u64) << 32))
     }
 }

@@ -84,8 +84,14 @@ fn ambient_term(sp: Surface, v: vec3f) -> vec3f {
     return frame.sky.xyz * diffuse_albedo(sp, v);
 }
 
+// Adds n to this stage's 64-bit ray count: two words (low, high), the carry added to the high
+// word by the one invocation whose addition wrapped the low word.
 fn count_rays(n: u32) {
     if n > 0u {
-        atomicAdd(&rt_rays[rtp.counts.y], n);
+        let slot = 2u * rtp.counts.y;
+        let old = atomicAdd(&rt_rays[slot], n);
+        if old > 0xffffffffu - n {
+            atomicAdd(&rt_rays[slot + 1u], 1u);
+        }
     }
 }
