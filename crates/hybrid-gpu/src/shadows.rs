@@ -1,7 +1,8 @@
 //! The raster shadow stage on the device: the CPU's shadow maps (`ShadowMaps::build`),
 //! drawn by the GPU rasterizer, looked up with the same PCF (`shaders/shading.wgsl`).
 //!
-//! Placement is the CPU's, map for map: a directional light gets one orthographic map
+//! Placement is the CPU's, map for map (`renderlab_hybrid::deferred::placements`, called
+//! here, not copied): a directional light gets one orthographic map
 //! fitted to the sphere around the scene's bounds; a spot light whose cone is at most
 //! `MAX_SPOT_HALF_ANGLE_DEG` one perspective map over the cone (widened by 5 % and 2°); a
 //! point light (or a wider spot) a cube map of six 90° faces; an area light a cube map from
@@ -21,21 +22,11 @@ use crate::raster::{RasterPipelines, RasterView, Views};
 use crate::scene::{storage, GpuScene};
 use crate::timing::StageTimer;
 use bytemuck::{Pod, Zeroable};
-use glam::{DMat4, Vec3};
 use renderlab_gpu::GpuContext;
-use renderlab_hybrid::deferred::{PreparedScene, ShadowSettings, MAX_SPOT_HALF_ANGLE_DEG};
+use renderlab_hybrid::deferred::{placements, LightPlacement, MapPlacement, PreparedScene, ShadowSettings};
 use renderlab_scene::LightKind;
 
 /// The cube faces' axes and up vectors, in the order +X, −X, +Y, −Y, +Z, −Z (the CPU's).
-const CUBE_FACES: [(Vec3, Vec3); 6] = [
-    (Vec3::X, Vec3::NEG_Y),
-    (Vec3::NEG_X, Vec3::NEG_Y),
-    (Vec3::Y, Vec3::Z),
-    (Vec3::NEG_Y, Vec3::NEG_Z),
-    (Vec3::Z, Vec3::NEG_Y),
-    (Vec3::NEG_Z, Vec3::NEG_Y),
-];
-
 /// The three map arrays: directional, cube and spot, area corners.
 const ARRAYS: usize = 3;
 
@@ -49,45 +40,11 @@ struct MapRecord {
     res: [u32; 4],
 }
 
-/// Where one map is and how it was made.
+/// One map: where it is (the CPU's placement) and which array holds it.
 #[derive(Clone, Copy, Debug)]
 struct MapView {
-    view_projection: DMat4,
-    eye: Vec3,
-    forward: Vec3,
-    orthographic: bool,
-    texel: f32,
+    placement: MapPlacement,
     array: usize,
-}
-
-impl MapView {
-    fn orthographic(direction: Vec3, centre: Vec3, radius: f32, resolution: u32) -> Self {
-        let forward = direction.normalize_or(Vec3::NEG_Y);
-        let up = forward.any_orthonormal_vector();
-        let eye = centre - forward * (radius * 1.01 + 1e-3);
-        let view = DMat4::look_to_rh(eye.as_dvec3(), forward.as_dvec3(), up.as_dvec3());
-        let r = radius as f64 * 1.01 + 1e-3;
-        let proj = DMat4::orthographic_rh(-r, r, -r, r, 0.0, 2.0 * r);
-        let texel = (2.0 * r / resolution as f64) as f32;
-        Self { view_projection: proj * view, eye, forward, orthographic: true, texel, array: 0 }
-    }
-
-    #[allow(clippy::too_many_arguments)]
-    fn perspective(
-        eye: Vec3,
-        forward: Vec3,
-        up: Vec3,
-        fov: f32,
-        near: f32,
-        far: f32,
-        resolution: u32,
-        array: usize,
-    ) -> Self {
-        let view = DMat4::look_to_rh(eye.as_dvec3(), forward.as_dvec3(), up.as_dvec3());
-        let proj = DMat4::perspective_rh(fov as f64, 1.0, near as f64, far as f64);
-        let texel = 2.0 * (fov * 0.5).tan() / resolution as f32;
-        Self { view_projection: proj * view, eye, forward, orthographic: false, texel, array }
-    }
 }
 
 /// Every map of a scene, its records on the device and its textures.
@@ -106,16 +63,6 @@ pub(crate) struct ShadowPass {
     views: Views,
 }
 
-/// Scene bounds as centre and radius (a unit sphere at the origin for an empty scene).
-fn sphere(prepared: &PreparedScene) -> (Vec3, f32) {
-    let (lo, hi) = prepared.bounds;
-    if lo.cmple(hi).all() {
-        ((lo + hi) * 0.5, ((hi - lo).length() * 0.5).max(1e-3))
-    } else {
-        (Vec3::ZERO, 1.0)
-    }
-}
-
 impl ShadowPass {
     /// Places every light's maps and allocates them.
     pub fn new(
@@ -125,7 +72,6 @@ impl ShadowPass {
         prepared: &PreparedScene,
         settings: &ShadowSettings,
     ) -> Result<Self> {
-        let (centre, radius) = sphere(prepared);
         let resolutions =
             [settings.directional_resolution, settings.cube_resolution, settings.area_resolution];
         for (what, r) in
@@ -140,61 +86,38 @@ impl ShadowPass {
             layers[view.array] += 1;
         };
         let mut table: Vec<[u32; 4]> = Vec::new();
-        for light in &prepared.scene.lights {
+        // The CPU's placements, so that both place every map alike; the arrays group maps by
+        // resolution (directional; spot and point cubes; area corners).
+        for (light, placed) in prepared.scene.lights.iter().zip(placements(prepared, settings)) {
             let first = maps.len() as u32;
-            let cube = |eye: Vec3, res: u32, array: usize| {
-                let far = (eye - centre).length() + radius * 1.01 + 1e-3;
-                let near = (far * 1e-5).max(1e-4);
-                CUBE_FACES.map(|(f, up)| {
-                    MapView::perspective(eye, f, up, 90f32.to_radians(), near, far, res, array)
-                })
-            };
-            match light.kind {
-                LightKind::Directional => {
-                    push(MapView::orthographic(light.direction, centre, radius, resolutions[0]), &mut maps);
+            match placed {
+                LightPlacement::Single(p) => {
+                    let array = if p.orthographic { 0 } else { 1 };
+                    push(MapView { placement: p, array }, &mut maps);
                     table.push([1, first, 0, 0]);
                 }
-                LightKind::Spot { outer_cone, .. } if outer_cone.to_degrees() <= MAX_SPOT_HALF_ANGLE_DEG => {
-                    let far = (light.position - centre).length() + radius * 1.01 + 1e-3;
-                    let near = (far * 1e-5).max(1e-4);
-                    let up = light.direction.any_orthonormal_vector();
-                    let fov = (2.0 * outer_cone * 1.05 + 2f32.to_radians()).min(179f32.to_radians());
-                    let view = MapView::perspective(
-                        light.position,
-                        light.direction,
-                        up,
-                        fov,
-                        near,
-                        far,
-                        resolutions[1],
-                        1,
-                    );
-                    push(view, &mut maps);
-                    table.push([1, first, 0, 0]);
-                }
-                LightKind::Point | LightKind::Spot { .. } => {
-                    for face in cube(light.position, resolutions[1], 1) {
-                        push(face, &mut maps);
-                    }
-                    table.push([2, first, 1, 0]);
-                }
-                LightKind::Area { half_u, half_v } => {
-                    for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)] {
-                        for face in cube(light.position + half_u * a + half_v * b, resolutions[2], 2) {
-                            push(face, &mut maps);
+                LightPlacement::Cubes(cubes) => {
+                    let array = if matches!(light.kind, LightKind::Area { .. }) { 2 } else { 1 };
+                    for faces in &cubes {
+                        for &p in faces {
+                            push(MapView { placement: p, array }, &mut maps);
                         }
                     }
-                    table.push([2, first, 4, 0]);
+                    table.push([2, first, cubes.len() as u32, 0]);
                 }
             }
         }
         let records: Vec<MapRecord> = maps
             .iter()
             .map(|(m, layer)| MapRecord {
-                view_proj: m.view_projection.as_mat4().to_cols_array_2d(),
-                eye_texel: m.eye.extend(m.texel).to_array(),
-                forward_ortho: m.forward.extend(if m.orthographic { 1.0 } else { 0.0 }).to_array(),
-                res: [resolutions[m.array], m.array as u32, *layer, 0],
+                view_proj: m.placement.view_projection.as_mat4().to_cols_array_2d(),
+                eye_texel: m.placement.eye.extend(m.placement.texel).to_array(),
+                forward_ortho: m
+                    .placement
+                    .forward
+                    .extend(if m.placement.orthographic { 1.0 } else { 0.0 })
+                    .to_array(),
+                res: [m.placement.resolution, m.array as u32, *layer, 0],
             })
             .collect();
         let texture = |label: &str, array: usize, format: wgpu::TextureFormat, layers: u32| {
@@ -216,7 +139,11 @@ impl ShadowPass {
             .map(|a| texture("shadow depth", a, wgpu::TextureFormat::Depth32Float, 1.min(layers[a])));
         let views = Views::new(ctx, raster, scene, maps.len());
         for (k, (m, _)) in maps.iter().enumerate() {
-            views.write(ctx, k, &RasterView::new(m.view_projection.as_mat4(), m.eye, m.forward));
+            views.write(
+                ctx,
+                k,
+                &RasterView::new(m.placement.view_projection.as_mat4(), m.placement.eye, m.placement.forward),
+            );
         }
         Ok(Self {
             maps,

@@ -42,7 +42,9 @@ pub mod weights;
 pub use crate::stages::ao::ssao;
 pub use crate::stages::gi::ambient_diffuse;
 pub use crate::stages::reflections::ssr::screen_space_reflections;
-pub use crate::stages::shadows::maps::{DepthMap, LightShadow, ShadowMaps, MAX_SPOT_HALF_ANGLE_DEG};
+pub use crate::stages::shadows::maps::{
+    placements, DepthMap, LightPlacement, LightShadow, MapPlacement, ShadowMaps, MAX_SPOT_HALF_ANGLE_DEG,
+};
 pub use crate::stages::translucency::{forward_translucent, layer_radiance};
 pub use compose::lit_opaque;
 pub use frame::{render, DeferredError, RasterFrame, StageTimings};

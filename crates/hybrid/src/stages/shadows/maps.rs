@@ -82,74 +82,117 @@ fn sphere(prepared: &PreparedScene) -> (Vec3, f32) {
     }
 }
 
+/// Where one shadow map looks from and how it projects: what the CPU's depth map is drawn
+/// with and the GPU's map is drawn and looked up with, so that both place every map alike.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MapPlacement {
+    /// World to clip (the map's texel grid is clip space's [−1, 1]²).
+    pub view_projection: DMat4,
+    /// The map's eye (for an orthographic map, a point behind the scene along `forward`).
+    pub eye: Vec3,
+    /// The unit viewing direction.
+    pub forward: Vec3,
+    /// Whether the projection is orthographic.
+    pub orthographic: bool,
+    /// The world size of a texel at unit distance (perspective) or everywhere (orthographic).
+    pub texel: f32,
+    /// Texels per side.
+    pub resolution: u32,
+}
+
+impl MapPlacement {
+    /// An orthographic map looking along `direction`, fitted to the sphere (`centre`, `radius`).
+    pub fn orthographic(direction: Vec3, centre: Vec3, radius: f32, resolution: u32) -> Self {
+        let forward = direction.normalize_or(Vec3::NEG_Y);
+        let up = forward.any_orthonormal_vector();
+        let eye = centre - forward * (radius * 1.01 + 1e-3);
+        let view = DMat4::look_to_rh(eye.as_dvec3(), forward.as_dvec3(), up.as_dvec3());
+        let r = radius as f64 * 1.01 + 1e-3;
+        let proj = DMat4::orthographic_rh(-r, r, -r, r, 0.0, 2.0 * r);
+        let texel = (2.0 * r / resolution as f64) as f32;
+        Self { view_projection: proj * view, eye, forward, orthographic: true, texel, resolution }
+    }
+
+    /// A perspective map with vertical and horizontal field of view `fov` (radians).
+    pub fn perspective(eye: Vec3, forward: Vec3, up: Vec3, fov: f32, near: f32, far: f32, resolution: u32) -> Self {
+        let view = DMat4::look_to_rh(eye.as_dvec3(), forward.as_dvec3(), up.as_dvec3());
+        let proj = DMat4::perspective_rh(fov as f64, 1.0, near as f64, far as f64);
+        let texel = 2.0 * (fov * 0.5).tan() / resolution as f32;
+        Self { view_projection: proj * view, eye, forward, orthographic: false, texel, resolution }
+    }
+}
+
+/// One light's maps: one map (a directional light; a spot light narrower than
+/// [`MAX_SPOT_HALF_ANGLE_DEG`]), or cube maps (a point light or wider spot: one cube; an area
+/// light: one per corner), faces in the lookup's order.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LightPlacement {
+    /// One map.
+    Single(MapPlacement),
+    /// Cube maps, six faces each.
+    Cubes(Vec<[MapPlacement; 6]>),
+}
+
+/// Where every light of `prepared`'s scene puts its maps, in light order, with `settings`'
+/// resolutions (directional maps: `directional_resolution`; spot and point: `cube_resolution`;
+/// area corners: `area_resolution`).
+pub fn placements(prepared: &PreparedScene, settings: &ShadowSettings) -> Vec<LightPlacement> {
+    let (centre, radius) = sphere(prepared);
+    let cube = |eye: Vec3, res: u32| {
+        let far = (eye - centre).length() + radius * 1.01 + 1e-3;
+        let near = (far * 1e-5).max(1e-4);
+        CUBE_FACES.map(|(f, up)| MapPlacement::perspective(eye, f, up, 90f32.to_radians(), near, far, res))
+    };
+    prepared
+        .scene
+        .lights
+        .iter()
+        .map(|light| match light.kind {
+            LightKind::Directional => LightPlacement::Single(MapPlacement::orthographic(
+                light.direction,
+                centre,
+                radius,
+                settings.directional_resolution,
+            )),
+            LightKind::Spot { outer_cone, .. } if outer_cone.to_degrees() <= MAX_SPOT_HALF_ANGLE_DEG => {
+                let far = (light.position - centre).length() + radius * 1.01 + 1e-3;
+                let near = (far * 1e-5).max(1e-4);
+                let up = light.direction.any_orthonormal_vector();
+                let fov = (2.0 * outer_cone * 1.05 + 2f32.to_radians()).min(179f32.to_radians());
+                LightPlacement::Single(MapPlacement::perspective(
+                    light.position,
+                    light.direction,
+                    up,
+                    fov,
+                    near,
+                    far,
+                    settings.cube_resolution,
+                ))
+            }
+            LightKind::Point | LightKind::Spot { .. } => {
+                LightPlacement::Cubes(vec![cube(light.position, settings.cube_resolution)])
+            }
+            LightKind::Area { half_u, half_v } => LightPlacement::Cubes(
+                [(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)]
+                    .into_iter()
+                    .map(|(a, b)| cube(light.position + half_u * a + half_v * b, settings.area_resolution))
+                    .collect(),
+            ),
+        })
+        .collect()
+}
+
 impl ShadowMaps {
     /// Draws the maps of every light of `prepared`'s scene.
     pub fn build(prepared: &PreparedScene, settings: &ShadowSettings) -> Self {
         let sources: Vec<Source> =
             prepared.sources(false).into_iter().map(|s| Source { two_sided: true, ..s }).collect();
-        let (centre, radius) = sphere(prepared);
-        let lights = prepared
-            .scene
-            .lights
+        let draw = |p: &MapPlacement| DepthMap::draw(prepared, &sources, p);
+        let lights = placements(prepared, settings)
             .iter()
-            .map(|light| {
-                let cube = |eye: Vec3, res: u32| {
-                    let far = (eye - centre).length() + radius * 1.01 + 1e-3;
-                    let near = (far * 1e-5).max(1e-4);
-                    CUBE_FACES.map(|(f, up)| {
-                        DepthMap::perspective(
-                            prepared,
-                            &sources,
-                            eye,
-                            f,
-                            up,
-                            90f32.to_radians(),
-                            near,
-                            far,
-                            res,
-                        )
-                    })
-                };
-                match light.kind {
-                    LightKind::Directional => LightShadow::Single(DepthMap::orthographic(
-                        prepared,
-                        &sources,
-                        light.direction,
-                        centre,
-                        radius,
-                        settings.directional_resolution,
-                    )),
-                    LightKind::Spot { outer_cone, .. }
-                        if outer_cone.to_degrees() <= MAX_SPOT_HALF_ANGLE_DEG =>
-                    {
-                        let far = (light.position - centre).length() + radius * 1.01 + 1e-3;
-                        let near = (far * 1e-5).max(1e-4);
-                        let up = light.direction.any_orthonormal_vector();
-                        let fov = (2.0 * outer_cone * 1.05 + 2f32.to_radians()).min(179f32.to_radians());
-                        LightShadow::Single(DepthMap::perspective(
-                            prepared,
-                            &sources,
-                            light.position,
-                            light.direction,
-                            up,
-                            fov,
-                            near,
-                            far,
-                            settings.cube_resolution,
-                        ))
-                    }
-                    LightKind::Point | LightKind::Spot { .. } => {
-                        LightShadow::Cubes(vec![cube(light.position, settings.cube_resolution)])
-                    }
-                    LightKind::Area { half_u, half_v } => LightShadow::Cubes(
-                        [(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)]
-                            .into_iter()
-                            .map(|(a, b)| {
-                                cube(light.position + half_u * a + half_v * b, settings.area_resolution)
-                            })
-                            .collect(),
-                    ),
-                }
+            .map(|placed| match placed {
+                LightPlacement::Single(p) => LightShadow::Single(draw(p)),
+                LightPlacement::Cubes(cubes) => LightShadow::Cubes(cubes.iter().map(|faces| faces.each_ref().map(draw)).collect()),
             })
             .collect();
         Self { lights, settings: settings.clone() }
@@ -217,56 +260,10 @@ impl Visibility for ShadowMaps {
 }
 
 impl DepthMap {
-    /// An orthographic map looking along `direction`, fitted to the sphere around the scene.
-    fn orthographic(
-        prepared: &PreparedScene,
-        sources: &[Source],
-        direction: Vec3,
-        centre: Vec3,
-        radius: f32,
-        resolution: u32,
-    ) -> Self {
-        let forward = direction.normalize_or(Vec3::NEG_Y);
-        let up = forward.any_orthonormal_vector();
-        let eye = centre - forward * (radius * 1.01 + 1e-3);
-        let view = DMat4::look_to_rh(eye.as_dvec3(), forward.as_dvec3(), up.as_dvec3());
-        let r = radius as f64 * 1.01 + 1e-3;
-        let proj = DMat4::orthographic_rh(-r, r, -r, r, 0.0, 2.0 * r);
-        let texel = (2.0 * r / resolution as f64) as f32;
-        Self::draw(prepared, sources, proj * view, eye, forward, resolution, true, texel)
-    }
-
-    /// A perspective map with vertical and horizontal field of view `fov` (radians).
-    #[allow(clippy::too_many_arguments)]
-    fn perspective(
-        prepared: &PreparedScene,
-        sources: &[Source],
-        eye: Vec3,
-        forward: Vec3,
-        up: Vec3,
-        fov: f32,
-        near: f32,
-        far: f32,
-        resolution: u32,
-    ) -> Self {
-        let view = DMat4::look_to_rh(eye.as_dvec3(), forward.as_dvec3(), up.as_dvec3());
-        let proj = DMat4::perspective_rh(fov as f64, 1.0, near as f64, far as f64);
-        let texel = 2.0 * (fov * 0.5).tan() / resolution as f32;
-        Self::draw(prepared, sources, proj * view, eye, forward, resolution, false, texel)
-    }
-
-    /// Rasterizes the casters and resolves each texel's exact distance along `forward`.
-    #[allow(clippy::too_many_arguments)]
-    fn draw(
-        prepared: &PreparedScene,
-        sources: &[Source],
-        view_projection: DMat4,
-        eye: Vec3,
-        forward: Vec3,
-        resolution: u32,
-        orthographic: bool,
-        texel: f32,
-    ) -> Self {
+    /// Rasterizes the casters seen from `placement` and resolves each texel's exact distance
+    /// along its `forward`.
+    fn draw(prepared: &PreparedScene, sources: &[Source], placement: &MapPlacement) -> Self {
+        let MapPlacement { view_projection, eye, forward, orthographic, texel, resolution } = *placement;
         let frame = VisFrame::new(sources, view_projection, resolution, resolution);
         let (_, ids) = frame.nearest(None);
         let depth = ids
