@@ -64,6 +64,16 @@ pub enum GpuError {
         /// The device's largest side.
         max: u32,
     },
+    /// A storage buffer larger than the device binds.
+    #[error("{what} takes {bytes} bytes, over this device's {max}-byte storage buffers")]
+    BufferTooLarge {
+        /// What the buffer holds.
+        what: String,
+        /// Bytes it needs.
+        bytes: u64,
+        /// The device's largest storage binding.
+        max: u64,
+    },
     /// A frame of zero pixels was asked for.
     #[error("a frame of {0}×{1} pixels has nothing to render")]
     EmptyFrame(u32, u32),

@@ -47,5 +47,8 @@ pub use context::{AdapterReport, GpuContext};
 pub use error::{GpuError, Result};
 pub use filter::{FilterRenderer, GpuFilter};
 pub use readback::read_buffer;
-pub use relief::{read_rgba8, DisplayRegion, FrameTime, GpuFrame, ReliefRenderer};
+pub use relief::{
+    read_rgba8, DisplayRegion, FrameTime, GpuFrame, PipelineChoice, PipelineProbe, ReliefPipeline,
+    ReliefRenderer,
+};
 pub use timing::{GpuTiming, PassTimer};

@@ -29,7 +29,7 @@ pub(crate) struct MaterialUniform {
     height_scale: f32,
     albedo_levels: f32,
     normal_levels: f32,
-    pad: f32,
+    index: u32,
 }
 
 /// A material's textures and constants, bound as group 1 of the relief pipelines.
@@ -51,7 +51,7 @@ const PACKED: u32 = 6;
 pub(crate) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     let texture = |binding| wgpu::BindGroupLayoutEntry {
         binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
+        visibility: wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
         ty: wgpu::BindingType::Texture {
             sample_type: match binding {
                 PACKED => wgpu::TextureSampleType::Uint,
@@ -66,7 +66,7 @@ pub(crate) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     let entries = [
         wgpu::BindGroupLayoutEntry {
             binding: 0,
-            visibility: wgpu::ShaderStages::FRAGMENT,
+            visibility: wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
             ty: wgpu::BindingType::Buffer {
                 ty: wgpu::BufferBindingType::Uniform,
                 has_dynamic_offset: false,
@@ -88,8 +88,14 @@ pub(crate) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
 }
 
 impl GpuMaterial {
-    /// Uploads `m`'s maps; refuses maps larger than the device's textures.
-    pub fn new(ctx: &GpuContext, layout: &wgpu::BindGroupLayout, m: &ReliefMaterial) -> Result<Self> {
+    /// Uploads `m`'s maps, the material of index `index` in its scene; refuses maps larger
+    /// than the device's textures.
+    pub fn new(
+        ctx: &GpuContext,
+        layout: &wgpu::BindGroupLayout,
+        m: &ReliefMaterial,
+        index: u32,
+    ) -> Result<Self> {
         let albedo = upload_pyramid(ctx, &format!("{}: albedo", m.name), &m.albedo)?;
         let normal = upload_pyramid(ctx, &format!("{}: normal map", m.name), &m.normal)?;
         let depth = Image::from_vec(m.height.width(), m.height.height(), m.height.depths().to_vec())
@@ -108,7 +114,7 @@ impl GpuMaterial {
             height_scale: m.height_scale,
             albedo_levels: m.albedo.level_count() as f32,
             normal_levels: m.normal.level_count() as f32,
-            pad: 0.0,
+            index,
         };
         let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("material uniform"),

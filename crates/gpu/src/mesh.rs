@@ -40,12 +40,15 @@ pub(crate) struct Draw {
     pub material: usize,
 }
 
-/// All objects of a scene, uploaded.
+/// All objects of a scene, uploaded. The vertex and index buffers are storage buffers too,
+/// which the compute pipeline reads (`shaders/relief_mesh.wgsl`), with [`GpuMesh::objects`].
 pub(crate) struct GpuMesh {
     /// Vertices of all objects.
     pub vertices: wgpu::Buffer,
     /// Indices of all objects (offset to the shared vertex buffer).
     pub indices: wgpu::Buffer,
+    /// Per object: its first index and its material (two `u32`s).
+    pub objects: wgpu::Buffer,
     /// One draw per object, in scene order (submission order decides depth ties, as on the
     /// CPU).
     pub draws: Vec<Draw>,
@@ -104,9 +107,19 @@ impl GpuMesh {
             ctx.queue.write_buffer(&b, 0, bytes);
             b
         };
+        let mut objects: Vec<[u32; 2]> = draws.iter().map(|d| [d.indices.start, d.material as u32]).collect();
+        if objects.is_empty() {
+            objects.push([0, 0]);
+        }
+        let storage = wgpu::BufferUsages::STORAGE;
         Ok(Self {
-            vertices: buffer("vertices", bytemuck::cast_slice(&vertices), wgpu::BufferUsages::VERTEX),
-            indices: buffer("indices", bytemuck::cast_slice(&indices), wgpu::BufferUsages::INDEX),
+            vertices: buffer(
+                "vertices",
+                bytemuck::cast_slice(&vertices),
+                wgpu::BufferUsages::VERTEX | storage,
+            ),
+            indices: buffer("indices", bytemuck::cast_slice(&indices), wgpu::BufferUsages::INDEX | storage),
+            objects: buffer("objects", bytemuck::cast_slice(&objects), storage),
             draws,
         })
     }

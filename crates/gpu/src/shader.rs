@@ -1,10 +1,17 @@
 //! Each technique's WGSL module: the constants carried from the CPU code ([`constants`]),
-//! the frame (`shaders/frame.wgsl`: bindings, vertex stage, surface, sampling, lighting,
-//! entry points), the maps (`shaders/maps.wgsl`), the marches (`shaders/march.wgsl`), the
-//! soft shadows (`shaders/shadow.wgsl`), and the technique's own `trace`, which its registry
-//! entry holds ([`Technique::wgsl`](renderlab_relief::Technique::wgsl)) in a `.wgsl` file
-//! beside its CPU twin. WGSL declarations may come in any order, so the module is their
-//! concatenation.
+//! the frame's constants (`shaders/frame_uniform.wgsl`), the frame (`shaders/frame.wgsl`:
+//! bindings, surface, sampling, lighting, `shade`), the two pipelines' entry points
+//! (`shaders/fragment.wgsl`: vertex stage, `fs_color`, `fs_debug`; `shaders/compute.wgsl`
+//! with `shaders/relief_mesh.wgsl`: `cs_color`, `cs_debug` over the visibility buffer), the
+//! maps (`shaders/maps.wgsl`), the marches (`shaders/march.wgsl`), the soft shadows
+//! (`shaders/shadow.wgsl`), and the technique's own `trace`, which its registry entry holds
+//! ([`Technique::wgsl`](renderlab_relief::Technique::wgsl)) in a `.wgsl` file beside its CPU
+//! twin. WGSL declarations may come in any order, so the module is their concatenation; one
+//! module serves both pipelines, so the technique's march and shading are written once.
+//!
+//! The compute pipeline's visibility pass is a module of its own ([`visibility_source`]):
+//! the ray tracer's prelude (which must come first), the frame's constants, the mesh and
+//! `shaders/relief_visibility.wgsl`.
 
 use crate::context::{one_line, GpuContext};
 use crate::error::{GpuError, Result};
@@ -13,8 +20,30 @@ use renderlab_relief::march::{cone_newton, cone_step};
 use renderlab_relief::render::shadow::SHADOW_SHARPNESS;
 use renderlab_relief::techniques::{Technique, DESCRIPTORS};
 
-/// The frame: bindings, vertex stage, surface, sampling, lighting and entry points.
+/// The frame's constants (`Frame` and its binding), shared by every relief module.
+pub const FRAME_UNIFORM_WGSL: &str = include_str!("shaders/frame_uniform.wgsl");
+
+/// The frame: material bindings, surface, sampling, lighting and `shade`.
 pub const FRAME_WGSL: &str = include_str!("shaders/frame.wgsl");
+
+/// The fragment pipeline's vertex stage, surface from interpolants and entry points.
+pub const FRAGMENT_WGSL: &str = include_str!("shaders/fragment.wgsl");
+
+/// The compute pipeline's shading entry points over the visibility buffer.
+pub const COMPUTE_WGSL: &str = include_str!("shaders/compute.wgsl");
+
+/// The mesh and camera rays as the compute pipeline reads them (bind group `MESH_GROUP`).
+pub const MESH_WGSL: &str = include_str!("shaders/relief_mesh.wgsl");
+
+/// The compute pipeline's visibility pass.
+pub const VISIBILITY_WGSL: &str = include_str!("shaders/relief_visibility.wgsl");
+
+/// The bind group of the compute pipeline's mesh and outputs in the shading modules.
+pub const SHADE_MESH_GROUP: u32 = 2;
+/// The bind group of the visibility buffer, mesh and outputs in the visibility module.
+pub const VISIBILITY_MESH_GROUP: u32 = 1;
+/// The bind group of the ray tracer's structure in the visibility module.
+pub const VISIBILITY_ACCEL_GROUP: u32 = 2;
 
 /// The maps as the techniques read them.
 pub const MAPS_WGSL: &str = include_str!("shaders/maps.wgsl");
@@ -54,10 +83,25 @@ pub fn module_source(technique: Technique) -> Result<String> {
         return Err(GpuError::NoShader(technique.name(), with_shaders().join(", ")));
     };
     Ok(format!(
-        "// renderlab: {}\n{}\n{FRAME_WGSL}\n{MAPS_WGSL}\n{MARCH_WGSL}\n{SHADOW_WGSL}\n// The technique.\n{trace}",
+        "// renderlab: {}\n{}\n{FRAME_UNIFORM_WGSL}\n{FRAME_WGSL}\n{FRAGMENT_WGSL}\n{}\n{COMPUTE_WGSL}\n{MAPS_WGSL}\n{MARCH_WGSL}\n{SHADOW_WGSL}\n// The technique.\n{trace}",
         technique.name(),
-        constants()
+        constants(),
+        mesh_wgsl(SHADE_MESH_GROUP),
     ))
+}
+
+/// The mesh declarations for bind group `group`.
+fn mesh_wgsl(group: u32) -> String {
+    MESH_WGSL.replace("MESH_GROUP", &group.to_string())
+}
+
+/// The compute pipeline's visibility module after `accel_prelude` (the ray tracer's WGSL for
+/// bind group [`VISIBILITY_ACCEL_GROUP`], [`crate::rt::GpuAccel::wgsl`]).
+pub fn visibility_source(accel_prelude: &str) -> String {
+    format!(
+        "{accel_prelude}\n// renderlab: relief visibility\n{FRAME_UNIFORM_WGSL}\n{}\n{VISIBILITY_WGSL}",
+        mesh_wgsl(VISIBILITY_MESH_GROUP)
+    )
 }
 
 /// The names of the techniques that have a GPU shader, in catalogue order.

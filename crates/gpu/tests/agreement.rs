@@ -67,7 +67,7 @@ mod common;
 use common::context;
 use glam::Vec2;
 use renderlab_core::{Camera, Image, Scene};
-use renderlab_gpu::{GpuFrame, ReliefRenderer};
+use renderlab_gpu::{GpuFrame, ReliefPipeline, ReliefRenderer};
 use renderlab_measure::fixtures::{benchmark_camera, benchmark_scene, room_camera, thesis_room};
 use renderlab_measure::metrics::{flip, flip_masked_mean, psnr};
 use renderlab_raster::rasterize;
@@ -189,43 +189,81 @@ fn check_views(name: &str, scene: &Scene, cameras: &[(String, Camera)]) {
         let cpu = render(input, &mats, technique, Kernel::Scalar, scene.lighting, scene.background, false)
             .expect("CPU render");
         let reference = render_reference(input, &mats, technique, scene.lighting, scene.background);
-        let frame = gpu.render(camera, technique).unwrap_or_else(|e| panic!("{name}: {e}"));
-        let a = compare(&frame, &cpu, &reference, texels);
-        if let Some(dir) = std::env::var_os("RENDERLAB_GPU_TEST_IMAGES") {
-            // Both images side by side for a look, when asked for.
-            let stem = format!("{}_{}", name.replace(':', "-"), view.trim().trim_end_matches('°'));
-            let dir = std::path::Path::new(&dir);
-            renderlab_core::io::save_color(dir.join(format!("{stem}_gpu.png")), &frame.image)
-                .expect("writable");
-            renderlab_core::io::save_color(dir.join(format!("{stem}_cpu.png")), &cpu.image)
-                .expect("writable");
+        let mut frames: Vec<GpuFrame> = Vec::new();
+        for pipeline in ReliefPipeline::ALL {
+            gpu.set_pipeline(pipeline).unwrap_or_else(|e| panic!("{name}: {e}"));
+            let frame = gpu.render(camera, technique).unwrap_or_else(|e| panic!("{name} ({pipeline}): {e}"));
+            let a = compare(&frame, &cpu, &reference, texels);
+            if let Some(dir) = std::env::var_os("RENDERLAB_GPU_TEST_IMAGES") {
+                // Both images side by side for a look, when asked for.
+                let stem = format!("{}_{}", name.replace(':', "-"), view.trim().trim_end_matches('°'));
+                let dir = std::path::Path::new(&dir);
+                renderlab_core::io::save_color(dir.join(format!("{stem}_{pipeline}.png")), &frame.image)
+                    .expect("writable");
+                renderlab_core::io::save_color(dir.join(format!("{stem}_cpu.png")), &cpu.image)
+                    .expect("writable");
+            }
+            println!(
+                "{name:>13} {view} {pipeline:>8}: coverage diff {:>3} px, PSNR {:6.2} dB, FLIP {:.5}, UV |gpu−cpu| median {:.5} texel, >¼ texel {:.3} %, error vs exact: gpu {:.4} cpu {:.4} texel",
+                a.coverage_diff, a.psnr, a.flip, a.uv_median, a.uv_far * 100.0, a.gpu_ref, a.cpu_ref
+            );
+            let what = format!("{view} ({pipeline})");
+            check_bounds(name, &what, &a, &b, &cpu, &mut failures);
+            frames.push(frame);
         }
+        // The compute frame against the fragment frame: the same shading of the same surface,
+        // so the bounds against the CPU hold between them too.
+        let a = compare(&frames[1], &frames_as_cpu(&frames[0]), &reference, texels);
         println!(
-            "{name:>13} {view}: coverage diff {:>3} px, PSNR {:6.2} dB, FLIP {:.5}, UV |gpu−cpu| median {:.5} texel, >¼ texel {:.3} %, error vs exact: gpu {:.4} cpu {:.4} texel",
-            a.coverage_diff, a.psnr, a.flip, a.uv_median, a.uv_far * 100.0, a.gpu_ref, a.cpu_ref
+            "{name:>13} {view}  compute vs fragment: coverage diff {:>3} px, PSNR {:6.2} dB, FLIP {:.5}, UV median {:.5} texel, >¼ texel {:.3} %",
+            a.coverage_diff, a.psnr, a.flip, a.uv_median, a.uv_far * 100.0
         );
-        let covered = cpu.mask.pixels().iter().filter(|&&m| m).count();
-        let mut fail = |what: String| failures.push(format!("{name} at {view}: {what}"));
-        if a.coverage_diff > (covered / 500).max(8) {
-            fail(format!("{} pixels covered by one renderer only", a.coverage_diff));
-        }
-        if a.psnr < b.psnr_db {
-            fail(format!("PSNR {:.2} dB < {}", a.psnr, b.psnr_db));
-        }
-        if a.flip > b.flip {
-            fail(format!("FLIP {:.4} > {}", a.flip, b.flip));
-        }
-        if a.uv_median > 0.01 {
-            fail(format!("median UV difference {:.4} texel > 0.01", a.uv_median));
-        }
-        if a.uv_far > b.far_fraction {
-            fail(format!("{:.2} % of pixels' UV differ by more than ¼ texel", a.uv_far * 100.0));
-        }
-        if (a.gpu_ref - a.cpu_ref).abs() > 0.05 + 0.05 * a.cpu_ref {
-            fail(format!("UV error vs exact {:.4} texel on the GPU, {:.4} on the CPU", a.gpu_ref, a.cpu_ref));
-        }
+        check_bounds(name, &format!("{view} (compute vs fragment)"), &a, &b, &cpu, &mut failures);
     }
     assert!(failures.is_empty(), "GPU and CPU disagree:\n{}", failures.join("\n"));
+}
+
+/// Adds to `failures` each bound of `b` that `a` (a GPU frame against `cpu`) breaks.
+fn check_bounds(
+    name: &str,
+    view: &str,
+    a: &Agreement,
+    b: &Bounds,
+    cpu: &renderlab_relief::Frame,
+    failures: &mut Vec<String>,
+) {
+    let covered = cpu.mask.pixels().iter().filter(|&&m| m).count();
+    let mut fail = |what: String| failures.push(format!("{name} at {view}: {what}"));
+    if a.coverage_diff > (covered / 500).max(8) {
+        fail(format!("{} pixels covered by one renderer only", a.coverage_diff));
+    }
+    if a.psnr < b.psnr_db {
+        fail(format!("PSNR {:.2} dB < {}", a.psnr, b.psnr_db));
+    }
+    if a.flip > b.flip {
+        fail(format!("FLIP {:.4} > {}", a.flip, b.flip));
+    }
+    if a.uv_median > 0.01 {
+        fail(format!("median UV difference {:.4} texel > 0.01", a.uv_median));
+    }
+    if a.uv_far > b.far_fraction {
+        fail(format!("{:.2} % of pixels' UV differ by more than ¼ texel", a.uv_far * 100.0));
+    }
+    if (a.gpu_ref - a.cpu_ref).abs() > 0.05 + 0.05 * a.cpu_ref {
+        fail(format!("UV error vs exact {:.4} texel on one side, {:.4} on the other", a.gpu_ref, a.cpu_ref));
+    }
+}
+
+/// A GPU frame in the CPU frame's form, to compare two GPU frames with [`compare`].
+fn frames_as_cpu(f: &GpuFrame) -> renderlab_relief::Frame {
+    renderlab_relief::Frame {
+        image: f.image.clone(),
+        uv: f.uv.clone(),
+        layers: f.layers.clone(),
+        mask: f.mask.clone(),
+        depth: Image::new(f.image.width(), f.image.height(), 0.0),
+        fetches: 0,
+    }
 }
 
 /// One test per setting, and [`TESTED`], the list of them that

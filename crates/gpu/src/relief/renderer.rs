@@ -6,13 +6,15 @@
 //! mesh, materials and maps, the same lighting constants and background, so that a GPU frame
 //! and a CPU frame of the same technique can be compared pixel by pixel.
 
+use super::compute::{scene_geometry, ComputeSide, Geometry};
+use super::pipeline::{PipelineProbe, ReliefPipeline};
 use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
 use crate::material::{material_layout, GpuMaterial};
 use crate::mesh::{vertex_layout, GpuMesh};
 use crate::readback::read_texture;
 use crate::shader::{module_source, params, ShaderBuild};
-use crate::timing::{median, GpuTiming, PassTimer};
+use crate::timing::{median, GpuTiming, PassTimer, MAX_PAIRS};
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
 use renderlab_core::scene::Lighting;
@@ -24,11 +26,11 @@ use std::time::Instant;
 
 /// The colour target: linear light in 32-bit floats, as the CPU's `Image<Vec3>`, so that the
 /// comparison sees no quantisation; alpha marks covered pixels.
-const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+pub(super) const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 /// The debug target with the displaced UV per pixel.
-const UV_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
+pub(super) const UV_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
 /// The debug target with the planned layer count per pixel.
-const LAYERS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
+pub(super) const LAYERS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 /// The depth buffer.
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -46,6 +48,29 @@ struct FrameUniform {
     lit: u32,
     shadow_samples: u32,
     pad: [u32; 3],
+    ray_base: [f32; 4],
+    ray_dx: [f32; 4],
+    ray_dy: [f32; 4],
+    background: [f32; 4],
+    size: [u32; 2],
+    depth_range: [f32; 2],
+}
+
+/// The camera's rays as the compute pipeline casts them: the direction through pixel
+/// position `p` is `base + p.x·dx + p.y·dy`, whose component along the view axis is 1 (so a
+/// point at parameter `s` along it lies at view depth `s`), computed in f64 from the camera's
+/// basis as the view matrix builds it.
+fn camera_rays(camera: &Camera) -> [[f32; 4]; 3] {
+    let f = camera.forward.as_dvec3().normalize();
+    let right = f.cross(camera.up.as_dvec3()).normalize();
+    let up = right.cross(f);
+    let t = ((camera.fov_y_deg as f64).to_radians() * 0.5).tan();
+    let (w, h) = (camera.width as f64, camera.height as f64);
+    let half_w = t * w / h;
+    let base = f - right * half_w + up * t;
+    let dx = right * (2.0 * half_w / w);
+    let dy = -up * (2.0 * t / h);
+    [base, dx, dy].map(|v| v.as_vec3().extend(0.0).to_array())
 }
 
 /// A frame rendered on the GPU with its debug targets, read back.
@@ -76,6 +101,12 @@ pub(super) enum Output {
 pub(super) struct Targets {
     width: u32,
     height: u32,
+    /// Whether the compute pipeline may write them (storage usage; the fragment pipeline's
+    /// own targets go without, which some GPUs would otherwise store uncompressed).
+    storage: bool,
+    /// Distinguishes these targets from earlier ones (bind groups of the compute pipeline
+    /// refer to them).
+    id: u64,
     color: wgpu::Texture,
     uv: wgpu::Texture,
     layers: wgpu::Texture,
@@ -83,8 +114,11 @@ pub(super) struct Targets {
 }
 
 impl Targets {
-    fn new(ctx: &GpuContext, width: u32, height: u32) -> Self {
-        let make = |label, format| {
+    fn new(ctx: &GpuContext, width: u32, height: u32, storage: bool, id: u64) -> Self {
+        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+        let storage_usage =
+            if storage { wgpu::TextureUsages::STORAGE_BINDING } else { wgpu::TextureUsages::empty() };
+        let make = |label, format: wgpu::TextureFormat| {
             ctx.device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
                 size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
@@ -92,13 +126,15 @@ impl Targets {
                 sample_count: 1,
                 dimension: wgpu::TextureDimension::D2,
                 format,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+                usage: if format == DEPTH_FORMAT { usage } else { usage | storage_usage },
                 view_formats: &[],
             })
         };
         Self {
             width,
             height,
+            storage,
+            id,
             color: make("colour", COLOR_FORMAT),
             uv: make("uv", UV_FORMAT),
             layers: make("layers", LAYERS_FORMAT),
@@ -113,6 +149,12 @@ pub struct ReliefRenderer<'a> {
     pub(super) ctx: &'a GpuContext,
     pub(super) mesh: GpuMesh,
     pub(super) materials: Vec<GpuMaterial>,
+    /// The objects' triangles, for the compute pipeline's BVH.
+    geometry: Geometry,
+    frame_layout: wgpu::BindGroupLayout,
+    material_layout: wgpu::BindGroupLayout,
+    /// Targets created so far (their ids).
+    targets_made: u64,
     lighting: Lighting,
     to_light: Vec3,
     pub(super) background: Vec3,
@@ -122,6 +164,12 @@ pub struct ReliefRenderer<'a> {
     pub(super) pipelines: HashMap<(Technique, Output), wgpu::RenderPipeline>,
     pub(super) targets: Option<Targets>,
     pub(super) timer: Option<PassTimer>,
+    /// The pipeline frames are drawn with.
+    kind: ReliefPipeline,
+    /// The compute pipeline's resources, built on first use.
+    pub(super) compute: Option<ComputeSide>,
+    /// The timer of [`ReliefRenderer::time_batch`], grown to the largest batch asked for.
+    batch_timer: Option<PassTimer>,
 }
 
 impl<'a> ReliefRenderer<'a> {
@@ -141,7 +189,7 @@ impl<'a> ReliefRenderer<'a> {
             entries: &[
                 wgpu::BindGroupLayoutEntry {
                     binding: 0,
-                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE,
                     ty: wgpu::BindingType::Buffer {
                         ty: wgpu::BufferBindingType::Uniform,
                         has_dynamic_offset: false,
@@ -151,7 +199,7 @@ impl<'a> ReliefRenderer<'a> {
                 },
                 wgpu::BindGroupLayoutEntry {
                     binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    visibility: wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
                     ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                     count: None,
                 },
@@ -189,7 +237,8 @@ impl<'a> ReliefRenderer<'a> {
         });
         let materials = materials
             .iter()
-            .map(|m| GpuMaterial::new(ctx, &material_layout, m))
+            .enumerate()
+            .map(|(i, m)| GpuMaterial::new(ctx, &material_layout, m, i as u32))
             .collect::<Result<Vec<_>>>()?;
         let mesh = GpuMesh::new(ctx, scene)?;
         ctx.check()?;
@@ -197,6 +246,10 @@ impl<'a> ReliefRenderer<'a> {
             ctx,
             mesh,
             materials,
+            geometry: scene_geometry(scene),
+            frame_layout,
+            material_layout,
+            targets_made: 0,
             lighting: scene.lighting,
             to_light: scene.light.to_light.normalize_or_zero(),
             background: scene.background,
@@ -206,7 +259,32 @@ impl<'a> ReliefRenderer<'a> {
             pipelines: HashMap::new(),
             targets: None,
             timer: PassTimer::new(ctx),
+            kind: ReliefPipeline::Fragment,
+            compute: None,
+            batch_timer: None,
         })
+    }
+
+    /// The pipeline frames are drawn with ([`ReliefPipeline::Fragment`] until set).
+    pub fn pipeline_kind(&self) -> ReliefPipeline {
+        self.kind
+    }
+
+    /// Draws every later frame with `kind`; the compute pipeline's resources (the scene's
+    /// BVH on the device, the visibility buffer's pipeline) are built on its first use, and
+    /// an error there leaves the pipeline as it was.
+    pub fn set_pipeline(&mut self, kind: ReliefPipeline) -> Result<()> {
+        if kind == ReliefPipeline::Compute && self.compute.is_none() {
+            self.compute = Some(ComputeSide::new(
+                self.ctx,
+                &self.geometry,
+                &self.mesh,
+                &self.frame_layout,
+                &self.material_layout,
+            )?);
+        }
+        self.kind = kind;
+        Ok(())
     }
 
     /// The device this renderer draws on.
@@ -309,6 +387,7 @@ impl<'a> ReliefRenderer<'a> {
             }
             (Shading::Lit | Shading::LitShadowed, _) => (1, 0),
         };
+        let rays = camera_rays(camera);
         let uniform = FrameUniform {
             view_proj: camera.view_projection().to_cols_array_2d(),
             eye: camera.position.extend(1.0).to_array(),
@@ -320,17 +399,60 @@ impl<'a> ReliefRenderer<'a> {
             lit,
             shadow_samples,
             pad: [0; 3],
+            ray_base: rays[0],
+            ray_dx: rays[1],
+            ray_dy: rays[2],
+            background: self.background.extend(0.0).to_array(),
+            size: [w, h],
+            depth_range: [camera.near, camera.far],
         };
-        self.pipeline(technique, output)?;
+        let compute = self.kind == ReliefPipeline::Compute;
+        if compute {
+            // The display output is the fragment pipeline's (a caller's texture).
+            if matches!(output, Output::Display(_)) {
+                return Err(GpuError::Shader {
+                    technique: technique.name(),
+                    message: "drawing into a caller's texture takes the fragment pipeline".into(),
+                });
+            }
+            let source = module_source(technique)?;
+            let side = self.compute.as_mut().expect("set_pipeline built the compute side");
+            side.shade_pipeline(self.ctx, technique, output == Output::Debug, &source)?;
+        } else {
+            self.pipeline(technique, output)?;
+        }
         self.ctx.queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&uniform));
-        if self.targets.as_ref().is_none_or(|t| (t.width, t.height) != (w, h)) {
-            self.targets = Some(Targets::new(self.ctx, w, h));
+        if self.targets.as_ref().is_none_or(|t| (t.width, t.height) != (w, h) || (compute && !t.storage)) {
+            self.targets_made += 1;
+            self.targets = Some(Targets::new(self.ctx, w, h, compute, self.targets_made));
+        }
+        if compute {
+            let t = self.targets.as_ref().expect("sized above");
+            let side = self.compute.as_mut().expect("set_pipeline built the compute side");
+            side.bind(self.ctx, &self.mesh, (w, h), t.id, &t.color, &t.uv, &t.layers)?;
         }
         Ok(())
     }
 
-    /// Records one pass of `technique` into `encoder`.
-    fn record(&self, encoder: &mut wgpu::CommandEncoder, technique: Technique, output: Output, timed: bool) {
+    /// Records one frame of `technique` into `encoder` with the pipeline in use, timed by
+    /// `timer`'s pair `pair` where given.
+    fn record(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        technique: Technique,
+        output: Output,
+        timer: Option<(&PassTimer, u32)>,
+    ) {
+        if self.kind == ReliefPipeline::Compute {
+            let side = self.compute.as_ref().expect("set_pipeline built the compute side");
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("relief compute"),
+                timestamp_writes: timer.map(|(t, i)| t.compute_pair_writes(i)),
+            });
+            let materials: Vec<&wgpu::BindGroup> = self.materials.iter().map(|m| &m.bind_group).collect();
+            side.record(&mut pass, &self.frame_group, &materials, technique, output == Output::Debug);
+            return;
+        }
         let targets = self.targets.as_ref().expect("prepare sized the targets");
         let pipeline = &self.pipelines[&(technique, output)];
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
@@ -361,7 +483,7 @@ impl<'a> ReliefRenderer<'a> {
                 }),
                 stencil_ops: None,
             }),
-            timestamp_writes: if timed { self.timer.as_ref().map(PassTimer::writes) } else { None },
+            timestamp_writes: timer.map(|(t, i)| t.pair_writes(i)),
             occlusion_query_set: None,
             multiview_mask: None,
         });
@@ -379,7 +501,7 @@ impl<'a> ReliefRenderer<'a> {
     pub fn render(&mut self, camera: &Camera, technique: Technique) -> Result<GpuFrame> {
         self.prepare(camera, technique, Output::Debug)?;
         let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
-        self.record(&mut encoder, technique, Output::Debug, false);
+        self.record(&mut encoder, technique, Output::Debug, None);
         self.ctx.queue.submit([encoder.finish()]);
         self.ctx.check()?;
         let targets = self.targets.as_ref().expect("prepare sized the targets");
@@ -430,7 +552,7 @@ impl<'a> ReliefRenderer<'a> {
     pub fn time_frame(&mut self, camera: &Camera, technique: Technique, readback: bool) -> Result<FrameTime> {
         self.prepare(camera, technique, Output::Color)?;
         let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
-        self.record(&mut encoder, technique, Output::Color, true);
+        self.record(&mut encoder, technique, Output::Color, self.timer.as_ref().map(|t| (t, 0)));
         if let Some(timer) = &self.timer {
             timer.resolve(&mut encoder);
         }
@@ -448,6 +570,88 @@ impl<'a> ReliefRenderer<'a> {
             None => None,
         };
         Ok(FrameTime { gpu_ms, wall_ms })
+    }
+}
+
+impl ReliefRenderer<'_> {
+    /// Times `frames` (1 ..= [`MAX_PAIRS`]) frames of `technique` from `camera`, recorded
+    /// back to back into one submission with the pipeline in use: the device runs them
+    /// without an idle gap (the CPU neither waits nor records between them, so a GPU whose
+    /// clocks fall while it idles keeps them up), and each frame's pass sits between its own
+    /// pair of timestamps. Returns each frame's GPU milliseconds in order; refused where the
+    /// adapter has no timestamp queries.
+    pub fn time_batch(&mut self, camera: &Camera, technique: Technique, frames: u32) -> Result<Vec<f64>> {
+        let frames = frames.clamp(1, MAX_PAIRS);
+        if !self.ctx.report.timestamps {
+            return Err(GpuError::MissingFeature {
+                adapter: self.ctx.report.name.clone(),
+                feature: "timestamp queries",
+                why: "timing frames back to back needs",
+            });
+        }
+        self.prepare(camera, technique, Output::Color)?;
+        if self.batch_timer.as_ref().is_none_or(|t| t.pairs() != frames) {
+            self.batch_timer = PassTimer::with_pairs(self.ctx, frames);
+        }
+        let timer = self.batch_timer.as_ref().expect("the adapter has timestamps");
+        let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
+        for i in 0..frames {
+            self.record(&mut encoder, technique, Output::Color, Some((timer, i)));
+        }
+        timer.resolve(&mut encoder);
+        self.ctx.queue.submit([encoder.finish()]);
+        self.ctx.wait()?;
+        let mut ms = timer.read_all_ms(self.ctx)?;
+        ms.truncate(frames as usize);
+        Ok(ms)
+    }
+
+    /// Times `technique` from `camera` with both pipelines and keeps the faster for later
+    /// frames: per pipeline `PROBE_WARMUP` untimed frames, then `PROBE_ROUNDS` rounds that
+    /// time one frame of each in turn (timestamps where the adapter has them, else the wall
+    /// clock to completion); the medians decide. A compute pipeline that cannot be built
+    /// here (a BVH too deep for the walk, a visibility buffer over the device's limits)
+    /// leaves the fragment pipeline, with the reason.
+    pub fn probe(&mut self, camera: &Camera, technique: Technique) -> Result<PipelineProbe> {
+        const PROBE_WARMUP: u32 = 3;
+        const PROBE_ROUNDS: usize = 7;
+        let timestamps = self.timer.is_some();
+        if let Err(e) = self
+            .set_pipeline(ReliefPipeline::Compute)
+            .and_then(|()| self.prepare(camera, technique, Output::Color))
+        {
+            self.set_pipeline(ReliefPipeline::Fragment)?;
+            return Ok(PipelineProbe {
+                chosen: ReliefPipeline::Fragment,
+                ms: [f64::NAN, f64::NAN],
+                timestamps,
+                reason: format!("the compute pipeline cannot run here ({e}): fragment"),
+            });
+        }
+        let mut samples: [Vec<f64>; 2] = [Vec::new(), Vec::new()];
+        for round in 0..PROBE_WARMUP as usize + PROBE_ROUNDS {
+            for (k, kind) in ReliefPipeline::ALL.into_iter().enumerate() {
+                self.set_pipeline(kind)?;
+                let t = self.time_frame(camera, technique, false)?;
+                if round >= PROBE_WARMUP as usize {
+                    samples[k].push(t.gpu_ms.unwrap_or(t.wall_ms));
+                }
+            }
+        }
+        let ms = samples.map(|mut s| median(&mut s));
+        let chosen = if ms[1] < ms[0] { ReliefPipeline::Compute } else { ReliefPipeline::Fragment };
+        self.set_pipeline(chosen)?;
+        let clock = if timestamps { "GPU time" } else { "wall time" };
+        let reason = format!(
+            "{} at {}×{}: fragment {:.3} ms, compute {:.3} ms ({clock}, median of {PROBE_ROUNDS}); compute/fragment {:.2}: {chosen}",
+            technique.name(),
+            camera.width,
+            camera.height,
+            ms[0],
+            ms[1],
+            ms[1] / ms[0]
+        );
+        Ok(PipelineProbe { chosen, ms, timestamps, reason })
     }
 }
 

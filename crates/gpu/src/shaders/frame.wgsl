@@ -1,32 +1,11 @@
-// The relief frame on the GPU, the twin of `renderlab_relief::render::shade` and of the
-// rasterizer's surface reconstruction (`renderlab_raster`): bindings, the vertex stage, the
-// per-pixel surface (UV, its exact screen Jacobian, the tangent frame), texture sampling,
-// the thesis's lighting, and the fragment entry points that call the technique's `trace`.
+// The relief frame on the GPU, the twin of `renderlab_relief::render::shade`: the frame's
+// and the materials' bindings, the per-pixel surface (UV, its exact screen Jacobian, the
+// tangent frame), texture sampling and the thesis's lighting. Both pipelines call `shade`
+// with the surface their own entry points reconstruct: `fragment.wgsl` from the hardware
+// rasterizer's interpolants, `compute.wgsl` from the visibility buffer.
 //
 // Conventions as on the CPU: tangent space is (T, B, N) = (direction of increasing u,
 // direction of increasing v, normal); colours are linear; pixel centres are at +0.5.
-
-// What is constant over a frame (`FrameUniform` on the Rust side).
-struct Frame {
-    view_proj: mat4x4<f32>,
-    // Eye position (xyz).
-    eye: vec4<f32>,
-    // Unit vector toward the light (xyz).
-    to_light: vec4<f32>,
-    // The technique's parameters in descriptor order (see `param`).
-    params: vec4<u32>,
-    // Ambient factor, Blinn–Phong exponent and strength.
-    ambient: f32,
-    specular_exponent: f32,
-    specular_strength: f32,
-    // 0: unlit (albedo alone); 1: lit; 2: lit with soft self-shadows.
-    lit: u32,
-    // Samples along the light ray of the soft shadows (`ShadowMode::Soft`).
-    shadow_samples: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
-}
 
 // One material's constants (`MaterialUniform`).
 struct Material {
@@ -35,10 +14,11 @@ struct Material {
     // Mip levels of the albedo and normal textures.
     albedo_levels: f32,
     normal_levels: f32,
-    _pad: f32,
+    // The material's index in the scene's list (the compute pipeline shades one material
+    // per dispatch and skips the others' pixels).
+    index: u32,
 }
 
-@group(0) @binding(0) var<uniform> frame: Frame;
 // Bilinear within a level, linear between levels, repeat: the CPU's `trilinear_at` and
 // `HeightField::depth`.
 @group(0) @binding(1) var map_sampler: sampler;
@@ -53,33 +33,6 @@ struct Material {
 // The packed map's padded grid: depth (high 16 bits) and cone ratio (low 16 bits) per texel.
 @group(1) @binding(6) var packed_map: texture_2d<u32>;
 
-struct VertexIn {
-    @location(0) position: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(2) uv: vec2<f32>,
-    @location(3) tangent: vec4<f32>,
-}
-
-struct Varyings {
-    @builtin(position) clip: vec4<f32>,
-    // Perspective-correct, like every attribute here (see `surface` for its derivatives).
-    @location(0) uv: vec2<f32>,
-    @location(1) world: vec3<f32>,
-    @location(2) normal: vec3<f32>,
-    @location(3) tangent: vec4<f32>,
-}
-
-@vertex
-fn vs_main(v: VertexIn) -> Varyings {
-    var out: Varyings;
-    out.clip = frame.view_proj * vec4<f32>(v.position, 1.0);
-    out.uv = v.uv;
-    out.world = v.position;
-    out.normal = v.normal;
-    out.tangent = v.tangent;
-    return out;
-}
-
 // What the rasterizer knows about one pixel (`SurfacePoint`).
 struct Surface {
     uv: vec2<f32>,
@@ -89,26 +42,27 @@ struct Surface {
     light_ts: vec3<f32>,
 }
 
-// The pixel's surface. The fragment position's w is q = 1/w, and h = uv·q is affine in screen
-// space, so ∂uv/∂x = (∂h/∂x − uv·∂q/∂x)/q exactly, as the CPU rasterizer computes it: the
-// fine derivatives of an affine quantity are its slopes, where finite differences of uv
-// itself would be off by its curvature. (Interpolating uv/w and 1/w without perspective
-// would be wrong where the near plane clips a triangle: the clipper interpolates such
-// attributes linearly in clip space.) Must run in uniform control flow.
-fn surface(in: Varyings) -> Surface {
+// The surface from its interpolated attributes and its exact UV Jacobian: the tangent frame
+// as `tangent_frame` builds it (N, T by Gram–Schmidt, B = N × T · sign) and the view and
+// light directions in it.
+fn surface_from(
+    uv: vec2<f32>,
+    duv_dx: vec2<f32>,
+    duv_dy: vec2<f32>,
+    world: vec3<f32>,
+    normal: vec3<f32>,
+    tangent: vec4<f32>,
+) -> Surface {
     var s: Surface;
-    let q = in.clip.w;
-    s.uv = in.uv;
-    let h = s.uv * q;
-    s.duv_dx = (dpdxFine(h) - s.uv * dpdxFine(q)) / q;
-    s.duv_dy = (dpdyFine(h) - s.uv * dpdyFine(q)) / q;
-    // The tangent frame as `tangent_frame` builds it: N, T by Gram–Schmidt, B = N × T · sign.
-    let n = normalize(in.normal);
-    var t = in.tangent.xyz - n * dot(n, in.tangent.xyz);
+    s.uv = uv;
+    s.duv_dx = duv_dx;
+    s.duv_dy = duv_dy;
+    let n = normalize(normal);
+    var t = tangent.xyz - n * dot(n, tangent.xyz);
     t = select(vec3<f32>(1.0, 0.0, 0.0), normalize(t), dot(t, t) > 0.0);
-    let handedness = select(1.0, -1.0, in.tangent.w < 0.0);
+    let handedness = select(1.0, -1.0, tangent.w < 0.0);
     let b = cross(n, t) * handedness;
-    let view = normalize(frame.eye.xyz - in.world);
+    let view = normalize(frame.eye.xyz - world);
     s.view_ts = vec3<f32>(dot(t, view), dot(b, view), dot(n, view));
     let l = frame.to_light.xyz;
     s.light_ts = vec3<f32>(dot(t, l), dot(b, l), dot(n, l));
@@ -169,8 +123,7 @@ struct Shaded {
 // tile (the field repeats, so the hit is the same and f32 keeps its precision), the hit moves
 // back, and the maps are sampled there with the level of the undisplaced footprint; a
 // shadowed technique then marches toward the light from the hit (`soft_shadow`).
-fn shade(in: Varyings) -> Shaded {
-    let s = surface(in);
+fn shade(s: Surface) -> Shaded {
     let base = floor(s.uv);
     var hit = trace(s.uv - base, s.view_ts);
     hit.uv += base;
@@ -190,23 +143,4 @@ fn shade(in: Varyings) -> Shaded {
         color = light(albedo, n, s.light_ts, s.view_ts, shadow);
     }
     return Shaded(color, hit.uv, hit.layers);
-}
-
-// The image alone (timed runs). Alpha marks covered pixels (the clear leaves 0).
-@fragment
-fn fs_color(in: Varyings) -> @location(0) vec4<f32> {
-    return vec4<f32>(shade(in).color, 1.0);
-}
-
-// The image with the debug targets: displaced UV and planned layer count.
-struct DebugOut {
-    @location(0) color: vec4<f32>,
-    @location(1) uv: vec2<f32>,
-    @location(2) layers: u32,
-}
-
-@fragment
-fn fs_debug(in: Varyings) -> DebugOut {
-    let s = shade(in);
-    return DebugOut(vec4<f32>(s.color, 1.0), s.uv, s.layers);
 }

@@ -1,0 +1,87 @@
+// The compute pipeline of the relief frame: one invocation per pixel reads the visibility
+// buffer (written by `relief_visibility.wgsl`'s ray cast), rebuilds the pixel's surface as
+// the rasterizer would have given it at the pixel's centre, and shades it with the same
+// `shade` as the fragment pipeline. One dispatch per material: an invocation whose pixel
+// shows another material's surface, or none, returns at once (the visibility pass wrote the
+// background there).
+//
+// Outputs are storage textures at the pixel: colour (alpha 1), and for `cs_debug` the
+// displaced UV and the planned layer count, as `fs_color` and `fs_debug` write them.
+
+@group(2) @binding(0) var<storage, read> vis_buffer: array<vec4<u32>>;
+@group(2) @binding(4) var out_color: texture_storage_2d<rgba32float, write>;
+@group(2) @binding(5) var out_uv: texture_storage_2d<rg32float, write>;
+@group(2) @binding(6) var out_layers: texture_storage_2d<r32uint, write>;
+
+// The surface at the centre of `pixel`, on the triangle the visibility buffer names: the
+// attributes interpolated with the hit's barycentric weights (perspective-correct by
+// construction: they are the weights of the point the ray met), and the exact screen
+// Jacobian of UV by ray differentials. With D(p) the camera ray's direction, affine in the
+// pixel position p, the hit is x = eye + s·D with s = n·(v0 − eye)/(n·D) on the triangle's
+// plane (normal n); so ∂x/∂p = s·(∂D/∂p − D·(n·∂D/∂p)/(n·D)), exact because the plane is flat
+// and D affine, and UV is affine on the plane: uv = uv0 + (uv1 − uv0)·g1·(x − v0) +
+// (uv2 − uv0)·g2·(x − v0) with g1 = (e2 × n)/|n|², g2 = (n × e1)/|n|².
+fn surface_at(pixel: vec2<u32>, hit: vec4<u32>) -> Surface {
+    let first = mesh_first_index(hit.x, hit.y);
+    let a = mesh_vertex(mesh_indices[first]);
+    let b = mesh_vertex(mesh_indices[first + 1u]);
+    let c = mesh_vertex(mesh_indices[first + 2u]);
+    let u = bitcast<f32>(hit.z);
+    let v = bitcast<f32>(hit.w);
+    let w = 1.0 - u - v;
+    let uv = a.uv * w + b.uv * u + c.uv * v;
+    let world = a.position * w + b.position * u + c.position * v;
+    let normal = a.normal * w + b.normal * u + c.normal * v;
+    let tangent = a.tangent * w + b.tangent * u + c.tangent * v;
+    let e1 = b.position - a.position;
+    let e2 = c.position - a.position;
+    let n = cross(e1, e2);
+    let nn = dot(n, n);
+    let d = camera_ray(vec2<f32>(pixel) + 0.5);
+    let nd = dot(n, d);
+    let depth = dot(n, a.position - frame.eye.xyz) / nd;
+    let dx = depth * (frame.ray_dx.xyz - d * (dot(n, frame.ray_dx.xyz) / nd));
+    let dy = depth * (frame.ray_dy.xyz - d * (dot(n, frame.ray_dy.xyz) / nd));
+    let g1 = cross(e2, n) / nn;
+    let g2 = cross(n, e1) / nn;
+    let duv1 = b.uv - a.uv;
+    let duv2 = c.uv - a.uv;
+    let duv_dx = duv1 * dot(g1, dx) + duv2 * dot(g2, dx);
+    let duv_dy = duv1 * dot(g1, dy) + duv2 * dot(g2, dy);
+    return surface_from(uv, duv_dx, duv_dy, world, normal, tangent);
+}
+
+// The visibility record of `pixel` when it shows this dispatch's material, else VIS_NONE in x.
+fn visible(pixel: vec2<u32>) -> vec4<u32> {
+    if any(pixel >= frame.size) {
+        return vec4<u32>(VIS_NONE);
+    }
+    let hit = vis_buffer[pixel.y * frame.size.x + pixel.x];
+    if hit.x == VIS_NONE || mesh_objects[hit.x].y != material.index {
+        return vec4<u32>(VIS_NONE);
+    }
+    return hit;
+}
+
+// The image alone (timed runs).
+@compute @workgroup_size(8, 8)
+fn cs_color(@builtin(global_invocation_id) id: vec3<u32>) {
+    let hit = visible(id.xy);
+    if hit.x == VIS_NONE {
+        return;
+    }
+    textureStore(out_color, id.xy, vec4<f32>(shade(surface_at(id.xy, hit)).color, 1.0));
+}
+
+// The image with the debug targets.
+@compute @workgroup_size(8, 8)
+fn cs_debug(@builtin(global_invocation_id) id: vec3<u32>) {
+    let hit = visible(id.xy);
+    if hit.x == VIS_NONE {
+        return;
+    }
+    let s = shade(surface_at(id.xy, hit));
+    textureStore(out_color, id.xy, vec4<f32>(s.color, 1.0));
+    textureStore(out_uv, id.xy, vec4<f32>(s.uv, 0.0, 0.0));
+    textureStore(out_layers, id.xy, vec4<u32>(s.layers, 0u, 0u, 0u));
+}
