@@ -5,7 +5,7 @@ mod common;
 
 use common::context;
 use renderlab_core::Scene;
-use renderlab_gpu::{shader, GpuError, ReliefRenderer};
+use renderlab_gpu::{shader, GpuError, ReliefPipeline, ReliefRenderer};
 use renderlab_measure::fixtures::{benchmark_camera, benchmark_scene};
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::techniques::DESCRIPTORS;
@@ -31,10 +31,41 @@ fn every_technique_has_a_shader_that_builds() {
     let mats: Vec<_> =
         scene.materials.iter().map(|m| ReliefMaterial::new(m, &ComplexityParams::default(), true)).collect();
     let mut r = ReliefRenderer::new(&ctx, &scene, &mats).expect("scene uploads");
-    for name in names {
-        let t = Technique::parse(name).expect("a registry technique");
-        r.render(&benchmark_camera(30.0, 16, 10), t).unwrap_or_else(|e| panic!("{name}: {e}"));
+    for pipeline in ReliefPipeline::ALL {
+        r.set_pipeline(pipeline).expect("pipeline builds");
+        for &name in &names {
+            let t = Technique::parse(name).expect("a registry technique");
+            r.render(&benchmark_camera(30.0, 16, 10), t)
+                .unwrap_or_else(|e| panic!("{name} ({pipeline}): {e}"));
+        }
     }
+}
+
+/// A frame whose visibility buffer the device cannot bind is refused by the compute pipeline
+/// with one clear error, before any target is made; the fragment pipeline still draws.
+#[test]
+fn an_oversized_visibility_buffer_is_refused() {
+    let Some(ctx) = context() else { return };
+    let (scene, mats) = bricks();
+    let mut r = ReliefRenderer::new(&ctx, &scene, &mats).expect("scene uploads");
+    r.set_pipeline(ReliefPipeline::Compute).expect("pipeline builds");
+    let limits = ctx.device.limits();
+    let max_bytes = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
+    let side = ctx.max_texture_side();
+    let rows = (max_bytes / 16 / side as u64 + 1) as u32;
+    if rows > side {
+        println!("skipped: this device binds a visibility buffer for any frame its textures hold");
+        return;
+    }
+    let pom = Technique::parse("pom").expect("a registry technique");
+    let e = r.render(&benchmark_camera(0.0, side, rows), pom).expect_err("too large");
+    assert!(matches!(e, GpuError::BufferTooLarge { .. }), "{e}");
+    assert!(e.to_string().contains("visibility buffer"), "{e}");
+    r.render(&benchmark_camera(0.0, 16, 10), pom).expect("a small frame renders");
+    // The probe falls back to the fragment pipeline and says why.
+    let probe = r.probe(&benchmark_camera(0.0, side, rows), pom).expect("probe runs");
+    assert_eq!(probe.chosen, ReliefPipeline::Fragment);
+    assert!(probe.reason.contains("cannot run"), "{}", probe.reason);
 }
 
 /// A technique that reads the cone map, on materials prepared without one, is refused with an

@@ -125,6 +125,22 @@ fn mesh_layout(device: &wgpu::Device, vis_read_only: bool) -> wgpu::BindGroupLay
     })
 }
 
+/// The visibility buffer's bytes for a frame of `width × height`, or the error when the
+/// device cannot bind that much (checked before any target is made).
+pub(super) fn check_size(ctx: &GpuContext, width: u32, height: u32) -> Result<u64> {
+    let size = width as u64 * height as u64 * VIS_BYTES;
+    let limits = ctx.device.limits();
+    let max = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
+    if size > max {
+        return Err(GpuError::BufferTooLarge {
+            what: format!("the compute pipeline's visibility buffer for {width}×{height} pixels"),
+            bytes: size,
+            max,
+        });
+    }
+    Ok(size)
+}
+
 impl ComputeSide {
     /// Builds the BVH of `geometry` on the device (the ray tracer's compute path: the walk
     /// every GPU runs; the driver's ray queries would tie the pass to one vendor's
@@ -225,16 +241,7 @@ impl ComputeSide {
         {
             return Ok(());
         }
-        let size = width as u64 * height as u64 * VIS_BYTES;
-        let limits = ctx.device.limits();
-        let max = (limits.max_storage_buffer_binding_size as u64).min(limits.max_buffer_size);
-        if size > max {
-            return Err(GpuError::BufferTooLarge {
-                what: format!("the compute pipeline's visibility buffer for {width}×{height} pixels"),
-                bytes: size,
-                max,
-            });
-        }
+        let size = check_size(ctx, width, height)?;
         let vis = ctx.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("visibility buffer"),
             size,

@@ -415,6 +415,7 @@ impl<'a> ReliefRenderer<'a> {
                     message: "drawing into a caller's texture takes the fragment pipeline".into(),
                 });
             }
+            super::compute::check_size(self.ctx, w, h)?;
             let source = module_source(technique)?;
             let side = self.compute.as_mut().expect("set_pipeline built the compute side");
             side.shade_pipeline(self.ctx, technique, output == Output::Debug, &source)?;
