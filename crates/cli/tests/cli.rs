@@ -627,7 +627,7 @@ fn shaders_export_writes_files_and_refuses_bad_input() {
     let out = renderlab(&["shaders", "export", "--help"]);
     assert!(out.status.success());
     let help = String::from_utf8_lossy(&out.stdout);
-    for word in ["wgsl", "glsl", "hlsl", "msl", "spv", "README.md", "--technique"] {
+    for word in ["wgsl", "glsl", "hlsl", "msl", "spv", "README.md", "--technique", "cs_color", "NAME.comp"] {
         assert!(help.contains(word), "shaders export --help lacks {word}");
     }
 
@@ -641,7 +641,18 @@ fn shaders_export_writes_files_and_refuses_bad_input() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     names.sort();
-    assert_eq!(names, ["README.md", "pom.frag", "pom.fs_debug.frag", "pom.spv", "pom.vert"]);
+    assert_eq!(
+        names,
+        [
+            "README.md",
+            "pom.comp",
+            "pom.cs_debug.comp",
+            "pom.frag",
+            "pom.fs_debug.frag",
+            "pom.spv",
+            "pom.vert"
+        ]
+    );
 
     // Bad input: one line, exit 1, and nothing written.
     let bad = dir.path().join("bad");

@@ -15,9 +15,12 @@ pub enum ShadersCommand {
     /// and validated by naga and translated into each --lang, with README.md in --out naming
     /// each shader's inputs: every texture (which map, its encoding), sampler, uniform member
     /// (with its unit), vertex attribute and fragment output, and where each language binds
-    /// it. Languages: wgsl (the module renderlab runs), glsl (4.50 core, NAME.vert and
-    /// NAME.frag per entry point), hlsl (shader model 6.0), msl (Metal 2.1), spv (SPIR-V 1.0,
-    /// binary). Files are written atomically; nothing is written when a translation fails.
+    /// it. Languages: wgsl (the module renderlab runs), glsl (4.50 core, NAME.vert, NAME.frag
+    /// and NAME.comp per entry point), hlsl (shader model 6.0), msl (Metal 2.1), spv (SPIR-V
+    /// 1.0, binary). Every relief shader also carries the compute entry points cs_color and
+    /// cs_debug, which shade a visibility buffer that the engine writes, one dispatch per
+    /// material; the README says how to dispatch them. Files are written atomically; nothing
+    /// is written when a translation fails.
     Export(ShadersExportArgs),
 }
 

@@ -1,8 +1,9 @@
 //! What each input and output of the exported shaders means, keyed by the names of
 //! [`reflect`](super::reflect): which map a texture holds and how it is encoded, what each
 //! uniform member sets and in which unit, what the vertex attributes and fragment outputs
-//! are. The README's tables are naga's reflection joined with this table; a test refuses a
-//! shader input without a description here, and a description that no shader has.
+//! are, what the compute entry points read and write and who writes their inputs. The
+//! README's tables are naga's reflection joined with this table; a test refuses a shader
+//! input without a description here, and a description that no shader has.
 
 /// `(key, description)` for every input and output of the exported shaders.
 pub const DESCRIPTIONS: &[(&str, &str)] = &[
@@ -17,12 +18,19 @@ pub const DESCRIPTIONS: &[(&str, &str)] = &[
     ("Frame.specular_strength", "Blinn–Phong specular strength (dimensionless, added to the linear colour)"),
     ("Frame.lit", "0: albedo alone (unlit); 1: ambient + Lambert + Blinn–Phong; 2: lit with soft self-shadows toward the light"),
     ("Frame.shadow_samples", "samples along the light ray of the soft shadows (a count; read when lit = 2)"),
+    ("Frame.ray_base", "compute entry points only: xyz the direction, world space, of the camera ray through pixel position (0, 0), the image's top-left corner; the ray through pixel position p (pixels right and down from that corner, centres at +0.5) is eye + s·(ray_base + p.x·ray_dx + p.y·ray_dy), s the view depth in world units (the direction's component along the view axis is 1, so ray_base = forward − right·tan(fov_y/2)·aspect + up·tan(fov_y/2), unit forward, right and up); must describe the camera of view_proj (w unused)"),
+    ("Frame.ray_dx", "compute entry points only: xyz the change of the camera ray's direction per pixel to the right, world space: right · 2·tan(fov_y/2)·aspect / width (w unused)"),
+    ("Frame.ray_dy", "compute entry points only: xyz the change of the camera ray's direction per pixel down the image (rows count downward): −up · 2·tan(fov_y/2) / height (w unused)"),
+    ("Frame.background", "rgb: linear colour where no surface shows (a unused); not read by cs_color or cs_debug: the engine's visibility pass writes it into out_color where the visibility buffer has no surface (renderlab's writes alpha 0 there); the fragment entry points leave the background to the engine's clear"),
+    ("Frame.size", "the frame's width and height in pixels: the visibility buffer's row length and row count, and the size of out_color, out_uv and out_layers; compute invocations outside it return at once (fragment entry points ignore it)"),
+    ("Frame.depth_range", "near and far clipping distances along the view axis, world units (the planes of view_proj); read by neither pipeline's entry points here: for the engine's visibility pass, which keeps surfaces between them as the rasterizer does"),
     ("map_sampler", "linear min, mag and mip filtering, repeat wrap in u and v; reads albedo_map and normal_map at a level the shader computes, depth_map at level 0"),
     // The relief frame: group 1, one per material.
     ("material", "the material's constants (struct `Material`, members below); one per material"),
     ("Material.height_scale", "depth scale in UV per unit of depth: a ray that descends the whole relief (depth 0 → 1) moves height_scale · V.xy / V.z in UV (the thesis's HeightScale)"),
     ("Material.albedo_levels", "mip level count of albedo_map, as a float (the shader clamps its level of detail to it)"),
     ("Material.normal_levels", "mip level count of normal_map, as a float"),
+    ("Material.index", "the material's index in the engine's material list, the number mesh_objects' y holds; a cs_color or cs_debug dispatch shades exactly the pixels whose object has this material and leaves every other pixel untouched (fragment entry points ignore it: the engine draws each material's triangles itself)"),
     ("albedo_map", "albedo in linear RGB (sRGB images are decoded to linear before upload; an engine may use an sRGB texture format instead, which the sampler decodes); Rgba32Float with every mip level; alpha unused"),
     ("normal_map", "tangent-space unit normals as signed values (x along +u, y along +v, z out of the surface; not the 0..1 image encoding); Rgba32Float with every mip level; renormalised after filtering"),
     ("depth_map", "depth = 1 − height in [0, 1] (0 = top of the relief, 1 = its deepest point); R32Float, one level, sampled bilinearly with repeat wrap"),
@@ -44,6 +52,16 @@ pub const DESCRIPTIONS: &[(&str, &str)] = &[
     ("DebugOut.color", "colour in linear light, as fs_color's"),
     ("DebugOut.uv", "the displaced texture coordinate where the technique's ray met the height field (an Rg32Float target)"),
     ("DebugOut.layers", "layers or steps the technique planned for this pixel, 0 where it has none (an R32Uint target)"),
+    // The relief frame's compute entry points: group 2.
+    ("vis_buffer", "the visibility buffer, written by the engine's own visibility pass before the cs_* dispatches (a rasterized pass writing object and triangle IDs, or ray casting); one vec4<u32> (16 bytes) per pixel, row-major from the top row (index y · Frame.size.x + x): x the object (its index in mesh_objects), or 0xffffffff where no surface shows; y the triangle's index within that object (its vertices mesh_indices[mesh_objects[x].x + 3y + k], k = 0, 1, 2); z and w the bit patterns of the f32 barycentric weights u and v of the triangle's second and third vertices (the first's weight is 1 − u − v) at the point where the pixel centre's camera ray (Frame.ray_base, ray_dx, ray_dy) meets the triangle, which is where a rasterizer's perspective-correct barycentrics at the pixel centre put it; the front-most front face between the near and far planes, as the rasterizer would keep it"),
+    ("mesh_vertices", "every vertex of the scene, 12 f32 (48 bytes) each, tightly packed: position xyz (world units), normal xyz, uv, tangent xyzw, as VertexIn; the fragment pipeline's vertex buffer bound as storage"),
+    ("mesh_indices", "three u32 per triangle, absolute indices into mesh_vertices (already offset by the object's first vertex), each object's triangles contiguous, counter-clockwise front faces; the fragment pipeline's index buffer bound as storage"),
+    ("mesh_objects", "one vec2<u32> per object, indexed by vis_buffer's x: x the object's first index in mesh_indices, y its material's index (compared with Material.index)"),
+    ("out_color", "colour in linear light with alpha 1 (as fs_color's result), Rgba32Float storage texture of Frame.size; texel (x, y) is pixel (x, y), row 0 the top row; written by cs_color and cs_debug at the pixels of their dispatch's material only; the engine's visibility pass writes the background where no surface shows"),
+    ("out_uv", "the displaced texture coordinate (as DebugOut.uv), Rg32Float storage texture of Frame.size; written by cs_debug only, at its material's pixels (renderlab's visibility pass writes 0 where no surface shows)"),
+    ("out_layers", "layers or steps the technique planned (as DebugOut.layers), R32Uint storage texture of Frame.size; written by cs_debug only, at its material's pixels (renderlab's visibility pass writes 0 where no surface shows)"),
+    ("cs_color.id", "global_invocation_id: xy the pixel (right and down from the top-left), one invocation per pixel in 8×8 workgroups; dispatch (⌈width/8⌉, ⌈height/8⌉, 1) workgroups once per material, with that material's group 1 bound"),
+    ("cs_debug.id", "global_invocation_id: xy the pixel, as cs_color's; the same dispatch"),
     // The texture filters' frame.
     ("filter_params", "the filter frame's constants (struct `Filter`, members below)"),
     ("Filter.background", "rgb: linear colour where no surface shows (a unused)"),

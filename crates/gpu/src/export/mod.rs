@@ -1,14 +1,15 @@
 //! Shaders for other engines: every relief technique's WGSL module (and the texture filters'
 //! frame with EWA) parsed and validated by naga, translated to GLSL, HLSL, MSL or SPIR-V (or
 //! kept as WGSL), and written with a README that names each shader's inputs: every texture
-//! (which map, its encoding), sampler, uniform member (with its unit), vertex attribute and
-//! fragment output.
+//! (which map, its encoding), sampler, uniform member (with its unit), vertex attribute,
+//! fragment output, and the compute entry points' storage buffers and storage textures.
 //!
 //! Layout: [`backends`] holds the translation and the binding layouts each language needs,
 //! derived from the module's `@group`/`@binding` pairs; [`reflect`] lists a module's inputs
 //! from naga's reflection (global variables, uniform struct members, entry-point arguments
 //! and results); [`descriptions`] holds the human descriptions keyed by those names (a test
-//! refuses an input without one); [`readme`] writes the README.
+//! refuses an input without one); [`readme`] writes the README, with [`readme_compute`]'s
+//! section on dispatching the compute entry points.
 //!
 //! Everything is translated in memory before the first file is written, and each file is
 //! written atomically (temporary file, then rename), so a failure leaves no half-written
@@ -17,6 +18,7 @@
 pub mod backends;
 pub mod descriptions;
 pub mod readme;
+pub mod readme_compute;
 pub mod reflect;
 pub mod source;
 

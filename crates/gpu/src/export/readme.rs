@@ -4,11 +4,13 @@
 //!
 //! Shaders whose inputs and outputs are the same (every relief technique shares the relief
 //! frame) share one set of tables, so that the README stays readable; each shader's own
-//! section then says which textures its fragment shader actually reads.
+//! section then says which resources each of its entry points actually uses. Modules with
+//! compute entry points get a section on dispatching them ([`readme_compute`]).
 
 use super::backends::OutputFile;
 use super::backends::{binding_layout, BindingRow};
 use super::descriptions::describe;
+use super::readme_compute::compute_section;
 use super::reflect::{items, Item, ItemKind};
 use super::source::{ExportShader, Lang, Parsed, ShaderKind};
 use renderlab_relief::Shading;
@@ -36,6 +38,7 @@ pub fn readme(shaders: &[ExportShader], parsed: &[Parsed], langs: &[Lang], files
     for l in langs {
         let _ = writeln!(s, "- {}", lang_note(*l));
     }
+    compute_section(&mut s, shaders, parsed, langs);
     s.push_str("\n## Files\n\n| shader | files |\n|---|---|\n");
     for sh in shaders {
         let mine: Vec<String> =
@@ -76,29 +79,39 @@ the eye position and the light's from a unit vector.\n\
 - **Clip space** is WebGPU's (y up, z in [0, 1], pixel centres at +0.5); see each language \
 for how it is adjusted.\n\
 - **The relief frame** is one draw per material with depth test (less) and back faces culled \
-(counter-clockwise front faces). The technique's parameters are uniforms (`Frame.params`), so \
+(counter-clockwise front faces), or with the compute entry points one dispatch per material over \
+the engine's visibility buffer (see below). The technique's parameters are uniforms (`Frame.params`), so \
 one shader serves every setting of a technique.\n";
 
 /// One line per language: the version and its binding layout.
 fn lang_note(l: Lang) -> &'static str {
     match l {
         Lang::Wgsl => "**wgsl** (`NAME.wgsl`): the module renderlab runs, self-contained; bindings as declared.",
-        Lang::Glsl => "**glsl** (`NAME.vert`, `NAME.frag`, `NAME.ENTRY.frag` for further fragment entry points): \
+        Lang::Glsl => "**glsl** (`NAME.vert`, `NAME.frag`, `NAME.ENTRY.frag` for further fragment entry points, \
+`NAME.comp` and `NAME.ENTRY.comp` for the compute entry points): \
 GLSL 4.50 core, the first version with the fine derivatives (`dFdxFine`) the relief frame needs (GLSL ES has none). \
 Uniform blocks take binding points 0, 1, … and textures texture units 0, 1, … in (group, binding) order; \
+storage buffers are `std430` buffer blocks at shader-storage binding points 0, 1, … and storage textures \
+`image2D`/`uimage2D` with their formats at image units 0, 1, …, each in the same order; \
 GLSL has no separate samplers, so each texture is a `sampler2D` whose unit carries the sampler state \
 listed for it. Clip space is left as WebGPU's: use `glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)`. \
 Checked with `glslangValidator`.",
         Lang::Hlsl => "**hlsl** (`NAME.hlsl`, every entry point): shader model 6.0 (DXC). Uniform blocks at \
 `b<binding>, space<group>`, textures at `t<binding>, space<group>`; samplers as naga writes them for \
 Direct3D 12: an index into `nagaSamplerHeap` (`s0, space0`) read from the group's \
-`StructuredBuffer<uint> nagaGroup<G>SamplerIndexArray` (`t<G>, space255`) at the sampler's binding.",
+`StructuredBuffer<uint> nagaGroup<G>SamplerIndexArray` (`t<G>, space255`) at the sampler's binding. \
+Read-only storage buffers are `ByteAddressBuffer` at `t<binding>, space<group>`; read-write storage \
+buffers (`RWByteAddressBuffer`) and storage textures (`RWTexture2D`) at `u<binding>, space<group>`.",
         Lang::Msl => "**msl** (`NAME.metal`, every entry point): Metal Shading Language 2.1. Uniform blocks \
 `buffer(0)`, `buffer(1)`, …, textures `texture(0)`, …, samplers `sampler(0)`, … in (group, binding) order; \
-vertex attributes by `[[stage_in]]` (vertex buffers go after the uniform buffers' slots).",
+vertex attributes by `[[stage_in]]` (vertex buffers go after the uniform buffers' slots). Storage \
+buffers take the buffer slots after the uniform blocks', storage textures the texture slots after the \
+sampled textures', each in (group, binding) order; kernels also read `_buffer_sizes` (see the compute \
+entry points).",
         Lang::Spv => "**spv** (`NAME.spv`, every entry point in one module): SPIR-V 1.0 for Vulkan 1.0; \
 descriptor set = group, binding = binding. The vertex stage negates y (naga's coordinate adjustment), \
-so an ordinary positive-height Vulkan viewport draws the frame upright.",
+so an ordinary positive-height Vulkan viewport draws the frame upright. Compute entry points are \
+`GLCompute` entry points of the same module.",
     }
 }
 
@@ -129,10 +142,7 @@ fn interface_tables(s: &mut String, parsed: &Parsed, interface: &[Item], langs: 
         s.push_str("---|");
     }
     s.push_str("---|---|\n");
-    for item in interface
-        .iter()
-        .filter(|i| matches!(i.kind, ItemKind::Uniform | ItemKind::Texture | ItemKind::Sampler))
-    {
+    for item in interface.iter().filter(|i| i.kind.is_resource()) {
         let _ = write!(s, "| `{}` | {} | {} |", item.key, item.kind.label(), item.place);
         let row = rows.iter().find(|r| r.name == item.key);
         for l in &others {
@@ -162,10 +172,12 @@ fn interface_tables(s: &mut String, parsed: &Parsed, interface: &[Item], langs: 
         }
     }
     s.push_str("\n### Stage inputs and outputs\n\n| name | kind | binding | type | entry points | meaning |\n|---|---|---|---|---|---|\n");
-    for item in interface
-        .iter()
-        .filter(|i| matches!(i.kind, ItemKind::VertexInput | ItemKind::Varying | ItemKind::FragmentOutput))
-    {
+    for item in interface.iter().filter(|i| {
+        matches!(
+            i.kind,
+            ItemKind::VertexInput | ItemKind::Varying | ItemKind::FragmentOutput | ItemKind::ComputeInput
+        )
+    }) {
         let _ = writeln!(
             s,
             "| `{}` | {} | `{}` | `{}` | {} | {} |",
@@ -215,13 +227,19 @@ fn shader_section(s: &mut String, shader: &ExportShader, parsed: &Parsed, interf
         .map(|ep| format!("`{}` ({:?})", ep.name, ep.stage).to_lowercase())
         .collect();
     let _ = writeln!(s, "\nEntry points: {}.", entries.join(", "));
-    for ep in parsed.module.entry_points.iter().filter(|ep| ep.stage == naga::ShaderStage::Fragment) {
-        let reads: Vec<String> = interface
-            .iter()
-            .filter(|i| matches!(i.kind, ItemKind::Texture | ItemKind::Sampler | ItemKind::Uniform))
-            .filter(|i| i.entry_points.contains(&ep.name))
-            .map(|i| format!("`{}`", i.key))
-            .collect();
-        let _ = writeln!(s, "`{}` reads {}.", ep.name, reads.join(", "));
+    let stages = [naga::ShaderStage::Fragment, naga::ShaderStage::Compute];
+    for ep in parsed.module.entry_points.iter().filter(|ep| stages.contains(&ep.stage)) {
+        let used = |output: bool| -> Vec<String> {
+            interface
+                .iter()
+                .filter(|i| i.kind.is_resource() && i.kind.is_output() == output)
+                .filter(|i| i.entry_points.contains(&ep.name))
+                .map(|i| format!("`{}`", i.key))
+                .collect()
+        };
+        let writes = used(true);
+        let writes =
+            if writes.is_empty() { String::new() } else { format!("; writes {}", writes.join(", ")) };
+        let _ = writeln!(s, "`{}` reads {}{writes}.", ep.name, used(false).join(", "));
     }
 }

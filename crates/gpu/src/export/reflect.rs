@@ -1,16 +1,18 @@
 //! A module's inputs and outputs from naga's reflection: its bound global variables (uniform
-//! blocks, textures, samplers, with the entry points that read each), the members of its
-//! uniform blocks (with their byte offsets), and the arguments and results of its entry
-//! points (vertex attributes, varyings, built-ins, fragment outputs).
+//! blocks, textures, samplers, storage buffers and storage textures, with the entry points
+//! that use each), the members of its uniform blocks (with their byte offsets), and the
+//! arguments and results of its entry points (vertex attributes, varyings, built-ins,
+//! fragment outputs, compute built-ins).
 //!
 //! Each item carries a **key**, the name the description table is indexed by: the variable's
 //! name for a global (`albedo_map`), `Struct.member` for a struct member (`Frame.eye`,
 //! `VertexIn.uv`, `DebugOut.layers`), `entry.argument` for an entry point's plain argument
 //! (`fs_main.position`) and `entry.result` for its plain result.
 
+use super::backends::{resource_class, ResourceClass};
 use super::source::Parsed;
 use naga::common::wgsl::TypeContext;
-use naga::{AddressSpace, Binding, ShaderStage, TypeInner};
+use naga::{Binding, ShaderStage, TypeInner};
 
 /// What kind of input or output an item is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -23,6 +25,15 @@ pub enum ItemKind {
     Texture,
     /// A sampler.
     Sampler,
+    /// A storage buffer; `writable` when declared `read_write`.
+    StorageBuffer {
+        /// Whether the shader may write it.
+        writable: bool,
+    },
+    /// A storage texture, written texel by texel.
+    StorageTexture,
+    /// A compute entry point's built-in input (its invocation's place in the dispatch).
+    ComputeInput,
     /// A vertex stage input (attribute or built-in).
     VertexInput,
     /// A value from the vertex stage to the fragment stage, or a fragment built-in input.
@@ -39,10 +50,33 @@ impl ItemKind {
             ItemKind::UniformMember => "uniform member",
             ItemKind::Texture => "texture",
             ItemKind::Sampler => "sampler",
+            ItemKind::StorageBuffer { writable: false } => "storage buffer (read-only)",
+            ItemKind::StorageBuffer { writable: true } => "storage buffer (read-write)",
+            ItemKind::StorageTexture => "storage texture",
+            ItemKind::ComputeInput => "compute input",
             ItemKind::VertexInput => "vertex input",
             ItemKind::Varying => "varying",
             ItemKind::FragmentOutput => "fragment output",
         }
+    }
+
+    /// Whether it is a resource the shader writes (a storage texture or a read-write storage
+    /// buffer).
+    pub fn is_output(self) -> bool {
+        matches!(self, ItemKind::StorageTexture | ItemKind::StorageBuffer { writable: true })
+    }
+
+    /// Whether it is a bound resource (a uniform block, texture, sampler, storage buffer or
+    /// storage texture) rather than a uniform member or a stage input or output.
+    pub fn is_resource(self) -> bool {
+        matches!(
+            self,
+            ItemKind::Uniform
+                | ItemKind::Texture
+                | ItemKind::Sampler
+                | ItemKind::StorageBuffer { .. }
+                | ItemKind::StorageTexture
+        )
     }
 }
 
@@ -80,11 +114,13 @@ pub fn items(parsed: &Parsed) -> Vec<Item> {
             .map(|(_, ep)| ep.name.clone())
             .collect();
         let inner = &types[g.ty].inner;
-        let kind = match (inner, g.space) {
-            (TypeInner::Sampler { .. }, _) => ItemKind::Sampler,
-            (TypeInner::Image { .. }, _) => ItemKind::Texture,
-            (_, AddressSpace::Uniform) => ItemKind::Uniform,
-            _ => continue,
+        let kind = match resource_class(module, g) {
+            Some(ResourceClass::Sampler) => ItemKind::Sampler,
+            Some(ResourceClass::Texture) => ItemKind::Texture,
+            Some(ResourceClass::Uniform) => ItemKind::Uniform,
+            Some(ResourceClass::StorageBuffer { writable }) => ItemKind::StorageBuffer { writable },
+            Some(ResourceClass::StorageTexture) => ItemKind::StorageTexture,
+            None => continue,
         };
         out.push(Item {
             key: g.name.clone().unwrap_or_default(),
@@ -109,6 +145,8 @@ pub fn items(parsed: &Parsed) -> Vec<Item> {
     for ep in &module.entry_points {
         let (input_kind, output_kind) = match ep.stage {
             ShaderStage::Vertex => (ItemKind::VertexInput, ItemKind::Varying),
+            // A compute entry point has no result; it writes storage resources.
+            ShaderStage::Compute => (ItemKind::ComputeInput, ItemKind::ComputeInput),
             _ => (ItemKind::Varying, ItemKind::FragmentOutput),
         };
         let f = &ep.function;

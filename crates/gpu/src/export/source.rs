@@ -10,7 +10,7 @@ use renderlab_relief::techniques::{Technique, DESCRIPTORS};
 pub enum Lang {
     /// WGSL: the assembled module itself, self-contained.
     Wgsl,
-    /// GLSL 4.50 core, one file per entry point (`.vert`, `.frag`).
+    /// GLSL 4.50 core, one file per entry point (`.vert`, `.frag`, `.comp`).
     Glsl,
     /// HLSL for shader model 6.0, every entry point in one file.
     Hlsl,
@@ -53,7 +53,8 @@ impl std::fmt::Display for Lang {
 /// What an exported module draws.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ShaderKind {
-    /// A relief technique's frame (vertex stage, `fs_color`, `fs_debug`).
+    /// A relief technique's frame (vertex stage, `fs_color`, `fs_debug`, and the compute
+    /// pipeline's `cs_color`, `cs_debug`).
     Relief(Technique),
     /// The texture filters' full-screen frame with EWA in WGSL.
     Filters,
