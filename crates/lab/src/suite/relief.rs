@@ -3,7 +3,7 @@
 
 use crate::error::Result;
 use crate::lab::{create_dir, existing, files_under, Lab, LabSummary, Progress};
-use crate::relief_lab::{run_relief_bench, Backend, GpuSubset, ReliefBenchConfig, POM_32};
+use crate::relief_lab::{run_relief_bench, Backend, GpuSubset, PipelineSelection, ReliefBenchConfig, POM_32};
 use renderlab_core::Material;
 use renderlab_relief::techniques::basic::Basic;
 use renderlab_relief::Technique;
@@ -27,9 +27,10 @@ impl Lab for ReliefLab {
 
     /// Bricks at the built-in size, the lab's defaults with five timed repetitions (medians of
     /// three proved too noisy for the adaptive ratio; BENCHMARKS.md, "Relief lab"), and the
-    /// CPU renderer against the GPU's shaders for the four methods the headline compares
-    /// (basic, POM-32, adaptive and the fastest, cone-newton, at 0° and 60°) where an adapter
-    /// exists; without one the page says the GPU was skipped.
+    /// CPU renderer against the GPU's shaders, on both GPU pipelines (fragment and compute),
+    /// for the four methods the headline compares (basic, POM-32, adaptive and the fastest,
+    /// cone-newton, at 0° and 60°) where an adapter exists; without one the page says the
+    /// GPU was skipped.
     fn report_preset() -> Result<Self> {
         let material = materials::material("bricks", materials::DEFAULT_SIZE)?;
         let techniques = vec![
@@ -44,6 +45,7 @@ impl Lab for ReliefLab {
             backend: Backend::Both,
             gpu_subset: Some(gpu_subset),
             gpu_required: false,
+            pipelines: PipelineSelection::Both,
             ..ReliefBenchConfig::default()
         };
         Ok(ReliefLab { material, config })
