@@ -289,6 +289,25 @@ fn relief_render_compute_pipeline_matches_the_fragment_pipeline() {
 
 #[test]
 fn bad_pipelines_and_gpu_timing_settings_are_one_line_errors() {
+    let help = renderlab(&["relief", "bench", "--help"], false);
+    let text = String::from_utf8_lossy(&help.stdout);
+    for word in [
+        "--pipeline",
+        "fragment",
+        "compute",
+        "auto",
+        "both",
+        "probe",
+        "--gpu-batch",
+        "--gpu-rounds",
+        "--gpu-max-warmup",
+        "--gpu-tolerance",
+    ] {
+        assert!(text.contains(word), "relief bench --help lacks {word}");
+    }
+    let help = renderlab(&["relief", "render", "--help"], false);
+    let text = String::from_utf8_lossy(&help.stdout);
+    assert!(text.contains("--pipeline") && text.contains("probe"), "relief render --help: {text}");
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
     let o = out.to_str().unwrap();

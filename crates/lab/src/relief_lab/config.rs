@@ -54,7 +54,8 @@ pub enum PipelineSelection {
     /// The compute pipeline (ray-cast visibility buffer, the technique in a compute shader).
     Compute,
     /// The faster of the two on this device, by a probe at start-up (POM-32 at the run's
-    /// frame size, from the first angle's camera); the records say which it took and why.
+    /// frame size, from the first angle's camera); the records say which it took, the
+    /// findings and the page why.
     #[default]
     Auto,
     /// Both, every technique on each.

@@ -80,7 +80,8 @@ fn settled_finding(gpu: &[ReliefRecord], s: &SteadySettings) -> String {
     } else {
         format!(
             "GPU timings did not settle for {} of {} measurements within the warm-up's cap ({} rounds or {} s of frames; \
-             criterion: {criterion}): {}. Their figures may still carry the device's clock changes.",
+             criterion: {criterion}): {}. Their rounds varied more than that to the end (clocks still changing, or other load on \
+             the machine): their figures are less certain than the others'.",
             unsettled.len(),
             gpu.len(),
             s.max_warmup_rounds,

@@ -5,6 +5,7 @@ use crate::error::Result;
 use crate::lab::{create_dir, existing, files_under, Lab, LabSummary, Progress};
 use crate::relief_lab::{run_relief_bench, Backend, GpuSubset, PipelineSelection, ReliefBenchConfig, POM_32};
 use renderlab_core::Material;
+use renderlab_gpu::SteadySettings;
 use renderlab_relief::techniques::basic::Basic;
 use renderlab_relief::Technique;
 use renderlab_texture::materials;
@@ -51,10 +52,13 @@ impl Lab for ReliefLab {
         Ok(ReliefLab { material, config })
     }
 
-    /// A 640×400 frame, one repetition and no warm-up.
+    /// A 640×400 frame, one repetition and no warm-up; on the GPU, batches of 2 frames, 2
+    /// measured rounds and at most 6 warm-up rounds.
     fn quick_preset() -> Result<Self> {
         let mut lab = Self::report_preset()?;
-        lab.config = ReliefBenchConfig { width: 640, height: 400, reps: 1, warmup: 0, ..lab.config };
+        let steady =
+            SteadySettings { batch: 2, rounds: 2, max_warmup_rounds: 6, ..SteadySettings::default() };
+        lab.config = ReliefBenchConfig { width: 640, height: 400, reps: 1, warmup: 0, steady, ..lab.config };
         Ok(lab)
     }
 

@@ -116,16 +116,12 @@ pub struct BenchArgs {
     pub complexity: ComplexityFlags,
 }
 
-/// `--pipeline`'s long help.
-const PIPELINE_HELP: &str = "GPU pipelines that draw the techniques (with --backend gpu|both):\n\
-  fragment  the mesh rasterized by the hardware, the technique in the fragment shader (what engines use)\n\
-  compute   primary visibility ray-cast through the GPU's BVH, the technique in a compute shader\n\
-  auto      the faster of the two here: at start-up a probe times POM-32 on both at the run's frame size\n\
-            from the first angle's camera, takes the faster and says why (default)\n\
-  both      every technique on each, for Table 4.1 on both and their ratio\n\
-Per angle the GPU is timed after the CPU with nothing else running: every technique and pipeline in turn, \
-batches of --gpu-batch frames back to back, warmed up until successive rounds agree \
-(--gpu-tolerance, --gpu-max-warmup), then --gpu-rounds measured rounds";
+/// `--pipeline`'s long help (clap lists the values after it, from their docs).
+const PIPELINE_HELP: &str = "GPU pipelines that draw the techniques (with --backend gpu|both). With auto, a probe at \
+start-up times POM-32 on both pipelines at the run's frame size from the first angle's camera and keeps the faster; \
+the findings and the page give its figures and reason. Per angle the GPU is timed after the CPU, with nothing else \
+running: every technique and pipeline in turn, batches of --gpu-batch frames back to back, warmed up until successive \
+rounds agree (--gpu-tolerance, --gpu-max-warmup), then --gpu-rounds measured rounds";
 
 /// `renderlab relief bench`.
 pub(crate) fn run(a: BenchArgs) -> Result<()> {
