@@ -58,7 +58,8 @@ impl View {
 /// 2. **GPU** (with a GPU backend, [`ReliefBenchConfig::backend`]): every technique on every
 ///    pipeline of the run timed with nothing else running ([`super::gpu_phase`]): steady
 ///    batches warmed up until successive rounds agree, then whole frames with read-back in
-///    turn, whose median over the paired CPU method's gives `cpu_over_gpu` (`both`).
+///    turn, whose median the paired CPU method's median is divided by for `cpu_over_gpu`
+///    (`both`).
 /// 3. **Untimed**: the references, then the counted render, the metrics and the images of
 ///    every method at once, spread over the threads, and each GPU configuration's debug
 ///    frame. The order changes no figure and no byte of an image.
