@@ -1,8 +1,10 @@
 //! `relief bench --backend gpu|both` as a user meets it: on a tiny frame and two techniques,
-//! the CPU and the GPU records carry their backend and adapter, the GPU frames agree with the
-//! CPU frames within the agreement tests' bound, the page has the side-by-side table; without
-//! a Vulkan driver the GPU backends fail in one line naming the adapter; a bad `--resolution`
-//! is a one-line error.
+//! the CPU and the GPU records carry their backend, adapter and pipeline, the GPU frames agree
+//! with the CPU frames within the agreement tests' bound, the page has the side-by-side table;
+//! `--pipeline both` writes records of both pipelines with their steady timing; `relief render
+//! --pipeline compute` draws the fragment pipeline's image; without a Vulkan driver the GPU
+//! backends fail in one line naming the adapter; a bad `--resolution`, `--pipeline` or GPU
+//! timing setting is a one-line error.
 //!
 //! Without an adapter the GPU half fails when `CI` is set (CI installs lavapipe) and is
 //! reported skipped otherwise.
@@ -120,7 +122,226 @@ fn relief_bench_both_backends_side_by_side() {
     let html = std::fs::read_to_string(dir.path().join("index.html")).unwrap();
     assert!(html.contains("Our CPU renderer against"), "the side-by-side table is on the page");
     assert!(html.contains("Thesis Table 4.1 on the GPU"));
-    assert!(dir.path().join("img").join("gpu_pom-32_60.png").is_file());
+    // `auto` (the default) probed once and ran the pipeline it chose for every GPU record.
+    let pipeline = gpu[0]["pipeline"].as_str().expect("GPU records name their pipeline");
+    assert!(["fragment", "compute"].contains(&pipeline), "{pipeline}");
+    assert!(gpu.iter().all(|g| g["pipeline"] == pipeline));
+    assert!(cpu.iter().all(|c| c["pipeline"].is_null()));
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(stdout.contains("chosen by the start-up probe") && stdout.contains("pom:32"), "{stdout}");
+    assert!(html.contains("chosen by a probe at start-up"));
+    let image = format!("gpu_{pipeline}_pom-32_60.png");
+    assert!(dir.path().join("img").join(&image).is_file(), "missing {image}");
+}
+
+/// The steady timing's columns, in CSV and JSON, and what they hold on a GPU record: a GPU
+/// time with its min ≤ median ≤ max exactly where the adapter has timestamps, warm-up rounds
+/// within the cap and the settled flag; empty on CPU records.
+fn check_steady_columns(dir: &Path, recs: &[Value], max_warmup: u64) {
+    let csv = std::fs::read_to_string(dir.join("results.csv")).unwrap();
+    let header = csv.lines().next().unwrap();
+    for key in ["pipeline", "gpu_min_ms", "gpu_max_ms", "gpu_spread", "gpu_warmup_rounds", "gpu_settled"] {
+        assert!(header.split(',').any(|h| h == key), "CSV header lacks {key}: {header}");
+        assert!(recs.iter().all(|r| r.get(key).is_some()), "a JSON record lacks {key}");
+        for r in recs.iter().filter(|r| r["backend"] == "cpu") {
+            assert!(r[key].is_null(), "a CPU record has {key}: {r}");
+        }
+    }
+    for g in recs.iter().filter(|r| r["backend"] == "gpu") {
+        let timestamps = g["gpu_timestamps"].as_bool().unwrap();
+        for key in ["gpu_ms", "gpu_min_ms", "gpu_max_ms", "gpu_spread"] {
+            assert_eq!(g[key].is_number(), timestamps, "{key}: {g}");
+        }
+        if timestamps {
+            let (lo, mid, hi) = (
+                g["gpu_min_ms"].as_f64().unwrap(),
+                g["gpu_ms"].as_f64().unwrap(),
+                g["gpu_max_ms"].as_f64().unwrap(),
+            );
+            assert!(0.0 < lo && lo <= mid && mid <= hi, "{g}");
+            assert!(g["gpu_spread"].as_f64().unwrap() >= 0.0, "{g}");
+        }
+        let rounds = g["gpu_warmup_rounds"].as_u64().expect("warm-up rounds on GPU records");
+        assert!(rounds <= max_warmup, "{g}");
+        let settled = g["gpu_settled"].as_bool().expect("settled flag on GPU records");
+        // Settling takes at least the agreement's window of 3 rounds.
+        assert!(!settled || rounds >= 3, "{g}");
+    }
+}
+
+#[test]
+fn relief_bench_both_pipelines_writes_both_records() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().to_str().unwrap();
+    let mut args = bench_args(out, "gpu");
+    args.extend(["--pipeline", "both", "--gpu-batch", "2", "--gpu-rounds", "2", "--gpu-max-warmup", "6"]);
+    let run = renderlab(&args, false);
+    if !run.status.success() {
+        let err = error_lines(&run).join("\n");
+        assert!(std::env::var_os("CI").is_none(), "CI needs a GPU adapter (lavapipe): {err}");
+        eprintln!("SKIPPED (no GPU adapter, and CI is not set): {err}");
+        return;
+    }
+    let recs = records(dir.path());
+    assert_eq!(recs.len(), 8, "2 techniques × 2 angles × 2 pipelines");
+    for pipeline in ["fragment", "compute"] {
+        for t in ["basic", "pom:32"] {
+            for a in [0.0, 60.0] {
+                let n = recs
+                    .iter()
+                    .filter(|r| r["pipeline"] == pipeline && r["technique"] == t && r["angle_deg"] == a)
+                    .count();
+                assert_eq!(n, 1, "{pipeline} {t} {a}°");
+            }
+        }
+    }
+    check_steady_columns(dir.path(), &recs, 6);
+    let html = std::fs::read_to_string(dir.path().join("index.html")).unwrap();
+    for section in
+        ["Thesis Table 4.1 on the GPU, fragment pipeline", "Thesis Table 4.1 on the GPU, compute pipeline"]
+    {
+        assert!(html.contains(section), "the page lacks {section}");
+    }
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(stdout.contains("Compute pipeline / fragment pipeline"), "{stdout}");
+    assert!(stdout.contains("GPU timings"), "{stdout}");
+    for image in ["gpu_fragment_pom-32_60.png", "gpu_compute_pom-32_60.png"] {
+        assert!(dir.path().join("img").join(image).is_file(), "missing {image}");
+    }
+}
+
+/// PSNR of the compute pipeline's image against the fragment pipeline's, both written as
+/// 8-bit PNGs: the agreement tests' bound for smooth techniques (the two pipelines run the
+/// same WGSL functions; what differs is where the visibility comes from).
+const PIPELINES_DB: f64 = 45.0;
+
+#[test]
+fn relief_render_compute_pipeline_matches_the_fragment_pipeline() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut images = Vec::new();
+    for pipeline in ["fragment", "compute"] {
+        let path = dir.path().join(format!("{pipeline}.png"));
+        let o = path.to_str().unwrap();
+        let run = renderlab(
+            &[
+                "relief",
+                "render",
+                "-o",
+                o,
+                "-t",
+                "pom:32",
+                "--width",
+                "64",
+                "--height",
+                "40",
+                "--texture-size",
+                "64",
+                "--angle",
+                "60",
+                "--backend",
+                "gpu",
+                "--pipeline",
+                pipeline,
+            ],
+            false,
+        );
+        if !run.status.success() {
+            let err = error_lines(&run).join("\n");
+            assert!(std::env::var_os("CI").is_none(), "CI needs a GPU adapter (lavapipe): {err}");
+            eprintln!("SKIPPED (no GPU adapter, and CI is not set): {err}");
+            return;
+        }
+        let stdout = String::from_utf8_lossy(&run.stdout);
+        assert!(stdout.contains(&format!("{pipeline} pipeline (asked for)")), "{stdout}");
+        images.push(renderlab_core::io::load_color(&path).unwrap());
+    }
+    let db = renderlab_lab::metrics::psnr(&images[1], &images[0], None);
+    eprintln!("compute vs fragment, pom:32 at 60°: {db:.1} dB");
+    assert!(db >= PIPELINES_DB, "compute vs fragment: {db} dB < {PIPELINES_DB}");
+    // `auto` says which pipeline the probe took and why.
+    let path = dir.path().join("auto.png");
+    let run = renderlab(
+        &[
+            "relief",
+            "render",
+            "-o",
+            path.to_str().unwrap(),
+            "-t",
+            "basic",
+            "--width",
+            "32",
+            "--height",
+            "20",
+            "--texture-size",
+            "64",
+            "--backend",
+            "gpu",
+        ],
+        false,
+    );
+    assert!(run.status.success(), "{:?}", error_lines(&run));
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        stdout.contains("pipeline, chosen by a probe") && stdout.contains("compute/fragment"),
+        "{stdout}"
+    );
+}
+
+#[test]
+fn bad_pipelines_and_gpu_timing_settings_are_one_line_errors() {
+    let help = renderlab(&["relief", "bench", "--help"], false);
+    let text = String::from_utf8_lossy(&help.stdout);
+    for word in [
+        "--pipeline",
+        "fragment",
+        "compute",
+        "auto",
+        "both",
+        "probe",
+        "--gpu-batch",
+        "--gpu-rounds",
+        "--gpu-max-warmup",
+        "--gpu-tolerance",
+    ] {
+        assert!(text.contains(word), "relief bench --help lacks {word}");
+    }
+    let help = renderlab(&["relief", "render", "--help"], false);
+    let text = String::from_utf8_lossy(&help.stdout);
+    assert!(text.contains("--pipeline") && text.contains("probe"), "relief render --help: {text}");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = out.to_str().unwrap();
+    let cases: [(&[&str], &str); 7] = [
+        (&["--pipeline", "vertex"], "--pipeline"),
+        (&["--gpu-batch", "0"], "--gpu-batch"),
+        (&["--gpu-batch", "257"], "--gpu-batch"),
+        (&["--gpu-rounds", "0"], "--gpu-rounds"),
+        (&["--gpu-max-warmup", "-1"], "--gpu-max-warmup"),
+        (&["--gpu-tolerance", "0"], "--gpu-tolerance"),
+        (&["--gpu-tolerance", "nan"], "--gpu-tolerance"),
+    ];
+    for (extra, needle) in cases {
+        let mut args = bench_args(o, "gpu");
+        args.extend_from_slice(extra);
+        let run = renderlab(&args, false);
+        let lines = error_lines(&run);
+        assert_eq!(run.status.code(), Some(1), "{extra:?}: {lines:?}");
+        assert_eq!(lines.len(), 1, "{extra:?}: {lines:?}");
+        assert!(lines[0].contains(needle), "{extra:?}: {lines:?}");
+        assert!(!out.exists(), "nothing written after a bad {needle}");
+    }
+    let png = dir.path().join("r.png");
+    let run = renderlab(
+        &["relief", "render", "-o", png.to_str().unwrap(), "--backend", "gpu", "--pipeline", "both"],
+        false,
+    );
+    let lines = error_lines(&run);
+    assert_eq!(run.status.code(), Some(1), "{lines:?}");
+    assert!(
+        lines.len() == 1 && lines[0].contains("--pipeline") && lines[0].contains("fragment, compute, auto"),
+        "{lines:?}"
+    );
+    assert!(!png.exists());
 }
 
 #[test]

@@ -40,6 +40,7 @@ pub mod readback;
 pub mod relief;
 pub mod rt;
 pub mod shader;
+pub mod steady;
 pub mod timing;
 mod upload;
 
@@ -51,4 +52,5 @@ pub use relief::{
     read_rgba8, DisplayRegion, FrameTime, GpuFrame, PipelineChoice, PipelineProbe, ReliefPipeline,
     ReliefRenderer,
 };
+pub use steady::{time_steady, SteadyReport, SteadySettings, SteadyTiming};
 pub use timing::{GpuTiming, PassTimer};

@@ -1,6 +1,7 @@
 //! What one relief run measures: the frame, the angles, the techniques on their kernels.
 
 use crate::fixtures::{BENCH_ANGLES_DEG, BENCH_HEIGHT, BENCH_WIDTH};
+use renderlab_gpu::{ReliefPipeline, SteadySettings};
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::memory::ReliefMemory;
 use renderlab_relief::techniques::{bench_settings, pom::Pom};
@@ -37,6 +38,40 @@ pub struct ReliefBenchConfig {
     /// With a GPU backend: whether a missing adapter is an error (`relief bench --backend
     /// gpu|both`) or a stated skip (the report, which must run on any machine).
     pub gpu_required: bool,
+    /// With a GPU backend: which GPU pipelines draw the techniques.
+    pub pipelines: PipelineSelection,
+    /// With a GPU backend: how the GPU phase warms up and times its batches
+    /// ([`renderlab_gpu::time_steady`]).
+    pub steady: SteadySettings,
+}
+
+/// Which GPU pipelines a relief run measures (the values of `relief bench --pipeline`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum PipelineSelection {
+    /// The fragment pipeline (hardware rasterization, the technique in the fragment shader:
+    /// what engines use).
+    Fragment,
+    /// The compute pipeline (ray-cast visibility buffer, the technique in a compute shader).
+    Compute,
+    /// The faster of the two on this device, by a probe at start-up (POM-32 at the run's
+    /// frame size, from the first angle's camera); the records say which it took, the
+    /// findings and the page why.
+    #[default]
+    Auto,
+    /// Both, every technique on each.
+    Both,
+}
+
+impl PipelineSelection {
+    /// The pipelines it names; `None` for [`PipelineSelection::Auto`], which a probe decides.
+    pub fn fixed(self) -> Option<Vec<ReliefPipeline>> {
+        match self {
+            PipelineSelection::Fragment => Some(vec![ReliefPipeline::Fragment]),
+            PipelineSelection::Compute => Some(vec![ReliefPipeline::Compute]),
+            PipelineSelection::Auto => None,
+            PipelineSelection::Both => Some(ReliefPipeline::ALL.to_vec()),
+        }
+    }
 }
 
 /// Which renderers a relief run measures (the values of `relief bench --backend`).
@@ -48,8 +83,8 @@ pub enum Backend {
     /// The GPU renderer alone (wgpu on Vulkan: a GPU, or lavapipe on the CPU); the exact
     /// reference it is measured against is still the CPU's.
     Gpu,
-    /// Both, with their repetitions interleaved frame by frame, so that the ratio of their
-    /// whole-frame times is measured under the same load.
+    /// Both: per angle the CPU frames first, then the GPU frames with nothing else running,
+    /// and the ratio of their whole-frame times.
     Both,
 }
 
@@ -176,6 +211,8 @@ impl Default for ReliefBenchConfig {
             backend: Backend::Cpu,
             gpu_subset: None,
             gpu_required: true,
+            pipelines: PipelineSelection::Auto,
+            steady: SteadySettings::default(),
         }
     }
 }
@@ -197,6 +234,14 @@ mod tests {
             assert_eq!(m.kernel, expected, "{}", m.technique);
         }
         assert!(methods(&[], Some(KernelChoice::Auto)).iter().all(|m| m.kernel == KernelChoice::Auto));
+    }
+
+    #[test]
+    fn a_selection_names_its_pipelines_or_leaves_them_to_the_probe() {
+        assert_eq!(PipelineSelection::Both.fixed(), Some(ReliefPipeline::ALL.to_vec()));
+        assert_eq!(PipelineSelection::Compute.fixed(), Some(vec![ReliefPipeline::Compute]));
+        assert_eq!(PipelineSelection::Auto.fixed(), None);
+        assert_eq!(PipelineSelection::default(), PipelineSelection::Auto);
     }
 
     #[test]

@@ -2,13 +2,17 @@
 //! times it, counts its height fetches, and measures its error against the exact
 //! intersection shaded the same way. Writes `results.json`, `results.csv`, images and an
 //! `index.html` that sets our figures beside the thesis's Table 4.1. With a GPU backend the
-//! same frames are drawn by the techniques' WGSL shaders (`renderlab-gpu`), measured the same
-//! way, and timed in turn with the CPU renderer for the ratio of their frame times. One frame,
-//! shaded or as a debug view, on either renderer, is drawn by [`render_frame`].
+//! same frames are drawn by the techniques' WGSL shaders (`renderlab-gpu`) on the fragment
+//! pipeline, the compute pipeline or both, measured the same way, and timed after the CPU
+//! renderer's frames, with nothing else running, until their timings hold still
+//! ([`renderlab_gpu::steady`]). One frame, shaded or as a debug view, on either renderer, is
+//! drawn by [`render_frame`].
 
 mod config;
 mod debug;
 mod device;
+mod gpu_findings;
+mod gpu_phase;
 mod gpu_side;
 mod gpu_tables;
 mod page;
@@ -19,7 +23,8 @@ mod uv_error;
 mod verdicts;
 
 pub use config::{
-    default_techniques, methods, resolve, Backend, GpuSubset, Method, ReliefBenchConfig, POM_32,
+    default_techniques, methods, resolve, Backend, GpuSubset, Method, PipelineSelection, ReliefBenchConfig,
+    POM_32,
 };
 pub use debug::{debug_view, layers_view, uv_error_view, DebugView, UV_ERROR_MAX_TEXELS};
 pub use device::device_label;

@@ -4,7 +4,7 @@
 use super::config::ReliefBenchConfig;
 use super::device::device_label;
 use super::gpu_tables::{gpu_measurements, gpu_thesis_errors, gpu_thesis_table, side_by_side};
-use super::record::{find, label, ReliefRecord};
+use super::record::{find, label, pipelines, ReliefRecord};
 use super::verdicts::{versus_pom32, THESIS_ADAPTIVE, THESIS_POMS, THESIS_TABLE_4_1};
 use crate::fixtures::BENCH_ANGLES_DEG;
 use crate::plot::{scatter_svg, Series};
@@ -98,6 +98,8 @@ pub(super) struct GpuPart<'a> {
     pub note: Option<&'a str>,
     /// The adapter, when one was opened.
     pub adapter: Option<&'a AdapterReport>,
+    /// With `--pipeline auto`: the start-up probe's reason for its choice.
+    pub probe: Option<&'a str>,
 }
 
 /// The page's GPU sections.
@@ -109,21 +111,54 @@ struct GpuSection {
     adapter: String,
     software: bool,
     timestamps: bool,
-    thesis_table: Vec<Vec<String>>,
-    thesis_errors: Vec<Vec<String>>,
+    /// The pipelines that ran, as one phrase (`fragment and compute`).
+    pipelines: String,
+    /// The start-up probe's reason, where it chose.
+    probe: Option<String>,
+    /// The steady timing's settings, as the page states them.
+    batch: u32,
+    rounds: u32,
+    window: u32,
+    tolerance_pct: String,
+    max_warmup_rounds: u32,
+    /// Table 4.1 and its errors, per pipeline.
+    tables: Vec<PipelineTables>,
     side_by_side: Vec<Vec<String>>,
     measurements: Vec<Vec<String>>,
 }
 
+/// Table 4.1 on one GPU pipeline.
+#[derive(Serialize)]
+struct PipelineTables {
+    pipeline: &'static str,
+    thesis_table: Vec<Vec<String>>,
+    thesis_errors: Vec<Vec<String>>,
+}
+
 impl GpuSection {
-    fn new(report: &AdapterReport, records: &[ReliefRecord], cpu: &[ReliefRecord], angles: &[f32]) -> Self {
+    fn new(gpu: &GpuPart, report: &AdapterReport, cpu: &[ReliefRecord], cfg: &ReliefBenchConfig) -> Self {
+        let (records, angles) = (gpu.records, &cfg.angles);
+        let names = pipelines(records);
         GpuSection {
             device: device_label(report),
             adapter: report.to_string(),
             software: report.software,
             timestamps: report.timestamps,
-            thesis_table: gpu_thesis_table(records, angles),
-            thesis_errors: gpu_thesis_errors(records, angles),
+            pipelines: names.join(" and "),
+            probe: gpu.probe.map(String::from),
+            batch: cfg.steady.batch,
+            rounds: cfg.steady.rounds,
+            window: cfg.steady.window,
+            tolerance_pct: format_number(cfg.steady.tolerance * 100.0, 1),
+            max_warmup_rounds: cfg.steady.max_warmup_rounds,
+            tables: names
+                .iter()
+                .map(|&p| PipelineTables {
+                    pipeline: p,
+                    thesis_table: gpu_thesis_table(records, p, angles),
+                    thesis_errors: gpu_thesis_errors(records, p, angles),
+                })
+                .collect(),
             side_by_side: side_by_side(cpu, records),
             measurements: gpu_measurements(records),
         }
@@ -257,7 +292,7 @@ pub(super) fn write_report(
         pass_plot: cost_error_plot(records, "shading pass time (ms)", |r| r.time_ms),
         measurements: measurements(records),
         angles,
-        gpu: gpu.adapter.map(|a| GpuSection::new(a, gpu.records, records, &cfg.angles)),
+        gpu: gpu.adapter.map(|a| GpuSection::new(&gpu, a, records, cfg)),
         gpu_note: gpu.note,
     };
     write_page(path, TEMPLATE, "Relief-surface lab", &page)

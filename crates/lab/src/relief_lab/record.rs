@@ -36,6 +36,8 @@ pub struct ReliefRecord {
     /// Whether the adapter has timestamp queries, i.e. whether `gpu_ms` could be measured
     /// (GPU records only).
     pub gpu_timestamps: Option<bool>,
+    /// The GPU pipeline that drew the frame: `fragment` or `compute` (GPU records only).
+    pub pipeline: Option<&'static str>,
     /// The technique (written as its canonical name, e.g. `pom:32`).
     pub technique: Technique,
     /// Technique family (e.g. `pom`).
@@ -55,14 +57,29 @@ pub struct ReliefRecord {
     /// Median time of the relief trace alone over the frame (the technique's own cost), ms;
     /// NaN for GPU records (a shader cannot run its trace alone).
     pub trace_ms: f64,
-    /// Median GPU time of the render pass from timestamp queries, ms (GPU records on an
-    /// adapter with timestamps; `None` otherwise).
+    /// Median GPU time of the frame's passes from timestamp queries, ms, over the frames of
+    /// the steady measurement (batches of frames recorded back to back, timed round robin
+    /// after a warm-up until successive rounds agree: [`renderlab_gpu::steady`]); GPU records
+    /// on an adapter with timestamps, `None` otherwise.
     pub gpu_ms: Option<f64>,
-    /// `1000 / gpu_ms`: the frame rate the pass alone would allow on the device.
+    /// `1000 / gpu_ms`: the frame rate the passes alone would allow on the device.
     pub gpu_fps: Option<f64>,
+    /// Fastest frame of the steady measurement, ms (where `gpu_ms` is given).
+    pub gpu_min_ms: Option<f64>,
+    /// Slowest frame of the steady measurement, ms (where `gpu_ms` is given).
+    pub gpu_max_ms: Option<f64>,
+    /// `(p90 − p10) / median` of the steady measurement's frames (where `gpu_ms` is given).
+    pub gpu_spread: Option<f64>,
+    /// Warm-up rounds this technique and pipeline needed before its rounds agreed (GPU
+    /// records; on an adapter without timestamps the steady procedure ran on the wall clock
+    /// to completion).
+    pub gpu_warmup_rounds: Option<u32>,
+    /// Whether its rounds agreed before the warm-up's cap (GPU records).
+    pub gpu_settled: Option<bool>,
     /// With `--backend both`: this technique's CPU whole-frame time over its GPU whole-frame
-    /// time at this angle (medians of repetitions interleaved frame by frame); on both the
-    /// CPU and the GPU record of the pair.
+    /// time at this angle (medians; the CPU frames are timed in the angle's CPU phase, the
+    /// GPU frames in turn with read-back after its GPU phase). On each GPU record, against
+    /// that pipeline's frame; on the CPU record, against the faster pipeline's.
     pub cpu_over_gpu: Option<f64>,
     /// With `--backend both`, on GPU records: PSNR of the GPU image against the CPU image
     /// of the same frame (covered pixels), dB; infinite (`null` in JSON) where identical.
@@ -128,6 +145,7 @@ impl ReliefRecord {
             driver: None,
             software: None,
             gpu_timestamps: None,
+            pipeline: None,
             technique: m.technique,
             family: m.technique.family(),
             kernel: m.kernel,
@@ -137,6 +155,11 @@ impl ReliefRecord {
             trace_ms: f64::NAN,
             gpu_ms: None,
             gpu_fps: None,
+            gpu_min_ms: None,
+            gpu_max_ms: None,
+            gpu_spread: None,
+            gpu_warmup_rounds: None,
+            gpu_settled: None,
             cpu_over_gpu: None,
             psnr_vs_cpu_db: None,
             time_min_ms: m.frame.min_ms,
@@ -168,6 +191,10 @@ pub struct ReliefSummary {
     pub index: PathBuf,
     /// What the GPU side did when it did not run as asked (`no GPU adapter: skipped`).
     pub gpu_note: Option<String>,
+    /// The GPU pipelines that drew the GPU records (`fragment`, `compute`); empty without.
+    pub gpu_pipelines: Vec<&'static str>,
+    /// With `--pipeline auto`: the start-up probe's one-line reason for its choice.
+    pub pipeline_probe: Option<String>,
 }
 
 /// How a technique on a kernel is labelled in tables and findings: its name, with the kernel
@@ -200,11 +227,30 @@ pub(super) fn find(records: &[ReliefRecord], k: Key, angle: f32) -> Option<&Reli
     records.iter().find(|r| key(r) == k && r.angle_deg == angle)
 }
 
-/// The record of `technique` at `angle` on the GPU.
-pub(super) fn find_gpu(records: &[ReliefRecord], technique: Technique, angle: f32) -> Option<&ReliefRecord> {
-    records
-        .iter()
-        .find(|r| r.backend == RecordBackend::Gpu && r.technique == technique && r.angle_deg == angle)
+/// The record of `technique` at `angle` on the GPU's `pipeline` (by name).
+pub(super) fn find_gpu<'a>(
+    records: &'a [ReliefRecord],
+    pipeline: &str,
+    technique: Technique,
+    angle: f32,
+) -> Option<&'a ReliefRecord> {
+    records.iter().find(|r| {
+        r.backend == RecordBackend::Gpu
+            && r.pipeline == Some(pipeline)
+            && r.technique == technique
+            && r.angle_deg == angle
+    })
+}
+
+/// The GPU pipelines of `records` by name, in the order they first appear.
+pub(super) fn pipelines(records: &[ReliefRecord]) -> Vec<&'static str> {
+    let mut out: Vec<&'static str> = Vec::new();
+    for p in records.iter().filter_map(|r| r.pipeline) {
+        if !out.contains(&p) {
+            out.push(p);
+        }
+    }
+    out
 }
 
 /// Mean over the angles of `f(record)` for one technique; `None` if any angle is missing.

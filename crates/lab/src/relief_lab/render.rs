@@ -1,7 +1,9 @@
 //! One relief frame, as `renderlab relief render` draws it: shaded or as a [`DebugView`], by
 //! the CPU renderer or by the GPU's shader. On the GPU the frame is timed on the device
 //! ([`WARMUP`] frames, then the median of [`REPS`]); its error view is measured against the
-//! CPU's exact reference, which is rasterized and rendered here. The reference and complexity
+//! CPU's exact reference, which is rasterized and rendered here. The GPU draws it with the
+//! pipeline asked for, or, with `auto`, the one a probe of the technique at the frame's size
+//! measures faster (said with the probe's reason). The reference and complexity
 //! views exist on the CPU only. With [`RenderBackend::Auto`], whatever the GPU cannot do (no
 //! adapter, no shader for the technique, a device error) is said and left to the CPU.
 
@@ -10,7 +12,7 @@ use super::run::View;
 use crate::Result;
 use glam::Vec3;
 use renderlab_core::{Camera, Image, Scene};
-use renderlab_gpu::{shader, GpuContext, GpuError, ReliefRenderer};
+use renderlab_gpu::{shader, GpuContext, GpuError, PipelineChoice, ReliefRenderer};
 use renderlab_relief::memory::ReliefMemory;
 use renderlab_relief::render::{render, render_reference};
 use renderlab_relief::{Kernel, ReliefMaterial, Technique};
@@ -66,6 +68,9 @@ pub struct FrameRequest<'a> {
     pub debug: DebugView,
     /// The renderer.
     pub backend: RenderBackend,
+    /// On the GPU: the pipeline that draws it (`auto`: the faster for this technique and
+    /// frame, by the renderer's probe).
+    pub pipeline: PipelineChoice,
 }
 
 /// Draws the frame `req` asks for, calling `say` with each line worth telling the user (what
@@ -141,6 +146,16 @@ fn draw_on_gpu(
     shader::module_source(t)?;
     let ctx = GpuContext::new()?;
     let mut renderer = ReliefRenderer::new(&ctx, scene, mats)?;
+    match req.pipeline.fixed() {
+        Some(p) => {
+            renderer.set_pipeline(p)?;
+            say(&format!("{p} pipeline (asked for)"));
+        }
+        None => {
+            let probe = renderer.probe(camera, t)?;
+            say(&format!("{} pipeline, chosen by a probe: {}", probe.chosen, probe.reason));
+        }
+    }
     let frame = renderer.render(camera, t)?;
     let timing = renderer.time(camera, t, WARMUP, REPS)?;
     let gpu = match timing.gpu_ms {
@@ -148,7 +163,8 @@ fn draw_on_gpu(
         None => "no GPU time (the adapter has no timestamp queries)".to_string(),
     };
     say(&format!(
-        "{t} (gpu backend, adapter {}): {} pixels, {gpu}, {:.3} ms wall clock, medians of {REPS} after {WARMUP} warm-up frames",
+        "{t} (gpu backend, {} pipeline, adapter {}): {} pixels, {gpu}, {:.3} ms wall clock, medians of {REPS} after {WARMUP} warm-up frames",
+        renderer.pipeline_kind(),
         ctx.report,
         frame.mask.pixels().iter().filter(|&&m| m).count(),
         timing.wall_ms

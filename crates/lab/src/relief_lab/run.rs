@@ -1,8 +1,9 @@
 //! The run: rasterize each view, time every technique, then measure its error.
 
 use super::config::{resolve, Backend, ReliefBenchConfig};
-use super::gpu_side::{self, time_gpu, time_interleaved, GpuAnalysis, GpuTimes};
-use super::gpu_tables::gpu_findings;
+use super::gpu_findings::gpu_findings;
+use super::gpu_phase::{choose_pipelines, time_gpu_phase, GpuConfig};
+use super::gpu_side::{self, GpuAnalysis};
 use super::page::{write_report, GpuPart, ImageSet};
 use super::record::{label, slug, Measured, RecordBackend, ReliefRecord, ReliefSummary};
 use super::uv_error::{mean_and_p95, uv_error_map, write_frame_images, FrameImages};
@@ -50,15 +51,23 @@ impl View {
 /// Runs the relief benchmark on `material` (the thesis: bricks, alone on its wall) and writes
 /// everything under `out`.
 ///
-/// Per angle, every technique is timed first, one after another with the machine to itself;
-/// then the untimed work (the counted render, the metrics, the images) runs for all of them
-/// at once, spread over the threads. The order changes no figure and no byte of an image.
+/// Per angle, three phases that never overlap:
 ///
-/// With a GPU backend ([`ReliefBenchConfig::backend`]) the device is opened first (no
-/// adapter, or a frame larger than its textures, is an error before any work unless
-/// [`ReliefBenchConfig::gpu_required`] is off, in which case the summary says the GPU was
-/// skipped); each technique's shader is timed alone (`gpu`) or frame by frame in turn with
-/// the CPU pass (`both`), and its frame is measured against the same reference.
+/// 1. **CPU**: every CPU method timed in turn, repetition after repetition, so that a passing
+///    disturbance does not fall on one method alone; then each one's trace alone.
+/// 2. **GPU** (with a GPU backend, [`ReliefBenchConfig::backend`]): every technique on every
+///    pipeline of the run timed with nothing else running ([`super::gpu_phase`]): steady
+///    batches warmed up until successive rounds agree, then whole frames with read-back in
+///    turn, whose median the paired CPU method's median is divided by for `cpu_over_gpu`
+///    (`both`).
+/// 3. **Untimed**: the references, then the counted render, the metrics and the images of
+///    every method at once, spread over the threads, and each GPU configuration's debug
+///    frame. The order changes no figure and no byte of an image.
+///
+/// With a GPU backend the device is opened first (no adapter, or a frame larger than its
+/// textures, is an error before any work unless [`ReliefBenchConfig::gpu_required`] is off,
+/// in which case the summary says the GPU was skipped), and the pipelines are chosen
+/// ([`ReliefBenchConfig::pipelines`]; `auto` probes once).
 pub fn run_relief_bench(
     material: &Material,
     cfg: &ReliefBenchConfig,
@@ -83,90 +92,83 @@ pub fn run_relief_bench(
         Some(ctx) => Some(ReliefRenderer::new(ctx, &scene, mats)?),
         None => None,
     };
-    // The techniques the GPU runs at an angle: each once, whatever its CPU kernels.
-    let has_gpu = renderer.is_some();
-    let gpu_techniques = |angle: f32| -> Vec<Technique> {
-        let mut v: Vec<Technique> = Vec::new();
+    let (pipelines, probe) = match &mut renderer {
+        Some(r) => {
+            progress(0, 1, "choosing the GPU pipelines");
+            choose_pipelines(r, cfg)?
+        }
+        None => (Vec::new(), None),
+    };
+    // The GPU configurations at an angle: each technique once, whatever its CPU kernels, on
+    // each pipeline.
+    let gpu_configs = |angle: f32| -> Vec<GpuConfig> {
+        let mut v: Vec<GpuConfig> = Vec::new();
         for &(t, _) in &methods {
-            if has_gpu && cfg.on_gpu(t, angle) && !v.contains(&t) {
-                v.push(t);
+            if cfg.on_gpu(t, angle) && v.iter().all(|&(g, _)| g != t) {
+                v.extend(pipelines.iter().map(|&p| (t, p)));
             }
         }
         v
     };
     let cpu_count = if cfg.backend.cpu() { methods.len() } else { 0 };
-    let total: usize = cfg.angles.iter().map(|&a| cpu_count + gpu_techniques(a).len()).sum();
+    let total: usize = cfg.angles.iter().map(|&a| cpu_count + gpu_configs(a).len()).sum();
     let mut done = 0;
     let (mut records, mut gpu_records) = (Vec::new(), Vec::new());
     let mut images: Vec<ImageSet> = Vec::new();
     for &angle in &cfg.angles {
         let camera = benchmark_camera(angle, cfg.width, cfg.height);
         let view = View::new(&scene, &camera, angle);
-        let on_gpu = gpu_techniques(angle);
-        let mut timings = Vec::with_capacity(methods.len());
-        // Each GPU-timed technique with, when it was timed in turn with a CPU pass, the index
-        // of that CPU method and the CPU pass's median.
-        let mut gpu_runs: Vec<GpuRun> = Vec::new();
         // One framebuffer serves every timed frame, as a renderer reuses its own.
         let mut frame = FusedFrame::new(cfg.width, cfg.height);
-        // Each GPU shader is paired with its technique's fastest CPU kernel.
-        let paired = |i: usize, t: Technique| {
-            renderer.is_some()
-                && cfg.backend == Backend::Both
-                && on_gpu.contains(&t)
-                && paired_method(&methods, t) == Some(i)
-        };
-        // The CPU methods not paired with a shader are timed in turn, repetition after
-        // repetition, so that a passing disturbance does not fall on one method alone.
-        let alone: Vec<usize> =
-            (0..methods.len()).filter(|&i| cfg.backend.cpu() && !paired(i, methods[i].0)).collect();
-        let mut alone_times: Vec<Option<Timing>> = vec![None; methods.len()];
-        if !alone.is_empty() {
-            progress(done, total, &format!("{angle}°: {} CPU methods, timed in turn", alone.len()));
-            let times = measure_round_robin(cfg.warmup, cfg.reps, alone.len(), |k| {
-                let (t, kernel) = methods[alone[k]];
+        let mut timings: Vec<(Timing, Timing)> = Vec::with_capacity(cpu_count);
+        if cpu_count > 0 {
+            progress(done, total, &format!("{angle}°: {} CPU methods, timed in turn", methods.len()));
+            // The whole frame a user waits for: scene to 8-bit pixels, rasterization included.
+            let passes = measure_round_robin(cfg.warmup, cfg.reps, methods.len(), |k| {
+                let (t, kernel) = methods[k];
                 render_fused(&scene, &camera, mats, t, kernel, true, &mut frame)
             })?;
-            for (&i, t) in alone.iter().zip(times) {
-                alone_times[i] = Some(t);
-            }
-        }
-        for (i, &(t, kernel)) in methods.iter().enumerate().filter(|_| cfg.backend.cpu()) {
-            progress(done, total, &format!("{angle}°: {}", label(t, kernel)));
-            // The whole frame a user waits for: scene to 8-bit pixels, rasterization included.
-            let mut cpu_pass = || render_fused(&scene, &camera, mats, t, kernel, true, &mut frame);
-            let (pass, ratio) = match (&mut renderer, alone_times[i]) {
-                (_, Some(pass)) => (pass, None),
-                (Some(r), None) => {
-                    let (pass, gpu) = time_interleaved(r, &camera, t, cfg.warmup, cfg.reps, || {
-                        cpu_pass().map_err(Into::into)
-                    })?;
-                    gpu_runs.push((t, gpu, Some((i, pass.median_ms))));
-                    done += 1;
-                    (pass, Some(pass.median_ms / gpu.wall.median_ms))
-                }
-                (None, None) => {
-                    // Not reached (every method without a shader is timed in turn above); kept
-                    // so that the timing never depends on that bookkeeping.
-                    let (pass, rendered): (Timing, _) = measure(cfg.warmup, cfg.reps, &mut cpu_pass);
-                    rendered?;
-                    (pass, None)
-                }
-            };
-            // The pass just traced the same frame with the same maps: the trace is warm.
-            let (trace, _) = measure(0, cfg.reps, || trace_only(view.input(), mats, t, kernel));
-            timings.push((pass, trace, ratio));
-            done += 1;
-        }
-        if let Some(r) = &mut renderer {
-            let alone: Vec<Technique> =
-                on_gpu.iter().copied().filter(|&t| gpu_runs.iter().all(|(g, _, _)| *g != t)).collect();
-            for t in alone {
-                progress(done, total, &format!("{angle}°: {} (GPU)", t.name()));
-                gpu_runs.push((t, time_gpu(r, &camera, t, cfg.warmup, cfg.reps)?, None));
+            for (&(t, kernel), pass) in methods.iter().zip(passes) {
+                progress(done, total, &format!("{angle}°: {}", label(t, kernel)));
+                let (trace, _) = measure(0, cfg.reps, || trace_only(view.input(), mats, t, kernel));
+                timings.push((pass, trace));
                 done += 1;
             }
         }
+        let configs = if renderer.is_some() { gpu_configs(angle) } else { Vec::new() };
+        let gpu_times = match &mut renderer {
+            Some(r) if !configs.is_empty() => {
+                progress(
+                    done,
+                    total,
+                    &format!("{angle}°: GPU, {} configurations, timed in turn", configs.len()),
+                );
+                let times = time_gpu_phase(r, &camera, &configs, cfg)?;
+                done += configs.len();
+                times
+            }
+            _ => Vec::new(),
+        };
+        // Each GPU configuration's CPU partner under `both`: its technique's method on the
+        // fastest CPU kernel, with that method's whole-frame median.
+        let partner: Vec<Option<(usize, f64)>> = configs
+            .iter()
+            .map(|&(t, _)| {
+                let i = paired_method(&methods, t).filter(|_| cfg.backend == Backend::Both)?;
+                Some((i, timings.get(i)?.0.median_ms))
+            })
+            .collect();
+        // A CPU method's ratio: against the fastest whole frame among its technique's
+        // pipelines.
+        let cpu_ratio = |i: usize| -> Option<f64> {
+            let fastest = partner
+                .iter()
+                .zip(&gpu_times)
+                .filter(|(p, _)| p.is_some_and(|(j, _)| j == i))
+                .map(|(_, g)| g.wall.median_ms)
+                .reduce(f64::min)?;
+            Some(timings[i].0.median_ms / fastest)
+        };
         progress(done, total, &format!("{angle}°: references, errors and images"));
         let mut refs: Vec<(Shading, Frame)> = Vec::new();
         for &(t, _) in &methods {
@@ -190,22 +192,21 @@ pub fn run_relief_bench(
             img_dir: &img_dir,
             cfg,
         };
-        let keep: Vec<bool> = (0..timings.len())
-            .map(|i| gpu_runs.iter().any(|(_, _, p)| p.is_some_and(|(j, _)| j == i)))
-            .collect();
         let analysed: Vec<(ReliefRecord, Option<ImageSet>, Option<Frame>)> = methods
             .par_iter()
             .zip(&timings)
-            .zip(&keep)
-            .map(|((&(t, kernel), &(pass, trace, ratio)), &keep)| {
-                ctx.analyse(t, kernel, pass, trace, ratio, keep)
+            .enumerate()
+            .map(|(i, (&(t, kernel), &(pass, trace)))| {
+                let ratio = cpu_ratio(i);
+                ctx.analyse(t, kernel, pass, trace, ratio, ratio.is_some())
             })
             .collect::<crate::Result<_>>()?;
         if let (Some(r), Some(gctx)) = (&mut renderer, &gpu_ctx) {
             let g = GpuAnalysis { report: &gctx.report, material, img_dir: &img_dir, cfg };
-            for &(t, times, paired) in &gpu_runs {
+            for ((&config, &times), paired) in configs.iter().zip(&gpu_times).zip(&partner) {
                 let cpu = paired.and_then(|(i, ms)| analysed[i].2.as_ref().map(|f| (&f.image, &f.mask, ms)));
-                let (rec, set) = g.record(r, &camera, t, angle, times, reference_for(&refs, t), cpu)?;
+                let reference = reference_for(&refs, config.0);
+                let (rec, set) = g.record(r, &camera, config, angle, times, reference, cpu)?;
                 gpu_records.push(rec);
                 images.extend(set);
             }
@@ -219,8 +220,12 @@ pub fn run_relief_bench(
     let all: Vec<ReliefRecord> = records.iter().chain(&gpu_records).cloned().collect();
     write_json(out.join("results.json"), &all)?;
     write_csv(out.join("results.csv"), &all)?;
+    let gpu_pipelines: Vec<&'static str> = pipelines.iter().map(|p| p.name()).collect();
     let mut findings = findings(&records, &cfg.angles);
-    findings.extend(gpu_findings(&records, &gpu_records, &cfg.angles));
+    if let Some(reason) = &probe {
+        findings.push(format!("GPU pipeline chosen by the start-up probe: {reason}."));
+    }
+    findings.extend(gpu_findings(&records, &gpu_records, &cfg.angles, &cfg.steady));
     findings.extend(gpu_note.clone());
     let headline = headline(&records, &cfg.angles);
     let index = out.join("index.html");
@@ -228,15 +233,16 @@ pub fn run_relief_bench(
         records: &gpu_records,
         note: gpu_note.as_deref(),
         adapter: gpu_ctx.as_ref().map(|c| &c.report),
+        probe: probe.as_deref(),
     };
     write_report(&index, material, cfg, &records, gpu, &findings, &images)?;
     progress(total, total, "done");
     records.extend(gpu_records);
-    Ok(ReliefSummary { records, findings, headline, index, gpu_note })
+    Ok(ReliefSummary { records, findings, headline, index, gpu_note, gpu_pipelines, pipeline_probe: probe })
 }
 
-/// The method a GPU shader of `t` is timed in turn with: the one on `t`'s fastest kernel here
-/// (the kernel `auto` picks), else `t`'s first.
+/// The method a GPU configuration of `t` is paired with: the one on `t`'s fastest kernel
+/// here (the kernel `auto` picks), else `t`'s first.
 fn paired_method(methods: &[(Technique, Kernel)], t: Technique) -> Option<usize> {
     let best = t.kernel(KernelChoice::Auto).ok();
     methods
@@ -244,10 +250,6 @@ fn paired_method(methods: &[(Technique, Kernel)], t: Technique) -> Option<usize>
         .position(|&(m, k)| m == t && Some(k) == best)
         .or_else(|| methods.iter().position(|&(m, _)| m == t))
 }
-
-/// A technique timed on the GPU at one angle: its times and, when it was timed in turn with a
-/// CPU pass, the index of that CPU method and the CPU pass's median (ms).
-type GpuRun = (Technique, GpuTimes, Option<(usize, f64)>);
 
 /// What the untimed half of a run needs to turn one technique's timings into a record.
 struct Analysis<'a> {
@@ -265,8 +267,8 @@ impl Analysis<'_> {
     /// Renders `t`'s fused frame once more with its per-pixel records and counters,
     /// measures its error against the reference of its shading and its precision against
     /// the float renderer's frame, and writes its images; hands the frame back when `keep`
-    /// (a GPU frame is to be compared with it). `cpu_over_gpu` is the ratio measured when the
-    /// frame was timed in turn with the GPU's.
+    /// (a GPU frame is to be compared with it). `cpu_over_gpu` is the ratio of its whole
+    /// frame to the GPU's (`--backend both`).
     fn analyse(
         &self,
         t: Technique,

@@ -3,8 +3,9 @@
 
 use crate::error::Result;
 use crate::lab::{create_dir, existing, files_under, Lab, LabSummary, Progress};
-use crate::relief_lab::{run_relief_bench, Backend, GpuSubset, ReliefBenchConfig, POM_32};
+use crate::relief_lab::{run_relief_bench, Backend, GpuSubset, PipelineSelection, ReliefBenchConfig, POM_32};
 use renderlab_core::Material;
+use renderlab_gpu::SteadySettings;
 use renderlab_relief::techniques::basic::Basic;
 use renderlab_relief::Technique;
 use renderlab_texture::materials;
@@ -27,9 +28,10 @@ impl Lab for ReliefLab {
 
     /// Bricks at the built-in size, the lab's defaults with five timed repetitions (medians of
     /// three proved too noisy for the adaptive ratio; BENCHMARKS.md, "Relief lab"), and the
-    /// CPU renderer against the GPU's shaders for the four methods the headline compares
-    /// (basic, POM-32, adaptive and the fastest, cone-newton, at 0° and 60°) where an adapter
-    /// exists; without one the page says the GPU was skipped.
+    /// CPU renderer against the GPU's shaders, on both GPU pipelines (fragment and compute),
+    /// for the four methods the headline compares (basic, POM-32, adaptive and the fastest,
+    /// cone-newton, at 0° and 60°) where an adapter exists; without one the page says the
+    /// GPU was skipped.
     fn report_preset() -> Result<Self> {
         let material = materials::material("bricks", materials::DEFAULT_SIZE)?;
         let techniques = vec![
@@ -44,15 +46,19 @@ impl Lab for ReliefLab {
             backend: Backend::Both,
             gpu_subset: Some(gpu_subset),
             gpu_required: false,
+            pipelines: PipelineSelection::Both,
             ..ReliefBenchConfig::default()
         };
         Ok(ReliefLab { material, config })
     }
 
-    /// A 640×400 frame, one repetition and no warm-up.
+    /// A 640×400 frame, one repetition and no warm-up; on the GPU, batches of 2 frames, 2
+    /// measured rounds and at most 6 warm-up rounds.
     fn quick_preset() -> Result<Self> {
         let mut lab = Self::report_preset()?;
-        lab.config = ReliefBenchConfig { width: 640, height: 400, reps: 1, warmup: 0, ..lab.config };
+        let steady =
+            SteadySettings { batch: 2, rounds: 2, max_warmup_rounds: 6, ..SteadySettings::default() };
+        lab.config = ReliefBenchConfig { width: 640, height: 400, reps: 1, warmup: 0, steady, ..lab.config };
         Ok(lab)
     }
 

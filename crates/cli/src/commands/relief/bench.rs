@@ -10,7 +10,8 @@ use crate::commands::checks::{check_memory, check_out_dir, create_dir, frame_siz
 use crate::progress::Progress;
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use renderlab_lab::relief_lab::{methods, run_relief_bench, Backend, ReliefBenchConfig};
+use renderlab_gpu::SteadySettings;
+use renderlab_lab::relief_lab::{methods, run_relief_bench, Backend, PipelineSelection, ReliefBenchConfig};
 use renderlab_relief::{KernelChoice, Technique};
 use std::path::PathBuf;
 
@@ -22,6 +23,15 @@ const REPS: Whole<u32> = Whole::new(1, 1000);
 const WARMUP: Whole<u32> = Whole::new(0, 100);
 /// The range of `--cone-size`.
 const CONE_SIZE: Whole<u32> = Whole::new(16, 4096);
+/// The range of `--gpu-batch` (frames recorded back to back; each holds a pair of timestamp
+/// queries, of which a query set holds 2048).
+const GPU_BATCH: Whole<u32> = Whole::new(1, 256);
+/// The range of `--gpu-rounds`.
+const GPU_ROUNDS: Whole<u32> = Whole::new(1, 100);
+/// The range of `--gpu-max-warmup` (0: no warm-up, every timing unsettled).
+const GPU_MAX_WARMUP: Whole<u32> = Whole::new(0, 1000);
+/// The range of `--gpu-tolerance`, percent.
+const GPU_TOLERANCE: Interval = Interval::above(0.0, 50.0);
 
 /// `renderlab relief bench`.
 #[derive(Args, Debug)]
@@ -42,10 +52,34 @@ pub struct BenchArgs {
     #[arg(long, value_name = "WxH", conflicts_with_all = ["width", "height"], value_parser = parse_size)]
     pub resolution: Option<(u32, u32)>,
     /// Renderers: cpu; gpu (the techniques' WGSL shaders on wgpu: a GPU, or Mesa's lavapipe on
-    /// the CPU; an error when no adapter is found); or both, side by side, their frames timed
-    /// in turn, with the ratio of their frame times.
+    /// the CPU; an error when no adapter is found); or both, side by side (per angle the CPU
+    /// frames, then the GPU frames alone), with the ratio of their frame times.
     #[arg(long, value_enum, default_value_t = Backend::Cpu)]
     pub backend: Backend,
+    /// GPU pipelines (with --backend gpu|both; see --help).
+    #[arg(long, value_enum, default_value_t = PipelineSelection::Auto, long_help = PIPELINE_HELP)]
+    pub pipeline: PipelineSelection,
+    /// Frames per GPU batch, in [`GPU_BATCH`].
+    #[arg(long, default_value_t = SteadySettings::default().batch, value_parser = in_range(GPU_BATCH),
+          help = format!("GPU timing: frames per batch, recorded back to back so that the GPU does not idle \
+                          between them ({GPU_BATCH})"))]
+    pub gpu_batch: u32,
+    /// Measured GPU rounds after the warm-up, in [`GPU_ROUNDS`].
+    #[arg(long, default_value_t = SteadySettings::default().rounds, value_parser = in_range(GPU_ROUNDS),
+          help = format!("GPU timing: measured rounds after the warm-up, one batch per technique and \
+                          pipeline each ({GPU_ROUNDS})"))]
+    pub gpu_rounds: u32,
+    /// Most GPU warm-up rounds, in [`GPU_MAX_WARMUP`].
+    #[arg(long, default_value_t = SteadySettings::default().max_warmup_rounds, value_parser = in_range(GPU_MAX_WARMUP),
+          help = format!("GPU timing: most warm-up rounds before measuring; timings that have not agreed by \
+                          then are recorded as not settled ({GPU_MAX_WARMUP})"))]
+    pub gpu_max_warmup: u32,
+    /// GPU warm-up tolerance in percent, in [`GPU_TOLERANCE`].
+    #[arg(long, default_value_t = 3.0, value_parser = finite_in(GPU_TOLERANCE),
+          help = format!("GPU timing: the warm-up ends once every technique's batch medians of {} successive \
+                          rounds lie within this many percent of their mean ({GPU_TOLERANCE})",
+                         SteadySettings::default().window))]
+    pub gpu_tolerance: f32,
     /// View angles in degrees from the wall normal, comma-separated, each in [`ANGLE`].
     #[arg(long, value_delimiter = ',', default_value = "0,45,60,80", value_parser = finite_in(ANGLE),
           help = format!("View angles in degrees from the wall normal, comma-separated (each in {ANGLE})"))]
@@ -62,9 +96,9 @@ pub struct BenchArgs {
     /// Timed repetitions per measurement, in [`REPS`] (the median is reported).
     #[arg(long, default_value_t = 5, value_parser = in_range(REPS), help = format!(
         "Timed repetitions per measurement ({REPS}; the median is reported). At each angle the CPU \
-         frames of the techniques are timed in turn, one repetition of each after another (and each \
-         paired with its GPU frame under --backend both), so that a passing disturbance does not \
-         fall on one technique alone"))]
+         frames of the techniques are timed in turn, one repetition of each after another, so that a \
+         passing disturbance does not fall on one technique alone; then, with a GPU backend, the GPU's \
+         whole frames with read-back, in turn likewise"))]
     pub reps: u32,
     /// Untimed warm-up renders per measurement, in [`WARMUP`].
     #[arg(long, default_value_t = 1, value_parser = in_range(WARMUP),
@@ -81,6 +115,13 @@ pub struct BenchArgs {
     #[command(flatten)]
     pub complexity: ComplexityFlags,
 }
+
+/// `--pipeline`'s long help (clap lists the values after it, from their docs).
+const PIPELINE_HELP: &str = "GPU pipelines that draw the techniques (with --backend gpu|both). With auto, a probe at \
+start-up times POM-32 on both pipelines at the run's frame size from the first angle's camera and keeps the faster; \
+the findings and the page give its figures and reason. Per angle the GPU is timed after the CPU, with nothing else \
+running: every technique and pipeline in turn, batches of --gpu-batch frames back to back, warmed up until successive \
+rounds agree (--gpu-tolerance, --gpu-max-warmup), then --gpu-rounds measured rounds";
 
 /// `renderlab relief bench`.
 pub(crate) fn run(a: BenchArgs) -> Result<()> {
@@ -107,6 +148,14 @@ pub(crate) fn run(a: BenchArgs) -> Result<()> {
         backend: a.backend,
         gpu_subset: None,
         gpu_required: true,
+        pipelines: a.pipeline,
+        steady: SteadySettings {
+            batch: a.gpu_batch,
+            rounds: a.gpu_rounds,
+            max_warmup_rounds: a.gpu_max_warmup,
+            tolerance: f64::from(a.gpu_tolerance) / 100.0,
+            ..SteadySettings::default()
+        },
     };
     if a.material.own.albedo.is_none() {
         check_texture_size(a.material.texture_size)?;
@@ -120,6 +169,9 @@ pub(crate) fn run(a: BenchArgs) -> Result<()> {
     p.finish();
     for f in &summary.findings {
         println!("{f}");
+    }
+    if !summary.gpu_pipelines.is_empty() {
+        println!("GPU pipelines: {}", summary.gpu_pipelines.join(", "));
     }
     println!("wrote {} ({} measurements)", summary.index.display(), summary.records.len());
     Ok(())

@@ -9,6 +9,7 @@ use crate::commands::checks::{check_memory, check_out_file, frame_size};
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
 use renderlab_core::io;
+use renderlab_gpu::PipelineChoice;
 use renderlab_lab::fixtures::{benchmark_camera, benchmark_scene, room_camera, thesis_room};
 use renderlab_lab::relief_lab::{render_frame, DebugView, FrameRequest, RenderBackend};
 use renderlab_relief::{KernelChoice, Map, ReliefMaterial, Technique};
@@ -64,6 +65,13 @@ pub struct RenderArgs {
     /// always computed on the CPU.
     #[arg(long, value_enum, default_value_t = RenderBackend::Cpu)]
     pub backend: RenderBackend,
+    /// GPU pipeline (see --help).
+    #[arg(long, default_value_t = PipelineChoice::Auto, value_parser = PipelineChoice::parse,
+          long_help = "GPU pipeline (with --backend gpu|auto): fragment (the mesh rasterized by the hardware, \
+the technique in the fragment shader: what engines use), compute (primary visibility ray-cast through the GPU's \
+BVH, the technique in a compute shader) or auto (default: a probe times the technique on both at the frame's \
+size and takes the faster; the choice and its reason are printed)")]
+    pub pipeline: PipelineChoice,
     /// Complexity-map parameters for adaptive POM.
     #[command(flatten)]
     pub complexity: ComplexityFlags,
@@ -114,6 +122,7 @@ pub(crate) fn run(a: RenderArgs) -> Result<()> {
         kernel,
         debug: a.debug,
         backend: a.backend,
+        pipeline: a.pipeline,
     };
     let image = render_frame(&request, &mut |line| println!("{line}"))?;
     io::save_color(&a.out, &image)?;
