@@ -6,6 +6,7 @@
 
 mod compute;
 mod display;
+mod formats;
 pub mod pipeline;
 mod renderer;
 

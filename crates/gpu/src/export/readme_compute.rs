@@ -132,8 +132,8 @@ pub fn compute_section(s: &mut String, shaders: &[ExportShader], parsed: &[Parse
             }
             Lang::Spv => format!(
                 "`GLCompute` entry points with `LocalSize {gx} {gy} {gz}` in `NAME.spv`, run with \
-                 `vkCmdDispatch`. The output formats beyond the basic storage set (`out_uv`'s Rg32f) make \
-                 the module declare the capability `StorageImageExtendedFormats`."
+                 `vkCmdDispatch`. Every storage format is in Vulkan's basic set (Rgba32f, R32ui), so \
+                 the module needs no storage-format capability."
             ),
         };
         let _ = writeln!(s, "- **{l}**: {note}");

@@ -10,6 +10,7 @@
 //! units alone. The relief scenes are a few hundred triangles at most, so the cast is a
 //! short walk beside the march.
 
+use super::formats::{COLOR_FORMAT, LAYERS_FORMAT, UV_FORMAT};
 use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
 use crate::mesh::GpuMesh;
@@ -118,9 +119,9 @@ fn mesh_layout(device: &wgpu::Device, vis_read_only: bool) -> wgpu::BindGroupLay
             storage(VERTICES, true),
             storage(INDICES, true),
             storage(OBJECTS, true),
-            texture(OUT_COLOR, super::renderer::COLOR_FORMAT),
-            texture(OUT_UV, super::renderer::UV_FORMAT),
-            texture(OUT_LAYERS, super::renderer::LAYERS_FORMAT),
+            texture(OUT_COLOR, COLOR_FORMAT),
+            texture(OUT_UV, UV_FORMAT),
+            texture(OUT_LAYERS, LAYERS_FORMAT),
         ],
     })
 }

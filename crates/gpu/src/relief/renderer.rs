@@ -7,6 +7,7 @@
 //! and a CPU frame of the same technique can be compared pixel by pixel.
 
 use super::compute::{scene_geometry, ComputeSide, Geometry};
+use super::formats::{COLOR_FORMAT, DEPTH_FORMAT, LAYERS_FORMAT, UV_FORMAT};
 use super::pipeline::{PipelineProbe, ReliefPipeline};
 use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
@@ -23,16 +24,6 @@ use renderlab_relief::render::shade::ShadowMode;
 use renderlab_relief::{Kernel, Map, ReliefMaterial, Shading, Technique};
 use std::collections::HashMap;
 use std::time::Instant;
-
-/// The colour target: linear light in 32-bit floats, as the CPU's `Image<Vec3>`, so that the
-/// comparison sees no quantisation; alpha marks covered pixels.
-pub(super) const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
-/// The debug target with the displaced UV per pixel.
-pub(super) const UV_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
-/// The debug target with the planned layer count per pixel.
-pub(super) const LAYERS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
-/// The depth buffer.
-const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// The frame's constants, laid out as `Frame` in `frame.wgsl`.
 #[repr(C)]
@@ -508,11 +499,11 @@ impl<'a> ReliefRenderer<'a> {
         let targets = self.targets.as_ref().expect("prepare sized the targets");
         let (w, h) = (targets.width, targets.height);
         let color: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&read_texture(self.ctx, &targets.color, 16)?);
-        let uv: Vec<[f32; 2]> = bytemuck::pod_collect_to_vec(&read_texture(self.ctx, &targets.uv, 8)?);
+        let uv: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&read_texture(self.ctx, &targets.uv, 16)?);
         let layers: Vec<u32> = bytemuck::pod_collect_to_vec(&read_texture(self.ctx, &targets.layers, 4)?);
         Ok(GpuFrame {
             image: sized(w, h, color.iter().map(|c| Vec3::new(c[0], c[1], c[2])).collect()),
-            uv: sized(w, h, uv.iter().map(|&c| Vec2::from(c)).collect()),
+            uv: sized(w, h, uv.iter().map(|c| Vec2::new(c[0], c[1])).collect()),
             layers: sized(w, h, layers.iter().map(|&l| l.min(u16::MAX as u32) as u16).collect()),
             mask: sized(w, h, color.iter().map(|c| c[3] > 0.5).collect()),
         })

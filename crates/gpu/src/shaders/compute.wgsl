@@ -10,7 +10,7 @@
 
 @group(2) @binding(0) var<storage, read> vis_buffer: array<vec4<u32>>;
 @group(2) @binding(4) var out_color: texture_storage_2d<rgba32float, write>;
-@group(2) @binding(5) var out_uv: texture_storage_2d<rg32float, write>;
+@group(2) @binding(5) var out_uv: texture_storage_2d<rgba32float, write>;
 @group(2) @binding(6) var out_layers: texture_storage_2d<r32uint, write>;
 
 // The surface at the centre of `pixel`, on the triangle the visibility buffer names: the

@@ -52,12 +52,12 @@ fn fs_color(in: Varyings) -> @location(0) vec4<f32> {
 // The image with the debug targets: displaced UV and planned layer count.
 struct DebugOut {
     @location(0) color: vec4<f32>,
-    @location(1) uv: vec2<f32>,
+    @location(1) uv: vec4<f32>,
     @location(2) layers: u32,
 }
 
 @fragment
 fn fs_debug(in: Varyings) -> DebugOut {
     let s = shade(surface(in));
-    return DebugOut(vec4<f32>(s.color, 1.0), s.uv, s.layers);
+    return DebugOut(vec4<f32>(s.color, 1.0), vec4<f32>(s.uv, 0.0, 0.0), s.layers);
 }

@@ -7,7 +7,7 @@
 
 @group(1) @binding(0) var<storage, read_write> vis_buffer: array<vec4<u32>>;
 @group(1) @binding(4) var out_color: texture_storage_2d<rgba32float, write>;
-@group(1) @binding(5) var out_uv: texture_storage_2d<rg32float, write>;
+@group(1) @binding(5) var out_uv: texture_storage_2d<rgba32float, write>;
 @group(1) @binding(6) var out_layers: texture_storage_2d<r32uint, write>;
 
 // Back faces stepped over along one ray before the pixel counts as background.
