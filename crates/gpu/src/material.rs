@@ -14,10 +14,17 @@
 //! packed word, and the technique needs the patch's gradient and the cell's ratio as well).
 //! A material without a cone map binds a 1×1 stand-in that no shader reads: the renderer
 //! refuses techniques that need a map its materials lack.
+//!
+//! The min-depth pyramid of space leaping goes up as one `R32Float` texture with its levels
+//! side by side (`upload.rs`'s atlas), read with `textureLoad` at level 0: one texture
+//! level, addressed alike for every pyramid level. (As a mipmapped texture it read wrong on
+//! lavapipe: in a shader that also loaded other levels, `textureLoad` at level 0 returned
+//! the value of the texel diagonally before the one asked for, while the same values in a
+//! single-level texture read right; the atlas sidesteps that.)
 
 use crate::context::GpuContext;
 use crate::error::Result;
-use crate::upload::{upload_packed, upload_pyramid, upload_scalar};
+use crate::upload::{upload_depth_pyramid, upload_packed, upload_pyramid, upload_scalar};
 use bytemuck::{Pod, Zeroable};
 use renderlab_core::Image;
 use renderlab_relief::{Map, ReliefMaterial};
@@ -30,6 +37,8 @@ pub(crate) struct MaterialUniform {
     albedo_levels: f32,
     normal_levels: f32,
     index: u32,
+    pyramid_levels: u32,
+    pad: [u32; 3],
 }
 
 /// A material's textures and constants, bound as group 1 of the relief pipelines.
@@ -46,6 +55,7 @@ pub(crate) struct GpuMaterial {
 const COMPLEXITY: u32 = 4;
 const CONE: u32 = 5;
 const PACKED: u32 = 6;
+const PYRAMID: u32 = 7;
 
 /// The layout of group 1 (see `frame.wgsl`).
 pub(crate) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
@@ -55,7 +65,7 @@ pub(crate) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         ty: wgpu::BindingType::Texture {
             sample_type: match binding {
                 PACKED => wgpu::TextureSampleType::Uint,
-                COMPLEXITY | CONE => wgpu::TextureSampleType::Float { filterable: false },
+                COMPLEXITY | CONE | PYRAMID => wgpu::TextureSampleType::Float { filterable: false },
                 _ => wgpu::TextureSampleType::Float { filterable: true },
             },
             view_dimension: wgpu::TextureViewDimension::D2,
@@ -80,6 +90,7 @@ pub(crate) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         texture(COMPLEXITY),
         texture(CONE),
         texture(PACKED),
+        texture(PYRAMID),
     ];
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("material"),
@@ -110,11 +121,14 @@ impl GpuMaterial {
         };
         let cone = upload_scalar(ctx, &format!("{}: cone map", m.name), &cone)?;
         let packed = upload_packed(ctx, &format!("{}: packed map", m.name), &m.packed)?;
+        let pyramid = upload_depth_pyramid(ctx, &format!("{}: min-depth pyramid", m.name), &m.pyramid)?;
         let uniform = MaterialUniform {
             height_scale: m.height_scale,
             albedo_levels: m.albedo.level_count() as f32,
             normal_levels: m.normal.level_count() as f32,
             index,
+            pyramid_levels: m.pyramid.level_count() as u32,
+            pad: [0; 3],
         };
         let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("material uniform"),
@@ -123,7 +137,7 @@ impl GpuMaterial {
             mapped_at_creation: false,
         });
         ctx.queue.write_buffer(&buffer, 0, bytemuck::bytes_of(&uniform));
-        let views = [&albedo, &normal, &depth, &complexity, &cone, &packed]
+        let views = [&albedo, &normal, &depth, &complexity, &cone, &packed, &pyramid]
             .map(|t| t.create_view(&Default::default()));
         let mut entries = vec![wgpu::BindGroupEntry { binding: 0, resource: buffer.as_entire_binding() }];
         for (i, v) in views.iter().enumerate() {

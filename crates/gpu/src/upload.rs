@@ -1,12 +1,13 @@
 //! Textures from the CPU's images, uploaded without conversion so that the GPU reads the
 //! numbers the CPU reads: pyramids with every level as the CPU built it, single-channel maps,
-//! the packed relief map. Each refuses a texture larger than the device holds.
+//! the packed relief map, the min-depth pyramid. Each refuses a texture larger than the device holds.
 
 use crate::context::GpuContext;
 use crate::error::Result;
 use glam::Vec4;
 use renderlab_core::Image;
 use renderlab_relief::maps::packed::PackedRelief;
+use renderlab_relief::maps::pyramid::DepthPyramid;
 use renderlab_texture::Texture;
 
 /// A 2-D texture of `levels` mip levels, sampled and written by copies.
@@ -26,7 +27,9 @@ pub(crate) fn create(
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
         format,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::COPY_DST
+            | wgpu::TextureUsages::COPY_SRC,
         view_formats: &[],
     }))
 }
@@ -84,4 +87,89 @@ pub(crate) fn upload_scalar(ctx: &GpuContext, what: &str, img: &Image<f32>) -> R
     let texture = create(ctx, what, img.width(), img.height(), 1, wgpu::TextureFormat::R32Float)?;
     write_level(ctx, &texture, 0, img.width(), img.height(), 4, bytemuck::cast_slice(img.pixels()));
     Ok(texture)
+}
+
+/// The texel where level `k` of a pyramid whose level 0 is `w × h` starts in its atlas: level
+/// 0 at the origin, the others stacked in a column to its right (level `k ≥ 1` at
+/// `(w, h − 2·(h >> k))`), which fits because every level halves both sides exactly.
+pub(crate) fn pyramid_origin(w: u32, h: u32, k: u32) -> (u32, u32) {
+    if k == 0 {
+        (0, 0)
+    } else {
+        (w, h - 2 * (h >> k))
+    }
+}
+
+/// Uploads the min-depth pyramid as one `R32Float` texture, its levels side by side in an
+/// atlas (see [`pyramid_origin`]; one level, read with `textureLoad`, so a shader addresses
+/// every level of it the same way).
+pub(crate) fn upload_depth_pyramid(ctx: &GpuContext, what: &str, p: &DepthPyramid) -> Result<wgpu::Texture> {
+    let (w, h) = p.level_size(0);
+    let width = if p.level_count() > 1 { w + w / 2 } else { w };
+    let mut atlas = Image::new(width, h, 0.0f32);
+    for k in 0..p.level_count() {
+        let (lw, lh) = p.level_size(k);
+        let (ox, oy) = pyramid_origin(w, h, k as u32);
+        let values = p.level_values(k);
+        for y in 0..lh {
+            for x in 0..lw {
+                atlas.set(ox + x, oy + y, values[(y * lw + x) as usize]);
+            }
+        }
+    }
+    upload_scalar(ctx, what, &atlas)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use renderlab_relief::HeightField;
+
+    #[test]
+    fn pyramid_levels_read_back() {
+        let Ok(ctx) = GpuContext::new() else { return };
+        let f = HeightField::from_depth(&Image::from_fn(8, 8, |x, y| ((x * 7 + y * 3) % 11) as f32 / 10.0));
+        let p = DepthPyramid::build(&f);
+        let t = upload_depth_pyramid(&ctx, "p", &p).unwrap();
+        let (w0, h0) = p.level_size(0);
+        for k in 0..p.level_count() as u32 {
+            let (w, h) = p.level_size(k as usize);
+            let (ox, oy) = pyramid_origin(w0, h0, k);
+            let padded = 256u32;
+            let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: None,
+                size: (padded * h) as u64,
+                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+                mapped_at_creation: false,
+            });
+            let mut e = ctx.device.create_command_encoder(&Default::default());
+            e.copy_texture_to_buffer(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &t,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d { x: ox, y: oy, z: 0 },
+                    aspect: wgpu::TextureAspect::All,
+                },
+                wgpu::TexelCopyBufferInfo {
+                    buffer: &buffer,
+                    layout: wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(padded),
+                        rows_per_image: Some(h),
+                    },
+                },
+                wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+            );
+            ctx.queue.submit([e.finish()]);
+            let got: Vec<f32> = crate::readback::map_read(&ctx, &buffer, |b| {
+                (0..h as usize)
+                    .flat_map(|y| {
+                        bytemuck::cast_slice::<u8, f32>(&b[y * 256..y * 256 + 4 * w as usize]).to_vec()
+                    })
+                    .collect()
+            })
+            .unwrap();
+            assert_eq!(got, p.level_values(k as usize), "level {k}");
+        }
+    }
 }

@@ -293,6 +293,7 @@ agreement_tests! {
     cone_binary_agrees: "cone",
     cone_secant_agrees: "cone:24:3:secant",
     cone_newton_agrees: "cone-newton",
+    leap_agrees: "leap",
     pom_shadow_agrees: "pom-shadow",
 }
 

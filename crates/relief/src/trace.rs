@@ -4,6 +4,7 @@
 use crate::maps::cone::ConeMap;
 use crate::maps::height::HeightField;
 use crate::maps::packed::PackedRelief;
+use crate::maps::pyramid::DepthPyramid;
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
 use renderlab_core::fastmath::floor;
@@ -47,6 +48,8 @@ pub struct ReliefInputs<'a> {
     /// The packed depth field (with the cone ratios when a cone map was built), for the
     /// kernels that read it.
     pub packed: Option<&'a PackedRelief>,
+    /// The min-depth pyramid that space leaping marches on, when built.
+    pub pyramid: Option<&'a DepthPyramid>,
 }
 
 /// A precomputed map that a technique may need besides the depth field and the complexity map.
@@ -56,6 +59,8 @@ pub enum Map {
     Cone,
     /// The packed 16-bit depth map read by the vector kernels.
     Packed,
+    /// The min-depth pyramid of space leaping.
+    Pyramid,
 }
 
 impl Map {
@@ -64,6 +69,7 @@ impl Map {
         match self {
             Map::Cone => "relaxed cone map",
             Map::Packed => "packed depth map",
+            Map::Pyramid => "min-depth pyramid",
         }
     }
 }
@@ -75,6 +81,7 @@ impl ReliefInputs<'_> {
         match map {
             Map::Cone => self.cone.is_some() && self.packed.is_none_or(PackedRelief::has_cones),
             Map::Packed => self.packed.is_some(),
+            Map::Pyramid => self.pyramid.is_some(),
         }
     }
 

@@ -14,24 +14,21 @@
 //!
 //! The reference on the GPU: the exact height-field reference (`march::exact`) is CPU-only,
 //! so the reference is the registry's most accurate technique with a shader, run far past
-//! its defaults: [`REFERENCE`], Newton-finished relaxed cone stepping with 256 cone steps,
-//! 8 secant steps and a stopping tolerance of 0.01 texel. At its defaults (64, 3, 0.25
-//! texel) it already has the lowest mean UV error against the exact reference of every
-//! technique in the relief lab's table (BENCHMARKS.md), and its GPU frame matches its CPU
-//! frame; the relaxed cone map lets a ray never skip a crossing, and the Newton steps on the
-//! bilinear patch converge to the bilinear height field's own intersection, as the exact
-//! reference's does, so the tighter tolerance and larger budgets only remove what is left.
-//! The test `tests/reference.rs` holds it to that: on the thesis's four benchmark views its
-//! displaced UV is nearer the exact reference's than any registry technique's at its
-//! defaults, within a thousandth of a texel on average. It needs the cone map, computed on
-//! its first use (a moment when the mode is first shown).
+//! its defaults: [`REFERENCE`], space leaping on the min-depth pyramid with a budget of 1024
+//! steps. Space leaping solves the first crossing exactly in the last bilinear cell, so
+//! where its budget suffices its hit is the exact reference's up to f32 rounding; the larger
+//! budget lets the rays at grazing angles, which cross many cells, finish as well. It reads
+//! only the pyramid, which every material has, so the mode shows at once. The test
+//! `tests/reference.rs` holds it to that: on the thesis's four benchmark views its displaced
+//! UV is nearer the exact reference's than any registry technique's at its defaults, within
+//! a thousandth of a texel on average.
 
 use crate::look_and_feel::Backdrops;
 use renderlab_relief::techniques::DESCRIPTORS;
 use renderlab_relief::Technique;
 
 /// The GPU reference's name (see the module doc for the choice).
-pub const REFERENCE: &str = "cone-newton:256:8:1";
+pub const REFERENCE: &str = "leap:1024";
 
 /// The GPU reference technique, [`REFERENCE`].
 pub fn reference() -> Technique {
@@ -237,10 +234,10 @@ mod tests {
     }
 
     #[test]
-    fn the_reference_is_the_named_cone_newton_and_first_choice() {
+    fn the_reference_is_the_named_space_leap_and_first_choice() {
         let r = reference();
         assert_eq!(r.name(), REFERENCE, "the constant parses to itself");
-        assert_eq!(r.descriptor().name, "cone-newton");
+        assert_eq!(r.descriptor().name, "leap");
         assert_eq!(right_choices()[0], r);
         assert_eq!(right_choices().len(), DESCRIPTORS.len() + 1);
     }

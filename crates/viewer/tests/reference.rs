@@ -56,7 +56,7 @@ fn the_reference_is_the_nearest_to_the_exact_one() {
         }
     }
     let report: Vec<String> =
-        techniques.iter().zip(&error).map(|(t, e)| format!("{} {e:.4}", t.name())).collect();
+        techniques.iter().zip(&error).map(|(t, e)| format!("{} {e:.6}", t.name())).collect();
     let reference = error[0];
     assert!(reference <= REFERENCE_MAX_TEXELS, "the reference's mean UV error: {}", report.join(", "));
     for (t, e) in techniques.iter().zip(&error).skip(1) {

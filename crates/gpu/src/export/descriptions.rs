@@ -36,6 +36,8 @@ pub const DESCRIPTIONS: &[(&str, &str)] = &[
     ("depth_map", "depth = 1 − height in [0, 1] (0 = top of the relief, 1 = its deepest point); R32Float, one level, sampled bilinearly with repeat wrap"),
     ("complexity_map", "the thesis's Sobel complexity map of the height map, in [0, 1]; R32Float, read at the nearest texel (textureLoad) with repeat wrap; adaptive techniques take their layer counts from it"),
     ("cone_map", "relaxed cone ratios, horizontal UV distance per unit of depth, in [0, 1]; R32Float, read at the nearest texel (textureLoad) with repeat wrap, never interpolated; only cone techniques read it (bind a 1×1 texture otherwise)"),
+    ("Material.pyramid_levels", "levels of the min-depth pyramid in pyramid_map (at least 1); the leap technique starts its march at the top one"),
+    ("pyramid_map", "the min-depth pyramid of the depth map, its levels side by side in one R32Float texture read with textureLoad: level 0 (w × h cells, cell (i, j) the smallest of depth texels (i, j), (i+1, j), (i, j+1), (i+1, j+1), wrapped) at the origin, level k ≥ 1 ((w >> k) × (h >> k), each the smallest of a 2 × 2 block of level k − 1) at (w, h − 2·(h >> k)); the texture is (w + w/2) × h, or w × h with one level; levels stop where a side stops halving exactly; only the leap technique reads it"),
     ("packed_map", "depth and cone ratio packed per texel: high 16 bits depth in steps of PACKED_DEPTH_STEP (1/65535), low 16 bits ratio in steps of PACKED_RATIO_STEP; R32Uint on a padded (w + 1) × (h + 1) grid whose last column and row repeat the first; read texel by texel and interpolated by the shader"),
     // The relief frame's vertex stage.
     ("VertexIn.position", "vertex position, world units"),

@@ -17,6 +17,11 @@ struct Material {
     // The material's index in the scene's list (the compute pipeline shades one material
     // per dispatch and skips the others' pixels).
     index: u32,
+    // Levels of the min-depth pyramid in `pyramid_map`.
+    pyramid_levels: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 // Bilinear within a level, linear between levels, repeat: the CPU's `trilinear_at` and
@@ -32,6 +37,9 @@ struct Material {
 @group(1) @binding(5) var cone_map: texture_2d<f32>;
 // The packed map's padded grid: depth (high 16 bits) and cone ratio (low 16 bits) per texel.
 @group(1) @binding(6) var packed_map: texture_2d<u32>;
+// The min-depth pyramid of space leaping, its levels side by side (`upload.rs`'s atlas), read
+// with `textureLoad`.
+@group(1) @binding(7) var pyramid_map: texture_2d<f32>;
 
 // What the rasterizer knows about one pixel (`SurfacePoint`).
 struct Surface {

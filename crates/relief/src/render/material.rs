@@ -6,6 +6,7 @@ use crate::maps::complexity::{complexity_map, ComplexityParams};
 use crate::maps::cone::{ConeKind, ConeMap};
 use crate::maps::height::HeightField;
 use crate::maps::packed::PackedRelief;
+use crate::maps::pyramid::DepthPyramid;
 use crate::trace::ReliefInputs;
 use renderlab_core::{Image, Material};
 use renderlab_texture::{Texture, Wrap};
@@ -32,6 +33,8 @@ pub struct ReliefMaterial {
     pub cone: Option<ConeMap>,
     /// The depth field packed with the cone ratios (ratios 0 without a cone map).
     pub packed: PackedRelief,
+    /// The min-depth pyramid (built always: one pass over the depth field per level).
+    pub pyramid: DepthPyramid,
     /// Albedo and normals in the fused frame's 8-bit formats, rounded from the pyramids above.
     pub textures8: Textures8,
 }
@@ -49,6 +52,7 @@ impl ReliefMaterial {
         let height = HeightField::from_height(&m.height);
         let cone = cone_size.map(|size| ConeMap::build(&height, ConeKind::Relaxed, size));
         let packed = PackedRelief::build(&height, cone.as_ref());
+        let pyramid = DepthPyramid::build(&height);
         let albedo = Texture::from_rgb(&m.albedo, Wrap::Repeat);
         let normal = Texture::from_rgb(&m.normal, Wrap::Repeat);
         Self {
@@ -61,6 +65,7 @@ impl ReliefMaterial {
             height_scale: m.height_scale,
             cone,
             packed,
+            pyramid,
         }
     }
 
@@ -72,6 +77,7 @@ impl ReliefMaterial {
             complexity: &self.complexity,
             cone: self.cone.as_ref(),
             packed: Some(&self.packed),
+            pyramid: Some(&self.pyramid),
         }
     }
 }

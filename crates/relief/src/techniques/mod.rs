@@ -134,6 +134,7 @@ registry! {
     AdaptiveRelief(adaptive_relief::AdaptiveRelief),
     Cone(cone::ConeStepping),
     ConeNewton(cone_newton::ConeNewton),
+    Leap(leap::SpaceLeap),
     PomShadow(pom_shadow::PomShadow),
 }
 

@@ -9,6 +9,7 @@ use renderlab_core::Image;
 use renderlab_relief::maps::complexity::{complexity_map, ComplexityParams};
 use renderlab_relief::maps::cone::{ConeKind, ConeMap};
 use renderlab_relief::maps::packed::PackedRelief;
+use renderlab_relief::maps::pyramid::DepthPyramid;
 use renderlab_relief::march::exact::exact_hit;
 use renderlab_relief::{HeightField, ReliefInputs, ReliefTechnique};
 
@@ -36,6 +37,7 @@ pub struct Fixture {
     pub complexity: Image<f32>,
     pub cone: ConeMap,
     pub packed: Option<PackedRelief>,
+    pub pyramid: DepthPyramid,
 }
 
 impl Fixture {
@@ -45,7 +47,14 @@ impl Fixture {
         let field = HeightField::from_height(&img);
         let cone = ConeMap::build(&field, ConeKind::Relaxed, cone_size);
         let packed = packed.then(|| PackedRelief::build(&field, Some(&cone)));
-        Fixture { complexity: complexity_map(&img, &ComplexityParams::default()), field, cone, packed }
+        let pyramid = DepthPyramid::build(&field);
+        Fixture {
+            complexity: complexity_map(&img, &ComplexityParams::default()),
+            field,
+            cone,
+            packed,
+            pyramid,
+        }
     }
 
     /// The technique inputs over this fixture.
@@ -56,6 +65,7 @@ impl Fixture {
             complexity: &self.complexity,
             cone: Some(&self.cone),
             packed: self.packed.as_ref(),
+            pyramid: Some(&self.pyramid),
         }
     }
 }
