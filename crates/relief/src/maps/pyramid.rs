@@ -13,6 +13,7 @@
 //! Building is one pass over the texels per level: linear in the map's size.
 
 use super::height::HeightField;
+use renderlab_core::image::wrap_index;
 
 /// One level: `width × height` cells, row-major.
 #[derive(Clone, Debug)]
@@ -89,9 +90,7 @@ impl DepthPyramid {
     #[inline]
     pub fn min_depth(&self, k: usize, cx: i64, cy: i64) -> f32 {
         let l = &self.levels[k];
-        let x = cx.rem_euclid(l.width as i64) as usize;
-        let y = cy.rem_euclid(l.height as i64) as usize;
-        l.min[y * l.width as usize + x]
+        l.min[wrap_index(cy, l.height) * l.width as usize + wrap_index(cx, l.width)]
     }
 
     /// Bytes of the values.

@@ -3,7 +3,9 @@
 //!
 //! The ray enters the top surface at `uv` and descends to depth 1; along it, depth is the
 //! ray's own parameter `d` and the position in texel-centre coordinates is
-//! `x(d) = (uv·size − ½) + k·d` with `k = uv_per_depth · size`. At the current level the ray's
+//! `x(d) = (uv·size − ½) + k·d` with `k = uv_per_depth · size`. The march starts at the
+//! level whose cells first hold the ray's whole run ([`ray_top`]; never above the pyramid's
+//! top), and never climbs above it. At the current level the ray's
 //! cell holds a bound `m`: no point of the cell's surface is shallower. Then:
 //!
 //! - the ray is above the bound (`d < m`): it cannot meet the surface in this cell before depth
@@ -54,14 +56,14 @@ fn cell(v: f32, k: f32) -> f32 {
     }
 }
 
-/// The ray parameter still to go, from coordinate `x` moving `k` per unit, until it leaves the
-/// cell `[lo, lo + s)`.
+/// The ray parameter still to go, from coordinate `x` moving `k` per unit (`inv = 1/k`,
+/// computed once per ray), until it leaves the cell `[lo, lo + s)`.
 #[inline]
-fn to_exit(x: f32, lo: f32, s: f32, k: f32) -> f32 {
+fn to_exit(x: f32, lo: f32, s: f32, k: f32, inv: f32) -> f32 {
     if k > 0.0 {
-        (lo + s - x) / k
+        (lo + s - x) * inv
     } else if k < 0.0 {
-        (lo - x) / k
+        (lo - x) * inv
     } else {
         f32::INFINITY
     }
@@ -135,6 +137,20 @@ fn sqrt_signed(disc: f32, s: f32) -> f32 {
     }
 }
 
+/// The highest level a ray needs: the first whose cells are at least twice as wide as the
+/// ray's whole horizontal run (depth 0 to 1, `max(|k.x|, |k.y|)` texels) plus one texel, so
+/// that larger cells would bound the same few cells more loosely; at most `top`. Found by
+/// doubling, so that the CPU and the GPU pick the same level.
+#[inline]
+pub fn ray_top(top: usize, k: Vec2) -> usize {
+    let run = 2.0 * (k.x.abs().max(k.y.abs()) + 1.0);
+    let mut level = 0;
+    while level < top && ((1u32 << level) as f32) < run {
+        level += 1;
+    }
+    level
+}
+
 impl Leap {
     /// The march on `field` and its `pyramid` (see the module docs).
     #[inline]
@@ -151,19 +167,22 @@ impl Leap {
         let dp = uv_per_depth(v, height_scale);
         let p0 = uv * size - 0.5;
         let k = dp * size;
-        let top = pyramid.level_count() - 1;
+        let inv = Vec2::new(1.0 / k.x, 1.0 / k.y);
+        let top = ray_top(pyramid.level_count() - 1, k);
         let mut level = top;
         let mut d = 0.0f32;
         let mut n = 0u32;
         while n < self.steps && d < 1.0 {
             n += 1;
             let s = (1u32 << level) as f32;
+            // 1/s is a power of two: the product is the quotient, exactly.
+            let inv_s = 1.0 / s;
             let x = p0 + k * d;
-            let cx = cell(x.x / s, k.x);
-            let cy = cell(x.y / s, k.y);
+            let cx = cell(x.x * inv_s, k.x);
+            let cy = cell(x.y * inv_s, k.y);
             counter.count(1);
             let m = pyramid.min_depth(level, cx as i64, cy as i64);
-            let exit = d + to_exit(x.x, cx * s, s, k.x).min(to_exit(x.y, cy * s, s, k.y));
+            let exit = d + to_exit(x.x, cx * s, s, k.x, inv.x).min(to_exit(x.y, cy * s, s, k.y, inv.y));
             if d < m {
                 if m < exit {
                     d = m;

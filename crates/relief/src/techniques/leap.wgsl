@@ -19,13 +19,14 @@ fn leap_cell(v: f32, k: f32) -> f32 {
     return select(f, f - 1.0, v == f && k < 0.0);
 }
 
-// The ray parameter still to go until it leaves the cell `[lo, lo + s)` (`to_exit`).
-fn leap_to_exit(x: f32, lo: f32, s: f32, k: f32) -> f32 {
+// The ray parameter still to go until it leaves the cell `[lo, lo + s)`, `inv` = 1/k
+// (`to_exit`).
+fn leap_to_exit(x: f32, lo: f32, s: f32, k: f32, inv: f32) -> f32 {
     if k > 0.0 {
-        return (lo + s - x) / k;
+        return (lo + s - x) * inv;
     }
     if k < 0.0 {
-        return (lo - x) / k;
+        return (lo - x) * inv;
     }
     return LEAP_FAR;
 }
@@ -98,13 +99,26 @@ fn leap_patch(c: vec2<f32>, f: vec2<f32>, k: vec2<f32>, d: f32, span: f32) -> f3
     return -1.0;
 }
 
+// The highest level the ray needs (`ray_top`): the first whose cells are at least twice the
+// ray's horizontal run plus one texel, at most `top`, found by doubling.
+fn leap_ray_top(top: u32, k: vec2<f32>) -> u32 {
+    let run = 2.0 * (max(abs(k.x), abs(k.y)) + 1.0);
+    var level = 0u;
+    while level < top && f32(1u << level) < run {
+        level += 1u;
+    }
+    return level;
+}
+
 fn trace(uv0: vec2<f32>, view_ts: vec3<f32>) -> Hit {
     let steps = param(0u);
     let size = vec2<f32>(textureDimensions(depth_map));
     let dp = uv_per_depth(view_ts);
     let p0 = uv0 * size - 0.5;
     let k = dp * size;
-    let top = material.pyramid_levels - 1u;
+    // 1/0 is never used (the k = 0 branch returns first); the select keeps it finite.
+    let inv = vec2<f32>(1.0) / select(k, vec2<f32>(1.0), k == vec2<f32>(0.0));
+    let top = leap_ray_top(material.pyramid_levels - 1u, k);
     var level = top;
     var d = 0.0;
     var n = 0u;
@@ -114,10 +128,11 @@ fn trace(uv0: vec2<f32>, view_ts: vec3<f32>) -> Hit {
         }
         n += 1u;
         let s = f32(1u << level);
+        let inv_s = 1.0 / s;
         let x = p0 + k * d;
-        let c = vec2<f32>(leap_cell(x.x / s, k.x), leap_cell(x.y / s, k.y));
+        let c = vec2<f32>(leap_cell(x.x * inv_s, k.x), leap_cell(x.y * inv_s, k.y));
         let m = leap_min_depth(level, c);
-        let exit = d + min(leap_to_exit(x.x, c.x * s, s, k.x), leap_to_exit(x.y, c.y * s, s, k.y));
+        let exit = d + min(leap_to_exit(x.x, c.x * s, s, k.x, inv.x), leap_to_exit(x.y, c.y * s, s, k.y, inv.y));
         if d < m {
             if m < exit {
                 d = m;
