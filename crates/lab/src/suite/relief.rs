@@ -30,8 +30,9 @@ impl Lab for ReliefLab {
     /// three proved too noisy for the adaptive ratio; BENCHMARKS.md, "Relief lab"), and the
     /// CPU renderer against the GPU's shaders, on both GPU pipelines (fragment and compute),
     /// for the four methods the headline compares (basic, POM-32, adaptive and the fastest,
-    /// cone-newton, at 0° and 60°) where an adapter exists; without one the page says the
-    /// GPU was skipped.
+    /// cone-newton, at 0° and 60°) where an adapter exists, timed in batches of 4 with 3
+    /// measured rounds after at most 10 s of warm-up frames per angle; without one the page
+    /// says the GPU was skipped.
     fn report_preset() -> Result<Self> {
         let material = materials::material("bricks", materials::DEFAULT_SIZE)?;
         let techniques = vec![
@@ -41,12 +42,18 @@ impl Lab for ReliefLab {
             Technique::parse("cone-newton")?,
         ];
         let gpu_subset = GpuSubset { techniques, angles: vec![0.0, 60.0] };
+        // Batches of 4, 3 measured rounds, at most 10 s of warm-up frames per angle: on a GPU
+        // the caps never bind (its frames take milliseconds); on lavapipe they keep the side by
+        // side to about a minute.
+        let steady =
+            SteadySettings { batch: 4, rounds: 3, max_warmup_ms: 10_000.0, ..SteadySettings::default() };
         let config = ReliefBenchConfig {
             reps: 5,
             backend: Backend::Both,
             gpu_subset: Some(gpu_subset),
             gpu_required: false,
             pipelines: PipelineSelection::Both,
+            steady,
             ..ReliefBenchConfig::default()
         };
         Ok(ReliefLab { material, config })
