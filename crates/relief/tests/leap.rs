@@ -105,3 +105,38 @@ proptest! {
         prop_assert!(texels(h.uv, exact) < 0.05, "{} texel off (depth {} vs {depth})", texels(h.uv, exact), h.depth);
     }
 }
+
+/// A row steps its rays in turn; every hit is the single ray's, bit for bit, with the same
+/// fetch count, whatever the row's length.
+#[test]
+fn rows_equal_single_rays_bit_for_bit() {
+    let fx = fixture();
+    let inp = fx.inputs();
+    let leap = Leap { steps: 64 };
+    let mut rays: Vec<(Vec2, Vec3)> = (0..203)
+        .map(|i| {
+            (
+                Vec2::new((i as f32 * 0.618_034).fract(), (i as f32 * 0.754_877).fract()),
+                view((i * 7 % 89) as f32, i as f32 * 2.4),
+            )
+        })
+        .collect();
+    rays.push((Vec2::new(f32::NAN, 0.3), Vec3::Z));
+    rays.push((Vec2::new(0.3, 0.3), Vec3::ZERO));
+    let mut single_count = Tally::default();
+    let single: Vec<_> = rays.iter().map(|&(uv, v)| leap.trace(&inp, uv, v, &mut single_count)).collect();
+    for len in [1, 3, 8, 9, 64, rays.len()] {
+        let mut count = Tally::default();
+        let mut out = vec![Default::default(); rays.len()];
+        for (r, o) in rays.chunks(len).zip(out.chunks_mut(len)) {
+            leap.trace_row(&inp, r, o, &mut count);
+        }
+        for (i, (a, b)) in single.iter().zip(&out).enumerate() {
+            let bits = |h: &renderlab_relief::ReliefHit| {
+                (h.uv.x.to_bits(), h.uv.y.to_bits(), h.depth.to_bits(), h.layers)
+            };
+            assert_eq!(bits(a), bits(b), "ray {i}, rows of {len}");
+        }
+        assert_eq!(count, single_count, "rows of {len}");
+    }
+}

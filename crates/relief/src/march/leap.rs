@@ -151,6 +151,133 @@ pub fn ray_top(top: usize, k: Vec2) -> usize {
     level
 }
 
+/// Rays a row interleaves: each step of one waits on its pyramid fetch, so several in turn
+/// keep the loads of different rays in flight together.
+const PACKET: usize = 8;
+
+/// One ray's march in progress.
+#[derive(Clone, Copy, Debug)]
+struct Lane {
+    uv: Vec2,
+    dp: Vec2,
+    p0: Vec2,
+    k: Vec2,
+    inv: Vec2,
+    top: usize,
+    level: usize,
+    d: f32,
+    n: u32,
+    hit: Option<ReliefHit>,
+}
+
+impl Lane {
+    /// The ray entering at `uv` with tangent-space view `v`, at its start level and depth 0.
+    #[inline]
+    fn new(field: &HeightField, pyramid: &DepthPyramid, height_scale: f32, uv: Vec2, v: Vec3) -> Lane {
+        let size = Vec2::new(field.width() as f32, field.height() as f32);
+        let dp = uv_per_depth(v, height_scale);
+        let k = dp * size;
+        let top = ray_top(pyramid.level_count() - 1, k);
+        Lane {
+            uv,
+            dp,
+            p0: uv * size - 0.5,
+            k,
+            inv: Vec2::new(1.0 / k.x, 1.0 / k.y),
+            top,
+            level: top,
+            d: 0.0,
+            n: 0,
+            hit: None,
+        }
+    }
+
+    /// The hit at depth `depth` after the steps taken.
+    #[inline]
+    fn end(&mut self, depth: f32) {
+        self.hit = Some(ReliefHit { uv: self.uv + self.dp * depth, depth, layers: self.n });
+    }
+
+    /// Where the next step looks: the ray's position, its cell at the current level and the
+    /// cell's bound (the step's one fetch), or `None` once the ray has ended (its hit set).
+    #[inline]
+    fn probe<C: Counter>(&mut self, steps: u32, pyramid: &DepthPyramid, counter: &mut C) -> Option<Probe> {
+        if self.hit.is_some() {
+            return None;
+        }
+        if !(self.n < steps && self.d < 1.0) {
+            self.end(self.d.min(1.0));
+            return None;
+        }
+        self.n += 1;
+        let s = (1u32 << self.level) as f32;
+        // 1/s is a power of two: the product is the quotient, exactly.
+        let inv_s = 1.0 / s;
+        let x = self.p0 + self.k * self.d;
+        let c = Vec2::new(cell(x.x * inv_s, self.k.x), cell(x.y * inv_s, self.k.y));
+        counter.count(1);
+        let m = pyramid.min_depth(self.level, c.x as i64, c.y as i64);
+        Some(Probe { x, c, s, m })
+    }
+
+    /// The step's move once its bound is known (see the module docs); true once the ray has
+    /// ended.
+    #[inline]
+    fn apply<C: Counter>(&mut self, p: Probe, field: &HeightField, counter: &mut C) -> bool {
+        let Probe { x, c, s, m } = p;
+        let (k, d, level) = (self.k, self.d, self.level);
+        let exit =
+            d + to_exit(x.x, c.x * s, s, k.x, self.inv.x).min(to_exit(x.y, c.y * s, s, k.y, self.inv.y));
+        let above = d < m;
+        if !above && level == 0 {
+            // The patch's four texels: one gather, as a bilinear sample is one fetch.
+            counter.count(1);
+            let f = x - c;
+            let span = exit.min(1.0) - d;
+            if let Some(t) = patch_crossing(field, c.x as i64, c.y as i64, f, k, d, span.max(0.0)) {
+                self.end(d + t);
+                return true;
+            }
+            self.d = exit + LEAP_NUDGE;
+            self.level = self.top.min(1);
+            return false;
+        }
+        // The three other moves as selects (their outcomes are data-dependent): above the
+        // bound and reaching it inside the cell, one level down at depth m; above it to the
+        // cell's exit, one level up past the exit; below it (above level 0), one level down
+        // where the ray is.
+        let up = above && m >= exit;
+        let next = if up { exit + LEAP_NUDGE } else { m };
+        self.d = if above { next } else { d };
+        self.level = if up { (level + 1).min(self.top) } else { level.saturating_sub(1) };
+        false
+    }
+
+    /// One whole step; true once the ray has ended.
+    #[inline]
+    fn advance<C: Counter>(
+        &mut self,
+        steps: u32,
+        field: &HeightField,
+        pyramid: &DepthPyramid,
+        counter: &mut C,
+    ) -> bool {
+        match self.probe(steps, pyramid, counter) {
+            Some(p) => self.apply(p, field, counter),
+            None => true,
+        }
+    }
+}
+
+/// A step's position, cell (at its level, in cells), cell side `s` in texels and bound `m`.
+#[derive(Clone, Copy, Debug)]
+struct Probe {
+    x: Vec2,
+    c: Vec2,
+    s: f32,
+    m: f32,
+}
+
 impl Leap {
     /// The march on `field` and its `pyramid` (see the module docs).
     #[inline]
@@ -163,58 +290,61 @@ impl Leap {
         v: Vec3,
         counter: &mut C,
     ) -> ReliefHit {
-        let size = Vec2::new(field.width() as f32, field.height() as f32);
-        let dp = uv_per_depth(v, height_scale);
-        let p0 = uv * size - 0.5;
-        let k = dp * size;
-        let inv = Vec2::new(1.0 / k.x, 1.0 / k.y);
-        let top = ray_top(pyramid.level_count() - 1, k);
-        let mut level = top;
-        let mut d = 0.0f32;
-        let mut n = 0u32;
-        while n < self.steps && d < 1.0 {
-            n += 1;
-            let s = (1u32 << level) as f32;
-            // 1/s is a power of two: the product is the quotient, exactly.
-            let inv_s = 1.0 / s;
-            let x = p0 + k * d;
-            let cx = cell(x.x * inv_s, k.x);
-            let cy = cell(x.y * inv_s, k.y);
-            counter.count(1);
-            let m = pyramid.min_depth(level, cx as i64, cy as i64);
-            let exit = d + to_exit(x.x, cx * s, s, k.x, inv.x).min(to_exit(x.y, cy * s, s, k.y, inv.y));
-            if d < m {
-                if m < exit {
-                    d = m;
-                    level = level.saturating_sub(1);
-                } else {
-                    d = exit + LEAP_NUDGE;
-                    level = (level + 1).min(top);
-                }
-            } else if level > 0 {
-                level -= 1;
-            } else {
-                // The patch's four texels: one gather, as a bilinear sample is one fetch.
-                counter.count(1);
-                let f = x - Vec2::new(cx, cy);
-                let span = exit.min(1.0) - d;
-                if let Some(t) = patch_crossing(field, cx as i64, cy as i64, f, k, d, span.max(0.0)) {
-                    let depth = d + t;
-                    return ReliefHit { uv: uv + dp * depth, depth, layers: n };
-                }
-                d = exit + LEAP_NUDGE;
-                level = top.min(1);
-            }
-        }
-        let depth = d.min(1.0);
-        ReliefHit { uv: uv + dp * depth, depth, layers: n }
+        let mut lane = Lane::new(field, pyramid, height_scale, uv, v);
+        while !lane.advance(self.steps, field, pyramid, counter) {}
+        lane.hit.expect("an ended lane has its hit")
     }
 }
+
+/// What the renderer checks before any technique that needs the pyramid runs.
+const NO_PYRAMID: &str = "space leaping needs the min-depth pyramid (checked by render)";
 
 impl ReliefTechnique for Leap {
     #[inline]
     fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
-        let pyramid = inp.pyramid.expect("space leaping needs the min-depth pyramid (checked by render)");
+        let pyramid = inp.pyramid.expect(NO_PYRAMID);
         self.march(inp.height, pyramid, inp.height_scale, uv, v, counter)
+    }
+
+    /// [`PACKET`] rays stepped together, each with [`Leap::march`]'s operations (the same
+    /// hits, bit for bit): every ray's fetch, then every ray's move, so that the fetches
+    /// overlap.
+    fn trace_row<C: Counter>(
+        &self,
+        inp: &ReliefInputs,
+        rays: &[(Vec2, Vec3)],
+        out: &mut [ReliefHit],
+        counter: &mut C,
+    ) {
+        let pyramid = inp.pyramid.expect(NO_PYRAMID);
+        let (field, scale) = (inp.height, inp.height_scale);
+        for (chunk, outs) in rays.chunks(PACKET).zip(out.chunks_mut(PACKET)) {
+            let mut lanes = [Lane::new(field, pyramid, scale, Vec2::ZERO, Vec3::Z); PACKET];
+            for (lane, &(uv, v)) in lanes.iter_mut().zip(chunk) {
+                *lane = Lane::new(field, pyramid, scale, uv, v);
+            }
+            let n = chunk.len();
+            // Every lane's fetch first, then every lane's move: the fetches do not depend on
+            // each other, so they are in flight together.
+            let mut probes = [None; PACKET];
+            loop {
+                for (p, lane) in probes.iter_mut().zip(&mut lanes[..n]) {
+                    *p = lane.probe(self.steps, pyramid, counter);
+                }
+                let mut all_done = true;
+                for (p, lane) in probes.iter().zip(&mut lanes[..n]) {
+                    all_done &= match *p {
+                        Some(p) => lane.apply(p, field, counter),
+                        None => true,
+                    };
+                }
+                if all_done {
+                    break;
+                }
+            }
+            for (o, lane) in outs.iter_mut().zip(&lanes[..n]) {
+                *o = lane.hit.expect("an ended lane has its hit");
+            }
+        }
     }
 }
