@@ -20,8 +20,8 @@
 //! budget lets the rays at grazing angles, which cross many cells, finish as well. It reads
 //! only the pyramid, which every material has, so the mode shows at once. The test
 //! `tests/reference.rs` holds it to that: on the thesis's four benchmark views its displaced
-//! UV is nearer the exact reference's than any registry technique's at its defaults, within
-//! a thousandth of a texel on average.
+//! UV is nearer the exact reference's than any other registry technique's at its defaults
+//! (leap's own defaults may tie it), within a thousandth of a texel on average.
 
 use crate::look_and_feel::Backdrops;
 use renderlab_relief::techniques::DESCRIPTORS;

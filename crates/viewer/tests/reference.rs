@@ -1,8 +1,9 @@
 //! The split screen's GPU reference ([`split::reference`]) earns its name: on the thesis's
 //! benchmark (the bricks wall at 0°, 45°, 60° and 80°), its displaced UV is nearer the exact
 //! height-field reference's (`renderlab_relief::render::render_reference`, CPU-only) than
-//! that of every technique of the registry at its defaults, drawn by the same GPU renderer,
-//! and within a thousandth of a texel on average.
+//! that of every other technique of the registry at its defaults (its own technique at the
+//! defaults' smaller budget may tie it), drawn by the same GPU renderer, and within a
+//! thousandth of a texel on average.
 
 mod common;
 
@@ -60,6 +61,12 @@ fn the_reference_is_the_nearest_to_the_exact_one() {
     let reference = error[0];
     assert!(reference <= REFERENCE_MAX_TEXELS, "the reference's mean UV error: {}", report.join(", "));
     for (t, e) in techniques.iter().zip(&error).skip(1) {
-        assert!(reference < *e, "{} is nearer the exact reference: {}", t.name(), report.join(", "));
+        // The reference's own technique at its defaults is as near where its smaller budget
+        // suffices (every ray here): no nearer. Every other technique is strictly farther.
+        if t.descriptor().name == techniques[0].descriptor().name {
+            assert!(reference <= *e, "{} is nearer the exact reference: {}", t.name(), report.join(", "));
+        } else {
+            assert!(reference < *e, "{} is nearer the exact reference: {}", t.name(), report.join(", "));
+        }
     }
 }

@@ -22,7 +22,7 @@ impl Entry for SpaceLeap {
     const DESCRIPTOR: Descriptor = Descriptor {
         name: "leap",
         summary: "space leaping on a min-depth pyramid, the crossing solved exactly in the last cell",
-        params: &[Param::count("STEPS", 96, "most pyramid steps per ray")],
+        params: &[Param::count("STEPS", 256, "most pyramid steps per ray")],
         needs: &[Map::Pyramid],
         kernels: &[Kernel::Scalar],
         shading: Shading::Lit,
