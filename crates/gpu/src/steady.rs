@@ -98,6 +98,11 @@ pub struct SteadyReport {
     pub warmup_rounds: u32,
     /// Whether every configuration agreed when the warm-up ended.
     pub settled: bool,
+    /// Frames timed in all, warm-up and measured rounds.
+    pub frames: u64,
+    /// The sum of every finite frame time returned, warm-up included, ms: the device time the
+    /// procedure cost (with timestamps, the GPU's own time).
+    pub busy_ms: f64,
 }
 
 /// Times `configs` configurations as the module describes: `batch(c, frames)` runs `frames`
@@ -113,7 +118,7 @@ pub fn time_steady<E>(
     // Per configuration: its batch figures in warm-up, and since which round it agrees.
     let mut figures: Vec<Vec<f64>> = vec![Vec::new(); configs];
     let mut agrees_since: Vec<Option<u32>> = vec![None; configs];
-    let (mut rounds, mut spent_ms) = (0u32, 0.0f64);
+    let (mut rounds, mut spent_ms, mut frames_run) = (0u32, 0.0f64, 0u64);
     let all_agree = |since: &[Option<u32>]| since.iter().all(Option::is_some);
     while configs > 0
         && rounds < settings.max_warmup_rounds
@@ -123,6 +128,7 @@ pub fn time_steady<E>(
         rounds += 1;
         for c in 0..configs {
             let times = batch(c, frames)?;
+            frames_run += times.len() as u64;
             spent_ms += times.iter().filter(|t| t.is_finite()).sum::<f64>();
             figures[c].push(batch_figure(times));
             if agrees(&figures[c], window, settings.tolerance) {
@@ -133,9 +139,13 @@ pub fn time_steady<E>(
         }
     }
     let mut samples: Vec<Vec<f64>> = vec![Vec::new(); configs];
+    let mut busy_ms = spent_ms;
     for _ in 0..settings.rounds.max(1) {
         for (c, s) in samples.iter_mut().enumerate() {
-            s.extend(batch(c, frames)?);
+            let times = batch(c, frames)?;
+            frames_run += times.len() as u64;
+            busy_ms += times.iter().filter(|t| t.is_finite()).sum::<f64>();
+            s.extend(times);
         }
     }
     let timings: Vec<SteadyTiming> = samples
@@ -143,7 +153,13 @@ pub fn time_steady<E>(
         .zip(&agrees_since)
         .map(|(s, since)| summarise(s, since.unwrap_or(rounds), since.is_some()))
         .collect();
-    Ok(SteadyReport { configs: timings, warmup_rounds: rounds, settled: all_agree(&agrees_since) })
+    Ok(SteadyReport {
+        configs: timings,
+        warmup_rounds: rounds,
+        settled: all_agree(&agrees_since),
+        frames: frames_run,
+        busy_ms,
+    })
 }
 
 /// A batch's figure: the median of its frames' times (NaN for an empty batch).
@@ -225,6 +241,10 @@ mod tests {
         assert_eq!(flat.median_ms, 5.0);
         assert_eq!((ramp.samples, flat.samples), (20, 20), "5 rounds of 4 frames");
         assert_eq!(calls, [12, 12], "7 warm-up rounds and 5 measured");
+        // Every frame counted: 12 batches of 4 frames each; config 0's warm-up frames took
+        // 4·(10 + 8 + 6 + 4 + 2 + 2 + 2) ms, its measured ones 20·2, config 1's 48·5.
+        assert_eq!(r.frames, 96);
+        assert_eq!(r.busy_ms, 4.0 * 34.0 + 40.0 + 240.0);
     }
 
     #[test]

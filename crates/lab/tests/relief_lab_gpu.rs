@@ -94,6 +94,12 @@ fn both_pipelines_are_measured_with_their_steady_timing() {
         s.findings
     );
     assert!(s.findings.iter().any(|f| f.starts_with("GPU timings")), "{:?}", s.findings);
+    // What the GPU phases cost: at least the measured rounds' frames of 4 configurations at
+    // 2 angles, and one whole frame per configuration and repetition.
+    let cost = s.findings.iter().find(|f| f.starts_with("GPU phases: ")).expect("the GPU phases' cost");
+    let frames: u64 = cost["GPU phases: ".len()..].split(' ').next().unwrap().parse().unwrap();
+    assert!(frames >= (STEADY.rounds * STEADY.batch * 4 * 2) as u64, "{cost}");
+    assert!(cost.contains("16 whole frames with read-back"), "{cost}");
 }
 
 #[test]

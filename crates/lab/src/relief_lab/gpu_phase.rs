@@ -69,14 +69,44 @@ pub(super) fn choose_pipelines(
     Ok((vec![probe.chosen], Some(probe.reason)))
 }
 
+/// What the GPU phases of a run cost the device, summed over the angles: the frames timed
+/// (warm-up included) and their own times, and the phases' wall clock.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(super) struct PhaseCost {
+    /// Frames timed in the steady measurement, warm-up and measured rounds.
+    pub frames: u64,
+    /// Their summed times, ms (GPU time with timestamps, else the wall clock per frame).
+    pub busy_ms: f64,
+    /// Frames of the whole-frame measurement (each with its read-back).
+    pub wall_frames: u64,
+    /// Wall-clock seconds of the phases, both measurements.
+    pub wall_s: f64,
+}
+
+impl PhaseCost {
+    /// The finding that reports it; `timestamps` says whether `busy_ms` is GPU time.
+    pub fn finding(&self, timestamps: bool) -> String {
+        format!(
+            "GPU phases: {} frames timed back to back (warm-up included), {:.1} s of {} in all; {} whole frames with read-back; {:.1} s wall clock.",
+            self.frames,
+            self.busy_ms / 1e3,
+            if timestamps { "GPU time (timestamps)" } else { "wall-clock frame time (no timestamps)" },
+            self.wall_frames,
+            self.wall_s
+        )
+    }
+}
+
 /// Times `configs` from `camera` as the module describes; one [`GpuTimes`] per configuration,
-/// in order.
+/// in order. Adds what it cost to `cost`.
 pub(super) fn time_gpu_phase(
     renderer: &mut ReliefRenderer,
     camera: &Camera,
     configs: &[GpuConfig],
     cfg: &ReliefBenchConfig,
+    cost: &mut PhaseCost,
 ) -> crate::Result<Vec<GpuTimes>> {
+    let started = std::time::Instant::now();
     let timestamps = renderer.context().report.timestamps;
     let steady = time_steady(configs.len(), &cfg.steady, |c, frames| {
         let (t, p) = configs[c];
@@ -89,16 +119,20 @@ pub(super) fn time_gpu_phase(
                 .collect::<Result<Vec<f64>, GpuError>>()
         }
     })?;
+    cost.frames += steady.frames;
+    cost.busy_ms += steady.busy_ms;
     let mut wall: Vec<Vec<f64>> = vec![Vec::with_capacity(cfg.reps as usize); configs.len()];
     for round in 0..cfg.warmup + cfg.reps.max(1) {
         for (samples, &(t, p)) in wall.iter_mut().zip(configs) {
             renderer.set_pipeline(p)?;
             let f = renderer.time_frame(camera, t, true)?;
+            cost.wall_frames += 1;
             if round >= cfg.warmup {
                 samples.push(f.wall_ms);
             }
         }
     }
+    cost.wall_s += started.elapsed().as_secs_f64();
     Ok(steady
         .configs
         .into_iter()

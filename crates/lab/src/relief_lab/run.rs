@@ -2,7 +2,7 @@
 
 use super::config::{resolve, Backend, ReliefBenchConfig};
 use super::gpu_findings::gpu_findings;
-use super::gpu_phase::{choose_pipelines, time_gpu_phase, GpuConfig};
+use super::gpu_phase::{choose_pipelines, time_gpu_phase, GpuConfig, PhaseCost};
 use super::gpu_side::{self, GpuAnalysis};
 use super::page::{write_report, GpuPart, ImageSet};
 use super::record::{label, slug, Measured, RecordBackend, ReliefRecord, ReliefSummary};
@@ -115,6 +115,7 @@ pub fn run_relief_bench(
     let mut done = 0;
     let (mut records, mut gpu_records) = (Vec::new(), Vec::new());
     let mut images: Vec<ImageSet> = Vec::new();
+    let mut gpu_cost = PhaseCost::default();
     for &angle in &cfg.angles {
         let camera = benchmark_camera(angle, cfg.width, cfg.height);
         let view = View::new(&scene, &camera, angle);
@@ -143,7 +144,7 @@ pub fn run_relief_bench(
                     total,
                     &format!("{angle}°: GPU, {} configurations, timed in turn", configs.len()),
                 );
-                let times = time_gpu_phase(r, &camera, &configs, cfg)?;
+                let times = time_gpu_phase(r, &camera, &configs, cfg, &mut gpu_cost)?;
                 done += configs.len();
                 times
             }
@@ -226,6 +227,9 @@ pub fn run_relief_bench(
         findings.push(format!("GPU pipeline chosen by the start-up probe: {reason}."));
     }
     findings.extend(gpu_findings(&records, &gpu_records, &cfg.angles, &cfg.steady));
+    if let (Some(ctx), true) = (&gpu_ctx, gpu_cost.frames > 0) {
+        findings.push(gpu_cost.finding(ctx.report.timestamps));
+    }
     findings.extend(gpu_note.clone());
     let headline = headline(&records, &cfg.angles);
     let index = out.join("index.html");
