@@ -52,7 +52,7 @@ fn an_oversized_visibility_buffer_is_refused() {
     let limits = ctx.device.limits();
     let max_bytes = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
     let side = ctx.max_texture_side();
-    let rows = (max_bytes / 16 / side as u64 + 1) as u32;
+    let rows = (max_bytes / 8 / side as u64 + 1) as u32;
     if rows > side {
         println!("skipped: this device binds a visibility buffer for any frame its textures hold");
         return;

@@ -63,27 +63,25 @@ pub fn compute_section(s: &mut String, shaders: &[ExportShader], parsed: &[Parse
          2. {}: the visibility buffer, the scene's vertex and index buffers bound as storage, one \
          record per object, and the output textures (formats in the resource table).\n\
          3. Its own visibility pass, run before the dispatches, writing `vis_buffer` at every pixel: \
-         for example a rasterized pass that writes object and triangle IDs with the \
-         perspective-correct barycentric weights at the pixel centre, or one ray per pixel centre \
-         cast through the engine's BVH. Where no surface shows, that pass also writes the \
+         for example a rasterized pass that writes object and triangle IDs at the pixel centre, \
+         or one ray per pixel centre cast through the engine's BVH. Where no surface shows, that pass also writes the \
          background (`Frame.background`) into `out_color` (and UV 0 and layer count 0 into `out_uv` \
          and `out_layers`, if the engine reads them): the compute entry points never write those \
          pixels.\n",
         compute_rows.join(", "),
     );
     s.push_str(
-        "**The visibility buffer** holds one `vec4<u32>` (16 bytes) per pixel, row-major from the \
+        "**The visibility buffer** holds one `vec2<u32>` (8 bytes) per pixel, row-major from the \
          top row (element `y · Frame.size.x + x`):\n\n\
          | component | holds |\n|---|---|\n\
          | x | the object: its index in `mesh_objects`; `0xffffffff` where no surface shows |\n\
-         | y | the triangle within the object: its vertices are `mesh_indices[mesh_objects[x].x + 3·y + k]`, k = 0, 1, 2 |\n\
-         | z | the bits of `u` (f32): the barycentric weight of the triangle's second vertex |\n\
-         | w | the bits of `v` (f32): the weight of its third vertex (the first's is 1 − u − v) |\n\n\
-         The weights are those of the point where the camera ray through the pixel centre, \
-         `Frame.eye + s·(Frame.ray_base + (x + 0.5)·Frame.ray_dx + (y + 0.5)·Frame.ray_dy)`, meets \
-         the triangle: what a rasterizer's perspective-correct barycentrics at the pixel centre \
-         give. The surface is the nearest front face between the near and far planes \
-         (`Frame.depth_range`), as the rasterizer keeps it.\n\n",
+         | y | the triangle within the object: its vertices are `mesh_indices[mesh_objects[x].x + 3·y + k]`, k = 0, 1, 2 |\n\n\
+         The entry points find the point themselves: where the camera ray through the pixel \
+         centre, `Frame.eye + s·(Frame.ray_base + (x + 0.5)·Frame.ray_dx + (y + 0.5)·Frame.ray_dy)`, \
+         meets the triangle's plane, whose barycentric weights are what a rasterizer's \
+         perspective-correct barycentrics at the pixel centre give. The surface must be the nearest \
+         front face between the near and far planes (`Frame.depth_range`), as a rasterizer keeps \
+         it.\n\n",
     );
     let _ = writeln!(
         s,

@@ -25,8 +25,8 @@ use std::collections::HashMap;
 /// Pixels per workgroup side (`@workgroup_size(8, 8)`).
 pub(super) const TILE: u32 = 8;
 
-/// Bytes of one visibility record.
-const VIS_BYTES: u64 = 16;
+/// Bytes of one visibility record (object and triangle).
+const VIS_BYTES: u64 = 8;
 
 /// The binding numbers of the mesh group (`relief_mesh.wgsl`, `compute.wgsl`,
 /// `relief_visibility.wgsl`).

@@ -8,42 +8,44 @@
 // Outputs are storage textures at the pixel: colour (alpha 1), and for `cs_debug` the
 // displaced UV and the planned layer count, as `fs_color` and `fs_debug` write them.
 
-@group(2) @binding(0) var<storage, read> vis_buffer: array<vec4<u32>>;
+@group(2) @binding(0) var<storage, read> vis_buffer: array<vec2<u32>>;
 @group(2) @binding(4) var out_color: texture_storage_2d<rgba32float, write>;
 @group(2) @binding(5) var out_uv: texture_storage_2d<rgba32float, write>;
 @group(2) @binding(6) var out_layers: texture_storage_2d<r32uint, write>;
 
-// The surface at the centre of `pixel`, on the triangle the visibility buffer names: the
-// attributes interpolated with the hit's barycentric weights (perspective-correct by
-// construction: they are the weights of the point the ray met), and the exact screen
-// Jacobian of UV by ray differentials. With D(p) the camera ray's direction, affine in the
-// pixel position p, the hit is x = eye + s·D with s = n·(v0 − eye)/(n·D) on the triangle's
-// plane (normal n); so ∂x/∂p = s·(∂D/∂p − D·(n·∂D/∂p)/(n·D)), exact because the plane is flat
-// and D affine, and UV is affine on the plane: uv = uv0 + (uv1 − uv0)·g1·(x − v0) +
-// (uv2 − uv0)·g2·(x − v0) with g1 = (e2 × n)/|n|², g2 = (n × e1)/|n|².
-fn surface_at(pixel: vec2<u32>, hit: vec4<u32>) -> Surface {
+// The surface at the centre of `pixel`, on the triangle the visibility buffer names, as the
+// rasterizer would give it there. With D(p) the camera ray's direction, affine in the pixel
+// position p, the ray meets the triangle's plane (normal n) at x = eye + s·D with
+// s = n·(v0 − eye)/(n·D); the barycentric weights of x are g1·(x − v0) and g2·(x − v0) with
+// g1 = (e2 × n)/|n|², g2 = (n × e1)/|n|², and the attributes are interpolated with them
+// (perspective-correct by construction: they are the weights of the point the ray meets).
+// The exact screen Jacobian of UV follows by ray differentials: ∂x/∂p = s·(∂D/∂p −
+// D·(n·∂D/∂p)/(n·D)), exact because the plane is flat and D affine, and UV is affine on the
+// plane.
+fn surface_at(pixel: vec2<u32>, hit: vec2<u32>) -> Surface {
     let first = mesh_first_index(hit.x, hit.y);
     let a = mesh_vertex(mesh_indices[first]);
     let b = mesh_vertex(mesh_indices[first + 1u]);
     let c = mesh_vertex(mesh_indices[first + 2u]);
-    let u = bitcast<f32>(hit.z);
-    let v = bitcast<f32>(hit.w);
+    let e1 = b.position - a.position;
+    let e2 = c.position - a.position;
+    let n = cross(e1, e2);
+    let nn = dot(n, n);
+    let g1 = cross(e2, n) / nn;
+    let g2 = cross(n, e1) / nn;
+    let d = camera_ray(vec2<f32>(pixel) + 0.5);
+    let nd = dot(n, d);
+    let depth = dot(n, a.position - frame.eye.xyz) / nd;
+    let rel = frame.eye.xyz + depth * d - a.position;
+    let u = dot(g1, rel);
+    let v = dot(g2, rel);
     let w = 1.0 - u - v;
     let uv = a.uv * w + b.uv * u + c.uv * v;
     let world = a.position * w + b.position * u + c.position * v;
     let normal = a.normal * w + b.normal * u + c.normal * v;
     let tangent = a.tangent * w + b.tangent * u + c.tangent * v;
-    let e1 = b.position - a.position;
-    let e2 = c.position - a.position;
-    let n = cross(e1, e2);
-    let nn = dot(n, n);
-    let d = camera_ray(vec2<f32>(pixel) + 0.5);
-    let nd = dot(n, d);
-    let depth = dot(n, a.position - frame.eye.xyz) / nd;
     let dx = depth * (frame.ray_dx.xyz - d * (dot(n, frame.ray_dx.xyz) / nd));
     let dy = depth * (frame.ray_dy.xyz - d * (dot(n, frame.ray_dy.xyz) / nd));
-    let g1 = cross(e2, n) / nn;
-    let g2 = cross(n, e1) / nn;
     let duv1 = b.uv - a.uv;
     let duv2 = c.uv - a.uv;
     let duv_dx = duv1 * dot(g1, dx) + duv2 * dot(g2, dx);
@@ -52,13 +54,13 @@ fn surface_at(pixel: vec2<u32>, hit: vec4<u32>) -> Surface {
 }
 
 // The visibility record of `pixel` when it shows this dispatch's material, else VIS_NONE in x.
-fn visible(pixel: vec2<u32>) -> vec4<u32> {
+fn visible(pixel: vec2<u32>) -> vec2<u32> {
     if any(pixel >= frame.size) {
-        return vec4<u32>(VIS_NONE);
+        return vec2<u32>(VIS_NONE);
     }
     let hit = vis_buffer[pixel.y * frame.size.x + pixel.x];
     if hit.x == VIS_NONE || mesh_objects[hit.x].y != material.index {
-        return vec4<u32>(VIS_NONE);
+        return vec2<u32>(VIS_NONE);
     }
     return hit;
 }

@@ -3,9 +3,9 @@
 // bind group's index for MESH_GROUP; binding 0 of that group is the visibility buffer, whose
 // access each module declares itself.
 //
-// The visibility buffer holds one vec4<u32> per pixel, row 0 first: x the object whose
+// The visibility buffer holds one vec2<u32> per pixel, row 0 first: x the object whose
 // surface the pixel shows (VIS_NONE where none), y the triangle's index in that object's
-// mesh, z and w the bits of the barycentric weights (u, v) of its second and third vertices.
+// mesh. Where on the triangle follows from the pixel's camera ray (`compute.wgsl`).
 
 const VIS_NONE: u32 = 0xffffffffu;
 

@@ -5,7 +5,7 @@
 // rasterizer culls it). Writes the visibility buffer (see `relief_mesh.wgsl`), and where no
 // surface shows the background, UV 0 and no layers, as the fragment pipeline's clears.
 
-@group(1) @binding(0) var<storage, read_write> vis_buffer: array<vec4<u32>>;
+@group(1) @binding(0) var<storage, read_write> vis_buffer: array<vec2<u32>>;
 @group(1) @binding(4) var out_color: texture_storage_2d<rgba32float, write>;
 @group(1) @binding(5) var out_uv: texture_storage_2d<rgba32float, write>;
 @group(1) @binding(6) var out_layers: texture_storage_2d<r32uint, write>;
@@ -21,7 +21,7 @@ fn cs_visibility(@builtin(global_invocation_id) id: vec3<u32>) {
     let d = camera_ray(vec2<f32>(id.xy) + 0.5);
     let eye = frame.eye.xyz;
     var t_min = frame.depth_range.x;
-    var record = vec4<u32>(VIS_NONE, 0u, 0u, 0u);
+    var record = vec2<u32>(VIS_NONE, 0u);
     for (var k = 0u; k < VIS_MAX_BACK_FACES; k++) {
         let hit = rt_closest(eye, d, t_min, frame.depth_range.y, 0xffu);
         if hit.instance == RT_NO_HIT {
@@ -32,7 +32,7 @@ fn cs_visibility(@builtin(global_invocation_id) id: vec3<u32>) {
         let b = mesh_vertex(mesh_indices[first + 1u]).position;
         let c = mesh_vertex(mesh_indices[first + 2u]).position;
         if dot(cross(b - a, c - a), d) < 0.0 {
-            record = vec4<u32>(hit.instance, hit.primitive, bitcast<u32>(hit.u), bitcast<u32>(hit.v));
+            record = vec2<u32>(hit.instance, hit.primitive);
             break;
         }
         // The next representable distance beyond this back face.
