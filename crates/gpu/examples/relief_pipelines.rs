@@ -7,10 +7,11 @@
 //!
 //! Per frame size (default 1920x1080 and 3840x2160) and technique (default the thesis's POM-4
 //! to POM-32 and adaptive POM, then basic and cone-newton), on the benchmark wall of bricks at
-//! 45°: both pipelines in turn, round robin, each round a batch of frames recorded back to
-//! back in one submission (`ReliefRenderer::time_batch`); a warm-up of whole rounds until
-//! every configuration's round median is within 3 % of its previous one (at most 40
-//! rounds), then 10 measured rounds. Prints min, median and max GPU ms per configuration
+//! 45°: both pipelines in turn, timed by the bench's steady procedure
+//! (`renderlab_gpu::time_steady` over `ReliefRenderer::time_batch`: round robin, each round a
+//! batch of 8 frames recorded back to back in one submission; a warm-up of whole rounds until
+//! every configuration's last two round medians lie within ±3 % of their mean, at most 40
+//! rounds; then 10 measured rounds). Prints min, median and max GPU ms per configuration
 //! and the compute/fragment ratio, as Markdown rows.
 //!
 //! With `--idle`: POM-32 at the first size, one frame (a batch of one) after idle gaps of
@@ -19,7 +20,8 @@
 //! management (or lavapipe, a CPU) shows none. This separates the hardware's behaviour from
 //! the measurement's.
 
-use renderlab_gpu::{GpuContext, ReliefPipeline, ReliefRenderer};
+use renderlab_gpu::timing::median;
+use renderlab_gpu::{time_steady, GpuContext, ReliefPipeline, ReliefRenderer, SteadySettings, SteadyTiming};
 use renderlab_measure::fixtures::{benchmark_camera, benchmark_scene};
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::{Map, ReliefMaterial, Technique};
@@ -27,13 +29,17 @@ use renderlab_texture::materials;
 use std::process::ExitCode;
 use std::time::Duration;
 
-/// Frames per batch.
-const BATCH: u32 = 8;
-/// Measured rounds.
-const ROUNDS: usize = 10;
-/// Warm-up: at most this many rounds, until round medians agree within `SETTLE`.
-const MAX_WARMUP: usize = 40;
-const SETTLE: f64 = 0.03;
+/// The timing: batches of 8 back-to-back frames, round robin over the configurations; warm-up
+/// until every configuration's last two round medians lie within ±3 % of their mean (at most
+/// 40 rounds), then 10 measured rounds.
+const STEADY: SteadySettings = SteadySettings {
+    batch: 8,
+    rounds: 10,
+    window: 2,
+    tolerance: 0.03,
+    max_warmup_rounds: 40,
+    max_warmup_ms: f64::INFINITY,
+};
 
 const TECHNIQUES: &str = "pom:4,pom:8,pom:16,pom:24,pom:32,adaptive:4:32,basic,cone-newton";
 
@@ -44,16 +50,6 @@ fn main() -> ExitCode {
             eprintln!("error: {e}");
             ExitCode::FAILURE
         }
-    }
-}
-
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
     }
 }
 
@@ -89,45 +85,23 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         let camera = benchmark_camera(45.0, w, h);
         let configs: Vec<(Technique, ReliefPipeline)> =
             techniques.iter().flat_map(|&t| ReliefPipeline::ALL.map(|p| (t, p))).collect();
-        let round = |gpu: &mut ReliefRenderer| -> Result<Vec<Vec<f64>>, renderlab_gpu::GpuError> {
-            configs
-                .iter()
-                .map(|&(t, p)| {
-                    gpu.set_pipeline(p)?;
-                    gpu.time_batch(&camera, t, BATCH)
-                })
-                .collect()
-        };
-        let mut previous: Option<Vec<f64>> = None;
-        let mut warmup = 0;
-        while warmup < MAX_WARMUP {
-            let medians: Vec<f64> = round(&mut gpu)?.iter_mut().map(|b| median(b)).collect();
-            warmup += 1;
-            let settled = previous
-                .as_ref()
-                .is_some_and(|p| p.iter().zip(&medians).all(|(a, b)| (a - b).abs() <= SETTLE * a.max(*b)));
-            if settled {
-                break;
-            }
-            previous = Some(medians);
-        }
-        let mut samples: Vec<Vec<f64>> = vec![Vec::new(); configs.len()];
-        for _ in 0..ROUNDS {
-            for (s, batch) in samples.iter_mut().zip(round(&mut gpu)?) {
-                s.extend(batch);
-            }
-        }
-        println!("\n{w}×{h}, 45°, warm-up {warmup} rounds, {ROUNDS} rounds × {BATCH} frames\n");
+        let report = time_steady(configs.len(), &STEADY, |c, frames| {
+            let (t, p) = configs[c];
+            gpu.set_pipeline(p)?;
+            gpu.time_batch(&camera, t, frames)
+        })?;
+        let (warmup, rounds) = (report.warmup_rounds, STEADY.rounds);
+        println!(
+            "\n{w}×{h}, 45°, warm-up {warmup} rounds ({}), {rounds} rounds × {} frames\n",
+            if report.settled { "settled" } else { "did not settle" },
+            STEADY.batch
+        );
         println!("| technique | fragment ms (min / median / max) | compute ms (min / median / max) | compute ÷ fragment |");
         println!("|---|---|---|---|");
         for (i, t) in techniques.iter().enumerate() {
-            let cell = |s: &mut Vec<f64>| {
-                let m = median(s);
-                (m, format!("{:.3} / {:.3} / {:.3}", s[0], m, s[s.len() - 1]))
-            };
-            let (f, fc) = cell(&mut samples[2 * i]);
-            let (c, cc) = cell(&mut samples[2 * i + 1]);
-            println!("| {} | {fc} | {cc} | {:.3} |", t.name(), c / f);
+            let cell = |s: &SteadyTiming| format!("{:.3} / {:.3} / {:.3}", s.min_ms, s.median_ms, s.max_ms);
+            let (f, c) = (&report.configs[2 * i], &report.configs[2 * i + 1]);
+            println!("| {} | {} | {} | {:.3} |", t.name(), cell(f), cell(c), c.median_ms / f.median_ms);
         }
     }
     if idle {

@@ -34,6 +34,7 @@ pub mod context;
 pub mod error;
 pub mod export;
 pub mod filter;
+pub mod layout;
 mod material;
 mod mesh;
 pub mod readback;

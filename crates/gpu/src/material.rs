@@ -24,6 +24,7 @@
 
 use crate::context::GpuContext;
 use crate::error::Result;
+use crate::layout::uniform_entry;
 use crate::upload::{upload_depth_pyramid, upload_packed, upload_pyramid, upload_scalar};
 use bytemuck::{Pod, Zeroable};
 use renderlab_core::Image;
@@ -74,16 +75,7 @@ pub(crate) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         count: None,
     };
     let entries = [
-        wgpu::BindGroupLayoutEntry {
-            binding: 0,
-            visibility: wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        },
+        uniform_entry(0, wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE, false),
         texture(1),
         texture(2),
         texture(3),

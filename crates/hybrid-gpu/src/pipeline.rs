@@ -7,6 +7,7 @@
 //! layouts (`gbuffer.rs`).
 
 use crate::error::Result;
+pub(crate) use renderlab_gpu::layout::{storage_entry, uniform_entry};
 use renderlab_gpu::shader::build_checked;
 use renderlab_gpu::GpuContext;
 
@@ -24,41 +25,6 @@ pub(crate) const FRAME_RO: [u32; 2] = [9, 11];
 pub(crate) const FRAME_MAPS: [u32; 3] = [10, 14, 15];
 /// The frame-group binding of the visibility ids (a 2-D array texture of `u32`).
 pub(crate) const FRAME_IDS: u32 = 13;
-
-fn storage_entry(
-    binding: u32,
-    read_only: bool,
-    visibility: wgpu::ShaderStages,
-) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
-/// A uniform-buffer layout entry.
-pub(crate) fn uniform_entry(
-    binding: u32,
-    visibility: wgpu::ShaderStages,
-    dynamic: bool,
-) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
-            has_dynamic_offset: dynamic,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
 
 /// A read-only storage-buffer layout entry.
 pub(crate) fn read_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {

@@ -13,9 +13,12 @@
 use super::formats::{COLOR_FORMAT, LAYERS_FORMAT, UV_FORMAT};
 use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
+use crate::layout::storage_entry;
 use crate::mesh::GpuMesh;
 use crate::rt::{GpuAccel, RtPath};
-use crate::shader::{build_checked, visibility_source, SHADE_MESH_GROUP, VISIBILITY_ACCEL_GROUP};
+use crate::shader::{
+    build_checked, module_source, visibility_source, SHADE_MESH_GROUP, VISIBILITY_ACCEL_GROUP,
+};
 use glam::{Affine3A, Vec3};
 use renderlab_core::Scene;
 use renderlab_relief::Technique;
@@ -92,16 +95,7 @@ struct Bound {
 /// The layout of a mesh group: the visibility buffer (read-write in the visibility pass),
 /// the mesh's three buffers, the three output textures.
 fn mesh_layout(device: &wgpu::Device, vis_read_only: bool) -> wgpu::BindGroupLayout {
-    let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    };
+    let storage = |binding, read_only| storage_entry(binding, read_only, wgpu::ShaderStages::COMPUTE);
     let texture = |binding, format| wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::COMPUTE,
@@ -196,21 +190,21 @@ impl ComputeSide {
         })
     }
 
-    /// Builds (once) the shading pipeline of `technique` from `module` (the technique's
-    /// module, shared with the fragment pipeline).
+    /// Builds (once) the shading pipeline of `technique` from its module (the one the fragment
+    /// pipeline compiles too); the module is assembled only when the pipeline is not built yet.
     pub(super) fn shade_pipeline(
         &mut self,
         ctx: &GpuContext,
         technique: Technique,
         debug: bool,
-        source: &str,
     ) -> Result<()> {
         if self.shade.contains_key(&(technique, debug)) {
             return Ok(());
         }
+        let source = module_source(technique)?;
         let entry = if debug { "cs_debug" } else { "cs_color" };
         let layout = &self.shade_pipeline_layout;
-        let pipeline = build_checked(ctx, &technique.name(), source, |module| {
+        let pipeline = build_checked(ctx, &technique.name(), &source, |module| {
             ctx.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(&technique.name()),
                 layout: Some(layout),

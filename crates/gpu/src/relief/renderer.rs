@@ -11,6 +11,7 @@ use super::formats::{COLOR_FORMAT, DEPTH_FORMAT, LAYERS_FORMAT, UV_FORMAT};
 use super::pipeline::{PipelineProbe, ReliefPipeline};
 use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
+use crate::layout::uniform_entry;
 use crate::material::{material_layout, GpuMaterial};
 use crate::mesh::{vertex_layout, GpuMesh};
 use crate::readback::read_texture;
@@ -178,16 +179,7 @@ impl<'a> ReliefRenderer<'a> {
         let frame_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("frame"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
+                uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE, false),
                 wgpu::BindGroupLayoutEntry {
                     binding: 1,
                     visibility: wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
@@ -407,9 +399,8 @@ impl<'a> ReliefRenderer<'a> {
                 });
             }
             super::compute::check_size(self.ctx, w, h)?;
-            let source = module_source(technique)?;
             let side = self.compute.as_mut().expect("set_pipeline built the compute side");
-            side.shade_pipeline(self.ctx, technique, output == Output::Debug, &source)?;
+            side.shade_pipeline(self.ctx, technique, output == Output::Debug)?;
         } else {
             self.pipeline(technique, output)?;
         }

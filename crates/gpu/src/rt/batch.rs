@@ -5,6 +5,7 @@
 use super::accel::{GpuAccel, ALL_INSTANCES};
 use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
+use crate::layout::{storage_entry, uniform_entry};
 use crate::readback::map_read;
 use crate::shader::build_checked;
 use crate::timing::PassTimer;
@@ -57,31 +58,13 @@ struct Buffers {
 impl RayBatch {
     /// Compiles the batch shader after `accel`'s prelude.
     pub fn new(ctx: &GpuContext, accel: &GpuAccel) -> Result<RayBatch> {
-        let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
+        let storage = |binding, read_only| storage_entry(binding, read_only, wgpu::ShaderStages::COMPUTE);
         let layout = ctx.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ray batch"),
             entries: &[
                 storage(0, true),
                 storage(1, false),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 2,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
+                uniform_entry(2, wgpu::ShaderStages::COMPUTE, false),
             ],
         });
         if accel.group() != 1 {

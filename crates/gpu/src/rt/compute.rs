@@ -35,6 +35,7 @@ use super::accel::{AccelStats, GpuAccel, ALL_INSTANCES};
 use super::path::RtPath;
 use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
+use crate::layout::storage_entry;
 use renderlab_trace::node::{TriBlock, WideNode, EMPTY, WIDTH};
 use renderlab_trace::traverse::backend::IZE;
 use renderlab_trace::Tlas;
@@ -154,16 +155,8 @@ impl Flattened {
 
 /// The bind group layout of the compute path: three read-only storage buffers.
 fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    let entry = |binding| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: true },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    };
+    let entry =
+        |binding| storage_entry(binding, true, wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::FRAGMENT);
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("rt compute"),
         entries: &[entry(0), entry(1), entry(2)],

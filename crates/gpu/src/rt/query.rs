@@ -25,6 +25,7 @@ use super::accel::{AccelStats, GpuAccel, ALL_INSTANCES};
 use super::path::RtPath;
 use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
+use crate::layout::storage_entry;
 use renderlab_trace::Tlas;
 use std::time::Instant;
 use wgpu::util::DeviceExt;
@@ -73,16 +74,7 @@ fn prelude(group: u32, empty: bool) -> String {
 /// The bind group layout of the query path: the top level and the two primitive maps.
 fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     let visibility = wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::FRAGMENT;
-    let storage = |binding| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: true },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    };
+    let storage = |binding| storage_entry(binding, true, visibility);
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("rt query"),
         entries: &[

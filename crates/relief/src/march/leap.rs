@@ -211,8 +211,9 @@ impl Lane {
         }
         self.n += 1;
         let s = (1u32 << self.level) as f32;
-        // 1/s is a power of two: the product is the quotient, exactly.
-        let inv_s = 1.0 / s;
+        // 1/s = 2^−level, built from its exponent bits (levels stay far below 127): the
+        // product is the quotient, exactly, without a division per step.
+        let inv_s = f32::from_bits((127 - self.level as u32) << 23);
         let x = self.p0 + self.k * self.d;
         let c = Vec2::new(cell(x.x * inv_s, self.k.x), cell(x.y * inv_s, self.k.y));
         counter.count(1);

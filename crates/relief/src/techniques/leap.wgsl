@@ -128,7 +128,8 @@ fn trace(uv0: vec2<f32>, view_ts: vec3<f32>) -> Hit {
         }
         n += 1u;
         let s = f32(1u << level);
-        let inv_s = 1.0 / s;
+        // 2^−level from its exponent bits (`inv_s` on the CPU).
+        let inv_s = bitcast<f32>((127u - level) << 23u);
         let x = p0 + k * d;
         let c = vec2<f32>(leap_cell(x.x * inv_s, k.x), leap_cell(x.y * inv_s, k.y));
         let m = leap_min_depth(level, c);
