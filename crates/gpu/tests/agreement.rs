@@ -54,6 +54,15 @@
 //! are 40 dB and a FLIP mean of 0.01, a factor 3 of room for steeper maps and the march's
 //! layer flips at occluding edges. Its UV is POM's, with POM's bound.
 //!
+//! Horizon self-shadowing (`pom-horizon`) is the visible fraction of a sun-sized disc
+//! (radius ρ = 0.00466 rad) above the marched horizon α*, which changes by at most
+//! 2/(π·ρ) ≈ 137 per radian of α*; a depth error δ at a sample r texel steps away moves
+//! tan α* by δ·height_scale·c/r (c texel steps per UV unit; height_scale·c = 12.8 on the
+//! 256² bricks along an axis; r ≥ ½). Only pixels whose horizon lies within ρ of the
+//! light's elevation (the penumbra, a thin band along shadow edges) are sensitive at all.
+//! With 8-bit weights such a pixel may flip entirely; on lavapipe (full-precision filtering)
+//! δ is rounding alone and the shadow term moves by ~10⁻⁴. It takes the shadowed bounds.
+//!
 //! UV: the median difference between the GPU's and the CPU's UV must be tiny (0.01 texel:
 //! f32 and sampler rounding), and the mean error against the exact reference must be the CPU
 //! technique's own within 0.05 texel + 5 %: a shader bug (a wrong sign, a missing clamp, a
@@ -295,6 +304,7 @@ agreement_tests! {
     cone_newton_agrees: "cone-newton",
     leap_agrees: "leap",
     pom_shadow_agrees: "pom-shadow",
+    pom_horizon_agrees: "pom-horizon:32:32",
 }
 
 /// Every technique of the registry has a shader and an agreement test here: a technique added
@@ -310,6 +320,21 @@ fn every_registry_technique_is_tested() {
             d.name
         );
     }
+}
+
+/// Horizon shadows at grazing light (5° above the wall, across the bricks' courses), where
+/// their march takes its long geometric steps: the same bounds.
+#[test]
+fn pom_horizon_agrees_at_grazing_light() {
+    let bricks = materials::material("bricks", TEXTURE).expect("built-in material");
+    let mut scene = benchmark_scene(bricks);
+    let (e, a) = (5f32.to_radians(), 30f32.to_radians());
+    scene.light.to_light = glam::Vec3::new(e.cos() * a.cos(), -e.cos() * a.sin(), e.sin());
+    let cameras: Vec<(String, Camera)> = [0.0, 45.0]
+        .iter()
+        .map(|&a| (format!("{a:>3}° light 5°"), benchmark_camera(a, WIDTH, HEIGHT)))
+        .collect();
+    check_views("pom-horizon:32:16", &scene, &cameras);
 }
 
 /// Several objects and materials, depth-tested against each other (the thesis's room; the

@@ -362,6 +362,7 @@ impl<'a> ReliefRenderer<'a> {
         let (lit, shadow_samples) = match (technique.shading(), technique.shadow()) {
             (Shading::Unlit, _) => (0, 0),
             (Shading::LitShadowed, ShadowMode::Soft(n)) => (2, n),
+            (Shading::LitShadowed, ShadowMode::Horizon(n)) => (3, n),
             (Shading::LitShadowed, ShadowMode::Exact) => {
                 return Err(GpuError::Shader {
                     technique: technique.name(),

@@ -130,7 +130,8 @@ struct Shaded {
 // Traces and lights one pixel (`shade_point`): the ray enters at its UV moved into the first
 // tile (the field repeats, so the hit is the same and f32 keeps its precision), the hit moves
 // back, and the maps are sampled there with the level of the undisplaced footprint; a
-// shadowed technique then marches toward the light from the hit (`soft_shadow`).
+// shadowed technique then marches toward the light from the hit (`soft_shadow`, or
+// `horizon_shadow` when `frame.lit` is 3).
 fn shade(s: Surface) -> Shaded {
     let base = floor(s.uv);
     var hit = trace(s.uv - base, s.view_ts);
@@ -147,6 +148,8 @@ fn shade(s: Surface) -> Shaded {
         var shadow = 1.0;
         if frame.lit == 2u {
             shadow = soft_shadow(hit.uv, hit.depth, s.light_ts, frame.shadow_samples);
+        } else if frame.lit == 3u {
+            shadow = horizon_shadow(hit.uv, s.light_ts, frame.shadow_samples, HORIZON_LIGHT_RADIUS);
         }
         color = light(albedo, n, s.light_ts, s.view_ts, shadow);
     }

@@ -1,0 +1,61 @@
+//! POM with horizon self-shadowing: POM's trace, then the horizon toward the light marched in
+//! texel steps along the light's azimuth, and the visible fraction of a sun-sized light disc
+//! above it (see [`crate::render::horizon`]). Stable at grazing light, where `pom-shadow`'s
+//! samples, spread evenly in depth, land many texels apart.
+//!
+//! Kernel: `scalar` (POM's scalar march). The horizon march reads the `f32` field in both the
+//! float renderer and the fused frame (one pixel at a time); it has no vector kernel.
+
+use super::descriptor::{BenchSetting, Descriptor, Entry, Param, ShadowMode, WithTracer};
+use super::pom::Pom;
+use crate::kernel::Kernel;
+use crate::trace::Shading;
+
+/// POM with horizon self-shadowing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct PomHorizon {
+    /// Number of layers of the view march.
+    pub layers: u32,
+    /// Most samples along the light's azimuth.
+    pub steps: u32,
+}
+
+impl Entry for PomHorizon {
+    const DESCRIPTOR: Descriptor = Descriptor {
+        name: "pom-horizon",
+        summary: "POM with horizon self-shadowing in texel steps toward a sun-sized light, stable at grazing light",
+        params: &[
+            Param::count("LAYERS", 32, "layers of the view march"),
+            Param::count("STEPS", 32, "most samples along the light's azimuth"),
+        ],
+        needs: &[],
+        kernels: &[Kernel::Scalar],
+        shading: Shading::LitShadowed,
+    };
+
+    const BENCH: &'static [BenchSetting] =
+        &[BenchSetting::on(&[32, 16], Kernel::Scalar), BenchSetting::on(&[32, 32], Kernel::Scalar)];
+
+    const WGSL: Option<&'static str> = Some(include_str!("pom_horizon.wgsl"));
+
+    fn from_params(v: &[u32]) -> Result<Self, String> {
+        Ok(PomHorizon { layers: v[0], steps: v[1] })
+    }
+
+    fn params(&self) -> Vec<u32> {
+        vec![self.layers, self.steps]
+    }
+
+    fn layers(&self) -> u32 {
+        self.layers
+    }
+
+    fn shadow(&self) -> ShadowMode {
+        ShadowMode::Horizon(self.steps)
+    }
+
+    /// One kernel: the descriptor lists `scalar` alone, so `simd` is refused before this.
+    fn dispatch<A: WithTracer>(&self, _: Kernel, action: A) -> A::Output {
+        action.run(&Pom { layers: self.layers })
+    }
+}
