@@ -20,7 +20,7 @@
 //! - `banding`: among pixels shadowed exactly and as far from an edge, the fraction with
 //!   `s > 0.1`;
 //! - `frame_ms`: the median time of `frames` whole float-renderer frames (trace, shadow,
-//!   shading);
+//!   shading), every method on its `scalar` kernel;
 //! - `fetches`: height fetches per covered pixel of the frame (view march and shadow), and
 //!   `shadow_fetches`: those of the shadow alone.
 //!

@@ -3,12 +3,15 @@
 //! above it (see [`crate::render::horizon`]). Stable at grazing light, where `pom-shadow`'s
 //! samples, spread evenly in depth, land many texels apart.
 //!
-//! Kernel: `scalar` (POM's scalar march). The horizon march reads the `f32` field in both the
-//! float renderer and the fused frame (one pixel at a time); it has no vector kernel.
+//! Kernels: `scalar` traces with POM's scalar march, `simd` with POM's vector lanes (the
+//! packed map's 16-bit depths). The horizon march itself has no vector kernel: on both
+//! kernels, in the float renderer and in the fused frame, it reads the `f32` field one pixel
+//! at a time.
 
 use super::descriptor::{BenchSetting, Descriptor, Entry, Param, ShadowMode, WithTracer};
-use super::pom::Pom;
-use crate::kernel::Kernel;
+use super::pom::{Pom, PomSimd};
+use crate::kernel::{Kernel, KernelChoice};
+use crate::march::pom_lanes::PomLanes;
 use crate::trace::Shading;
 
 /// POM with horizon self-shadowing.
@@ -29,12 +32,14 @@ impl Entry for PomHorizon {
             Param::count("STEPS", 32, "most samples along the light's azimuth"),
         ],
         needs: &[],
-        kernels: &[Kernel::Scalar],
+        kernels: &[Kernel::Scalar, Kernel::Simd],
         shading: Shading::LitShadowed,
     };
 
-    const BENCH: &'static [BenchSetting] =
-        &[BenchSetting::on(&[32, 16], Kernel::Scalar), BenchSetting::on(&[32, 32], Kernel::Scalar)];
+    const BENCH: &'static [BenchSetting] = &[
+        BenchSetting { params: &[32, 16], kernel: KernelChoice::Auto },
+        BenchSetting { params: &[32, 32], kernel: KernelChoice::Auto },
+    ];
 
     const WGSL: Option<&'static str> = Some(include_str!("pom_horizon.wgsl"));
 
@@ -54,8 +59,10 @@ impl Entry for PomHorizon {
         ShadowMode::Horizon(self.steps)
     }
 
-    /// One kernel: the descriptor lists `scalar` alone, so `simd` is refused before this.
-    fn dispatch<A: WithTracer>(&self, _: Kernel, action: A) -> A::Output {
-        action.run(&Pom { layers: self.layers })
+    fn dispatch<A: WithTracer>(&self, kernel: Kernel, action: A) -> A::Output {
+        match kernel {
+            Kernel::Scalar => action.run(&Pom { layers: self.layers }),
+            Kernel::Simd => action.run(&PomSimd { march: PomLanes { layers: self.layers }, lanes: true }),
+        }
     }
 }
