@@ -52,7 +52,13 @@ pub const DESCRIPTIONS: &[(&str, &str)] = &[
     // The relief frame's fragment outputs.
     ("fs_color.result", "colour in linear light (not tone-mapped, not sRGB-encoded; write it to a float target such as Rgba16Float); alpha 1 marks drawn pixels"),
     ("DebugOut.color", "colour in linear light, as fs_color's"),
-    ("DebugOut.uv", "the displaced texture coordinate where the technique's ray met the height field in xy, zw 0 (an Rgba32Float target: the same format as the compute pipeline's storage texture, which Vulkan's basic storage set has and Rg32Float is not in)"),
+    ("DebugOut.uv", "the displaced texture coordinate where the technique's ray met the height field in xy, the pixel-depth offset (distance from the eye to the displaced hit, world units) in z, w 0 (an Rgba32Float target: the same format as the compute pipeline's storage texture, which Vulkan's basic storage set has and Rg32Float is not in)"),
+    ("OffsetColor.color", "colour in linear light, as fs_color's (fs_color_pdo: fs_color with the pixel-depth offset)"),
+    ("OffsetColor.depth", "the displaced hit's depth-buffer value (frag_depth): later depth tests, such as objects that cut into the relief, see the relief instead of the flat mesh; writing it turns early depth testing off on most hardware"),
+    ("OffsetDebug.color", "colour in linear light, as fs_color's"),
+    ("OffsetDebug.uv", "as DebugOut.uv"),
+    ("OffsetDebug.layers", "as DebugOut.layers"),
+    ("OffsetDebug.depth", "as OffsetColor.depth"),
     ("DebugOut.layers", "layers or steps the technique planned for this pixel, 0 where it has none (an R32Uint target)"),
     // The relief frame's compute entry points: group 2.
     ("vis_buffer", "the visibility buffer, written by the engine's own visibility pass before the cs_* dispatches (a rasterized pass writing object and triangle IDs, or ray casting); one vec2<u32> (8 bytes) per pixel, row-major from the top row (index y · Frame.size.x + x): x the object (its index in mesh_objects), or 0xffffffff where no surface shows; y the triangle's index within that object (its vertices mesh_indices[mesh_objects[x].x + 3y + k], k = 0, 1, 2); the front-most front face between the near and far planes at the pixel centre, as a rasterizer would keep it (the entry points intersect the pixel's camera ray with that triangle's plane themselves)"),
@@ -60,7 +66,7 @@ pub const DESCRIPTIONS: &[(&str, &str)] = &[
     ("mesh_indices", "three u32 per triangle, absolute indices into mesh_vertices (already offset by the object's first vertex), each object's triangles contiguous, counter-clockwise front faces; the fragment pipeline's index buffer bound as storage"),
     ("mesh_objects", "one vec2<u32> per object, indexed by vis_buffer's x: x the object's first index in mesh_indices, y its material's index (compared with Material.index)"),
     ("out_color", "colour in linear light with alpha 1 (as fs_color's result), Rgba32Float storage texture of Frame.size; texel (x, y) is pixel (x, y), row 0 the top row; written by cs_color and cs_debug at the pixels of their dispatch's material only; the engine's visibility pass writes the background where no surface shows"),
-    ("out_uv", "the displaced texture coordinate (as DebugOut.uv), xy, zw 0, Rgba32Float storage texture of Frame.size; written by cs_debug only, at its material's pixels (renderlab's visibility pass writes 0 where no surface shows)"),
+    ("out_uv", "the displaced texture coordinate (as DebugOut.uv) in xy, the pixel-depth offset in z, w 0, Rgba32Float storage texture of Frame.size; written by cs_debug only, at its material's pixels (renderlab's visibility pass writes 0 where no surface shows)"),
     ("out_layers", "layers or steps the technique planned (as DebugOut.layers), R32Uint storage texture of Frame.size; written by cs_debug only, at its material's pixels (renderlab's visibility pass writes 0 where no surface shows)"),
     ("cs_color.id", "global_invocation_id: xy the pixel (right and down from the top-left), one invocation per pixel in 8×8 workgroups; dispatch (⌈width/8⌉, ⌈height/8⌉, 1) workgroups once per material, with that material's group 1 bound"),
     ("cs_debug.id", "global_invocation_id: xy the pixel, as cs_color's; the same dispatch"),

@@ -4,6 +4,7 @@
 
 pub mod horizon;
 pub mod material;
+pub mod patch;
 pub mod shade;
 pub mod shadow;
 
@@ -156,7 +157,7 @@ mod tests {
     }
 
     fn input(w: u32, h: u32, points: &[Option<SurfacePoint>]) -> FrameInput<'_> {
-        FrameInput { width: w, height: h, points }
+        FrameInput::new(w, h, points)
     }
 
     #[test]
