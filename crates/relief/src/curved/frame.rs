@@ -5,24 +5,20 @@
 //! moves by `∂D/∂x` per pixel, the hit point by `t·(∂D/∂x − D·(N·∂D/∂x)/(N·D))` in the tangent
 //! plane, and UV by that step's components along `∂P/∂u` and `∂P/∂v` (orthogonal on every
 //! shape here) divided by their squared lengths.
+//!
+//! Where the mapping stretches (`s_u = |∂P/∂u| / L`, `s_v = |∂P/∂v| / L` differ from 1, as
+//! toward a sphere's poles), the view direction is given in the frame scaled by the stretch,
+//! `view_ts ∝ (V·T / s_u, V·B / s_v, V·N)`, so that the techniques' UV offset per unit depth
+//! `−V.xy / V.z · height_scale` is the one the world-space ray makes (the unnormalised tangent
+//! frame engines use for parallax); the light stays in the orthonormal frame. The curvature
+//! in 1/UV along T is `κ_T · L · s_u²` (the sag `½ κ (Δu · s_u · L)²` over the relief's UV
+//! unit `L`), likewise along B. On isometric mappings (`s = 1`) both are the plain ones.
 
 use super::shape::{Geometry, ReliefShape};
-use glam::{DVec2, DVec3, Mat3, Vec2, Vec3};
+use crate::render::shade::PatchInfo;
+use glam::{DVec2, DVec3, Mat3, Vec3};
 use rayon::prelude::*;
 use renderlab_core::{Camera, SurfacePoint};
-
-/// Per-pixel geometry of the patch a pixel shows (to be replaced by the renderer's own).
-#[derive(Clone, Copy, Debug, PartialEq, Default)]
-pub struct PatchInfo {
-    /// Normal curvature along the tangent (x) and bitangent (y), in 1/UV.
-    pub curvature: Vec2,
-    /// The patch's UV rectangle.
-    pub uv_min: Vec2,
-    /// The patch's UV rectangle.
-    pub uv_max: Vec2,
-    /// World units per UV unit.
-    pub world_per_uv: f32,
-}
 
 /// A frame's input built from a shape: one entry per pixel, row-major.
 #[derive(Clone, Debug)]
@@ -56,12 +52,20 @@ pub fn ray_with_differentials(camera: &Camera, px: f64, py: f64) -> (DVec3, DVec
     (d, derive(right * (2.0 * tan * aspect / w)), derive(up * (-2.0 * tan / h)))
 }
 
+/// The mapping's stretch at `g`: `(|∂P/∂u|, |∂P/∂v|) / L`, floored at `1e-3` (where `∂P/∂u`
+/// vanishes, as at a pole).
+pub fn stretch<S: ReliefShape>(shape: &S, g: &Geometry) -> DVec2 {
+    let l = shape.world_per_uv();
+    DVec2::new(g.dp_du.length(), g.dp_dv.length()).max(DVec2::splat(1e-3 * l)) / l
+}
+
 /// The pixel's patch information for `shape` at `g`.
 pub fn patch_info<S: ReliefShape>(shape: &S, g: &Geometry) -> PatchInfo {
     let l = shape.world_per_uv();
     let (lo, hi) = shape.uv_rect();
+    let s = stretch(shape, g);
     PatchInfo {
-        curvature: (g.curvature * l).as_vec2(),
+        curvature: (g.curvature * l * s * s).as_vec2(),
         uv_min: lo.as_vec2(),
         uv_max: hi.as_vec2(),
         world_per_uv: l as f32,
@@ -95,14 +99,16 @@ pub fn surface_point<S: ReliefShape>(
     };
     let along = |dd: DVec3| to_uv((dd - d * (n.dot(dd) / dn)) * t);
     let tbn = [g.tangent, g.bitangent, n];
-    let to_ts = |w: DVec3| DVec3::new(w.dot(tbn[0]), w.dot(tbn[1]), w.dot(tbn[2])).as_vec3();
+    let to_ts = |w: DVec3| DVec3::new(w.dot(tbn[0]), w.dot(tbn[1]), w.dot(tbn[2]));
+    let s = stretch(shape, &g);
+    let view = to_ts(-d);
     let sp = SurfacePoint {
         uv: uv.as_vec2(),
         duv_dx: along(ddx).as_vec2(),
         duv_dy: along(ddy).as_vec2(),
         tbn: Mat3::from_cols(tbn[0].as_vec3(), tbn[1].as_vec3(), tbn[2].as_vec3()),
-        view_ts: to_ts(-d),
-        light_ts: to_ts(light),
+        view_ts: DVec3::new(view.x / s.x, view.y / s.y, view.z).normalize_or_zero().as_vec3(),
+        light_ts: to_ts(light).as_vec3(),
         position: g.position.as_vec3(),
         depth: t as f32,
         object: 0,
@@ -139,6 +145,7 @@ mod tests {
     use super::*;
     use crate::curved::patch::Patch;
     use crate::curved::sphere::Sphere;
+    use glam::Vec2;
 
     #[test]
     fn differentials_match_the_camera_and_finite_differences() {
@@ -167,7 +174,15 @@ mod tests {
         assert!((r.uv - a.uv - a.duv_dx).length() < tol, "{:?} {:?}", r.uv - a.uv, a.duv_dx);
         assert!((b.uv - a.uv - a.duv_dy).length() < tol);
         assert!(a.view_ts.z > 0.0 && (a.view_ts.length() - 1.0).abs() < 1e-5);
-        assert_eq!(f.patches[44 * 96 + 40].curvature, Vec2::splat(s.world_per_uv() as f32));
+        // Curvature 1/R times L times the stretch squared (1 along v, sin θ along u).
+        let g = s.geometry(a.uv.as_dvec2());
+        let sin_theta = (g.normal.cross(s.axis)).length();
+        let l = s.world_per_uv();
+        let k = f.patches[44 * 96 + 40].curvature;
+        assert!(
+            (k.y as f64 - l).abs() < 1e-5 && (k.x as f64 - l * sin_theta * sin_theta).abs() < 1e-5,
+            "{k}"
+        );
         assert!(f.points[0].is_none(), "the corner misses the sphere");
     }
 

@@ -21,7 +21,7 @@
 use super::descriptor::{Descriptor, Entry, Param, WithTracer};
 use crate::kernel::Kernel;
 use crate::march::layered::{interpolate, March};
-use crate::trace::{uv_per_depth, ReliefHit, ReliefInputs, ReliefTechnique, Shading};
+use crate::trace::{uv_per_depth, RayContext, ReliefHit, ReliefInputs, ReliefTechnique, Shading};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
 
@@ -32,52 +32,30 @@ pub struct Silhouette {
     pub layers: u32,
 }
 
-/// What the march reads of the pixel's patch: curvature (1/UV, positive convex) along T and
-/// B, and the UV rectangle in the ray's coordinates.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PatchBounds {
-    /// Normal curvature along T (x) and B (y), in 1/UV.
-    pub curvature: Vec2,
-    /// The UV rectangle's smallest corner.
-    pub uv_min: Vec2,
-    /// The UV rectangle's largest corner.
-    pub uv_max: Vec2,
-}
-
-impl PatchBounds {
-    /// A flat, unbounded patch (where the march is POM's).
-    pub const FLAT: PatchBounds =
-        PatchBounds { curvature: Vec2::ZERO, uv_min: Vec2::NEG_INFINITY, uv_max: Vec2::INFINITY };
-
-    #[inline]
-    fn contains(&self, uv: Vec2) -> bool {
-        uv.cmpge(self.uv_min).all() && uv.cmple(self.uv_max).all()
-    }
-}
-
-/// The miss (to be the trace interface's own).
+/// Whether `uv` lies in the context's UV rectangle (false for NaN).
 #[inline]
-fn miss() -> ReliefHit {
-    ReliefHit { uv: Vec2::ZERO, depth: -1.0, layers: 0 }
+fn contains(ctx: &RayContext, uv: Vec2) -> bool {
+    uv.cmpge(ctx.uv_min).all() && uv.cmple(ctx.uv_max).all()
 }
 
 impl Silhouette {
-    /// Traces the ray entering at `uv` toward the eye `v` on the patch `patch`.
+    /// Traces the ray entering at `uv0` toward the eye `v` with the pixel's context `ctx`
+    /// (its curvature and UV rectangle; the footprint is not read).
     #[inline]
     pub fn march<C: Counter>(
         &self,
         inp: &ReliefInputs,
         uv0: Vec2,
         v: Vec3,
-        patch: &PatchBounds,
+        ctx: &RayContext,
         counter: &mut C,
     ) -> ReliefHit {
-        if !(uv0.is_finite() && patch.contains(uv0)) {
-            return miss();
+        if !(uv0.is_finite() && contains(ctx, uv0)) {
+            return ReliefHit::miss();
         }
         let n = self.layers.max(1);
         let dp = uv_per_depth(v, inp.height_scale);
-        let k = patch.curvature;
+        let k = ctx.curvature;
         let c = 0.5 * (k.x * dp.x * dp.x + k.y * dp.y * dp.y) / inp.height_scale;
         let c = if c.is_finite() { c } else { 0.0 };
         // The march's length in t, and whether its end is where the ray leaves the top.
@@ -108,28 +86,43 @@ impl Silhouette {
             uv = uv0 + step * i as f32;
             map = src.depth(uv, counter);
             depth = depth_at(t);
-            if depth < map && !patch.contains(uv) {
-                return miss();
+            if depth < map && !contains(ctx, uv) {
+                return ReliefHit::miss();
             }
         }
         let crossed = i < n || depth >= map;
         if !crossed && exits {
-            return miss();
+            return ReliefHit::miss();
         }
         let prev_depth = if i == 0 { 0.0 } else { depth_at(t - dt) };
         let m = March { prev_uv, prev_map, prev_layer: prev_depth, uv, map, layer: depth };
         let (hit_uv, hit_depth) = interpolate(&m);
-        if !(hit_uv.is_finite() && patch.contains(hit_uv)) {
-            return miss();
+        if !(hit_uv.is_finite() && contains(ctx, hit_uv)) {
+            return ReliefHit::miss();
         }
         ReliefHit { uv: hit_uv, depth: hit_depth, layers: n }
     }
 }
 
 impl ReliefTechnique for Silhouette {
+    const USES_CONTEXT: bool = true;
+
+    /// Without a context: a flat, unbounded patch, where the march is POM's.
     #[inline]
     fn trace<C: Counter>(&self, inp: &ReliefInputs, uv: Vec2, v: Vec3, counter: &mut C) -> ReliefHit {
-        self.march(inp, uv, v, &PatchBounds::FLAT, counter)
+        self.march(inp, uv, v, &RayContext::default(), counter)
+    }
+
+    #[inline]
+    fn trace_in<C: Counter>(
+        &self,
+        inp: &ReliefInputs,
+        uv: Vec2,
+        v: Vec3,
+        ctx: &RayContext,
+        counter: &mut C,
+    ) -> ReliefHit {
+        self.march(inp, uv, v, ctx, counter)
     }
 }
 
@@ -207,13 +200,13 @@ mod tests {
         let inp_m = bricks();
         let mut inp = inp_m.inputs();
         inp.height_scale = 0.05;
-        let curved = PatchBounds { curvature: Vec2::splat(2.0), ..PatchBounds::FLAT };
+        let curved = RayContext { curvature: Vec2::splat(2.0), ..RayContext::default() };
         let t = Silhouette { layers: 64 };
         let grazing = Vec3::new(0.999, 0.0, 0.045).normalize();
         let (mut misses, mut n) = (0, 0);
         for (uv, _) in rays().take(400) {
             n += 1;
-            misses += t.march(&inp, uv, grazing, &curved, &mut Tally::default()).depth.lt(&0.0) as u32;
+            misses += t.march(&inp, uv, grazing, &curved, &mut Tally::default()).is_miss() as u32;
             let down = t.march(&inp, uv, Vec3::Z, &curved, &mut Tally::default());
             assert_eq!(down, Pom { layers: 64 }.trace(&inp, uv, Vec3::Z, &mut Tally::default()));
         }
@@ -234,11 +227,14 @@ mod tests {
         assert!(free.depth > 0.0);
         // The hit lies at smaller u (the ray moves against V.xy): a rectangle ending just
         // past the entry keeps it; one ending short of the hit loses it.
-        let keep =
-            PatchBounds { uv_min: Vec2::new(free.uv.x - 0.01, 0.0), uv_max: Vec2::ONE, ..PatchBounds::FLAT };
+        let keep = RayContext {
+            uv_min: Vec2::new(free.uv.x - 0.01, 0.0),
+            uv_max: Vec2::ONE,
+            ..RayContext::default()
+        };
         assert_eq!(t.march(&inp, uv, v, &keep, &mut Tally::default()), free);
-        let cut = PatchBounds { uv_min: Vec2::new(free.uv.x + 0.01, 0.0), ..keep };
-        assert!(t.march(&inp, uv, v, &cut, &mut Tally::default()).depth < 0.0);
+        let cut = RayContext { uv_min: Vec2::new(free.uv.x + 0.01, 0.0), ..keep };
+        assert!(t.march(&inp, uv, v, &cut, &mut Tally::default()).is_miss());
     }
 
     /// NaN, infinite and grazing inputs never panic and give a hit in range or a miss.
@@ -248,10 +244,15 @@ mod tests {
         let inp = m.inputs();
         let bad = [f32::NAN, f32::INFINITY, f32::NEG_INFINITY, 0.0, -1.0, 1e-30, 1e30];
         let patches = [
-            PatchBounds::FLAT,
-            PatchBounds { curvature: Vec2::new(1e30, -3.0), ..PatchBounds::FLAT },
-            PatchBounds { curvature: Vec2::splat(f32::NAN), uv_min: Vec2::ZERO, uv_max: Vec2::ONE },
-            PatchBounds { curvature: Vec2::new(-50.0, 0.0), ..PatchBounds::FLAT },
+            RayContext::default(),
+            RayContext { curvature: Vec2::new(1e30, -3.0), ..RayContext::default() },
+            RayContext {
+                curvature: Vec2::splat(f32::NAN),
+                uv_min: Vec2::ZERO,
+                uv_max: Vec2::ONE,
+                footprint: f32::NAN,
+            },
+            RayContext { curvature: Vec2::new(-50.0, 0.0), ..RayContext::default() },
         ];
         for &a in &bad {
             for &b in &bad {
@@ -262,7 +263,7 @@ mod tests {
                         (Vec2::new(0.5, 0.5), Vec3::new(1.0, 0.0, b)),
                     ] {
                         let h = Silhouette { layers: 16 }.march(&inp, uv, v, p, &mut Tally::default());
-                        let is_miss = h.depth < 0.0;
+                        let is_miss = h.is_miss();
                         assert!(
                             is_miss || (h.uv.is_finite() && (0.0..=1.0 + 1e-6).contains(&h.depth)),
                             "{h:?}"
