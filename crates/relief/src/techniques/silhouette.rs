@@ -149,6 +149,8 @@ impl Entry for Silhouette {
         self.layers
     }
 
+    const WGSL: Option<&'static str> = Some(include_str!("silhouette.wgsl"));
+
     fn dispatch<A: WithTracer>(&self, _kernel: Kernel, action: A) -> A::Output {
         action.run(self)
     }
