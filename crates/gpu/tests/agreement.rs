@@ -343,6 +343,7 @@ agreement_tests! {
     leap_agrees: "leap",
     pom_shadow_agrees: "pom-shadow",
     pom_horizon_agrees: "pom-horizon:32:32",
+    silhouette_agrees: "silhouette:32",
 }
 
 /// Every technique of the registry has a shader and an agreement test here: a technique added

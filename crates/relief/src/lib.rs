@@ -20,6 +20,7 @@
 #![warn(missing_docs)]
 
 pub mod cpu;
+pub mod curved;
 pub mod error;
 pub mod fused;
 pub mod kernel;

@@ -137,6 +137,7 @@ registry! {
     Leap(leap::SpaceLeap),
     PomShadow(pom_shadow::PomShadow),
     PomHorizon(pom_horizon::PomHorizon),
+    Silhouette(silhouette::Silhouette),
 }
 
 /// The syntax of every technique, comma-separated (for errors and short help).
