@@ -27,6 +27,7 @@ pub mod march;
 pub mod memory;
 pub mod render;
 pub mod simd;
+pub mod study;
 pub mod techniques;
 pub mod trace;
 
