@@ -185,7 +185,7 @@ fn check_views(name: &str, scene: &Scene, cameras: &[(String, Camera)]) {
     let mut failures = Vec::new();
     for (view, camera) in cameras {
         let g = rasterize(scene, camera);
-        let input = FrameInput { width: WIDTH, height: HEIGHT, points: g.pixels() };
+        let input = FrameInput::new(WIDTH, HEIGHT, g.pixels());
         let cpu = render(input, &mats, technique, Kernel::Scalar, scene.lighting, scene.background, false)
             .expect("CPU render");
         let reference = render_reference(input, &mats, technique, scene.lighting, scene.background);
@@ -262,6 +262,7 @@ fn frames_as_cpu(f: &GpuFrame) -> renderlab_relief::Frame {
         layers: f.layers.clone(),
         mask: f.mask.clone(),
         depth: Image::new(f.image.width(), f.image.height(), 0.0),
+        view_depth: Image::new(f.image.width(), f.image.height(), 0.0),
         fetches: 0,
     }
 }

@@ -106,7 +106,7 @@ fn frames(c: &mut Criterion) {
             })
         });
         let gbuf = renderlab_raster::rasterize(&scene, &cam);
-        let input = FrameInput { width: 1280, height: 800, points: gbuf.pixels() };
+        let input = FrameInput::new(1280, 800, gbuf.pixels());
         for name in ["basic", "pom:32", "cone-newton", "relief", "cone", "pom-shadow", "adaptive"] {
             let t = Technique::parse(name).expect("technique");
             let k = t.kernel(KernelChoice::Auto).expect("kernel");

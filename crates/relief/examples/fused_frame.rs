@@ -131,7 +131,7 @@ fn main() {
     for angle in [0.0, 60.0] {
         let cam = Camera::orbit(BRICKS_WALL_CENTRE, 6.0, angle, 1280, 800);
         let g = renderlab_raster::rasterize(&scene, &cam);
-        let input = FrameInput { width: 1280, height: 800, points: g.pixels() };
+        let input = FrameInput::new(1280, 800, g.pixels());
         let raster = time(|| {
             std::hint::black_box(renderlab_raster::rasterize(&scene, &cam));
         });

@@ -29,6 +29,51 @@ pub struct ReliefHit {
     pub layers: u32,
 }
 
+impl ReliefHit {
+    /// The hit of a ray that leaves its patch without meeting the relief (a silhouette): the
+    /// frame leaves the pixel as background. Its depth is −1, outside every real hit's [0, 1].
+    pub const fn miss() -> ReliefHit {
+        ReliefHit { uv: Vec2::ZERO, depth: -1.0, layers: 0 }
+    }
+
+    /// Whether this is [`ReliefHit::miss`] (any negative depth).
+    #[inline]
+    pub fn is_miss(&self) -> bool {
+        self.depth < 0.0
+    }
+}
+
+/// What the frame knows about a ray's pixel besides the ray: the footprint that level of
+/// detail follows, and the shape of the patch for techniques that bend the ray with its
+/// curvature or stop it at the patch's edge. Techniques that read it say so with
+/// [`ReliefTechnique::USES_CONTEXT`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RayContext {
+    /// UV per pixel: the longer of |∂uv/∂x| and |∂uv/∂y| (the footprint the mip level follows).
+    pub footprint: f32,
+    /// Normal curvature of the top surface along the tangent (x) and the bitangent (y), in
+    /// 1/UV (world curvature × world units per UV); positive where the surface falls away from
+    /// its tangent plane (the outside of a sphere), 0 on flat patches.
+    pub curvature: Vec2,
+    /// Lower corner of the patch's UV rectangle in the ray's own coordinates (the frame moves
+    /// each ray into the first tile, and the bounds with it); −∞ when unbounded.
+    pub uv_min: Vec2,
+    /// Upper corner of that rectangle; +∞ when unbounded.
+    pub uv_max: Vec2,
+}
+
+impl Default for RayContext {
+    /// No footprint, a flat patch without bounds.
+    fn default() -> Self {
+        RayContext {
+            footprint: 0.0,
+            curvature: Vec2::ZERO,
+            uv_min: Vec2::splat(f32::NEG_INFINITY),
+            uv_max: Vec2::splat(f32::INFINITY),
+        }
+    }
+}
+
 const _: () = {
     assert!(std::mem::size_of::<ReliefHit>() == 16);
     assert!(std::mem::offset_of!(ReliefHit, depth) == 8);
@@ -100,10 +145,29 @@ impl ReliefInputs<'_> {
 
 /// A method that finds the displaced texture coordinate for one pixel.
 pub trait ReliefTechnique: Sync {
+    /// Whether the frame must hand this technique each ray's [`RayContext`]: it then calls
+    /// [`ReliefTechnique::trace_in`] ray by ray instead of [`ReliefTechnique::trace_row`].
+    const USES_CONTEXT: bool = false;
+
     /// Traces the view ray entering the top surface at `uv`, with `view_ts` the unit vector
     /// toward the eye in tangent space. Counts every height fetch through `counter`.
     fn trace<C: Counter>(&self, inputs: &ReliefInputs, uv: Vec2, view_ts: Vec3, counter: &mut C)
         -> ReliefHit;
+
+    /// [`ReliefTechnique::trace`] with the pixel's context; techniques that adapt to the
+    /// footprint or the patch's shape override it (and set [`ReliefTechnique::USES_CONTEXT`]).
+    /// It may return [`ReliefHit::miss`]. The default ignores the context.
+    fn trace_in<C: Counter>(
+        &self,
+        inputs: &ReliefInputs,
+        uv: Vec2,
+        view_ts: Vec3,
+        ctx: &RayContext,
+        counter: &mut C,
+    ) -> ReliefHit {
+        let _ = ctx;
+        self.trace(inputs, uv, view_ts, counter)
+    }
 
     /// Traces a run of rays `(uv, view_ts)` into `out` (same length), writing every entry
     /// (callers hand in stale buffers). The default traces them

@@ -193,7 +193,7 @@ fn records_equal_the_float_renderer_and_the_image_is_within_8_bit_precision() {
     for angle in [0.0, 60.0] {
         let cam = camera(angle, w, h);
         let g = rasterize(&scene, &cam);
-        let input = FrameInput { width: w, height: h, points: g.pixels() };
+        let input = FrameInput::new(w, h, g.pixels());
         for name in [
             "basic",
             "normal",

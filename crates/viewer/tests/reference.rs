@@ -39,7 +39,7 @@ fn the_reference_is_the_nearest_to_the_exact_one() {
     for angle in [0.0, 45.0, 60.0, 80.0] {
         let camera = benchmark_camera(angle, w, h);
         let g = rasterize(&scene, &camera);
-        let input = FrameInput { width: w, height: h, points: g.pixels() };
+        let input = FrameInput::new(w, h, g.pixels());
         for (t, e) in techniques.iter().zip(&mut error) {
             let exact = render_reference(input, &mats, *t, scene.lighting, scene.background);
             let frame = gpu.render(&camera, *t).unwrap();

@@ -72,7 +72,9 @@ fn cs_color(@builtin(global_invocation_id) id: vec3<u32>) {
     if hit.x == VIS_NONE {
         return;
     }
-    textureStore(out_color, id.xy, vec4<f32>(shade(surface_at(id.xy, hit)).color, 1.0));
+    let s = shade(surface_at(id.xy, hit));
+    // A trace that missed the relief shows the background, as the visibility pass writes it.
+    textureStore(out_color, id.xy, vec4<f32>(s.color, select(0.0, 1.0, s.covered)));
 }
 
 // The image with the debug targets.
@@ -83,7 +85,7 @@ fn cs_debug(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let s = shade(surface_at(id.xy, hit));
-    textureStore(out_color, id.xy, vec4<f32>(s.color, 1.0));
+    textureStore(out_color, id.xy, vec4<f32>(s.color, select(0.0, 1.0, s.covered)));
     textureStore(out_uv, id.xy, vec4<f32>(s.uv, 0.0, 0.0));
     textureStore(out_layers, id.xy, vec4<u32>(s.layers, 0u, 0u, 0u));
 }

@@ -43,10 +43,15 @@ fn surface(in: Varyings) -> Surface {
     return surface_from(in.uv, duv_dx, duv_dy, in.world, in.normal, in.tangent);
 }
 
-// The image alone (timed runs). Alpha marks covered pixels (the clear leaves 0).
+// The image alone (timed runs). Alpha marks covered pixels (the clear leaves 0); a trace that
+// missed the relief discards, so what lies behind shows.
 @fragment
 fn fs_color(in: Varyings) -> @location(0) vec4<f32> {
-    return vec4<f32>(shade(surface(in)).color, 1.0);
+    let s = shade(surface(in));
+    if !s.covered {
+        discard;
+    }
+    return vec4<f32>(s.color, 1.0);
 }
 
 // The image with the debug targets: displaced UV and planned layer count.
@@ -59,5 +64,8 @@ struct DebugOut {
 @fragment
 fn fs_debug(in: Varyings) -> DebugOut {
     let s = shade(surface(in));
+    if !s.covered {
+        discard;
+    }
     return DebugOut(vec4<f32>(s.color, 1.0), vec4<f32>(s.uv, 0.0, 0.0), s.layers);
 }

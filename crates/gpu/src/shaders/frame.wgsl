@@ -120,11 +120,32 @@ fn light(albedo: vec3<f32>, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, shadow: f3
     return ambient + (albedo * diff + vec3<f32>(spec)) * facing;
 }
 
-// One shaded pixel and what the debug targets show of it.
+// What the frame knows about a ray's pixel besides the ray (`RayContext`): the footprint in
+// UV per pixel, the patch's curvature along T and B in 1/UV (0: flat) and its UV rectangle in
+// the ray's own coordinates (moved into the first tile with the UV; ±3.4e38: unbounded).
+struct RayContext {
+    footprint: f32,
+    curvature: vec2<f32>,
+    uv_min: vec2<f32>,
+    uv_max: vec2<f32>,
+}
+
+// The context of the ray being traced, set by `shade` before it calls `trace`; techniques that
+// adapt to the footprint or the patch read it.
+var<private> ray_ctx: RayContext;
+
+// UV per pixel: the longer screen derivative (`footprint`).
+fn footprint(duv_dx: vec2<f32>, duv_dy: vec2<f32>) -> f32 {
+    return max(length(duv_dx), length(duv_dy));
+}
+
+// One shaded pixel and what the debug targets show of it. `covered` is false where the trace
+// missed the relief (a silhouette): the entry points leave the background there.
 struct Shaded {
     color: vec3<f32>,
     uv: vec2<f32>,
     layers: u32,
+    covered: bool,
 }
 
 // Traces and lights one pixel (`shade_point`): the ray enters at its UV moved into the first
@@ -133,7 +154,12 @@ struct Shaded {
 // shadowed technique then marches toward the light from the hit (`soft_shadow`).
 fn shade(s: Surface) -> Shaded {
     let base = floor(s.uv);
+    let unbounded = vec2<f32>(3.4e38);
+    ray_ctx = RayContext(footprint(s.duv_dx, s.duv_dy), vec2<f32>(0.0), -unbounded - base, unbounded - base);
     var hit = trace(s.uv - base, s.view_ts);
+    if hit.depth < 0.0 {
+        return Shaded(frame.background.xyz, vec2<f32>(0.0), 0u, false);
+    }
     hit.uv += base;
     let albedo_size = vec2<f32>(textureDimensions(albedo_map));
     let albedo_lod = lod(albedo_size, material.albedo_levels, s.duv_dx, s.duv_dy);
@@ -150,5 +176,5 @@ fn shade(s: Surface) -> Shaded {
         }
         color = light(albedo, n, s.light_ts, s.view_ts, shadow);
     }
-    return Shaded(color, hit.uv, hit.layers);
+    return Shaded(color, hit.uv, hit.layers, true);
 }

@@ -40,11 +40,7 @@ impl View {
 
     /// The renderer's view of it.
     pub fn input(&self) -> FrameInput<'_> {
-        FrameInput {
-            width: self.gbuffer.width(),
-            height: self.gbuffer.height(),
-            points: self.gbuffer.pixels(),
-        }
+        FrameInput::new(self.gbuffer.width(), self.gbuffer.height(), self.gbuffer.pixels())
     }
 }
 

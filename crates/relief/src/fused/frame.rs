@@ -67,6 +67,8 @@ impl FusedFrame {
             image: self.to_linear(),
             uv: Image::from_fn(w, h, |x, y| records.uv[(y * w + x) as usize]),
             depth: Image::from_fn(w, h, |x, y| records.depth[(y * w + x) as usize]),
+            // The fused frame keeps no eye distance per pixel: no pixel-depth offset.
+            view_depth: Image::new(w, h, 0.0),
             layers: Image::from_fn(w, h, |x, y| records.layers[(y * w + x) as usize]),
             mask: Image::from_fn(w, h, |x, y| records.mask[(y * w + x) as usize]),
             fetches: records.fetches,

@@ -3,6 +3,7 @@
 //! monomorphised), and renders the matching reference.
 
 pub mod material;
+pub mod patch;
 pub mod shade;
 pub mod shadow;
 
@@ -155,7 +156,7 @@ mod tests {
     }
 
     fn input(w: u32, h: u32, points: &[Option<SurfacePoint>]) -> FrameInput<'_> {
-        FrameInput { width: w, height: h, points }
+        FrameInput::new(w, h, points)
     }
 
     #[test]

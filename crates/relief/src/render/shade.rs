@@ -7,7 +7,7 @@ use crate::march::ray::split_ray;
 use crate::render::material::ReliefMaterial;
 use crate::render::shadow::soft_shadow;
 pub use crate::techniques::descriptor::ShadowMode;
-use crate::trace::{ReliefHit, ReliefTechnique, Shading};
+use crate::trace::{RayContext, ReliefHit, ReliefTechnique, Shading};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use renderlab_core::counter::{Counter, NoCount, Tally};
@@ -25,6 +25,49 @@ pub struct FrameInput<'a> {
     pub height: u32,
     /// One entry per pixel.
     pub points: &'a [Option<SurfacePoint>],
+    /// The patch each pixel shows, one entry per pixel, where known (see [`PatchInfo`]);
+    /// `None` treats every surface as flat and unbounded, and leaves the pixel-depth offset
+    /// out of [`Frame::view_depth`].
+    pub patches: Option<&'a [PatchInfo]>,
+}
+
+impl<'a> FrameInput<'a> {
+    /// A frame of `points` (`width × height`, row-major) on flat, unbounded patches.
+    pub fn new(width: u32, height: u32, points: &'a [Option<SurfacePoint>]) -> Self {
+        FrameInput { width, height, points, patches: None }
+    }
+
+    /// The same frame with each pixel's patch (one entry per pixel).
+    pub fn with_patches(self, patches: &'a [PatchInfo]) -> Self {
+        FrameInput { patches: Some(patches), ..self }
+    }
+}
+
+/// The geometry of the patch a pixel shows, beyond its tangent plane: what techniques that
+/// stop at a patch's edge or bend the ray with its curvature read (through [`RayContext`]),
+/// and the scale that turns a hit's tangent-space distance into the pixel-depth offset.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PatchInfo {
+    /// Normal curvature along the tangent and bitangent, in 1/UV ([`RayContext::curvature`]).
+    pub curvature: Vec2,
+    /// Lower corner of the patch's UV rectangle (unwrapped UV, as [`SurfacePoint::uv`]).
+    pub uv_min: Vec2,
+    /// Upper corner of the patch's UV rectangle.
+    pub uv_max: Vec2,
+    /// World units per UV unit at this point (0 when unknown: no pixel-depth offset).
+    pub world_per_uv: f32,
+}
+
+impl Default for PatchInfo {
+    /// A flat, unbounded patch of unknown scale.
+    fn default() -> Self {
+        PatchInfo {
+            curvature: Vec2::ZERO,
+            uv_min: Vec2::splat(f32::NEG_INFINITY),
+            uv_max: Vec2::splat(f32::INFINITY),
+            world_per_uv: 0.0,
+        }
+    }
 }
 
 /// A rendered frame and what it cost.
@@ -34,11 +77,16 @@ pub struct Frame {
     pub image: Image<Vec3>,
     /// Displaced UV per pixel (zero on background).
     pub uv: Image<Vec2>,
-    /// Depth of the hit per pixel.
+    /// Depth of the hit below the top surface per pixel, in [0, 1].
     pub depth: Image<f32>,
+    /// The pixel-depth offset: distance from the eye to the displaced hit in world units
+    /// (the top surface's distance plus the hit's distance along the view ray below it,
+    /// [`offset_depth`]); the top surface's distance where the patch's scale is unknown, 0
+    /// on background and misses.
+    pub view_depth: Image<f32>,
     /// Planned layer count per pixel (0 where not applicable).
     pub layers: Image<u16>,
-    /// Pixels showing a surface.
+    /// Pixels showing a surface (not those whose ray missed the relief at a silhouette).
     pub mask: Image<bool>,
     /// Height fetches of the whole frame (0 when not counted).
     pub fetches: u64,
@@ -162,17 +210,67 @@ fn set_len<T: Copy + Default>(v: &mut Vec<T>, n: usize) {
 /// Traces every covered pixel of `row`, leaving one hit per covered pixel (in pixel order) in
 /// `scratch.hits`. Each ray starts from its UV moved into the first tile (the height field
 /// repeats, so the hit is the same and texel addressing stays in its fast range); runs of
-/// pixels with one material go to [`ReliefTechnique::trace_row`] together.
+/// pixels with one material go to [`ReliefTechnique::trace_row`] together. A technique that
+/// reads its ray's context ([`ReliefTechnique::USES_CONTEXT`]) is given it ray by ray, with
+/// the row's `patches` (one per pixel of the row) where known.
 pub(crate) fn trace_points<T: ReliefTechnique, C: Counter>(
     t: &T,
     materials: &[ReliefMaterial],
     row: &[Option<SurfacePoint>],
+    patches: Option<&[PatchInfo]>,
     scratch: &mut RowScratch,
     counter: &mut C,
 ) {
     let n = row.iter().flatten().count();
+    if T::USES_CONTEXT {
+        let points = row.iter().enumerate().filter_map(|(x, p)| p.as_ref().map(|sp| (x, sp)));
+        let contexts = points.map(|(x, sp)| {
+            let patch = patches.map_or(PatchInfo::default(), |p| p[x]);
+            (sp.uv, sp.view_ts, sp.material, footprint(sp.duv_dx, sp.duv_dy), patch)
+        });
+        return trace_in_context(t, materials, n, contexts, scratch, counter);
+    }
     let points = row.iter().flatten().map(|sp| (sp.uv, sp.view_ts, sp.material));
     trace_rays(t, materials, n, points, scratch, counter)
+}
+
+/// UV per pixel: the longer of the two screen derivatives ([`RayContext::footprint`]).
+#[inline]
+pub fn footprint(duv_dx: Vec2, duv_dy: Vec2) -> f32 {
+    duv_dx.length().max(duv_dy.length())
+}
+
+/// Traces each of `n` rays `(uv, view_ts, material, footprint, patch)` alone with its
+/// [`RayContext`] (the patch's bounds moved into the ray's tile with its UV), leaving one hit
+/// per ray in `scratch.hits`; misses stay misses.
+fn trace_in_context<T: ReliefTechnique, C: Counter>(
+    t: &T,
+    materials: &[ReliefMaterial],
+    n: usize,
+    rays: impl Iterator<Item = (Vec2, Vec3, u32, f32, PatchInfo)>,
+    scratch: &mut RowScratch,
+    counter: &mut C,
+) {
+    let hits = &mut scratch.hits;
+    hits.clear();
+    hits.reserve(n);
+    let last = materials.len() - 1;
+    for (uv, view_ts, material, footprint, patch) in rays {
+        let ((ray_uv, view), base) = split_ray(uv, view_ts);
+        let ctx = RayContext {
+            footprint,
+            curvature: patch.curvature,
+            uv_min: patch.uv_min - base,
+            uv_max: patch.uv_max - base,
+        };
+        let inputs = materials[(material as usize).min(last)].inputs();
+        let mut hit = t.trace_in(&inputs, ray_uv, view, &ctx, counter);
+        if !hit.is_miss() {
+            hit.uv += base;
+        }
+        hits.push(hit);
+    }
+    assert_eq!(hits.len(), n, "trace_in_context: the row has another number of points");
 }
 
 /// [`trace_points`] over the `n` covered pixels' `(uv, view_ts, material)`, in pixel order.
@@ -224,6 +322,13 @@ pub(crate) fn trace_shade_points<T: ReliefTechnique, C: Counter>(
     counter: &mut C,
 ) {
     let n = points.len();
+    if T::USES_CONTEXT {
+        // The fused frame knows the footprint but not the patch: flat and unbounded.
+        let rays = points
+            .iter()
+            .map(|p| (p.uv, p.view_ts, p.material, footprint(p.duv_dx, p.duv_dy), PatchInfo::default()));
+        return trace_in_context(t, materials, n, rays, scratch, counter);
+    }
     if !vector {
         let rays = points.iter().map(|p| (p.uv, p.view_ts, p.material));
         return trace_rays(t, materials, n, rays, scratch, counter);
@@ -271,6 +376,7 @@ impl Frame {
             image: Image::new(width, height, background),
             uv: Image::new(width, height, Vec2::ZERO),
             depth: Image::new(width, height, 0.0),
+            view_depth: Image::new(width, height, 0.0),
             layers: Image::new(width, height, 0),
             mask: Image::new(width, height, false),
             fetches: 0,
@@ -306,48 +412,71 @@ pub fn render_frame_into<T: ReliefTechnique>(
 ) {
     let (w, h) = (input.width as usize, input.height as usize);
     assert_eq!(input.points.len(), w * h, "frame input size");
+    assert!(input.patches.is_none_or(|p| p.len() == w * h), "frame input's patches size");
     if frame.image.size() != (input.width, input.height) {
         *frame = Frame::blank(input.width, input.height, opt.background);
     }
-    let Frame { image, uv, depth, layers, mask, .. } = frame;
+    let Frame { image, uv, depth, view_depth, layers, mask, .. } = frame;
     frame.fetches = image
         .pixels_mut()
         .par_chunks_mut(w)
         .zip(uv.pixels_mut().par_chunks_mut(w))
         .zip(depth.pixels_mut().par_chunks_mut(w))
+        .zip(view_depth.pixels_mut().par_chunks_mut(w))
         .zip(layers.pixels_mut().par_chunks_mut(w))
         .zip(mask.pixels_mut().par_chunks_mut(w))
         .enumerate()
-        .map_init(RowScratch::default, |scratch, (y, ((((img, uvr), dr), lr), mr))| {
+        .map_init(RowScratch::default, |scratch, (y, (((((img, uvr), dr), vr), lr), mr))| {
             let row = &input.points[y * w..(y + 1) * w];
+            let patches = input.patches.map(|p| &p[y * w..(y + 1) * w]);
             img.fill(opt.background);
             uvr.fill(Vec2::ZERO);
             dr.fill(0.0);
+            vr.fill(0.0);
             lr.fill(0);
-            for (m, p) in mr.iter_mut().zip(row) {
-                *m = p.is_some();
-            }
+            mr.fill(false);
             let mut tally = Tally::default();
             if count {
-                trace_points(t, materials, row, scratch, &mut tally);
+                trace_points(t, materials, row, patches, scratch, &mut tally);
             } else {
-                trace_points(t, materials, row, scratch, &mut NoCount);
+                trace_points(t, materials, row, patches, scratch, &mut NoCount);
             }
             let covered = row.iter().enumerate().filter_map(|(x, p)| p.as_ref().map(|sp| (x, sp)));
             for ((x, sp), hit) in covered.zip(&scratch.hits) {
+                if hit.is_miss() {
+                    continue;
+                }
                 let mat = &materials[(sp.material as usize).min(materials.len() - 1)];
                 img[x] = if count {
                     shade_point(hit, sp, mat, opt, &mut tally)
                 } else {
                     shade_point(hit, sp, mat, opt, &mut NoCount)
                 };
+                let world_per_uv = patches.map_or(0.0, |p| p[x].world_per_uv);
                 uvr[x] = hit.uv;
                 dr[x] = hit.depth;
+                vr[x] = offset_depth(sp, hit, mat.height_scale, world_per_uv);
                 lr[x] = hit.layers.min(u16::MAX as u32) as u16;
+                mr[x] = true;
             }
             tally.0
         })
         .sum();
+}
+
+/// The pixel-depth offset of `hit` seen at `sp`: the top surface's distance from the eye
+/// plus the tangent-space distance from the top-surface point to the hit,
+/// `|(hit.uv − sp.uv, hit.depth · height_scale)|`, in world units (`world_per_uv` per UV
+/// unit). Exact for a ray that runs straight below a flat top surface, as every tracer's
+/// does; with `world_per_uv` 0 (unknown scale) it is the top surface's distance.
+#[inline]
+pub fn offset_depth(sp: &SurfacePoint, hit: &ReliefHit, height_scale: f32, world_per_uv: f32) -> f32 {
+    let along = (hit.uv - sp.uv).extend(hit.depth * height_scale).length();
+    if along.is_finite() {
+        sp.depth + along * world_per_uv
+    } else {
+        sp.depth
+    }
 }
 
 /// Runs only the technique's trace for every covered pixel (no texture filtering, no
@@ -358,8 +487,10 @@ pub fn trace_frame<T: ReliefTechnique>(input: FrameInput, materials: &[ReliefMat
     input
         .points
         .par_chunks(w.max(1))
-        .map_init(RowScratch::default, |scratch, row| {
-            trace_points(t, materials, row, scratch, &mut NoCount);
+        .enumerate()
+        .map_init(RowScratch::default, |scratch, (y, row)| {
+            let patches = input.patches.map(|p| &p[y * w..(y + 1) * w]);
+            trace_points(t, materials, row, patches, scratch, &mut NoCount);
             scratch.hits.iter().map(|h| (h.uv.x + h.uv.y + h.depth) as f64).sum::<f64>()
         })
         .sum()

@@ -176,7 +176,7 @@ pub fn lod_study(config: &LodConfig) -> Result<LodStudy, LodStudyError> {
     for f in 0..config.frames {
         let g = renderlab_raster::try_rasterize(&scene, &walk_camera(f, config.step, w, h))?;
         let points = g.pixels();
-        let input = FrameInput { width: w, height: h, points };
+        let input = FrameInput::new(w, h, points);
         let bands = band_map(points, tex_size);
         let reference =
             render_reference(input, &mats, config.techniques[0], scene.lighting, scene.background);
@@ -257,7 +257,7 @@ fn measure_costs(
     scene: &renderlab_core::Scene,
 ) -> Result<Vec<Costs>, LodStudyError> {
     let band_inputs: Vec<Vec<_>> = (0..BANDS).map(|b| band_points(input.points, bands, b)).collect();
-    let banded = |b: usize| FrameInput { width: input.width, height: input.height, points: &band_inputs[b] };
+    let banded = |b: usize| FrameInput::new(input.width, input.height, &band_inputs[b]);
     let mut out = Vec::with_capacity(config.techniques.len());
     for &t in &config.techniques {
         let (lighting, bg) = (scene.lighting, scene.background);
