@@ -3,8 +3,9 @@
 //! heat map of each layered technique's layer counts (dark blue 0 to dark red at the largest
 //! count of any technique).
 //!
-//! `cargo run --release -p renderlab-relief --example lod -- [WIDTHxHEIGHT] [FRAMES] [TECH...]`
-//! (defaults: 640x360, 16 frames, the study's technique list).
+//! `cargo run --release -p renderlab-relief --example lod -- [WIDTHxHEIGHT] [FRAMES] [tile=UNITS] [TECH...]`
+//! (defaults: 640x360, 16 frames, the floor tile of the thesis room, the study's technique
+//! list).
 
 use renderlab_core::color::heat_color;
 use renderlab_core::io::{save_color, save_rgb8};
@@ -20,6 +21,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         if let Some((w, h)) = arg.split_once('x').and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?)))
         {
             (config.width, config.height) = (w, h);
+        } else if let Some(tile) = arg.strip_prefix("tile=") {
+            config.tile = tile.parse()?;
         } else if let Ok(n) = arg.parse() {
             config.frames = n;
         } else {
@@ -39,8 +42,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 fn print_tables(s: &LodStudy) {
     let c = &s.config;
     println!(
-        "floor '{}' {}², {}x{}, walk of {} frames at {} units/frame, scalar kernel, medians of {}",
-        c.material, c.texture_size, c.width, c.height, c.frames, c.step, c.repeats
+        "floor '{}' {}², tile {} units, {}x{}, walk of {} frames at {} units/frame, scalar kernel, medians of {}",
+        c.material, c.texture_size, c.tile, c.width, c.height, c.frames, c.step, c.repeats
     );
     print!("\nband pixels (first frame):");
     for (name, n) in BAND_NAMES.iter().zip(s.band_pixels) {

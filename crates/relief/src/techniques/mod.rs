@@ -136,6 +136,7 @@ registry! {
     ConeNewton(cone_newton::ConeNewton),
     Leap(leap::SpaceLeap),
     PomShadow(pom_shadow::PomShadow),
+    PomLod(pom_lod::PomLod),
 }
 
 /// The syntax of every technique, comma-separated (for errors and short help).

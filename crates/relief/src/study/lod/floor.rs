@@ -19,8 +19,8 @@ pub const EYE_HEIGHT: f32 = 1.7;
 /// under 2 units to the horizon.
 pub const PITCH_DEG: f32 = 20.0;
 
-/// World units covered by one repetition of the floor's texture: a paving tile pattern at its
-/// everyday size, so that the nearest rows see the texture magnified (mip level below 0) at
+/// World units covered by one repetition of the floor's texture by default: the thesis room's
+/// floor tile, so that the nearest rows see a 256² texture magnified (mip level below 0) at
 /// the study's resolutions and the far rows many texels per pixel.
 pub const FLOOR_TILE: f32 = 3.0;
 
@@ -30,13 +30,14 @@ const HALF_WIDTH: f32 = 120.0;
 const LENGTH: f32 = 120.0;
 
 /// The floor scene: one quad of `material` from `z = 4` (behind the start of the path) to
-/// `z = 4 − LENGTH`, under the default light.
-pub fn floor_scene(material: Material) -> Scene {
+/// `z = 4 − LENGTH`, its texture repeating every `tile` world units, under the default light.
+/// The relief's depth in world units is the material's height scale times `tile`.
+pub fn floor_scene(material: Material, tile: f32) -> Scene {
     let near_z = 4.0;
     let centre = Vec3::new(0.0, 0.0, near_z - LENGTH * 0.5);
     let right = Vec3::X * HALF_WIDTH;
     let down = Vec3::Z * (LENGTH * 0.5);
-    let repeat = Vec2::new(2.0 * HALF_WIDTH, LENGTH) / FLOOR_TILE;
+    let repeat = Vec2::new(2.0 * HALF_WIDTH, LENGTH) / tile;
     let floor =
         SceneObject { name: "floor".into(), mesh: Mesh::quad(centre, right, down, repeat), material: 0 };
     Scene::new(vec![floor], vec![material])
@@ -62,7 +63,7 @@ mod tests {
         let m =
             Material::from_maps("flat", Image::new(16, 16, Vec3::ONE), Image::new(16, 16, 1.0), None, 0.05)
                 .expect("valid maps");
-        let scene = floor_scene(m);
+        let scene = floor_scene(m, FLOOR_TILE);
         let (w, h) = (64, 36);
         let g = renderlab_raster::rasterize(&scene, &walk_camera(0, 0.025, w, h));
         // Every pixel of the bottom row shows the floor, seen from above (view_ts.z > 0), and

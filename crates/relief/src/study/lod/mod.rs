@@ -49,6 +49,10 @@ pub struct LodConfig {
     pub texture_size: u32,
     /// Built-in material of the floor.
     pub material: String,
+    /// World units per repetition of the floor's texture ([`floor::FLOOR_TILE`] by default):
+    /// smaller tiles make the relief shallower in the world, so its parallax turns sub-pixel
+    /// nearer the eye.
+    pub tile: f32,
     /// Frames of the walk (at least 2 for flicker).
     pub frames: u32,
     /// World units the camera moves per frame.
@@ -65,15 +69,17 @@ impl Default for LodConfig {
     /// every band from magnified to eight texels per pixel within the frame), 16 frames of a
     /// walk at 0.025 units a frame (1.5 units per second at 60 frames per second), 5 repeats.
     fn default() -> Self {
-        let techniques = ["normal", "pom:8", "pom:32", "adaptive", "cone-newton"]
-            .iter()
-            .map(|s| Technique::parse(s).expect("built-in technique names parse"))
-            .collect();
+        let techniques =
+            ["normal", "pom:8", "pom:16", "pom:32", "adaptive", "cone-newton", "pom-lod", "pom-lod:32:4:20"]
+                .iter()
+                .map(|s| Technique::parse(s).expect("built-in technique names parse"))
+                .collect();
         Self {
             width: 640,
             height: 360,
             texture_size: 256,
             material: "brick_pavement".into(),
+            tile: floor::FLOOR_TILE,
             frames: 16,
             step: 0.025,
             repeats: 5,
@@ -149,12 +155,15 @@ pub fn lod_study(config: &LodConfig) -> Result<LodStudy, LodStudyError> {
     if config.frames < 2 {
         return Err(CoreError::param("frames", config.frames, "the walk needs at least 2 frames").into());
     }
-    if !(config.step.is_finite()) {
+    if !config.step.is_finite() {
         return Err(CoreError::param("step", config.step, "must be finite").into());
+    }
+    if !(config.tile > 0.0 && config.tile.is_finite()) {
+        return Err(CoreError::param("tile", config.tile, "must be positive and finite").into());
     }
     let material = renderlab_texture::materials::material(&config.material, config.texture_size)?;
     let mats = [ReliefMaterial::new(&material, &ComplexityParams::default(), true)];
-    let scene = floor_scene(material);
+    let scene = floor_scene(material, config.tile);
     let texels = Vec2::new(mats[0].height.width() as f32, mats[0].height.height() as f32);
     let tex_size = mats[0].albedo.size();
     for &t in &config.techniques {
