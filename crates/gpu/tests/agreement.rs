@@ -296,6 +296,7 @@ agreement_tests! {
     cone_newton_agrees: "cone-newton",
     leap_agrees: "leap",
     pom_shadow_agrees: "pom-shadow",
+    pom_lod_agrees: "pom-lod",
 }
 
 /// Every technique of the registry has a shader and an agreement test here: a technique added
