@@ -1,7 +1,8 @@
 //! The level-of-detail study ([`renderlab_relief::study::lod`]) with its tables printed and
-//! its images written to `/tmp/lod/`: each technique's first frame, the reference's, and a
-//! heat map of each layered technique's layer counts (dark blue 0 to dark red at the largest
-//! count of any technique).
+//! its images written to `/tmp/lod/`: each technique's first frame, the reference's, a heat
+//! map of each layered technique's layer counts (dark blue 0 to dark red at the largest count
+//! of any technique) and one of its colour error against the reference (0 to 16 8-bit levels,
+//! the mean of the channels, as displayed).
 //!
 //! `cargo run --release -p renderlab-relief --example lod -- [WIDTHxHEIGHT] [FRAMES] [tile=UNITS] [TECH...]`
 //! (defaults: 640x360, 16 frames, the floor tile of the thesis room, the study's technique
@@ -9,7 +10,8 @@
 
 use renderlab_core::color::heat_color;
 use renderlab_core::io::{save_color, save_rgb8};
-use renderlab_relief::study::lod::bands::{BANDS, BAND_NAMES};
+use renderlab_core::Image;
+use renderlab_relief::study::lod::bands::{displayed, BANDS, BAND_NAMES};
 use renderlab_relief::study::lod::{lod_study, LodConfig, LodStudy};
 use renderlab_relief::Technique;
 use std::path::Path;
@@ -103,19 +105,29 @@ fn print_tables(s: &LodStudy) {
     debug_assert_eq!(BANDS, BAND_NAMES.len());
 }
 
+/// The heat colour of `t` in [0, 1] as 8-bit sRGB.
+fn heat8(t: f32) -> [u8; 3] {
+    let c = heat_color(t);
+    [c.x, c.y, c.z].map(|v| (v * 255.0).round() as u8)
+}
+
 fn save_images(s: &LodStudy, dir: &Path) -> Result<(), Box<dyn std::error::Error>> {
     std::fs::create_dir_all(dir)?;
     save_color(dir.join("reference.png"), &s.reference.image)?;
+    let reference = displayed(&s.reference);
     let most =
         s.results.iter().flat_map(|r| r.first.layers.pixels().iter().copied()).max().unwrap_or(0).max(1);
     for r in &s.results {
         let name = r.technique.name().replace(':', "_");
         save_color(dir.join(format!("{name}.png")), &r.first.image)?;
+        let shown = displayed(&r.first);
+        let error = Image::from_fn(shown.width(), shown.height(), |x, y| {
+            let d = (shown.get(x, y) - reference.get(x, y)).abs().element_sum() / 3.0;
+            heat8(d / 16.0)
+        });
+        save_rgb8(dir.join(format!("{name}-error.png")), &error)?;
         if r.first.layers.pixels().iter().any(|&l| l > 0) {
-            let heat = r.first.layers.map(|l| {
-                let c = heat_color(l as f32 / most as f32);
-                [c.x, c.y, c.z].map(|v| (v * 255.0).round() as u8)
-            });
+            let heat = r.first.layers.map(|l| heat8(l as f32 / most as f32));
             save_rgb8(dir.join(format!("{name}-layers.png")), &heat)?;
         }
     }
