@@ -344,6 +344,7 @@ agreement_tests! {
     pom_shadow_agrees: "pom-shadow",
     pom_horizon_agrees: "pom-horizon:32:32",
     silhouette_agrees: "silhouette:32",
+    pom_lod_agrees: "pom-lod",
 }
 
 /// Every technique of the registry has a shader and an agreement test here: a technique added

@@ -138,6 +138,7 @@ registry! {
     PomShadow(pom_shadow::PomShadow),
     PomHorizon(pom_horizon::PomHorizon),
     Silhouette(silhouette::Silhouette),
+    PomLod(pom_lod::PomLod),
 }
 
 /// The syntax of every technique, comma-separated (for errors and short help).
