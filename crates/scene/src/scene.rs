@@ -169,6 +169,25 @@ impl HybridScene {
     /// turns both normals toward the viewer. The back face of a material that is not
     /// [`PbrMaterial::double_sided`] emits nothing.
     pub fn shading_point(&self, instance: u32, triangle: u32, bary: Vec2, dir: Vec3) -> ShadingPoint {
+        self.resolve(instance, triangle, bary, dir, None)
+    }
+
+    /// [`Self::shading_point`] with the material's textures (albedo, metal–roughness, the
+    /// normal map) read at `uv` instead of the interpolated texture coordinate: the surface
+    /// seen through a relief, whose trace moved the visible texel.
+    pub fn shading_point_at_uv(
+        &self,
+        instance: u32,
+        triangle: u32,
+        bary: Vec2,
+        dir: Vec3,
+        uv: Vec2,
+    ) -> ShadingPoint {
+        self.resolve(instance, triangle, bary, dir, Some(uv))
+    }
+
+    /// The shading point of a hit, its textures read at `uv` when given.
+    fn resolve(&self, instance: u32, triangle: u32, bary: Vec2, dir: Vec3, uv: Option<Vec2>) -> ShadingPoint {
         let inst = &self.instances[instance as usize];
         let mesh = &self.meshes[inst.mesh as usize];
         let [i0, i1, i2] = mesh.triangles[triangle as usize];
@@ -178,7 +197,7 @@ impl HybridScene {
         let p_obj = lerp3(a.position, b.position, c.position);
         let n_obj = lerp3(a.normal, b.normal, c.normal);
         let t_obj = lerp3(a.tangent.xyz(), b.tangent.xyz(), c.tangent.xyz());
-        let uv = a.uv * w0 + b.uv * bary.x + c.uv * bary.y;
+        let uv = uv.unwrap_or_else(|| a.uv * w0 + b.uv * bary.x + c.uv * bary.y);
         let nm = normal_matrix(&inst.transform);
         let position = inst.transform.transform_point3(p_obj);
         // The inverse transpose carries the object-space face normal to the world's; under a
@@ -202,6 +221,7 @@ impl HybridScene {
             emissive: material.emissive,
             material: inst.material,
             front_face: true,
+            relief_depth: 0.0,
         };
         if let Some(t) = material.base_color_texture {
             sp.base_color *= self.textures[t as usize].sample(uv).xyz();
