@@ -1,6 +1,7 @@
 //! The relief pass's settings: which tracer finds the relief under the G-buffer's surfaces,
 //! and whether the displaced hit moves the G-buffer's position (the pixel-depth offset).
 
+use renderlab_core::CoreError;
 use renderlab_relief::Technique;
 use std::fmt;
 use std::str::FromStr;
@@ -27,7 +28,13 @@ impl ReliefTracer {
         if s.trim().eq_ignore_ascii_case(EXACT) {
             return Ok(Self::Exact);
         }
-        Technique::parse(s).map(Self::Technique).map_err(|e| format!("{e}; or {EXACT}"))
+        Technique::parse(s).map(Self::Technique).map_err(|e| match e {
+            CoreError::UnknownName { name, known, .. } => {
+                format!("unknown relief tracer '{name}' (known: {known}, {EXACT})")
+            }
+            CoreError::Parameter { value, reason, .. } => format!("{value}: {reason}"),
+            e => e.to_string(),
+        })
     }
 
     /// The canonical name, which [`Self::parse`] reads back.
@@ -94,9 +101,10 @@ mod tests {
         }
         assert_eq!(ReliefTracer::parse(" Exact ").unwrap(), ReliefTracer::Exact);
         let e = ReliefTracer::parse("pom:0").unwrap_err();
-        assert!(e.contains("pom") && e.ends_with("or exact"), "{e}");
+        assert!(e.starts_with("pom:0: ") && e.contains("1..=1024"), "{e}");
         let e = ReliefTracer::parse("fancy").unwrap_err();
-        assert!(e.contains("cone-newton") && e.contains("exact"), "{e}");
+        assert!(e.starts_with("unknown relief tracer 'fancy'") && e.contains("cone-newton"), "{e}");
+        assert!(e.ends_with(", exact)"), "{e}");
         assert_eq!(ReliefSettings::default().label(), "off");
         assert_eq!(ReliefSettings::new(ReliefTracer::Exact, true).label(), "exact+pdo");
     }

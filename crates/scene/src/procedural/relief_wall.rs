@@ -22,7 +22,7 @@ pub const ENTRY: SceneEntry = SceneEntry {
         post's shadow across the bricks shows the relief pass's pixel-depth offset",
     triangles: 1508,
     lights: 1,
-    views: &[View::new("cam1", Vec3::new(0.4, 1.2, 3.6), Vec3::new(0.3, 1.0, 0.0), 45.0)],
+    views: &[View::new("cam1", Vec3::new(0.7, 1.3, 3.2), Vec3::new(0.6, 1.0, 0.0), 45.0)],
     resolution: (480, 320),
     far: 200.0,
     default_run: false,
@@ -31,7 +31,7 @@ pub const ENTRY: SceneEntry = SceneEntry {
 
 /// Builds the scene (its camera comes from [`ENTRY`]).
 fn build() -> HybridScene {
-    let mut s = SceneBuilder::new("relief_wall", Vec3::new(0.12, 0.15, 0.2));
+    let mut s = SceneBuilder::new("relief_wall", Vec3::new(0.06, 0.07, 0.09));
     let bricks = s.relief_material("bricks", Vec3::ONE, 0.85);
     let pavement = s.relief_material("brick_pavement", Vec3::ONE, 0.75);
     let stone = s.material(PbrMaterial::dielectric("limestone", Vec3::new(0.75, 0.72, 0.66), 0.6));
@@ -49,12 +49,12 @@ fn build() -> HybridScene {
     );
     s.add_named(
         "post",
-        cuboid(Vec3::new(-1.4, 1.3, 0.9), Vec3::new(0.09, 1.3, 0.09), CuboidUv::Repeat(1.0)),
+        cuboid(Vec3::new(-0.5, 1.3, 0.5), Vec3::new(0.09, 1.3, 0.09), CuboidUv::Repeat(1.0)),
         stone,
     );
-    s.add_named("ball", sphere(Vec3::new(1.3, 0.45, 1.1), 0.45, 32, 24, SphereStyle::Closed), copper);
-    // Low from the left and in front: about 66° from the wall's normal, so a point a relief
-    // depth d behind the wall sees the light leave the wall 2.3·d further along.
-    s.directional("sun", Vec3::new(0.85, -0.35, -0.4), SUN, 4.0);
+    s.add_named("ball", sphere(Vec3::new(2.1, 0.3, 1.3), 0.3, 32, 24, SphereStyle::Closed), copper);
+    // Low from the left and in front: about 72° from the wall's normal, so the light of a
+    // point a relief depth d behind the wall leaves the wall 3.2·d further along.
+    s.directional("sun", Vec3::new(0.9, -0.3, -0.3), SUN, 5.0);
     s.finish()
 }
