@@ -343,6 +343,26 @@ mod tests {
     }
 
     #[test]
+    fn relief_materials_carry_their_depth_maps_and_resolve_at_a_moved_uv() {
+        let s = crate::procedural::builtin("relief_wall").unwrap();
+        let by_name = |n: &str| s.materials.iter().find(|m| m.name == n).unwrap();
+        let bricks = by_name("bricks").depth_map.as_ref().expect("a relief material has depth");
+        assert_eq!((bricks.scale, bricks.depth.size()), (0.05, (256, 256)));
+        assert!(bricks.depth.pixels().contains(&0.0) && bricks.depth.pixels().contains(&1.0));
+        assert!(by_name("limestone").depth_map.is_none());
+        // The wall is instance 0; at the interpolated UV the moved resolve is the plain one.
+        let (bary, dir) = (Vec2::new(0.3, 0.2), Vec3::new(0.1, -0.1, -1.0).normalize());
+        let plain = s.shading_point(0, 0, bary, dir);
+        assert_eq!(s.shading_point_at_uv(0, 0, bary, dir, plain.uv), plain);
+        let moved = s.shading_point_at_uv(0, 0, bary, dir, plain.uv + Vec2::new(0.13, 0.07));
+        assert_eq!((moved.position, moved.geometric_normal), (plain.position, plain.geometric_normal));
+        assert!(moved.uv != plain.uv && moved.base_color != plain.base_color);
+        let mut bad = s.clone();
+        bad.materials[0].depth_map.as_mut().unwrap().scale = f32::NAN;
+        assert!(bad.validate().is_err());
+    }
+
+    #[test]
     fn bad_references_and_numbers_are_refused() {
         let mut s = one_triangle(Affine3A::IDENTITY);
         s.meshes[0].triangles[0][2] = 7;
