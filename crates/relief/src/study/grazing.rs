@@ -274,7 +274,7 @@ pub fn grazing_study(cfg: &GrazingConfig, bricks: &Material) -> Result<Vec<Grazi
         for &azimuth in &cfg.azimuths {
             for &view in &cfg.views {
                 let points = gbuffer(&scene, elevation, azimuth, view, w, h);
-                let input = FrameInput { width: w, height: h, points: &points };
+                let input = FrameInput::new(w, h, &points);
                 for &t in &cfg.methods {
                     let kernel = Kernel::Scalar;
                     let counted = render(input, &mats, t, kernel, scene.lighting, scene.background, true)?;
@@ -341,7 +341,7 @@ pub fn grazing_images(
     let scene = bricks_scene(bricks);
     let mats = [ReliefMaterial::new(&scene.materials[0], &ComplexityParams::default(), false)];
     let points = gbuffer(&scene, elevation, azimuth, view, cfg.width, cfg.height);
-    let input = FrameInput { width: cfg.width, height: cfg.height, points: &points };
+    let input = FrameInput::new(cfg.width, cfg.height, &points);
     let mut out = Vec::new();
     for &t in &cfg.methods {
         let frame = render(input, &mats, t, Kernel::Scalar, scene.lighting, scene.background, false)?;
