@@ -22,6 +22,7 @@
 #![warn(missing_docs)]
 
 pub mod error;
+pub mod features_lab;
 pub mod frames;
 pub mod hybrid_lab;
 pub mod lab;

@@ -31,6 +31,7 @@ pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Report(a) => report::run(a),
         Command::Relief(ReliefCommand::Bench(a)) => relief::bench::run(a),
+        Command::Relief(ReliefCommand::Features(a)) => relief::features::run(a),
         Command::Relief(ReliefCommand::Render(a)) => relief::render::run(a),
         Command::Texture(TextureCommand::Bench(a)) => texture::bench::run(a),
         Command::Texture(TextureCommand::Render(a)) => texture::render::run(a),

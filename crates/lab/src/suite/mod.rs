@@ -4,6 +4,7 @@
 //!
 //! A lab joins the report by implementing [`Lab`] and adding one line to [`run_report`].
 
+pub mod features;
 pub mod hybrid;
 mod index;
 pub mod noise;
@@ -15,6 +16,7 @@ use crate::lab::{create_dir, Lab, LabSummary};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+pub use features::FeaturesLab;
 pub use hybrid::HybridLab;
 pub use index::{write_index, IndexCard};
 pub use noise::NoiseLab;
@@ -73,7 +75,7 @@ fn relative_link(root: &Path, path: &Path) -> Option<String> {
     Some(parts.join("/"))
 }
 
-/// Runs every lab (relief, noise, texture, hybrid) with `preset` into `out/<lab>/` and writes
+/// Runs every lab (relief, relief features, noise, texture, hybrid) with `preset` into `out/<lab>/` and writes
 /// `out/index.html`, one card per lab with its headline image and headline. `out` is created
 /// if missing.
 pub fn run_report(out: &Path, preset: Preset, progress: SuiteProgress) -> Result<SuiteSummary> {
@@ -81,6 +83,7 @@ pub fn run_report(out: &Path, preset: Preset, progress: SuiteProgress) -> Result
     create_dir(out)?;
     let labs = vec![
         run_lab::<ReliefLab>(out, preset, progress)?,
+        run_lab::<FeaturesLab>(out, preset, progress)?,
         run_lab::<NoiseLab>(out, preset, progress)?,
         run_lab::<TextureLab>(out, preset, progress)?,
         run_lab::<HybridLab>(out, preset, progress)?,
