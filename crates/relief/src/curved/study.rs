@@ -412,4 +412,59 @@ mod tests {
         );
         assert!(sil.false_covered + sil.false_empty < pom.false_covered + pom.false_empty);
     }
+
+    /// Hostile pixels through the frame (NaN and infinite UVs and view directions, grazing
+    /// views, NaN and huge curvatures, empty and NaN rectangles): no panic, and each pixel
+    /// shows a hit in range or the background.
+    #[test]
+    fn hostile_pixels_render_as_hits_or_background() {
+        use crate::render::shade::PatchInfo;
+        let bad = [f32::NAN, f32::INFINITY, -1e30, 0.0, 1e-7];
+        let mut points = Vec::new();
+        let mut patches = Vec::new();
+        for (i, &a) in bad.iter().enumerate() {
+            for (j, &b) in bad.iter().enumerate() {
+                points.push(Some(SurfacePoint {
+                    uv: Vec2::new(a, 0.5),
+                    view_ts: Vec3::new(1.0, b, 1e-6),
+                    light_ts: Vec3::Z,
+                    ..SurfacePoint::default()
+                }));
+                points.push(Some(SurfacePoint {
+                    uv: Vec2::new(0.25, 0.5),
+                    view_ts: Vec3::new(a, b, 0.3),
+                    light_ts: Vec3::Z,
+                    ..SurfacePoint::default()
+                }));
+                for _ in 0..2 {
+                    patches.push(PatchInfo {
+                        curvature: Vec2::new(bad[(i + j) % 5], 1e30),
+                        uv_min: Vec2::splat(bad[j]),
+                        uv_max: Vec2::splat(bad[(i * 3 + 1) % 5].abs()),
+                        world_per_uv: bad[i],
+                    });
+                }
+            }
+        }
+        let n = points.len() as u32;
+        let mats = [bricks(16)];
+        let input = FrameInput::new(n, 1, &points).with_patches(&patches);
+        let f = render(
+            input,
+            &mats,
+            tech("silhouette:16"),
+            Kernel::Scalar,
+            Lighting::default(),
+            BACKGROUND,
+            true,
+        )
+        .expect("renders");
+        for i in 0..n as usize {
+            if f.mask.pixels()[i] {
+                assert!((0.0..=1.0 + 1e-6).contains(&f.depth.pixels()[i]), "pixel {i}");
+            } else {
+                assert_eq!(f.image.pixels()[i], BACKGROUND, "pixel {i}");
+            }
+        }
+    }
 }
