@@ -136,7 +136,9 @@ registry! {
     ConeNewton(cone_newton::ConeNewton),
     Leap(leap::SpaceLeap),
     PomShadow(pom_shadow::PomShadow),
+    PomHorizon(pom_horizon::PomHorizon),
     Silhouette(silhouette::Silhouette),
+    PomLod(pom_lod::PomLod),
 }
 
 /// The syntax of every technique, comma-separated (for errors and short help).
