@@ -35,12 +35,12 @@ fn main() {
     .expect("the study runs");
     println!("{w}x{h}, bricks {size}², scalar kernel, median of {repeats} frames");
     println!(
-        "| case | scale | method | band px | false covered | false empty (beside) | UV err (texels) | ms | fetches/px |"
+        "| case | scale | method | band px | false covered | false empty (beside) | UV err (texels) | depth err (texels) | ms | fetches/px |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
     for r in &rows {
         println!(
-            "| {} | {} | {} | {} | {} ({:.1}%) | {} ({:.1}%) ({}) | {:.3} | {:.2} | {:.1} |",
+            "| {} | {} | {} | {} | {} ({:.1}%) | {} ({:.1}%) ({}) | {:.3} | {:.3} | {:.2} | {:.1} |",
             r.case,
             r.height_scale,
             r.method,
@@ -51,6 +51,7 @@ fn main() {
             r.percent_of_band(r.false_empty),
             r.beside,
             r.uv_error_texels,
+            r.depth_error_texels,
             r.frame_ms,
             r.fetches_per_pixel
         );

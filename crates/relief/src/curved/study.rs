@@ -10,6 +10,8 @@
 //! between the method's hit UV and the reference's on the pixels both cover, in texels along
 //! the surface: each UV component scaled by the mapping's stretch at the reference's hit
 //! (so a UV step near a sphere's pole, where u shrinks, counts as the distance it spans).
+//! Depth error is the frame's view depth (its pixel-depth offset) against the reference's
+//! distance from the eye, in texels' world length, on the same pixels.
 //! Methods run on the scalar kernel (the silhouette technique has only that one), so their
 //! times compare the methods, not the kernels.
 
@@ -130,6 +132,9 @@ pub struct SilhouetteRow {
     pub both: usize,
     /// Mean UV error on the pixels both cover, in texels.
     pub uv_error_texels: f64,
+    /// Mean error of the frame's view depth (the pixel-depth offset) against the reference's
+    /// distance from the eye on the pixels both cover, in texels' world length.
+    pub depth_error_texels: f64,
     /// Median frame time, milliseconds.
     pub frame_ms: f64,
     /// Height fetches per pixel showing the base shape.
@@ -189,7 +194,7 @@ impl Prepared {
     /// The reference shaded by the frame's own code: each covered pixel's surface point with
     /// the reference's hit UV (the base point's frame where the pixel shows the base shape,
     /// the frame at the hit's foot where the ray entered the relief through a patch's side),
-    /// lit with normal mapping there.
+    /// lit with normal mapping there; its depth and view depth are the reference's.
     pub fn reference_image(&self, case: &Case) -> Result<Frame, ReliefError> {
         let w = self.frame.width as usize;
         let points: Vec<Option<SurfacePoint>> = self
@@ -221,13 +226,21 @@ impl Prepared {
         let input = FrameInput::new(self.frame.width, self.frame.height, &points);
         let normal = Technique::parse("normal").expect("a registry technique");
         let mats = std::slice::from_ref(&self.material);
-        render(input, mats, normal, Kernel::Scalar, Lighting::default(), BACKGROUND, false)
+        let mut frame = render(input, mats, normal, Kernel::Scalar, Lighting::default(), BACKGROUND, false)?;
+        // The reference's own depths: below the base surface, and from the eye.
+        for (i, hit) in self.reference.iter().enumerate().filter(|(_, h)| h.covered) {
+            frame.depth.pixels_mut()[i] = hit.depth;
+            frame.view_depth.pixels_mut()[i] = hit.distance;
+        }
+        Ok(frame)
     }
 
     /// The row of `method`'s `frame` against the reference.
     pub fn compare(&self, case: &Case, method: &str, frame: &Frame, frame_ms: f64) -> SilhouetteRow {
         let texels = Vec2::new(self.material.height.width() as f32, self.material.height.height() as f32);
         let (mut band, mut fc, mut fe, mut beside, mut both, mut err) = (0, 0, 0, 0, 0, 0.0f64);
+        let mut depth_err = 0.0f64;
+        let texel_world = case.shape.world_per_uv() / texels.x.max(texels.y) as f64;
         for (i, (r, base)) in self.reference.iter().zip(&self.frame.points).enumerate() {
             let shown = frame.mask.pixels()[i];
             band += (r.covered != base.is_some()) as usize;
@@ -238,6 +251,7 @@ impl Prepared {
                 both += 1;
                 let s = stretch(&case.shape, &case.shape.geometry(r.uv.as_dvec2())).as_vec2();
                 err += ((frame.uv.pixels()[i] - r.uv) * texels * s).length() as f64;
+                depth_err += (frame.view_depth.pixels()[i] as f64 - r.distance as f64).abs() / texel_world;
             }
         }
         let entries = self.frame.points.iter().flatten().count().max(1);
@@ -251,6 +265,7 @@ impl Prepared {
             beside,
             both,
             uv_error_texels: if both > 0 { err / both as f64 } else { 0.0 },
+            depth_error_texels: if both > 0 { depth_err / both as f64 } else { 0.0 },
             frame_ms,
             fetches_per_pixel: frame.fetches as f64 / entries as f64,
         }
@@ -396,5 +411,60 @@ mod tests {
             pom.false_covered
         );
         assert!(sil.false_covered + sil.false_empty < pom.false_covered + pom.false_empty);
+    }
+
+    /// Hostile pixels through the frame (NaN and infinite UVs and view directions, grazing
+    /// views, NaN and huge curvatures, empty and NaN rectangles): no panic, and each pixel
+    /// shows a hit in range or the background.
+    #[test]
+    fn hostile_pixels_render_as_hits_or_background() {
+        use crate::render::shade::PatchInfo;
+        let bad = [f32::NAN, f32::INFINITY, -1e30, 0.0, 1e-7];
+        let mut points = Vec::new();
+        let mut patches = Vec::new();
+        for (i, &a) in bad.iter().enumerate() {
+            for (j, &b) in bad.iter().enumerate() {
+                points.push(Some(SurfacePoint {
+                    uv: Vec2::new(a, 0.5),
+                    view_ts: Vec3::new(1.0, b, 1e-6),
+                    light_ts: Vec3::Z,
+                    ..SurfacePoint::default()
+                }));
+                points.push(Some(SurfacePoint {
+                    uv: Vec2::new(0.25, 0.5),
+                    view_ts: Vec3::new(a, b, 0.3),
+                    light_ts: Vec3::Z,
+                    ..SurfacePoint::default()
+                }));
+                for _ in 0..2 {
+                    patches.push(PatchInfo {
+                        curvature: Vec2::new(bad[(i + j) % 5], 1e30),
+                        uv_min: Vec2::splat(bad[j]),
+                        uv_max: Vec2::splat(bad[(i * 3 + 1) % 5].abs()),
+                        world_per_uv: bad[i],
+                    });
+                }
+            }
+        }
+        let n = points.len() as u32;
+        let mats = [bricks(16)];
+        let input = FrameInput::new(n, 1, &points).with_patches(&patches);
+        let f = render(
+            input,
+            &mats,
+            tech("silhouette:16"),
+            Kernel::Scalar,
+            Lighting::default(),
+            BACKGROUND,
+            true,
+        )
+        .expect("renders");
+        for i in 0..n as usize {
+            if f.mask.pixels()[i] {
+                assert!((0.0..=1.0 + 1e-6).contains(&f.depth.pixels()[i]), "pixel {i}");
+            } else {
+                assert_eq!(f.image.pixels()[i], BACKGROUND, "pixel {i}");
+            }
+        }
     }
 }
