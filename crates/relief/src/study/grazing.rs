@@ -178,8 +178,8 @@ fn exact_at(mat: &ReliefMaterial, uv: Vec2, l: Vec3) -> f32 {
     }
 }
 
-/// Per pixel of a frame: the method's light fraction, the exact one (NaN on background),
-/// and the shadow's fetches.
+/// Per pixel of a frame: the method's light fraction, the exact one (NaN where the frame
+/// shows background), and the shadow's fetches.
 struct Shadows {
     method: Image<f32>,
     exact: Image<f32>,
@@ -197,13 +197,13 @@ fn shadows(
         .par_iter()
         .enumerate()
         .map(|(i, p)| match p {
-            None => (f32::NAN, f32::NAN, 0),
-            Some(sp) => {
+            Some(sp) if frame.mask.pixels()[i] => {
                 let (uv, depth) = (frame.uv.pixels()[i], frame.depth.pixels()[i]);
                 let mut t = Tally::default();
                 let s = shadow_at(mode, mat, uv, depth, sp.light_ts, &mut t);
                 (s, exact_at(mat, uv, sp.light_ts), t.0)
             }
+            _ => (f32::NAN, f32::NAN, 0),
         })
         .collect();
     Shadows {
@@ -274,7 +274,7 @@ pub fn grazing_study(cfg: &GrazingConfig, bricks: &Material) -> Result<Vec<Grazi
         for &azimuth in &cfg.azimuths {
             for &view in &cfg.views {
                 let points = gbuffer(&scene, elevation, azimuth, view, w, h);
-                let input = FrameInput { width: w, height: h, points: &points };
+                let input = FrameInput::new(w, h, &points);
                 for &t in &cfg.methods {
                     let kernel = Kernel::Scalar;
                     let counted = render(input, &mats, t, kernel, scene.lighting, scene.background, true)?;
@@ -341,7 +341,7 @@ pub fn grazing_images(
     let scene = bricks_scene(bricks);
     let mats = [ReliefMaterial::new(&scene.materials[0], &ComplexityParams::default(), false)];
     let points = gbuffer(&scene, elevation, azimuth, view, cfg.width, cfg.height);
-    let input = FrameInput { width: cfg.width, height: cfg.height, points: &points };
+    let input = FrameInput::new(cfg.width, cfg.height, &points);
     let mut out = Vec::new();
     for &t in &cfg.methods {
         let frame = render(input, &mats, t, Kernel::Scalar, scene.lighting, scene.background, false)?;
