@@ -59,9 +59,10 @@ fn near_exact_edge(f: &HeightField, scale: f32, uv: Vec2, l: Vec3, texels: f32) 
 
 /// As the light's radius goes to 0 the shadow converges to the exact hard shadow: the mean
 /// difference falls with the radius, and at radius 0 every receiver the march misclassifies
-/// lies within two texels of an exact shadow edge (the march samples every half-texel point
-/// of the azimuth, so it can miss only a crest a fraction of a texel wide, which moves the
-/// edge by about that much), and they are few (under 2 % of receivers).
+/// lies within two texels of an exact shadow edge (with a budget that covers the reach, the
+/// march samples the azimuth every texel from half a texel out, so it misses only a crest
+/// between two samples, which moves the edge by under a texel), and they are few (under 2 %
+/// of receivers).
 #[test]
 fn converges_to_the_exact_hard_shadow_as_the_radius_goes_to_zero() {
     let f = bumps();

@@ -178,8 +178,8 @@ fn exact_at(mat: &ReliefMaterial, uv: Vec2, l: Vec3) -> f32 {
     }
 }
 
-/// Per pixel of a frame: the method's light fraction, the exact one (NaN on background),
-/// and the shadow's fetches.
+/// Per pixel of a frame: the method's light fraction, the exact one (NaN where the frame
+/// shows background), and the shadow's fetches.
 struct Shadows {
     method: Image<f32>,
     exact: Image<f32>,
@@ -197,13 +197,13 @@ fn shadows(
         .par_iter()
         .enumerate()
         .map(|(i, p)| match p {
-            None => (f32::NAN, f32::NAN, 0),
-            Some(sp) => {
+            Some(sp) if frame.mask.pixels()[i] => {
                 let (uv, depth) = (frame.uv.pixels()[i], frame.depth.pixels()[i]);
                 let mut t = Tally::default();
                 let s = shadow_at(mode, mat, uv, depth, sp.light_ts, &mut t);
                 (s, exact_at(mat, uv, sp.light_ts), t.0)
             }
+            _ => (f32::NAN, f32::NAN, 0),
         })
         .collect();
     Shadows {
