@@ -86,7 +86,7 @@ pub struct HybridRenderer<'s> {
     prepared: PreparedScene<'s>,
     accel: Accel,
     /// Parameters of the raster stages (shadow-map resolution, SSR march, SSAO bias,
-    /// translucent layers, area-light samples); the SSAO samples and radius come from
+    /// translucent layers, area-light samples, the relief pass); the SSAO samples and radius come from
     /// [`Ao::ScreenSpace`](crate::Ao::ScreenSpace) instead.
     pub raster: RasterSettings,
     /// Path-tracer settings of [`HybridRenderer::reference`].

@@ -7,8 +7,10 @@
 use glam::Vec3;
 use renderlab_core::Camera;
 use renderlab_hybrid::deferred::{geometry_pass, PreparedScene, RasterSettings, ShadowMaps};
-use renderlab_hybrid::relief::measure::{light_visibility, relief_geometry};
-use renderlab_hybrid::relief::{measure_pixel_depth_offset, ReliefMaps, ReliefSettings, ReliefTracer};
+use renderlab_hybrid::relief::measure::light_visibility;
+use renderlab_hybrid::relief::{
+    measure_pixel_depth_offset, relief_geometry, ReliefMaps, ReliefSettings, ReliefTracer,
+};
 use renderlab_hybrid::stages::shadows::RayTracedVisibility;
 use renderlab_hybrid::{Accel, HybridRenderer, StageConfig};
 use renderlab_scene::HybridScene;

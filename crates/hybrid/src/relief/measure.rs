@@ -11,9 +11,9 @@
 //! - AO error: mean `|ao − ao_exact|` of SSAO.
 
 use super::maps::ReliefMaps;
-use super::pass::{relief_pass, ReliefSample};
+use super::pass::relief_geometry;
 use super::settings::{ReliefSettings, ReliefTracer};
-use crate::deferred::geometry::{geometry_pass, GeometryPass, PreparedScene};
+use crate::deferred::geometry::PreparedScene;
 use crate::deferred::lighting::{light_sample_u, ShadowQuery, Visibility};
 use crate::deferred::settings::RasterSettings;
 use crate::stages::ao::ssao;
@@ -66,19 +66,6 @@ pub fn light_visibility(scene: &HybridScene, g: &GBuffer, vis: &dyn Visibility) 
             sum / scene.lights.len() as f32
         })
         .collect()
-}
-
-/// The geometry pass of `camera` followed by the relief pass as `relief` says.
-pub fn relief_geometry(
-    prepared: &PreparedScene,
-    camera: &Camera,
-    raster: &RasterSettings,
-    relief: &ReliefSettings,
-    maps: &ReliefMaps,
-) -> (GeometryPass, Vec<Option<ReliefSample>>) {
-    let mut g = geometry_pass(prepared, camera, raster.translucent_layers);
-    let samples = relief_pass(prepared, &mut g, relief, maps);
-    (g, samples)
 }
 
 /// The table of this module's figures for each of `tracers`, offset off then on, seen by

@@ -13,5 +13,5 @@ pub mod settings;
 
 pub use maps::ReliefMaps;
 pub use measure::{measure_pixel_depth_offset, PdoRow};
-pub use pass::{relief_pass, ReliefSample, TangentRay};
+pub use pass::{relief_geometry, relief_pass, ReliefSample, TangentRay};
 pub use settings::{ReliefSettings, ReliefTracer};

@@ -29,10 +29,12 @@
 
 use super::maps::ReliefMaps;
 use super::settings::{ReliefSettings, ReliefTracer};
-use crate::deferred::geometry::{GeometryPass, PreparedScene, VisibilitySample};
+use crate::deferred::geometry::{geometry_pass, GeometryPass, PreparedScene, VisibilitySample};
+use crate::deferred::settings::RasterSettings;
 use glam::{Mat3, Vec2, Vec3};
 use rayon::prelude::*;
 use renderlab_core::counter::NoCount;
+use renderlab_core::Camera;
 use renderlab_relief::march::exact::ExactTrace;
 use renderlab_relief::techniques::descriptor::WithTracer;
 use renderlab_relief::{Kernel, Map, RayContext, ReliefHit, ReliefTechnique};
@@ -130,6 +132,19 @@ pub fn relief_pass(
         }
     }
     samples
+}
+
+/// The geometry pass of `camera` followed by the relief pass as `relief` says.
+pub fn relief_geometry(
+    prepared: &PreparedScene,
+    camera: &Camera,
+    raster: &RasterSettings,
+    relief: &ReliefSettings,
+    maps: &ReliefMaps,
+) -> (GeometryPass, Vec<Option<ReliefSample>>) {
+    let mut g = geometry_pass(prepared, camera, raster.translucent_layers);
+    let samples = relief_pass(prepared, &mut g, relief, maps);
+    (g, samples)
 }
 
 /// The pass's inputs, shared by every pixel.

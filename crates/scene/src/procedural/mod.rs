@@ -15,7 +15,8 @@
 //! `cam1`..`cam3` at [`DEFAULT_RESOLUTION`] chosen so that every ray-traced stage changes
 //! the picture (mirror-like metal and glass in view, geometry behind the camera that shows
 //! in reflections, shadows cast by several lights). The `showcase` is the small scene of
-//! the tests and benchmarks, not part of a default run.
+//! the tests and benchmarks, not part of a default run; nor is the `relief_wall`, the
+//! small scene of the hybrid renderer's relief pass (a post's shadow across a brick wall).
 //!
 //! Exact sizes: every thesis scene places its fixed content first, then spends the rest of
 //! its triangle budget on one height field (terrain, pavement or sea bed) whose row count,
@@ -24,7 +25,8 @@
 //! [`HybridScene::triangle_count`]: every instance counts its mesh's triangles.
 //!
 //! The relief lab's materials (`bricks`, `sand_rocks`, `bark_willow`, `brick_pavement`)
-//! dress some surfaces with their albedo and normal maps at [`RELIEF_TEXTURE_SIZE`] texels.
+//! dress some surfaces with their albedo and normal maps at [`RELIEF_TEXTURE_SIZE`] texels,
+//! and carry their depth maps for renderers that trace the relief.
 
 mod common;
 mod entry;

@@ -219,17 +219,23 @@ impl ShadowMaps {
             LightKind::Directional => -light.direction,
             _ => (eye - point).normalize_or_zero(),
         };
-        let read = |m: &DepthMap, l: Vec3| m.lookup(surface_exit(point, normal, depth, l), normal, l, &self.settings);
+        // Where the ray toward a map's eye leaves the surface, and that direction.
+        let exit = |eye: Vec3| {
+            let l = to_light(eye);
+            (surface_exit(point, normal, depth, l), l)
+        };
         match maps {
-            LightShadow::Single(m) => read(m, to_light(m.eye)),
+            LightShadow::Single(m) => {
+                let (from, l) = exit(m.eye);
+                m.lookup(from, normal, l, &self.settings)
+            }
             LightShadow::Cubes(cubes) => {
                 let sum: f32 = cubes
                     .iter()
                     .map(|faces| {
                         let eye = faces[0].eye;
-                        let l = to_light(eye);
-                        let from = surface_exit(point, normal, depth, l);
-                        read(&faces[face_of(from - eye)], l)
+                        let (from, l) = exit(eye);
+                        faces[face_of(from - eye)].lookup(from, normal, l, &self.settings)
                     })
                     .sum();
                 sum / cubes.len() as f32
