@@ -49,6 +49,9 @@ pub(crate) struct GpuMesh {
     pub indices: wgpu::Buffer,
     /// Per object: its first index and its material (two `u32`s).
     pub objects: wgpu::Buffer,
+    /// Per object: its patch's UV rectangle (`uv_min.xy, uv_max.xy`, four `f32`s; ±3·10³⁸
+    /// where unbounded), where rays that leave the patch may stop (`ray_ctx`).
+    pub patches: wgpu::Buffer,
     /// One draw per object, in scene order (submission order decides depth ties, as on the
     /// CPU).
     pub draws: Vec<Draw>,
@@ -107,6 +110,19 @@ impl GpuMesh {
             ctx.queue.write_buffer(&b, 0, bytes);
             b
         };
+        // Infinite bounds go up as the largest finite ones: shaders may assume no infinities.
+        let finite = |v: f32| v.clamp(-3.0e38, 3.0e38);
+        let mut patches: Vec<[f32; 4]> = scene
+            .objects
+            .iter()
+            .map(|o| {
+                let p = renderlab_relief::render::patch::mesh_patch(&o.mesh);
+                [p.uv_min.x, p.uv_min.y, p.uv_max.x, p.uv_max.y].map(finite)
+            })
+            .collect();
+        if patches.is_empty() {
+            patches.push([0.0; 4]);
+        }
         let mut objects: Vec<[u32; 2]> = draws.iter().map(|d| [d.indices.start, d.material as u32]).collect();
         if objects.is_empty() {
             objects.push([0, 0]);
@@ -120,6 +136,7 @@ impl GpuMesh {
             ),
             indices: buffer("indices", bytemuck::cast_slice(&indices), wgpu::BufferUsages::INDEX | storage),
             objects: buffer("objects", bytemuck::cast_slice(&objects), storage),
+            patches: buffer("patches", bytemuck::cast_slice(&patches), storage),
             draws,
         })
     }

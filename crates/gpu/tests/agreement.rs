@@ -377,6 +377,28 @@ fn pom_horizon_agrees_at_grazing_light() {
     check_views("pom-horizon:32:16", &scene, &cameras);
 }
 
+/// The silhouette technique in the room: rays that leave a wall's UV rectangle at the room's
+/// edges miss on the CPU (its patches from the meshes) and on both GPU pipelines (the
+/// per-object rectangles in `object_patches`), at the same pixels within the coverage bound.
+#[test]
+fn room_silhouette_agrees() {
+    let scene = thesis_room(TEXTURE).expect("built-in room");
+    let camera = room_camera(WIDTH, HEIGHT);
+    // The test means something only if the room's edges cut some rays.
+    let g = rasterize(&scene, &camera);
+    let patches = patches_from_scene(&scene, g.pixels());
+    let mats: Vec<ReliefMaterial> =
+        scene.materials.iter().map(|m| ReliefMaterial::new(m, &ComplexityParams::default(), false)).collect();
+    let input = FrameInput::new(WIDTH, HEIGHT, g.pixels()).with_patches(&patches);
+    let t = Technique::parse("silhouette:32").unwrap();
+    let cpu =
+        render(input, &mats, t, Kernel::Scalar, scene.lighting, scene.background, false).expect("CPU render");
+    let missed = g.pixels().iter().zip(cpu.mask.pixels()).filter(|(p, &m)| p.is_some() && !m).count();
+    println!("silhouette:32 in the room: {missed} pixels miss at the walls' edges");
+    assert!(missed > 20, "only {missed} rays left a wall's rectangle");
+    check_views("silhouette:32", &scene, &[("room".to_string(), camera)]);
+}
+
 /// Several objects and materials, depth-tested against each other (the thesis's room; the
 /// UV errors are in texels of its first material, all four being the same size).
 #[test]

@@ -412,14 +412,14 @@ fn the_readme_names_every_file_and_input() {
     }
     assert!(!readme.contains("(no description)"));
     // The compute entry points: their section, the visibility buffer's layout, Metal's sizes
-    // buffer at the slot after the relief modules' six buffers, and per shader what each
+    // buffer at the slot after the relief modules' seven buffers, and per shader what each
     // kernel reads and writes.
     for needle in [
         "\n## Compute entry points\n",
         "(⌈width/8⌉, ⌈height/8⌉, 1) workgroups",
         "| x | the object: its index in `mesh_objects`; `0xffffffff` where no surface shows |",
-        "`_buffer_sizes` at `buffer(6)`",
-        "`mesh_vertices`, `mesh_indices`, `mesh_objects`, `vis_buffer`, each the bound buffer's length in bytes",
+        "`_buffer_sizes` at `buffer(7)`",
+        "`object_patches`, `mesh_vertices`, `mesh_indices`, `mesh_objects`, `vis_buffer`, each the bound buffer's length in bytes",
         "`NAME.comp` (cs_color), `NAME.cs_debug.comp` (cs_debug)",
     ] {
         assert!(readme.contains(needle), "README lacks {needle}");

@@ -317,7 +317,11 @@ fn glsl(
     }
     let options = glsl::Options {
         version: glsl::Version::Desktop(450),
-        writer_flags: glsl::WriterFlags::empty(),
+        // The vertex stage reads the draw's instance index (the object, whose patch the
+        // fragment stage reads): with draw parameters it is gl_InstanceIndex's GLSL twin
+        // `gl_InstanceID + gl_BaseInstanceARB` (GL_ARB_shader_draw_parameters, core in 4.6)
+        // rather than a uniform the engine would have to set per draw.
+        writer_flags: glsl::WriterFlags::DRAW_PARAMETERS,
         binding_map,
         zero_initialize_workgroup_memory: true,
     };

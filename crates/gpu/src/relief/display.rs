@@ -111,9 +111,11 @@ impl ReliefRenderer<'_> {
         pass.set_bind_group(0, &self.frame_group, &[]);
         pass.set_vertex_buffer(0, self.mesh.vertices.slice(..));
         pass.set_index_buffer(self.mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-        for draw in &self.mesh.draws {
+        // The draw's instance index is its object's (the patch the shader reads).
+        for (object, draw) in self.mesh.draws.iter().enumerate() {
             pass.set_bind_group(1, &self.materials[draw.material].bind_group, &[]);
-            pass.draw_indexed(draw.indices.clone(), 0, 0..1);
+            let object = object as u32;
+            pass.draw_indexed(draw.indices.clone(), 0, object..object + 1);
         }
     }
 }

@@ -11,7 +11,7 @@ use super::formats::{COLOR_FORMAT, DEPTH_FORMAT, LAYERS_FORMAT, UV_FORMAT};
 use super::pipeline::{PipelineProbe, ReliefPipeline};
 use crate::context::GpuContext;
 use crate::error::{GpuError, Result};
-use crate::layout::uniform_entry;
+use crate::layout::{storage_entry, uniform_entry};
 use crate::material::{material_layout, GpuMaterial};
 use crate::mesh::{vertex_layout, GpuMesh};
 use crate::readback::read_texture;
@@ -192,6 +192,7 @@ impl<'a> ReliefRenderer<'a> {
                     ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                     count: None,
                 },
+                storage_entry(2, true, wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE),
             ],
         });
         let material_layout = material_layout(device);
@@ -216,20 +217,21 @@ impl<'a> ReliefRenderer<'a> {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let frame_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("frame"),
-            layout: &frame_layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: frame_buffer.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&sampler) },
-            ],
-        });
         let materials = materials
             .iter()
             .enumerate()
             .map(|(i, m)| GpuMaterial::new(ctx, &material_layout, m, i as u32))
             .collect::<Result<Vec<_>>>()?;
         let mesh = GpuMesh::new(ctx, scene)?;
+        let frame_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("frame"),
+            layout: &frame_layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: frame_buffer.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&sampler) },
+                wgpu::BindGroupEntry { binding: 2, resource: mesh.patches.as_entire_binding() },
+            ],
+        });
         ctx.check()?;
         Ok(Self {
             ctx,
@@ -505,9 +507,11 @@ impl<'a> ReliefRenderer<'a> {
         pass.set_bind_group(0, &self.frame_group, &[]);
         pass.set_vertex_buffer(0, self.mesh.vertices.slice(..));
         pass.set_index_buffer(self.mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-        for draw in &self.mesh.draws {
+        // The draw's instance index is its object's (the patch the shader reads).
+        for (object, draw) in self.mesh.draws.iter().enumerate() {
             pass.set_bind_group(1, &self.materials[draw.material].bind_group, &[]);
-            pass.draw_indexed(draw.indices.clone(), 0, 0..1);
+            let object = object as u32;
+            pass.draw_indexed(draw.indices.clone(), 0, object..object + 1);
         }
     }
 

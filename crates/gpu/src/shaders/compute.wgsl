@@ -51,7 +51,18 @@ fn surface_at(pixel: vec2<u32>, hit: vec2<u32>) -> Surface {
     let duv2 = c.uv - a.uv;
     let duv_dx = duv1 * dot(g1, dx) + duv2 * dot(g2, dx);
     let duv_dy = duv1 * dot(g1, dy) + duv2 * dot(g2, dy);
-    return surface_from(uv, duv_dx, duv_dy, world, normal, tangent, world_per_uv(e1, e2, duv1, duv2));
+    // Per unit of u and v on the triangle: the inverse of its UV edge matrix maps (du, dv) to
+    // barycentric steps; position and normal are affine in them.
+    let uv_det = duv1.x * duv2.y - duv1.y * duv2.x;
+    var curvature = vec2<f32>(0.0);
+    if uv_det != 0.0 {
+        let bu = vec2<f32>(duv2.y, -duv1.y) / uv_det;
+        let bv = vec2<f32>(-duv2.x, duv1.x) / uv_det;
+        let dn1 = b.normal - a.normal;
+        let dn2 = c.normal - a.normal;
+        curvature = curvature_of(e1 * bu.x + e2 * bu.y, e1 * bv.x + e2 * bv.y, dn1 * bu.x + dn2 * bu.y, dn1 * bv.x + dn2 * bv.y, normal);
+    }
+    return surface_from(uv, duv_dx, duv_dy, world, normal, tangent, world_per_uv(e1, e2, duv1, duv2), curvature, hit.x);
 }
 
 // The visibility record of `pixel` when it shows this dispatch's material, else VIS_NONE in x.

@@ -16,11 +16,14 @@ struct Varyings {
     @location(1) world: vec3<f32>,
     @location(2) normal: vec3<f32>,
     @location(3) tangent: vec4<f32>,
+    // The scene object: the draw's instance index.
+    @location(4) @interpolate(flat) object: u32,
 }
 
 @vertex
-fn vs_main(v: VertexIn) -> Varyings {
+fn vs_main(v: VertexIn, @builtin(instance_index) object: u32) -> Varyings {
     var out: Varyings;
+    out.object = object;
     out.clip = frame.view_proj * vec4<f32>(v.position, 1.0);
     out.uv = v.uv;
     out.world = v.position;
@@ -45,7 +48,14 @@ fn surface(in: Varyings) -> Surface {
     let dp_dx = (dpdxFine(g) - in.world * dpdxFine(q)) / q;
     let dp_dy = (dpdyFine(g) - in.world * dpdyFine(q)) / q;
     let scale = world_per_uv(dp_dx, dp_dy, duv_dx, duv_dy);
-    return surface_from(in.uv, duv_dx, duv_dy, in.world, in.normal, in.tangent, scale);
+    // The normal's Jacobian the same way, then both per unit of u and v.
+    let m = in.normal * q;
+    let dn_dx = (dpdxFine(m) - in.normal * dpdxFine(q)) / q;
+    let dn_dy = (dpdyFine(m) - in.normal * dpdyFine(q)) / q;
+    let dp = per_uv(dp_dx, dp_dy, duv_dx, duv_dy);
+    let dn = per_uv(dn_dx, dn_dy, duv_dx, duv_dy);
+    let curvature = curvature_of(dp[0], dp[1], dn[0], dn[1], in.normal);
+    return surface_from(in.uv, duv_dx, duv_dy, in.world, in.normal, in.tangent, scale, curvature, in.object);
 }
 
 // The depth-buffer value of the point `distance` from the eye on the ray through `world`.

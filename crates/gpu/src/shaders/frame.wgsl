@@ -27,6 +27,9 @@ struct Material {
 // Bilinear within a level, linear between levels, repeat: the CPU's `trilinear_at` and
 // `HeightField::depth`.
 @group(0) @binding(1) var map_sampler: sampler;
+// Per object, its patch's UV rectangle (`uv_min.xy, uv_max.xy`; ±3e38 where unbounded): the
+// edge past which a ray that stays in the relief has left the surface (`PatchInfo`).
+@group(0) @binding(2) var<storage, read> object_patches: array<vec4<f32>>;
 
 @group(1) @binding(0) var<uniform> material: Material;
 @group(1) @binding(1) var albedo_map: texture_2d<f32>;
@@ -52,6 +55,40 @@ struct Surface {
     eye_distance: f32,
     // World units per UV unit (`PatchInfo::world_per_uv`; 0 when the mapping is degenerate).
     world_per_uv: f32,
+    // Normal curvature along the tangent and bitangent in 1/UV (`RayContext::curvature`).
+    curvature: vec2<f32>,
+    // The scene object shown (its patch in `object_patches`).
+    object: u32,
+}
+
+// The normal curvature along u and v, in 1/UV (world curvature times world units per UV;
+// positive where the surface falls away from its tangent plane), from the derivatives of the
+// position and of the interpolated normal `n` (not unit length: its derivatives are taken
+// before normalising, and the part along the normal is dropped) with respect to u and v:
+// κ_u = (∂N/∂u · ∂P/∂u) / |∂P/∂u|. 0 where a derivative is degenerate.
+fn curvature_of(dp_du: vec3<f32>, dp_dv: vec3<f32>, dn_du: vec3<f32>, dn_dv: vec3<f32>, n: vec3<f32>) -> vec2<f32> {
+    let len = length(n);
+    if !(len > 0.0) {
+        return vec2<f32>(0.0);
+    }
+    let unit = n / len;
+    let nu = (dn_du - unit * dot(unit, dn_du)) / len;
+    let nv = (dn_dv - unit * dot(unit, dn_dv)) / len;
+    let lu = length(dp_du);
+    let lv = length(dp_dv);
+    let ku = select(0.0, dot(nu, dp_du) / lu, lu > 0.0);
+    let kv = select(0.0, dot(nv, dp_dv) / lv, lv > 0.0);
+    return select(vec2<f32>(0.0), vec2<f32>(ku, kv), abs(ku) < 3.0e38 && abs(kv) < 3.0e38);
+}
+
+// The derivatives with respect to u and v of a quantity whose screen derivatives are
+// (d_dx, d_dy), by the inverse of the UV Jacobian (`[∂/∂u ∂/∂v] = [∂/∂x ∂/∂y] · J⁻¹`).
+fn per_uv(d_dx: vec3<f32>, d_dy: vec3<f32>, duv_dx: vec2<f32>, duv_dy: vec2<f32>) -> mat2x3<f32> {
+    let det = duv_dx.x * duv_dy.y - duv_dx.y * duv_dy.x;
+    if det == 0.0 {
+        return mat2x3<f32>(vec3<f32>(0.0), vec3<f32>(0.0));
+    }
+    return mat2x3<f32>((d_dx * duv_dy.y - d_dy * duv_dx.y) / det, (d_dy * duv_dx.x - d_dx * duv_dy.x) / det);
 }
 
 // The surface from its interpolated attributes, its exact UV Jacobian and its scale in world
@@ -65,8 +102,12 @@ fn surface_from(
     normal: vec3<f32>,
     tangent: vec4<f32>,
     world_per_uv: f32,
+    curvature: vec2<f32>,
+    object: u32,
 ) -> Surface {
     var s: Surface;
+    s.curvature = curvature;
+    s.object = object;
     s.eye_distance = length(frame.eye.xyz - world);
     s.world_per_uv = world_per_uv;
     s.uv = uv;
@@ -129,7 +170,7 @@ fn light(albedo: vec3<f32>, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, shadow: f3
 
 // What the frame knows about a ray's pixel besides the ray (`RayContext`): the footprint in
 // UV per pixel, the patch's curvature along T and B in 1/UV (0: flat) and its UV rectangle in
-// the ray's own coordinates (moved into the first tile with the UV; ±3.4e38: unbounded).
+// the ray's own coordinates (moved into the first tile with the UV; about ±3e38: unbounded).
 struct RayContext {
     footprint: f32,
     curvature: vec2<f32>,
@@ -173,8 +214,8 @@ fn world_per_uv(dp1: vec3<f32>, dp2: vec3<f32>, duv1: vec2<f32>, duv2: vec2<f32>
 // `horizon_shadow` when `frame.lit` is 3).
 fn shade(s: Surface) -> Shaded {
     let base = floor(s.uv);
-    let unbounded = vec2<f32>(3.4e38);
-    ray_ctx = RayContext(footprint(s.duv_dx, s.duv_dy), vec2<f32>(0.0), -unbounded - base, unbounded - base);
+    let rect = object_patches[s.object];
+    ray_ctx = RayContext(footprint(s.duv_dx, s.duv_dy), s.curvature, rect.xy - base, rect.zw - base);
     var hit = trace(s.uv - base, s.view_ts);
     if hit.depth < 0.0 {
         return Shaded(frame.background.xyz, vec2<f32>(0.0), 0u, false, 0.0);
