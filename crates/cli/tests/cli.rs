@@ -648,7 +648,9 @@ fn shaders_export_writes_files_and_refuses_bad_input() {
             "pom.comp",
             "pom.cs_debug.comp",
             "pom.frag",
+            "pom.fs_color_pdo.frag",
             "pom.fs_debug.frag",
+            "pom.fs_debug_pdo.frag",
             "pom.spv",
             "pom.vert"
         ]

@@ -340,3 +340,36 @@ fn renderlab_gpu_available() -> bool {
     eprintln!("SKIPPED (no GPU adapter, and CI is not set): {err}");
     false
 }
+
+#[test]
+fn relief_renders_with_and_without_the_offset_and_bad_tracers_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("relief.png");
+    let o = out.to_str().unwrap();
+    let base = ["hybrid", "render", "--scene", "relief_wall", "--resolution", "24x16", "--out", o];
+    for (flags, label) in
+        [(&["--relief", "pom:8"][..], "relief pom:8"), (&["--relief", "exact", "--pdo"], "relief exact+pdo")]
+    {
+        let args: Vec<&str> = base.iter().chain(flags).copied().collect();
+        let text = succeeds(&args);
+        assert!(text.contains(label), "{label} not in: {text}");
+        assert!(out.exists());
+        std::fs::remove_file(&out).unwrap();
+    }
+    for (flags, needle) in [
+        (&["--relief", "pom:0"][..], "--relief"),
+        (&["--relief", "fancy"], "exact"),
+        (&["--pdo"], "--relief"),
+        (&["--relief", "pom:8", "--backend", "gpu"], "--backend cpu"),
+    ] {
+        let args: Vec<&str> = base.iter().chain(flags).copied().collect();
+        fails_with(&args, needle);
+        assert!(!out.exists(), "{flags:?} wrote a file");
+    }
+    let help = succeeds(&["hybrid", "render", "--help"]);
+    assert!(
+        help.contains("--relief <TECHNIQUE>")
+            && help.contains("--pdo")
+            && help.contains("pixel-depth offset")
+    );
+}

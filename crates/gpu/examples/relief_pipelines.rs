@@ -2,7 +2,7 @@
 //! changes its time: the device-run script behind BENCHMARKS.md's relief pipeline figures.
 //!
 //! ```text
-//! cargo run --release -p renderlab-gpu --example relief_pipelines -- [WIDTHxHEIGHT …] [--techniques A,B,…] [--idle]
+//! cargo run --release -p renderlab-gpu --example relief_pipelines -- [WIDTHxHEIGHT …] [--techniques A,B,…] [--idle] [--pdo]
 //! ```
 //!
 //! Per frame size (default 1920x1080 and 3840x2160) and technique (default the thesis's POM-4
@@ -19,6 +19,11 @@
 //! fall while it idles shows longer frames after the longer gaps; a GPU without such clock
 //! management (or lavapipe, a CPU) shows none. This separates the hardware's behaviour from
 //! the measurement's.
+//!
+//! With `--pdo`: per size and technique, the fragment pipeline with and without the
+//! pixel-depth offset (`ReliefRenderer::set_pixel_depth_offset`: the fragment shader writes
+//! the displaced depth, which turns early depth testing off on most hardware), timed the same
+//! steady way, round robin.
 
 use renderlab_gpu::timing::median;
 use renderlab_gpu::{time_steady, GpuContext, ReliefPipeline, ReliefRenderer, SteadySettings, SteadyTiming};
@@ -57,11 +62,13 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     let mut sizes: Vec<(u32, u32)> = Vec::new();
     let mut techniques = TECHNIQUES.to_string();
     let mut idle = false;
+    let mut pdo = false;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
             "--techniques" => techniques = args.next().ok_or("--techniques needs a list")?,
             "--idle" => idle = true,
+            "--pdo" => pdo = true,
             s => {
                 let (w, h) = s.split_once('x').ok_or_else(|| format!("'{s}' is not WIDTHxHEIGHT"))?;
                 sizes.push((w.parse()?, h.parse()?));
@@ -104,6 +111,11 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             println!("| {} | {} | {} | {:.3} |", t.name(), cell(f), cell(c), c.median_ms / f.median_ms);
         }
     }
+    if pdo {
+        for &(w, h) in &sizes {
+            depth_offset_cost(&mut gpu, &techniques, w, h)?;
+        }
+    }
     if idle {
         let (w, h) = sizes[0];
         let camera = benchmark_camera(45.0, w, h);
@@ -126,6 +138,37 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             }
             println!("{row}");
         }
+    }
+    Ok(())
+}
+
+/// The fragment pipeline with and without the pixel-depth offset, round robin, at `w × h`.
+fn depth_offset_cost(
+    gpu: &mut ReliefRenderer,
+    techniques: &[Technique],
+    w: u32,
+    h: u32,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let camera = benchmark_camera(45.0, w, h);
+    gpu.set_pipeline(ReliefPipeline::Fragment)?;
+    let configs: Vec<(Technique, bool)> = techniques.iter().flat_map(|&t| [(t, false), (t, true)]).collect();
+    let report = time_steady(configs.len(), &STEADY, |c, frames| {
+        let (t, offset) = configs[c];
+        gpu.set_pixel_depth_offset(offset);
+        gpu.time_batch(&camera, t, frames)
+    })?;
+    gpu.set_pixel_depth_offset(false);
+    println!(
+        "\nPixel-depth offset, fragment pipeline, {w}×{h}, 45°, warm-up {} rounds ({})\n",
+        report.warmup_rounds,
+        if report.settled { "settled" } else { "did not settle" }
+    );
+    println!("| technique | fragment ms (min / median / max) | with the offset ms | with ÷ without |");
+    println!("|---|---|---|---|");
+    for (i, t) in techniques.iter().enumerate() {
+        let cell = |s: &SteadyTiming| format!("{:.3} / {:.3} / {:.3}", s.min_ms, s.median_ms, s.max_ms);
+        let (off, on) = (&report.configs[2 * i], &report.configs[2 * i + 1]);
+        println!("| {} | {} | {} | {:.3} |", t.name(), cell(off), cell(on), on.median_ms / off.median_ms);
     }
     Ok(())
 }

@@ -17,6 +17,7 @@ use crate::context::{one_line, GpuContext};
 use crate::error::{GpuError, Result};
 use renderlab_relief::maps::packed::{DEPTH_STEP, RATIO_STEP};
 use renderlab_relief::march::{cone_newton, cone_step};
+use renderlab_relief::render::horizon;
 use renderlab_relief::render::shadow::SHADOW_SHARPNESS;
 use renderlab_relief::techniques::{Technique, DESCRIPTORS};
 
@@ -51,7 +52,7 @@ pub const MAPS_WGSL: &str = include_str!("shaders/maps.wgsl");
 /// The marches and helpers the technique files call.
 pub const MARCH_WGSL: &str = include_str!("shaders/march.wgsl");
 
-/// Soft self-shadowing toward the light.
+/// Self-shadowing toward the light: soft (`soft_shadow`) and horizon (`horizon_shadow`).
 pub const SHADOW_WGSL: &str = include_str!("shaders/shadow.wgsl");
 
 /// The constants the shaders share with their CPU twins, as WGSL declarations generated from
@@ -66,6 +67,9 @@ pub fn constants() -> String {
         f("PACKED_DEPTH_STEP", DEPTH_STEP),
         f("PACKED_RATIO_STEP", RATIO_STEP),
         f("SHADOW_SHARPNESS", SHADOW_SHARPNESS),
+        f("HORIZON_LIGHT_RADIUS", horizon::LIGHT_RADIUS),
+        f("HORIZON_DEPTH_BIAS", horizon::DEPTH_BIAS),
+        f("HORIZON_MAX_REACH_TILES", horizon::MAX_REACH_TILES),
         f("CONE_TOLERANCE_TEXELS", cone_step::TOLERANCE_TEXELS),
         u("CONE_TAIL", cone_step::TAIL),
         f("CN_MIN_STEP", cone_newton::MIN_STEP),

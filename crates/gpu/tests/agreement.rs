@@ -54,6 +54,15 @@
 //! are 40 dB and a FLIP mean of 0.01, a factor 3 of room for steeper maps and the march's
 //! layer flips at occluding edges. Its UV is POM's, with POM's bound.
 //!
+//! Horizon self-shadowing (`pom-horizon`) is the visible fraction of a sun-sized disc
+//! (radius ρ = 0.00466 rad) above the marched horizon α*, which changes by at most
+//! 2/(π·ρ) ≈ 137 per radian of α*; a depth error δ at a sample r texel steps away moves
+//! tan α* by δ·height_scale·c/r (c texel steps per UV unit; height_scale·c = 12.8 on the
+//! 256² bricks along an axis; r ≥ ½). Only pixels whose horizon lies within ρ of the
+//! light's elevation (the penumbra, a thin band along shadow edges) are sensitive at all.
+//! With 8-bit weights such a pixel may flip entirely; on lavapipe (full-precision filtering)
+//! δ is rounding alone and the shadow term moves by ~10⁻⁴. It takes the shadowed bounds.
+//!
 //! UV: the median difference between the GPU's and the CPU's UV must be tiny (0.01 texel:
 //! f32 and sampler rounding), and the mean error against the exact reference must be the CPU
 //! technique's own within 0.05 texel + 5 %: a shader bug (a wrong sign, a missing clamp, a
@@ -74,7 +83,9 @@ use renderlab_raster::rasterize;
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::render::{render, render_reference};
 use renderlab_relief::techniques::DESCRIPTORS;
-use renderlab_relief::{FrameInput, Kernel, Map, ReliefMaterial, Shading, Technique};
+use renderlab_relief::{
+    patches_from_scene, FrameInput, Kernel, Map, PatchInfo, ReliefMaterial, Shading, Technique,
+};
 use renderlab_texture::materials;
 
 /// Frame size: small, since CI's GPU is a CPU.
@@ -102,6 +113,11 @@ struct Agreement {
     gpu_ref: f32,
     /// Mean texel error of the CPU UV against the exact reference.
     cpu_ref: f32,
+    /// Median |GPU − CPU| pixel-depth offset (distance to the displaced hit), as a fraction of
+    /// the relief's full depth in world units.
+    depth_median: f32,
+    /// Fraction of pixels whose offset depths differ by more than 1 % of the relief's depth.
+    depth_far: f64,
 }
 
 fn compare(
@@ -109,6 +125,7 @@ fn compare(
     cpu: &renderlab_relief::Frame,
     reference: &renderlab_relief::Frame,
     texels: Vec2,
+    relief_depth: f32,
 ) -> Agreement {
     let both = Image::from_fn(WIDTH, HEIGHT, |x, y| gpu.mask.get(x, y) && cpu.mask.get(x, y));
     let coverage_diff = (0..HEIGHT)
@@ -117,10 +134,12 @@ fn compare(
         .count();
     let f = flip(&gpu.image, &cpu.image);
     let mut diffs = Vec::new();
+    let mut depth_diffs = Vec::new();
     let (mut gpu_ref, mut cpu_ref) = (0.0f64, 0.0f64);
     for y in 0..HEIGHT {
         for x in 0..WIDTH {
             if both.get(x, y) {
+                depth_diffs.push((gpu.view_depth.get(x, y) - cpu.view_depth.get(x, y)).abs() / relief_depth);
                 let r = reference.uv.get(x, y);
                 diffs.push(((gpu.uv.get(x, y) - cpu.uv.get(x, y)) * texels).length());
                 gpu_ref += ((gpu.uv.get(x, y) - r) * texels).length() as f64;
@@ -131,7 +150,11 @@ fn compare(
     let n = diffs.len().max(1);
     let uv_far = diffs.iter().filter(|&&d| d > 0.25).count() as f64 / n as f64;
     diffs.sort_by(f32::total_cmp);
+    let depth_far = depth_diffs.iter().filter(|&&d| d > 0.01 || d.is_nan()).count() as f64 / n as f64;
+    depth_diffs.sort_by(f32::total_cmp);
     Agreement {
+        depth_median: depth_diffs.get(n / 2).copied().unwrap_or(0.0),
+        depth_far,
         coverage_diff,
         psnr: psnr(&gpu.image, &cpu.image, Some(&both)),
         flip: flip_masked_mean(&f, Some(&both)),
@@ -185,7 +208,9 @@ fn check_views(name: &str, scene: &Scene, cameras: &[(String, Camera)]) {
     let mut failures = Vec::new();
     for (view, camera) in cameras {
         let g = rasterize(scene, camera);
-        let input = FrameInput::new(WIDTH, HEIGHT, g.pixels());
+        let patches = patches_from_scene(scene, g.pixels());
+        let input = FrameInput::new(WIDTH, HEIGHT, g.pixels()).with_patches(&patches);
+        let relief_depth = relief_depth(&patches, &mats);
         let cpu = render(input, &mats, technique, Kernel::Scalar, scene.lighting, scene.background, false)
             .expect("CPU render");
         let reference = render_reference(input, &mats, technique, scene.lighting, scene.background);
@@ -193,7 +218,7 @@ fn check_views(name: &str, scene: &Scene, cameras: &[(String, Camera)]) {
         for pipeline in ReliefPipeline::ALL {
             gpu.set_pipeline(pipeline).unwrap_or_else(|e| panic!("{name}: {e}"));
             let frame = gpu.render(camera, technique).unwrap_or_else(|e| panic!("{name} ({pipeline}): {e}"));
-            let a = compare(&frame, &cpu, &reference, texels);
+            let a = compare(&frame, &cpu, &reference, texels, relief_depth);
             if let Some(dir) = std::env::var_os("RENDERLAB_GPU_TEST_IMAGES") {
                 // Both images side by side for a look, when asked for.
                 let stem = format!("{}_{}", name.replace(':', "-"), view.trim().trim_end_matches('°'));
@@ -204,8 +229,8 @@ fn check_views(name: &str, scene: &Scene, cameras: &[(String, Camera)]) {
                     .expect("writable");
             }
             println!(
-                "{name:>13} {view} {pipeline:>8}: coverage diff {:>3} px, PSNR {:6.2} dB, FLIP {:.5}, UV |gpu−cpu| median {:.5} texel, >¼ texel {:.3} %, error vs exact: gpu {:.4} cpu {:.4} texel",
-                a.coverage_diff, a.psnr, a.flip, a.uv_median, a.uv_far * 100.0, a.gpu_ref, a.cpu_ref
+                "{name:>13} {view} {pipeline:>8}: coverage diff {:>3} px, PSNR {:6.2} dB, FLIP {:.5}, UV |gpu−cpu| median {:.5} texel, >¼ texel {:.3} %, error vs exact: gpu {:.4} cpu {:.4} texel, offset depth |gpu−cpu| median {:.2e} of the relief, >1 % {:.3} %",
+                a.coverage_diff, a.psnr, a.flip, a.uv_median, a.uv_far * 100.0, a.gpu_ref, a.cpu_ref, a.depth_median, a.depth_far * 100.0
             );
             let what = format!("{view} ({pipeline})");
             check_bounds(name, &what, &a, &b, &cpu, &mut failures);
@@ -213,7 +238,7 @@ fn check_views(name: &str, scene: &Scene, cameras: &[(String, Camera)]) {
         }
         // The compute frame against the fragment frame: the same shading of the same surface,
         // so the bounds against the CPU hold between them too.
-        let a = compare(&frames[1], &frames_as_cpu(&frames[0]), &reference, texels);
+        let a = compare(&frames[1], &frames_as_cpu(&frames[0]), &reference, texels, relief_depth);
         println!(
             "{name:>13} {view}  compute vs fragment: coverage diff {:>3} px, PSNR {:6.2} dB, FLIP {:.5}, UV median {:.5} texel, >¼ texel {:.3} %",
             a.coverage_diff, a.psnr, a.flip, a.uv_median, a.uv_far * 100.0
@@ -249,9 +274,30 @@ fn check_bounds(
     if a.uv_far > b.far_fraction {
         fail(format!("{:.2} % of pixels' UV differ by more than ¼ texel", a.uv_far * 100.0));
     }
+    // Both sides compute the same distance from the same hit in f32 (the GPU's scale from
+    // the triangle or the screen Jacobian, the CPU's from the mesh's areas: equal on the
+    // scenes' uniformly mapped quads): the median differs by rounding, and only pixels whose
+    // hit differs (the UV bound's pixels) may differ by more than 1 % of the relief's depth.
+    if a.depth_median > 1e-3 {
+        fail(format!("median offset-depth difference {:.2e} of the relief's depth > 1e-3", a.depth_median));
+    }
+    if a.depth_far > b.far_fraction {
+        fail(format!(
+            "{:.2} % of pixels' offset depths differ by more than 1 % of the relief",
+            a.depth_far * 100.0
+        ));
+    }
     if (a.gpu_ref - a.cpu_ref).abs() > 0.05 + 0.05 * a.cpu_ref {
         fail(format!("UV error vs exact {:.4} texel on one side, {:.4} on the other", a.gpu_ref, a.cpu_ref));
     }
+}
+
+/// The relief's full depth in world units: the first material's depth scale (UV per unit
+/// depth) times the median world units per UV of the covered pixels.
+fn relief_depth(patches: &[PatchInfo], mats: &[ReliefMaterial]) -> f32 {
+    let mut scales: Vec<f32> = patches.iter().map(|p| p.world_per_uv).filter(|&s| s > 0.0).collect();
+    scales.sort_by(f32::total_cmp);
+    mats[0].height_scale * scales.get(scales.len() / 2).copied().unwrap_or(1.0)
 }
 
 /// A GPU frame in the CPU frame's form, to compare two GPU frames with [`compare`].
@@ -259,10 +305,10 @@ fn frames_as_cpu(f: &GpuFrame) -> renderlab_relief::Frame {
     renderlab_relief::Frame {
         image: f.image.clone(),
         uv: f.uv.clone(),
+        view_depth: f.view_depth.clone(),
         layers: f.layers.clone(),
         mask: f.mask.clone(),
         depth: Image::new(f.image.width(), f.image.height(), 0.0),
-        view_depth: Image::new(f.image.width(), f.image.height(), 0.0),
         fetches: 0,
     }
 }
@@ -296,6 +342,8 @@ agreement_tests! {
     cone_newton_agrees: "cone-newton",
     leap_agrees: "leap",
     pom_shadow_agrees: "pom-shadow",
+    pom_horizon_agrees: "pom-horizon:32:32",
+    silhouette_agrees: "silhouette:32",
     pom_lod_agrees: "pom-lod",
 }
 
@@ -312,6 +360,21 @@ fn every_registry_technique_is_tested() {
             d.name
         );
     }
+}
+
+/// Horizon shadows at grazing light (5° above the wall, across the bricks' courses), where
+/// their march takes its long geometric steps: the same bounds.
+#[test]
+fn pom_horizon_agrees_at_grazing_light() {
+    let bricks = materials::material("bricks", TEXTURE).expect("built-in material");
+    let mut scene = benchmark_scene(bricks);
+    let (e, a) = (5f32.to_radians(), 30f32.to_radians());
+    scene.light.to_light = glam::Vec3::new(e.cos() * a.cos(), -e.cos() * a.sin(), e.sin());
+    let cameras: Vec<(String, Camera)> = [0.0, 45.0]
+        .iter()
+        .map(|&a| (format!("{a:>3}° light 5°"), benchmark_camera(a, WIDTH, HEIGHT)))
+        .collect();
+    check_views("pom-horizon:32:16", &scene, &cameras);
 }
 
 /// Several objects and materials, depth-tested against each other (the thesis's room; the

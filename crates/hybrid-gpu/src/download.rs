@@ -92,6 +92,8 @@ impl GPointRaw {
             emissive: if front_face || m.double_sided { m.emissive } else { Vec3::ZERO },
             material: self.ids[0],
             front_face,
+            // The GPU G-buffer holds flat surfaces only.
+            relief_depth: 0.0,
         })
     }
 }

@@ -20,6 +20,9 @@
 //!   term against the reference's over the pixels it is defined on, beside the reference's
 //!   own noise on that term; [`lighting`] holds the shading the ray-traced stages and the
 //!   path tracer share; [`accel`] the BVH as they query it.
+//! * [`relief`] is the relief pass of the geometry stage (off by default): materials with a
+//!   depth map traced with a relief technique, the G-buffer moved to the hits, with or
+//!   without the pixel-depth offset, and its error against the exact relief.
 //! * The small meshes and scenes of the tests and benchmarks are `renderlab_scene::shapes`'s.
 //!
 //! Every stage draws its random numbers from a per-pixel stream seeded by `(seed, pixel,
@@ -33,6 +36,7 @@ pub mod error;
 pub mod lighting;
 pub mod memory;
 pub mod reference;
+pub mod relief;
 pub mod renderer;
 pub mod rng;
 pub mod stages;

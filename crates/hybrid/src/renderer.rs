@@ -13,6 +13,8 @@ use crate::deferred::geometry::{geometry_pass, PreparedScene};
 use crate::deferred::settings::RasterSettings;
 use crate::error::{HybridError, Result};
 use crate::reference::{self, Reference};
+use crate::relief::maps::ReliefMaps;
+use crate::relief::pass::relief_pass;
 use crate::stages::context::StageContext;
 use crate::stages::entry::Phase;
 use crate::stages::shadows::maps::ShadowMapCache;
@@ -92,6 +94,9 @@ pub struct HybridRenderer<'s> {
     /// The shadow maps of the last raster-shadowed frame: built once and reused while
     /// [`HybridRenderer::raster`]'s shadow settings stay the same.
     shadow_maps: ShadowMapCache,
+    /// The relief inputs of the scene's materials with a depth map, made the first time a
+    /// frame's relief pass needs them and kept.
+    relief_maps: ReliefMaps,
 }
 
 impl std::fmt::Debug for HybridRenderer<'_> {
@@ -118,6 +123,7 @@ impl<'s> HybridRenderer<'s> {
             raster: RasterSettings::default(),
             path_tracer: reference::PathTracer::default(),
             shadow_maps: ShadowMapCache::default(),
+            relief_maps: ReliefMaps::new(scene),
         })
     }
 
@@ -161,7 +167,10 @@ impl<'s> HybridRenderer<'s> {
         let mut rays = PerStage::<u64>::default();
 
         let clock = Instant::now();
-        let geometry = geometry_pass(&self.prepared, camera, raster.translucent_layers);
+        let mut geometry = geometry_pass(&self.prepared, camera, raster.translucent_layers);
+        if raster.relief.tracer.is_some() {
+            relief_pass(&self.prepared, &mut geometry, &raster.relief, &self.relief_maps);
+        }
         ms.geometry = lap(clock);
 
         // The stages borrow the geometry pass; their context ends before it moves.

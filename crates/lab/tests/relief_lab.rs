@@ -46,6 +46,7 @@ fn writes_results_images_and_report() {
         "ssim",
         "flip",
         "uv_error_texels",
+        "depth_error",
     ] {
         assert!(json[0].get(key).is_some(), "results.json lacks {key}");
     }
@@ -69,6 +70,11 @@ fn measurements_behave() {
         // More layers: more fetches, less error.
         assert!(get("pom:32", a).samples_per_pixel > get("pom:4", a).samples_per_pixel);
         assert!(get("pom:32", a).uv_error_texels <= get("pom:4", a).uv_error_texels + 1e-6);
+        // The offset depth follows the hit: more layers, closer to the exact depth; basic
+        // texturing's hit is the top surface, as far off as a depth buffer without the offset.
+        let (d4, d32, flat) =
+            (get("pom:4", a).depth_error, get("pom:32", a).depth_error, get("basic", a).depth_error);
+        assert!(d32 < d4 && d32 < 0.05 && flat > 5.0 * d32, "{a}°: pom:32 {d32}, pom:4 {d4}, basic {flat}");
         // Basic texturing fetches no height and ignores parallax.
         assert_eq!(get("basic", a).samples_per_pixel, 0.0);
         // Adaptive POM plans between 4 and 32 layers.

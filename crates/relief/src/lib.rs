@@ -8,7 +8,8 @@
 //! backend (`scalar`, and `avx2` selected at run time by [`cpu`]), each entry point choosing
 //! its backend; [`techniques`] the catalogue of user-facing techniques, one file each, from
 //! which parsing and help are derived; [`render`] the float frame renderer and its
-//! reference; [`fused`] the fused frame, from the scene to 8-bit pixels in one pass.
+//! reference; [`fused`] the fused frame, from the scene to 8-bit pixels in one pass;
+//! [`study`] measurements of single features against the reference.
 //! [`trace`] is the interface between the techniques and the renderers; [`kernel`] names
 //! the kernel a technique runs on.
 //!
@@ -19,6 +20,7 @@
 #![warn(missing_docs)]
 
 pub mod cpu;
+pub mod curved;
 pub mod error;
 pub mod fused;
 pub mod kernel;

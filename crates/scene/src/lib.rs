@@ -37,7 +37,7 @@ pub use error::{Result, SceneError};
 pub use gbuffer::{GBuffer, LightingTerms};
 pub use light::{Light, LightKind, LightSample};
 pub use load::{load, LoadError, LoadedScene};
-pub use material::{PbrMaterial, Texture};
+pub use material::{DepthMap, PbrMaterial, Texture};
 pub use resolve::{resolve, ResolveError};
 pub use scene::{HybridScene, Instance, SceneCamera};
 pub use shading::ShadingPoint;

@@ -4,6 +4,7 @@
 use crate::error::{Result, SceneError};
 use glam::{Vec2, Vec3, Vec4};
 use renderlab_core::Image;
+use std::sync::Arc;
 
 /// A texture in linear light (colour textures are decoded from sRGB when loaded), sampled
 /// bilinearly with wrapping. The hybrid lab's error is measured between renderers that all
@@ -37,6 +38,21 @@ impl Texture {
         let d = self.image.get_wrapped(xi + 1, yi + 1);
         a.lerp(b, fx).lerp(c.lerp(d, fx), fy)
     }
+}
+
+/// A relief's depth map: how far below the surface each texel's relief lies, for the hybrid
+/// renderer's relief pass (the relief lab's convention: depth `1 − height`, 0 at the top
+/// surface, 1 at the deepest point, repeat-wrapped like every texture). A ray entering the
+/// top surface at `uv` along the tangent-space direction `V` (toward the eye) reaches depth
+/// `d` at `uv − V.xy / V.z · scale · d`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DepthMap {
+    /// Depth per texel in [0, 1]; shared, so that cloning a material or a scene does not
+    /// copy it.
+    pub depth: Arc<Image<f32>>,
+    /// Depth scale in UV per unit depth (the relief lab's `height_scale`): the full relief
+    /// is `scale` UV units deep, `scale × world units per UV` in the world.
+    pub scale: f32,
 }
 
 /// A metal–roughness material. Texture indices refer to [`HybridScene::textures`]; a
@@ -74,6 +90,11 @@ pub struct PbrMaterial {
     ///
     /// [`HybridScene::shading_point`]: crate::HybridScene::shading_point
     pub double_sided: bool,
+    /// The relief under the surface, for renderers that trace it (the hybrid renderer's
+    /// relief pass, off by default); every other renderer shades the flat surface with the
+    /// albedo and normal maps. Built-in relief-dressed materials carry their relief
+    /// material's depth map; loaded files leave it empty.
+    pub depth_map: Option<DepthMap>,
 }
 
 impl Default for PbrMaterial {
@@ -92,6 +113,7 @@ impl Default for PbrMaterial {
             transmission: 0.0,
             ior: 1.5,
             double_sided: true,
+            depth_map: None,
         }
     }
 }
@@ -156,6 +178,16 @@ impl PbrMaterial {
                 "material {:?}: ior {} is below 1",
                 self.name, self.ior
             )));
+        }
+        if let Some(d) = &self.depth_map {
+            let (w, h) = d.depth.size();
+            let in_range = d.depth.pixels().iter().all(|v| (0.0..=1.0).contains(v));
+            if !(d.scale.is_finite() && d.scale > 0.0) || w == 0 || h == 0 || !in_range {
+                return Err(SceneError::Invalid(format!(
+                    "material {:?}: the depth map must be non-empty with depths in [0, 1] and a finite, positive scale",
+                    self.name
+                )));
+            }
         }
         for t in [self.base_color_texture, self.metallic_roughness_texture, self.normal_texture]
             .into_iter()

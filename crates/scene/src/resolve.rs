@@ -99,7 +99,7 @@ mod tests {
         let e = resolve("atlantis").unwrap_err().to_string();
         assert_eq!(
             e,
-            "unknown scene \"atlantis\" (built-in: temple, courtyard, harbour, showcase; or a .gltf, .glb or .obj file)"
+            "unknown scene \"atlantis\" (built-in: temple, courtyard, harbour, showcase, relief_wall; or a .gltf, .glb or .obj file)"
         );
     }
 

@@ -169,6 +169,25 @@ impl HybridScene {
     /// turns both normals toward the viewer. The back face of a material that is not
     /// [`PbrMaterial::double_sided`] emits nothing.
     pub fn shading_point(&self, instance: u32, triangle: u32, bary: Vec2, dir: Vec3) -> ShadingPoint {
+        self.resolve(instance, triangle, bary, dir, None)
+    }
+
+    /// [`Self::shading_point`] with the material's textures (albedo, metal–roughness, the
+    /// normal map) read at `uv` instead of the interpolated texture coordinate: the surface
+    /// seen through a relief, whose trace moved the visible texel.
+    pub fn shading_point_at_uv(
+        &self,
+        instance: u32,
+        triangle: u32,
+        bary: Vec2,
+        dir: Vec3,
+        uv: Vec2,
+    ) -> ShadingPoint {
+        self.resolve(instance, triangle, bary, dir, Some(uv))
+    }
+
+    /// The shading point of a hit, its textures read at `uv` when given.
+    fn resolve(&self, instance: u32, triangle: u32, bary: Vec2, dir: Vec3, uv: Option<Vec2>) -> ShadingPoint {
         let inst = &self.instances[instance as usize];
         let mesh = &self.meshes[inst.mesh as usize];
         let [i0, i1, i2] = mesh.triangles[triangle as usize];
@@ -178,7 +197,7 @@ impl HybridScene {
         let p_obj = lerp3(a.position, b.position, c.position);
         let n_obj = lerp3(a.normal, b.normal, c.normal);
         let t_obj = lerp3(a.tangent.xyz(), b.tangent.xyz(), c.tangent.xyz());
-        let uv = a.uv * w0 + b.uv * bary.x + c.uv * bary.y;
+        let uv = uv.unwrap_or_else(|| a.uv * w0 + b.uv * bary.x + c.uv * bary.y);
         let nm = normal_matrix(&inst.transform);
         let position = inst.transform.transform_point3(p_obj);
         // The inverse transpose carries the object-space face normal to the world's; under a
@@ -202,6 +221,7 @@ impl HybridScene {
             emissive: material.emissive,
             material: inst.material,
             front_face: true,
+            relief_depth: 0.0,
         };
         if let Some(t) = material.base_color_texture {
             sp.base_color *= self.textures[t as usize].sample(uv).xyz();
@@ -320,6 +340,26 @@ mod tests {
         assert!((face - world.vertices[0].normal).length() < 1e-6, "winding normal {face}");
         let hit = s.shading_point(0, 0, Vec2::new(0.2, 0.2), Vec3::NEG_Z);
         assert!(hit.front_face && (hit.geometric_normal - Vec3::Z).length() < 1e-6);
+    }
+
+    #[test]
+    fn relief_materials_carry_their_depth_maps_and_resolve_at_a_moved_uv() {
+        let s = crate::procedural::builtin("relief_wall").unwrap();
+        let by_name = |n: &str| s.materials.iter().find(|m| m.name == n).unwrap();
+        let bricks = by_name("bricks").depth_map.as_ref().expect("a relief material has depth");
+        assert_eq!((bricks.scale, bricks.depth.size()), (0.05, (256, 256)));
+        assert!(bricks.depth.pixels().contains(&0.0) && bricks.depth.pixels().contains(&1.0));
+        assert!(by_name("limestone").depth_map.is_none());
+        // The wall is instance 0; at the interpolated UV the moved resolve is the plain one.
+        let (bary, dir) = (Vec2::new(0.3, 0.2), Vec3::new(0.1, -0.1, -1.0).normalize());
+        let plain = s.shading_point(0, 0, bary, dir);
+        assert_eq!(s.shading_point_at_uv(0, 0, bary, dir, plain.uv), plain);
+        let moved = s.shading_point_at_uv(0, 0, bary, dir, plain.uv + Vec2::new(0.13, 0.07));
+        assert_eq!((moved.position, moved.geometric_normal), (plain.position, plain.geometric_normal));
+        assert!(moved.uv != plain.uv && moved.base_color != plain.base_color);
+        let mut bad = s.clone();
+        bad.materials[0].depth_map.as_mut().unwrap().scale = f32::NAN;
+        assert!(bad.validate().is_err());
     }
 
     #[test]

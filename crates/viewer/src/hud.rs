@@ -29,6 +29,7 @@ pub const KEY_HELP: &[(&str, &str)] = &[
     ("Left Right", "every technique of the registry"),
     ("Up Down", "layers (1-50)"),
     ("B", "layer-count heat map"),
+    ("P", "pixel-depth offset: the displaced depth into the depth buffer"),
     ("V", "split: side by side, error map, off (drag the line to move it)"),
     ("H", "hide the interface (captures the mouse; showing it frees it)"),
     ("X", "FPS readout"),
@@ -90,6 +91,8 @@ pub struct HudState<'a> {
     pub layers: Option<u32>,
     /// Whether the heat map is shown.
     pub heat_map: bool,
+    /// Whether the pixel-depth offset is written to the depth buffer.
+    pub depth_offset: bool,
     /// The split screen's mode.
     pub split: SplitMode,
     /// The split screen's right-hand technique.
@@ -136,6 +139,8 @@ pub struct Changes {
     pub message: Option<String>,
     /// A new split-screen mode.
     pub split: Option<SplitMode>,
+    /// The pixel-depth offset turned on or off.
+    pub depth_offset: Option<bool>,
     /// A new right-hand technique for the split screen.
     pub right: Option<Technique>,
 }
@@ -201,6 +206,13 @@ fn info_panel(ctx: &egui::Context, s: &HudState<'_>, changes: &mut Changes) {
             };
             if s.heat_map {
                 ui.label("Heat map: planned layers per pixel, blue 1 to red 50");
+            }
+            let mut offset = s.depth_offset;
+            ui.checkbox(&mut offset, "pixel-depth offset (P)").on_hover_text(
+                "write the displaced depth to the depth buffer, so that depth tests see the relief",
+            );
+            if offset != s.depth_offset {
+                changes.depth_offset = Some(offset);
             }
             let (mode, right) = split::controls(ui, s.split, s.right);
             if mode != s.split {

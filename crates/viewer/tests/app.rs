@@ -66,6 +66,22 @@ fn start_switch_layers_heat_map() {
     let dir = std::env::temp_dir().join("renderlab-viewer-test");
     std::fs::create_dir_all(&dir).unwrap();
     heat_img.save(dir.join("heat_map.png")).unwrap();
+    // B again, then P: the pixel-depth offset. The room's walls meet only at their edges, so
+    // the picture stays the room's, as good as unchanged; the depth test now sees the relief.
+    h.key_press(Key::B);
+    h.run_steps(1);
+    assert!(!h.state().room().unwrap().pixel_depth_offset());
+    h.key_press(Key::P);
+    h.run_steps(2);
+    assert!(h.state().room().unwrap().pixel_depth_offset());
+    h.get_by_label("pixel-depth offset (P)");
+    let offset = picture(&mut h);
+    assert_room(&offset, "pom:34 with the pixel-depth offset");
+    let d = mean_diff(&pom, &offset);
+    assert!(d < 1.0, "the offset changed the room's picture (mean difference {d:.2})");
+    h.key_press(Key::P);
+    h.run_steps(1);
+    assert!(!h.state().room().unwrap().pixel_depth_offset());
     // Esc goes back to the menu.
     h.key_press(Key::Escape);
     h.run_steps(2);

@@ -13,6 +13,7 @@ use super::descriptions::describe;
 use super::readme_compute::compute_section;
 use super::reflect::{items, Item, ItemKind};
 use super::source::{ExportShader, Lang, Parsed, ShaderKind};
+use renderlab_relief::render::shade::ShadowMode;
 use renderlab_relief::Shading;
 use std::fmt::Write;
 
@@ -197,10 +198,13 @@ fn shader_section(s: &mut String, shader: &ExportShader, parsed: &Parsed, interf
     match shader.kind {
         ShaderKind::Relief(t) => {
             let d = t.descriptor();
-            let lit = match d.shading {
-                Shading::Unlit => "`Frame.lit` = 0 (unlit)",
-                Shading::Lit => "`Frame.lit` = 1 (lit)",
-                Shading::LitShadowed => {
+            let lit = match (d.shading, t.shadow()) {
+                (Shading::Unlit, _) => "`Frame.lit` = 0 (unlit)",
+                (Shading::Lit, _) => "`Frame.lit` = 1 (lit)",
+                (Shading::LitShadowed, ShadowMode::Horizon(_)) => {
+                    "`Frame.lit` = 3 (lit, horizon self-shadows; `Frame.shadow_samples` > 0)"
+                }
+                (Shading::LitShadowed, _) => {
                     "`Frame.lit` = 2 (lit, soft self-shadows; `Frame.shadow_samples` > 0)"
                 }
             };

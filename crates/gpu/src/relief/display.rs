@@ -73,7 +73,7 @@ impl ReliefRenderer<'_> {
         region: DisplayRegion,
     ) {
         let targets = self.targets.as_ref().expect("prepare sized the targets");
-        let pipeline = &self.pipelines[&(technique, output)];
+        let pipeline = &self.pipelines[&(technique, output, self.depth_offset)];
         let depth = targets.depth.create_view(&Default::default());
         let bg = self.background.as_dvec3();
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {

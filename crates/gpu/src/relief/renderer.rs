@@ -72,6 +72,9 @@ pub struct GpuFrame {
     pub image: Image<Vec3>,
     /// Displaced UV per pixel (zero on background).
     pub uv: Image<Vec2>,
+    /// The pixel-depth offset: distance from the eye to the displaced hit, world units (zero
+    /// on background), as the CPU's `Frame::view_depth` with the patch's scale.
+    pub view_depth: Image<f32>,
     /// Planned layer count per pixel (0 where not applicable).
     pub layers: Image<u16>,
     /// Pixels showing a surface.
@@ -153,7 +156,10 @@ pub struct ReliefRenderer<'a> {
     frame_buffer: wgpu::Buffer,
     pub(super) frame_group: wgpu::BindGroup,
     layout: wgpu::PipelineLayout,
-    pub(super) pipelines: HashMap<(Technique, Output), wgpu::RenderPipeline>,
+    /// Fragment pipelines by technique, output and whether they write the pixel-depth offset.
+    pub(super) pipelines: HashMap<(Technique, Output, bool), wgpu::RenderPipeline>,
+    /// Whether the fragment pipeline writes the displaced depth ([`ReliefRenderer::set_pixel_depth_offset`]).
+    pub(super) depth_offset: bool,
     pub(super) targets: Option<Targets>,
     pub(super) timer: Option<PassTimer>,
     /// The pipeline frames are drawn with.
@@ -240,6 +246,7 @@ impl<'a> ReliefRenderer<'a> {
             frame_group,
             layout,
             pipelines: HashMap::new(),
+            depth_offset: false,
             targets: None,
             timer: PassTimer::new(ctx),
             kind: ReliefPipeline::Fragment,
@@ -270,6 +277,21 @@ impl<'a> ReliefRenderer<'a> {
         Ok(())
     }
 
+    /// Whether the fragment pipeline writes each pixel's displaced depth into the depth buffer
+    /// (the pixel-depth offset: later depth tests, such as objects that cut into the relief,
+    /// then see the relief rather than the flat mesh). Off by default: writing depth from the
+    /// fragment shader turns early depth testing off on most hardware. Debug frames report
+    /// the offset depth ([`GpuFrame::view_depth`]) either way; the compute pipeline has no
+    /// depth test to feed and reports it the same way.
+    pub fn set_pixel_depth_offset(&mut self, on: bool) {
+        self.depth_offset = on;
+    }
+
+    /// Whether the pixel-depth offset is written ([`ReliefRenderer::set_pixel_depth_offset`]).
+    pub fn pixel_depth_offset(&self) -> bool {
+        self.depth_offset
+    }
+
     /// The device this renderer draws on.
     pub fn context(&self) -> &GpuContext {
         self.ctx
@@ -278,11 +300,12 @@ impl<'a> ReliefRenderer<'a> {
     /// Builds (once) the pipeline of `technique` for `output`; a shader that fails to compile
     /// or validate is an error naming the technique.
     pub(super) fn pipeline(&mut self, technique: Technique, output: Output) -> Result<&wgpu::RenderPipeline> {
-        if !self.pipelines.contains_key(&(technique, output)) {
+        let key = (technique, output, self.depth_offset);
+        if !self.pipelines.contains_key(&key) {
             let pipeline = self.build_pipeline(technique, output)?;
-            self.pipelines.insert((technique, output), pipeline);
+            self.pipelines.insert(key, pipeline);
         }
-        Ok(&self.pipelines[&(technique, output)])
+        Ok(&self.pipelines[&key])
     }
 
     fn build_pipeline(&self, technique: Technique, output: Output) -> Result<wgpu::RenderPipeline> {
@@ -291,10 +314,17 @@ impl<'a> ReliefRenderer<'a> {
         let (build, module) = ShaderBuild::begin(self.ctx, &technique.name(), &source)?;
         let color =
             |format| Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL });
-        let (entry, targets) = match output {
-            Output::Color => ("fs_color", vec![color(COLOR_FORMAT)]),
-            Output::Debug => ("fs_debug", vec![color(COLOR_FORMAT), color(UV_FORMAT), color(LAYERS_FORMAT)]),
-            Output::Display(format) => ("fs_color", vec![color(format)]),
+        let (entry, targets) = match (output, self.depth_offset) {
+            (Output::Color, false) => ("fs_color", vec![color(COLOR_FORMAT)]),
+            (Output::Color, true) => ("fs_color_pdo", vec![color(COLOR_FORMAT)]),
+            (Output::Debug, false) => {
+                ("fs_debug", vec![color(COLOR_FORMAT), color(UV_FORMAT), color(LAYERS_FORMAT)])
+            }
+            (Output::Debug, true) => {
+                ("fs_debug_pdo", vec![color(COLOR_FORMAT), color(UV_FORMAT), color(LAYERS_FORMAT)])
+            }
+            (Output::Display(format), false) => ("fs_color", vec![color(format)]),
+            (Output::Display(format), true) => ("fs_color_pdo", vec![color(format)]),
         };
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some(&technique.name()),
@@ -362,6 +392,7 @@ impl<'a> ReliefRenderer<'a> {
         let (lit, shadow_samples) = match (technique.shading(), technique.shadow()) {
             (Shading::Unlit, _) => (0, 0),
             (Shading::LitShadowed, ShadowMode::Soft(n)) => (2, n),
+            (Shading::LitShadowed, ShadowMode::Horizon(n)) => (3, n),
             (Shading::LitShadowed, ShadowMode::Exact) => {
                 return Err(GpuError::Shader {
                     technique: technique.name(),
@@ -437,7 +468,7 @@ impl<'a> ReliefRenderer<'a> {
             return;
         }
         let targets = self.targets.as_ref().expect("prepare sized the targets");
-        let pipeline = &self.pipelines[&(technique, output)];
+        let pipeline = &self.pipelines[&(technique, output, self.depth_offset)];
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
         let (color, uv, layers, depth) =
             (view(&targets.color), view(&targets.uv), view(&targets.layers), view(&targets.depth));
@@ -495,6 +526,7 @@ impl<'a> ReliefRenderer<'a> {
         Ok(GpuFrame {
             image: sized(w, h, color.iter().map(|c| Vec3::new(c[0], c[1], c[2])).collect()),
             uv: sized(w, h, uv.iter().map(|c| Vec2::new(c[0], c[1])).collect()),
+            view_depth: sized(w, h, uv.iter().map(|c| c[2]).collect()),
             layers: sized(w, h, layers.iter().map(|&l| l.min(u16::MAX as u32) as u16).collect()),
             mask: sized(w, h, color.iter().map(|c| c[3] > 0.5).collect()),
         })

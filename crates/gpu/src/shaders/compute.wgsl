@@ -6,7 +6,8 @@
 // background there).
 //
 // Outputs are storage textures at the pixel: colour (alpha 1), and for `cs_debug` the
-// displaced UV and the planned layer count, as `fs_color` and `fs_debug` write them.
+// displaced UV with the pixel-depth offset (the displaced hit's distance from the eye, in z)
+// and the planned layer count, as `fs_color` and `fs_debug` write them.
 
 @group(2) @binding(0) var<storage, read> vis_buffer: array<vec2<u32>>;
 @group(2) @binding(4) var out_color: texture_storage_2d<rgba32float, write>;
@@ -50,7 +51,7 @@ fn surface_at(pixel: vec2<u32>, hit: vec2<u32>) -> Surface {
     let duv2 = c.uv - a.uv;
     let duv_dx = duv1 * dot(g1, dx) + duv2 * dot(g2, dx);
     let duv_dy = duv1 * dot(g1, dy) + duv2 * dot(g2, dy);
-    return surface_from(uv, duv_dx, duv_dy, world, normal, tangent);
+    return surface_from(uv, duv_dx, duv_dy, world, normal, tangent, world_per_uv(e1, e2, duv1, duv2));
 }
 
 // The visibility record of `pixel` when it shows this dispatch's material, else VIS_NONE in x.
@@ -86,6 +87,6 @@ fn cs_debug(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let s = shade(surface_at(id.xy, hit));
     textureStore(out_color, id.xy, vec4<f32>(s.color, select(0.0, 1.0, s.covered)));
-    textureStore(out_uv, id.xy, vec4<f32>(s.uv, 0.0, 0.0));
+    textureStore(out_uv, id.xy, vec4<f32>(s.uv, s.view_depth, 0.0));
     textureStore(out_layers, id.xy, vec4<u32>(s.layers, 0u, 0u, 0u));
 }

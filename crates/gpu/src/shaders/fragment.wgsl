@@ -40,7 +40,19 @@ fn surface(in: Varyings) -> Surface {
     let h = in.uv * q;
     let duv_dx = (dpdxFine(h) - in.uv * dpdxFine(q)) / q;
     let duv_dy = (dpdyFine(h) - in.uv * dpdyFine(q)) / q;
-    return surface_from(in.uv, duv_dx, duv_dy, in.world, in.normal, in.tangent);
+    // The world position's Jacobian the same way (world·q is affine in screen space too).
+    let g = in.world * q;
+    let dp_dx = (dpdxFine(g) - in.world * dpdxFine(q)) / q;
+    let dp_dy = (dpdyFine(g) - in.world * dpdyFine(q)) / q;
+    let scale = world_per_uv(dp_dx, dp_dy, duv_dx, duv_dy);
+    return surface_from(in.uv, duv_dx, duv_dy, in.world, in.normal, in.tangent, scale);
+}
+
+// The depth-buffer value of the point `distance` from the eye on the ray through `world`.
+fn offset_clip_depth(world: vec3<f32>, distance: f32) -> f32 {
+    let p = frame.eye.xyz + normalize(world - frame.eye.xyz) * distance;
+    let clip = frame.view_proj * vec4<f32>(p, 1.0);
+    return clip.z / clip.w;
 }
 
 // The image alone (timed runs). Alpha marks covered pixels (the clear leaves 0); a trace that
@@ -54,7 +66,8 @@ fn fs_color(in: Varyings) -> @location(0) vec4<f32> {
     return vec4<f32>(s.color, 1.0);
 }
 
-// The image with the debug targets: displaced UV and planned layer count.
+// The image with the debug targets: displaced UV with the pixel-depth offset (the displaced
+// hit's distance from the eye, in z) and planned layer count.
 struct DebugOut {
     @location(0) color: vec4<f32>,
     @location(1) uv: vec4<f32>,
@@ -67,5 +80,41 @@ fn fs_debug(in: Varyings) -> DebugOut {
     if !s.covered {
         discard;
     }
-    return DebugOut(vec4<f32>(s.color, 1.0), vec4<f32>(s.uv, 0.0, 0.0), s.layers);
+    return DebugOut(vec4<f32>(s.color, 1.0), vec4<f32>(s.uv, s.view_depth, 0.0), s.layers);
+}
+
+// `fs_color` with the pixel-depth offset: the depth buffer gets the displaced hit's depth, so
+// that the depth test (objects that intersect the relief, later depth-reading passes) sees the
+// relief. Writing the depth turns early depth testing off on most hardware: what it costs is
+// measured, not assumed.
+struct OffsetColor {
+    @location(0) color: vec4<f32>,
+    @builtin(frag_depth) depth: f32,
+}
+
+@fragment
+fn fs_color_pdo(in: Varyings) -> OffsetColor {
+    let s = shade(surface(in));
+    if !s.covered {
+        discard;
+    }
+    return OffsetColor(vec4<f32>(s.color, 1.0), offset_clip_depth(in.world, s.view_depth));
+}
+
+// `fs_debug` with the pixel-depth offset.
+struct OffsetDebug {
+    @location(0) color: vec4<f32>,
+    @location(1) uv: vec4<f32>,
+    @location(2) layers: u32,
+    @builtin(frag_depth) depth: f32,
+}
+
+@fragment
+fn fs_debug_pdo(in: Varyings) -> OffsetDebug {
+    let s = shade(surface(in));
+    if !s.covered {
+        discard;
+    }
+    let depth = offset_clip_depth(in.world, s.view_depth);
+    return OffsetDebug(vec4<f32>(s.color, 1.0), vec4<f32>(s.uv, s.view_depth, 0.0), s.layers, depth);
 }

@@ -48,11 +48,15 @@ struct Surface {
     duv_dy: vec2<f32>,
     view_ts: vec3<f32>,
     light_ts: vec3<f32>,
+    // Distance from the eye to the surface point (world units).
+    eye_distance: f32,
+    // World units per UV unit (`PatchInfo::world_per_uv`; 0 when the mapping is degenerate).
+    world_per_uv: f32,
 }
 
-// The surface from its interpolated attributes and its exact UV Jacobian: the tangent frame
-// as `tangent_frame` builds it (N, T by Gram–Schmidt, B = N × T · sign) and the view and
-// light directions in it.
+// The surface from its interpolated attributes, its exact UV Jacobian and its scale in world
+// units per UV unit: the tangent frame as `tangent_frame` builds it (N, T by Gram–Schmidt,
+// B = N × T · sign) and the view and light directions in it.
 fn surface_from(
     uv: vec2<f32>,
     duv_dx: vec2<f32>,
@@ -60,8 +64,11 @@ fn surface_from(
     world: vec3<f32>,
     normal: vec3<f32>,
     tangent: vec4<f32>,
+    world_per_uv: f32,
 ) -> Surface {
     var s: Surface;
+    s.eye_distance = length(frame.eye.xyz - world);
+    s.world_per_uv = world_per_uv;
     s.uv = uv;
     s.duv_dx = duv_dx;
     s.duv_dy = duv_dy;
@@ -146,20 +153,35 @@ struct Shaded {
     uv: vec2<f32>,
     layers: u32,
     covered: bool,
+    // The pixel-depth offset: distance from the eye to the displaced hit (`offset_depth`).
+    view_depth: f32,
+}
+
+// World units per UV unit of a surface whose position and UV change by (dp1, duv1) and
+// (dp2, duv2) along two directions: √(|dp1 × dp2| / |duv1 × duv2|), the CPU's per-patch
+// √(world area / UV area); 0 where the UV mapping is degenerate.
+fn world_per_uv(dp1: vec3<f32>, dp2: vec3<f32>, duv1: vec2<f32>, duv2: vec2<f32>) -> f32 {
+    let uv_area = abs(duv1.x * duv2.y - duv1.y * duv2.x);
+    let world_area = length(cross(dp1, dp2));
+    return select(0.0, sqrt(world_area / uv_area), uv_area > 0.0 && world_area < 3.4e38);
 }
 
 // Traces and lights one pixel (`shade_point`): the ray enters at its UV moved into the first
 // tile (the field repeats, so the hit is the same and f32 keeps its precision), the hit moves
 // back, and the maps are sampled there with the level of the undisplaced footprint; a
-// shadowed technique then marches toward the light from the hit (`soft_shadow`).
+// shadowed technique then marches toward the light from the hit (`soft_shadow`, or
+// `horizon_shadow` when `frame.lit` is 3).
 fn shade(s: Surface) -> Shaded {
     let base = floor(s.uv);
     let unbounded = vec2<f32>(3.4e38);
     ray_ctx = RayContext(footprint(s.duv_dx, s.duv_dy), vec2<f32>(0.0), -unbounded - base, unbounded - base);
     var hit = trace(s.uv - base, s.view_ts);
     if hit.depth < 0.0 {
-        return Shaded(frame.background.xyz, vec2<f32>(0.0), 0u, false);
+        return Shaded(frame.background.xyz, vec2<f32>(0.0), 0u, false, 0.0);
     }
+    // The hit's distance below the top surface along the ray, moved to world units.
+    let along = length(vec3<f32>(hit.uv, hit.depth * material.height_scale) - vec3<f32>(s.uv - base, 0.0));
+    let view_depth = s.eye_distance + select(0.0, along * s.world_per_uv, along < 3.4e38);
     hit.uv += base;
     let albedo_size = vec2<f32>(textureDimensions(albedo_map));
     let albedo_lod = lod(albedo_size, material.albedo_levels, s.duv_dx, s.duv_dy);
@@ -173,8 +195,10 @@ fn shade(s: Surface) -> Shaded {
         var shadow = 1.0;
         if frame.lit == 2u {
             shadow = soft_shadow(hit.uv, hit.depth, s.light_ts, frame.shadow_samples);
+        } else if frame.lit == 3u {
+            shadow = horizon_shadow(hit.uv, s.light_ts, frame.shadow_samples, HORIZON_LIGHT_RADIUS);
         }
         color = light(albedo, n, s.light_ts, s.view_ts, shadow);
     }
-    return Shaded(color, hit.uv, hit.layers, true);
+    return Shaded(color, hit.uv, hit.layers, true, view_depth);
 }

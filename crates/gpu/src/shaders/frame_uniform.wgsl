@@ -14,9 +14,11 @@ struct Frame {
     ambient: f32,
     specular_exponent: f32,
     specular_strength: f32,
-    // 0: unlit (albedo alone); 1: lit; 2: lit with soft self-shadows.
+    // 0: unlit (albedo alone); 1: lit; 2: lit with soft self-shadows; 3: lit with horizon
+    // self-shadows.
     lit: u32,
-    // Samples along the light ray of the soft shadows (`ShadowMode::Soft`).
+    // Samples along the light ray of the soft shadows (`ShadowMode::Soft`), or the most
+    // samples of the horizon shadows (`ShadowMode::Horizon`).
     shadow_samples: u32,
     _pad0: u32,
     _pad1: u32,

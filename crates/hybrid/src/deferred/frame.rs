@@ -8,6 +8,8 @@ use super::geometry::{geometry_pass, GeometryPass, PreparedScene};
 use super::lighting::direct_lighting;
 use super::settings::RasterSettings;
 use super::tonemap::tonemap;
+use crate::relief::maps::ReliefMaps;
+use crate::relief::pass::relief_pass;
 use crate::stages::ao::ssao;
 use crate::stages::gi::ambient_diffuse;
 use crate::stages::reflections::ssr::screen_space_reflections;
@@ -22,7 +24,7 @@ use std::time::Instant;
 /// Wall-clock time of each stage of one frame, milliseconds.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct StageTimings {
-    /// Geometry pass (visibility buffer, resolve, translucent layers).
+    /// Geometry pass (visibility buffer, resolve, translucent layers, the relief pass).
     pub geometry_ms: f64,
     /// Shadow maps of every light.
     pub shadows_ms: f64,
@@ -89,7 +91,8 @@ impl std::fmt::Display for DeferredError {
 
 impl std::error::Error for DeferredError {}
 
-/// Renders the all-raster frame of `prepared` seen by `camera`: geometry, shadow maps,
+/// Renders the all-raster frame of `prepared` seen by `camera`: geometry (and the relief
+/// pass when `settings.relief` asks, its maps made for this frame), shadow maps,
 /// direct lighting, ambient and SSAO, screen-space reflections, composition and the sorted
 /// forward translucent pass.
 pub fn render(
@@ -105,7 +108,10 @@ pub fn render(
     let time = |slot: &mut f64, start: Instant| *slot = start.elapsed().as_secs_f64() * 1e3;
 
     let t = Instant::now();
-    let geometry = geometry_pass(prepared, camera, settings.translucent_layers);
+    let mut geometry = geometry_pass(prepared, camera, settings.translucent_layers);
+    if settings.relief.tracer.is_some() {
+        relief_pass(prepared, &mut geometry, &settings.relief, &ReliefMaps::new(scene));
+    }
     time(&mut timings.geometry_ms, t);
     let g = &geometry.gbuffer;
 

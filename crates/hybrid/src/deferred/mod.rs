@@ -10,6 +10,7 @@
 //! | pass | function | writes |
 //! |---|---|---|
 //! | geometry | [`geometry_pass`] (world meshes cached in [`PreparedScene`]) | [`GeometryPass`]: G-buffer, visibility buffer, translucent layers |
+//! | relief (when [`RasterSettings::relief`] asks) | [`relief_pass`](crate::relief::relief_pass) | the opaque texels of materials with a depth map moved to the relief's hits |
 //! | shadows | [`ShadowMaps::build`] (a [`Visibility`]) | per-light depth maps |
 //! | lighting | [`direct_lighting`] with any [`Visibility`] | `terms.direct` |
 //! | ambient | [`ambient_diffuse`], [`ssao`] | `terms.diffuse_indirect`, `terms.ambient_occlusion` |

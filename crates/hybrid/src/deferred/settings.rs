@@ -1,5 +1,7 @@
 //! The deferred pipeline's parameters, one struct per stage, with the defaults the lab uses.
 
+use crate::relief::settings::ReliefSettings;
+
 /// Shadow-map parameters (the raster shadow stage).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ShadowSettings {
@@ -109,6 +111,8 @@ pub struct RasterSettings {
     pub exposure: f32,
     /// Tone-mapping operator.
     pub tone_map: ToneMap,
+    /// The relief pass after the geometry pass (off by default).
+    pub relief: ReliefSettings,
 }
 
 impl Default for RasterSettings {
@@ -121,6 +125,7 @@ impl Default for RasterSettings {
             translucent_layers: 4,
             exposure: 1.0,
             tone_map: ToneMap::AcesFitted,
+            relief: ReliefSettings::default(),
         }
     }
 }

@@ -13,7 +13,7 @@ use super::device::device_label;
 use super::gpu_phase::{GpuConfig, GpuTimes};
 use super::page::ImageSet;
 use super::record::{label, slug, Measured, RecordBackend, ReliefRecord};
-use super::uv_error::{mean_and_p95, uv_error_map, write_frame_images, FrameImages};
+use super::uv_error::{mean_and_p95, offset_depth_error, uv_error_map, write_frame_images, FrameImages};
 use crate::metrics::{compare, psnr};
 use glam::{Vec2, Vec3};
 use renderlab_core::{Camera, Image, Material};
@@ -53,6 +53,9 @@ pub(super) struct GpuAnalysis<'a> {
     pub img_dir: &'a Path,
     /// The run's settings.
     pub cfg: &'a ReliefBenchConfig,
+    /// The relief's full depth in world units (the pixel-depth offset's error is a fraction
+    /// of it).
+    pub relief_depth: f32,
 }
 
 impl GpuAnalysis<'_> {
@@ -78,6 +81,13 @@ impl GpuAnalysis<'_> {
         let tex_size = Vec2::new(height.width() as f32, height.height() as f32);
         let uv_map = uv_error_map(&frame.uv, &frame.mask, &reference.uv, tex_size);
         let (uv_mean, uv_p95) = mean_and_p95(&uv_map, &frame.mask);
+        let depth_error = offset_depth_error(
+            &frame.view_depth,
+            &frame.mask,
+            &reference.view_depth,
+            &reference.mask,
+            self.relief_depth,
+        );
         let covered = frame.mask.pixels().iter().filter(|&&m| m).count();
         let mean_layers = if covered == 0 || technique.layers() == 0 {
             0.0
@@ -98,6 +108,7 @@ impl GpuAnalysis<'_> {
             metrics: cmp.metrics,
             mean_layers,
             uv_error: (uv_mean, uv_p95),
+            depth_error,
             covered_pixels: covered,
         };
         let rec = ReliefRecord {

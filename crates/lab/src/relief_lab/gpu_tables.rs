@@ -105,6 +105,7 @@ pub(super) fn gpu_measurements(gpu: &[ReliefRecord]) -> Vec<Vec<String>> {
                 format_number(r.flip, 4),
                 format_number(r.uv_error_texels, 3),
                 format_number(r.uv_error_p95_texels, 3),
+                format_number(r.depth_error * 100.0, 3),
                 r.psnr_vs_cpu_db.map_or("–".into(), |p| format_number(p, 1)),
             ]
         })

@@ -234,6 +234,7 @@ fn measurements(records: &[ReliefRecord]) -> Vec<Vec<String>> {
                 format_number(r.flip, 4),
                 format_number(r.uv_error_texels, 3),
                 format_number(r.uv_error_p95_texels, 3),
+                format_number(r.depth_error * 100.0, 3),
             ]
         })
         .collect()

@@ -108,6 +108,11 @@ pub struct ReliefRecord {
     pub uv_error_texels: f64,
     /// 95th percentile of that distance, texels.
     pub uv_error_p95_texels: f64,
+    /// The pixel-depth offset's error: mean |distance to the technique's displaced hit −
+    /// distance to the exact one| over the covered pixels, as a fraction of the relief's full
+    /// depth (the material's depth scale in world units). What a depth buffer written with
+    /// the offset gets wrong, for shadow maps, SSAO and intersecting objects to inherit.
+    pub depth_error: f64,
     /// Pixels showing the surface.
     pub covered_pixels: usize,
 }
@@ -130,6 +135,8 @@ pub struct Measured {
     pub mean_layers: f64,
     /// Mean and 95th percentile of the UV error, texels.
     pub uv_error: (f64, f64),
+    /// The pixel-depth offset's mean error, a fraction of the relief's depth.
+    pub depth_error: f64,
     /// Pixels showing the surface.
     pub covered_pixels: usize,
 }
@@ -173,6 +180,7 @@ impl ReliefRecord {
             flip: m.metrics.flip,
             uv_error_texels: m.uv_error.0,
             uv_error_p95_texels: m.uv_error.1,
+            depth_error: m.depth_error,
             covered_pixels: m.covered_pixels,
         }
     }

@@ -6,7 +6,7 @@ use super::gpu_phase::{choose_pipelines, time_gpu_phase, GpuConfig, PhaseCost};
 use super::gpu_side::{self, GpuAnalysis};
 use super::page::{write_report, GpuPart, ImageSet};
 use super::record::{label, slug, Measured, RecordBackend, ReliefRecord, ReliefSummary};
-use super::uv_error::{mean_and_p95, uv_error_map, write_frame_images, FrameImages};
+use super::uv_error::{mean_and_p95, offset_depth_error, uv_error_map, write_frame_images, FrameImages};
 use super::verdicts::{findings, headline};
 use crate::fixtures::{benchmark_camera, benchmark_scene};
 use crate::lab::Progress;
@@ -21,26 +21,47 @@ use renderlab_gpu::ReliefRenderer;
 use renderlab_raster::{rasterize, GBuffer};
 use renderlab_relief::fused::{render_fused, render_fused_records, FusedFrame};
 use renderlab_relief::render::{check, render, render_reference, trace_only};
-use renderlab_relief::{Frame, FrameInput, Kernel, KernelChoice, Map, ReliefMaterial, Shading, Technique};
+use renderlab_relief::{
+    patches_from_scene, Frame, FrameInput, Kernel, KernelChoice, Map, PatchInfo, ReliefMaterial, Shading,
+    Technique,
+};
 use std::path::Path;
 
-/// A rasterized view: the G-buffer the relief renderer shades.
+/// A rasterized view: the G-buffer the relief renderer shades, and the patch behind each
+/// pixel (for the pixel-depth offset).
 pub struct View {
     /// View angle, degrees.
     pub angle: f32,
     /// Per-pixel surface points.
     pub gbuffer: GBuffer,
+    /// Per-pixel patches ([`patches_from_scene`]).
+    pub patches: Vec<PatchInfo>,
 }
 
 impl View {
     /// Rasterizes `scene` from `camera`.
     pub fn new(scene: &Scene, camera: &Camera, angle: f32) -> Self {
-        Self { angle, gbuffer: rasterize(scene, camera) }
+        let gbuffer = rasterize(scene, camera);
+        let patches = patches_from_scene(scene, gbuffer.pixels());
+        Self { angle, gbuffer, patches }
     }
 
     /// The renderer's view of it.
     pub fn input(&self) -> FrameInput<'_> {
         FrameInput::new(self.gbuffer.width(), self.gbuffer.height(), self.gbuffer.pixels())
+            .with_patches(&self.patches)
+    }
+
+    /// The relief's full depth in world units for a material of depth scale `height_scale`
+    /// (UV per unit depth): the scale times the median world units per UV of the covered
+    /// pixels (0 when none is covered).
+    pub fn relief_depth(&self, height_scale: f32) -> f32 {
+        let mut scales: Vec<f32> = self.patches.iter().map(|p| p.world_per_uv).filter(|&s| s > 0.0).collect();
+        if scales.is_empty() {
+            return 0.0;
+        }
+        let mid = scales.len() / 2;
+        height_scale * *scales.select_nth_unstable_by(mid, f32::total_cmp).1
     }
 }
 
@@ -112,6 +133,9 @@ pub fn run_relief_bench(
     let (mut records, mut gpu_records) = (Vec::new(), Vec::new());
     let mut images: Vec<ImageSet> = Vec::new();
     let mut gpu_cost = PhaseCost::default();
+    // Per angle: the error of a depth buffer without the pixel-depth offset (the flat top
+    // surface), a fraction of the relief's depth.
+    let mut flat_depth: Vec<(f32, f64)> = Vec::new();
     for &angle in &cfg.angles {
         let camera = benchmark_camera(angle, cfg.width, cfg.height);
         let view = View::new(&scene, &camera, angle);
@@ -179,6 +203,16 @@ pub fn run_relief_bench(
                 refs.push((shading, r));
             }
         }
+        if let Some((_, r)) = refs.first() {
+            let (w, h) = (view.gbuffer.width(), view.gbuffer.height());
+            let points = view.gbuffer.pixels();
+            let top = renderlab_core::Image::from_fn(w, h, |x, y| {
+                points[(y * w + x) as usize].map_or(0.0, |sp| sp.depth)
+            });
+            let covered = renderlab_core::Image::from_fn(w, h, |x, y| points[(y * w + x) as usize].is_some());
+            let relief = view.relief_depth(material.height_scale);
+            flat_depth.push((angle, offset_depth_error(&top, &covered, &r.view_depth, &r.mask, relief)));
+        }
         let ctx = Analysis {
             view: &view,
             scene: &scene,
@@ -199,7 +233,8 @@ pub fn run_relief_bench(
             })
             .collect::<crate::Result<_>>()?;
         if let (Some(r), Some(gctx)) = (&mut renderer, &gpu_ctx) {
-            let g = GpuAnalysis { report: &gctx.report, material, img_dir: &img_dir, cfg };
+            let relief_depth = view.relief_depth(material.height_scale);
+            let g = GpuAnalysis { report: &gctx.report, material, img_dir: &img_dir, cfg, relief_depth };
             for ((&config, &times), paired) in configs.iter().zip(&gpu_times).zip(&partner) {
                 let cpu = paired.and_then(|(i, ms)| analysed[i].2.as_ref().map(|f| (&f.image, &f.mask, ms)));
                 let reference = reference_for(&refs, config.0);
@@ -219,6 +254,7 @@ pub fn run_relief_bench(
     write_csv(out.join("results.csv"), &all)?;
     let gpu_pipelines: Vec<&'static str> = pipelines.iter().map(|p| p.name()).collect();
     let mut findings = findings(&records, &cfg.angles);
+    findings.extend(depth_offset_finding(&records, &flat_depth));
     if let Some(reason) = &probe {
         findings.push(format!("GPU pipeline chosen by the start-up probe: {reason}."));
     }
@@ -239,6 +275,39 @@ pub fn run_relief_bench(
     progress(total, total, "done");
     records.extend(gpu_records);
     Ok(ReliefSummary { records, findings, headline, index, gpu_note, gpu_pipelines, pipeline_probe: probe })
+}
+
+/// What the pixel-depth offset buys: per angle, the mean depth error of the flat top surface
+/// (a depth buffer without the offset) against the best and the median CPU technique's
+/// offset depth, as fractions of the relief's depth.
+fn depth_offset_finding(records: &[ReliefRecord], flat: &[(f32, f64)]) -> Option<String> {
+    let parts: Vec<String> = flat
+        .iter()
+        .filter_map(|&(angle, flat_err)| {
+            let mut errs: Vec<(f64, String)> = records
+                .iter()
+                .filter(|r| r.angle_deg == angle && r.family != "basic" && r.family != "normal")
+                .map(|r| (r.depth_error, label(r.technique, r.kernel)))
+                .collect();
+            errs.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let best = errs.first()?;
+            let median = &errs[errs.len() / 2];
+            Some(format!(
+                "{angle}°: flat {:.1} %, {} {:.3} %, median ({}) {:.2} %",
+                flat_err * 100.0,
+                best.1,
+                best.0 * 100.0,
+                median.1,
+                median.0 * 100.0
+            ))
+        })
+        .collect();
+    (!parts.is_empty()).then(|| {
+        format!(
+            "Pixel-depth offset: mean depth error against the exact hit, in % of the relief's depth, without the offset (the flat top surface) and with it: {}.",
+            parts.join("; ")
+        )
+    })
 }
 
 /// The method a GPU configuration of `t` is paired with: the one on `t`'s fastest kernel
@@ -291,6 +360,15 @@ impl Analysis<'_> {
         let tex_size = Vec2::new(height.width() as f32, height.height() as f32);
         let uv_map = uv_error_map(&frame.uv, &frame.mask, &reference.uv, tex_size);
         let (uv_mean, uv_p95) = mean_and_p95(&uv_map, &frame.mask);
+        // The fused frame keeps no eye distances: the float frame's hits are the same.
+        let relief = view.relief_depth(self.material.height_scale);
+        let depth_error = offset_depth_error(
+            &float.view_depth,
+            &float.mask,
+            &reference.view_depth,
+            &reference.mask,
+            relief,
+        );
         let covered = frame.mask.pixels().iter().filter(|&&m| m).count();
         let mean_layers = if covered == 0 {
             0.0
@@ -305,6 +383,7 @@ impl Analysis<'_> {
             metrics: cmp.metrics,
             mean_layers,
             uv_error: (uv_mean, uv_p95),
+            depth_error,
             covered_pixels: covered,
         };
         let rec = ReliefRecord {

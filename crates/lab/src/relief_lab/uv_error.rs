@@ -25,6 +25,31 @@ pub fn uv_error_map(
     })
 }
 
+/// The pixel-depth offset's error: the mean of |`depth` − `reference`| over the pixels both
+/// frames cover, as a fraction of the relief's full depth `relief` (world units), where
+/// `depth` and `reference` are distances from the eye to the displaced hits
+/// (`Frame::view_depth`). 0 when no pixel is covered by both.
+pub fn offset_depth_error(
+    depth: &Image<f32>,
+    mask: &Image<bool>,
+    reference: &Image<f32>,
+    reference_mask: &Image<bool>,
+    relief: f32,
+) -> f64 {
+    let (mut sum, mut n) = (0.0f64, 0usize);
+    for (i, (&d, &r)) in depth.pixels().iter().zip(reference.pixels()).enumerate() {
+        if mask.pixels()[i] && reference_mask.pixels()[i] {
+            sum += (d - r).abs() as f64;
+            n += 1;
+        }
+    }
+    if n == 0 || relief <= 0.0 {
+        0.0
+    } else {
+        sum / n as f64 / relief as f64
+    }
+}
+
 /// Mean and 95th percentile of `errors` over the pixels of `mask` (0 and 0 when it is empty).
 pub fn mean_and_p95(errors: &Image<f32>, mask: &Image<bool>) -> (f64, f64) {
     let mut v: Vec<f32> =

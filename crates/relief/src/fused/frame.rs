@@ -6,6 +6,7 @@ use super::lanes::{ShadeConsts, ShadeLanes, LANES};
 use crate::error::ReliefError;
 use crate::kernel::Kernel;
 use crate::march::exact::exact_shadowed;
+use crate::render::horizon::{horizon_shadow, LIGHT_RADIUS};
 use crate::render::material::ReliefMaterial;
 use crate::render::shade::{trace_shade_points, Frame, RowScratch as TraceScratch, ShadeOptions, ShadowMode};
 use crate::render::{check, options};
@@ -187,7 +188,8 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
 
     /// The light reaching each of a row's hits into `out` (1 unless the technique
     /// self-shadows). Soft shadows sample the packed 16-bit depths, the fused frame's height
-    /// format, in vector lanes for a run of pixels of one material at a time.
+    /// format, in vector lanes for a run of pixels of one material at a time; horizon shadows
+    /// march the `f32` field, one pixel at a time.
     fn shadows<C: Counter>(
         &self,
         hits: &[ReliefHit],
@@ -216,6 +218,20 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
                         counter,
                     );
                     start = end;
+                }
+            }
+            (Shading::LitShadowed, ShadowMode::Horizon(steps)) => {
+                for (i, (hit, sp)) in hits.iter().zip(points).enumerate() {
+                    let mat = &self.materials[material(i)];
+                    out[i] = horizon_shadow(
+                        &mat.height,
+                        mat.height_scale,
+                        hit.uv,
+                        sp.light_ts,
+                        steps,
+                        LIGHT_RADIUS,
+                        counter,
+                    );
                 }
             }
             (Shading::LitShadowed, ShadowMode::Exact) => {

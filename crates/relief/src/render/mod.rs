@@ -2,6 +2,7 @@
 //! kernel, dispatches it to its tracer once per frame (so the per-pixel loop is
 //! monomorphised), and renders the matching reference.
 
+pub mod horizon;
 pub mod material;
 pub mod patch;
 pub mod shade;

@@ -4,6 +4,7 @@
 
 use crate::march::exact::exact_shadowed;
 use crate::march::ray::split_ray;
+use crate::render::horizon::{horizon_shadow, LIGHT_RADIUS};
 use crate::render::material::ReliefMaterial;
 use crate::render::shadow::soft_shadow;
 pub use crate::techniques::descriptor::ShadowMode;
@@ -171,6 +172,15 @@ fn shade_point<C: Counter>(
                     hit.depth,
                     sp.light_ts,
                     samples,
+                    counter,
+                ),
+                (Shading::LitShadowed, ShadowMode::Horizon(steps)) => horizon_shadow(
+                    &mat.height,
+                    mat.height_scale,
+                    hit.uv,
+                    sp.light_ts,
+                    steps,
+                    LIGHT_RADIUS,
                     counter,
                 ),
                 (Shading::LitShadowed, ShadowMode::Exact) => {

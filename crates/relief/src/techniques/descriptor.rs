@@ -14,6 +14,10 @@ pub enum ShadowMode {
     None,
     /// Soft shadows with this many samples along the light ray.
     Soft(u32),
+    /// Horizon shadows of a light of the sun's angular size, marched in texel steps along the
+    /// light's azimuth with at most this many samples
+    /// ([`crate::render::horizon::horizon_shadow`]).
+    Horizon(u32),
     /// The exact hard shadow (reference).
     Exact,
 }

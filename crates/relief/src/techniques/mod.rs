@@ -136,6 +136,8 @@ registry! {
     ConeNewton(cone_newton::ConeNewton),
     Leap(leap::SpaceLeap),
     PomShadow(pom_shadow::PomShadow),
+    PomHorizon(pom_horizon::PomHorizon),
+    Silhouette(silhouette::Silhouette),
     PomLod(pom_lod::PomLod),
 }
 

@@ -51,6 +51,7 @@ registry! {
     courtyard,
     harbour,
     showcase,
+    relief_wall,
 }
 
 /// The small scene of the tests, examples and benchmarks, with its camera (its entry in

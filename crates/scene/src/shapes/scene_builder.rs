@@ -38,14 +38,17 @@ impl SceneBuilder {
     }
 
     /// A dielectric dressed with the relief material `relief`'s albedo (tinted by `tint`)
-    /// and normal map. Falls back to the plain tint if the relief material cannot be made.
+    /// and normal map, carrying its depth map ([`PbrMaterial::depth_map`]) for renderers
+    /// that trace the relief. Falls back to the plain tint if the relief material cannot be
+    /// made.
     pub fn relief_material(&mut self, relief: &str, tint: Vec3, roughness: f32) -> u32 {
         let mut m = PbrMaterial::dielectric(relief, tint, roughness);
-        if let Some((albedo, normal)) = relief_maps(&[relief]).pop().flatten() {
-            self.scene.textures.push(albedo);
+        if let Some(maps) = relief_maps(&[relief]).pop().flatten() {
+            self.scene.textures.push(maps.albedo);
             m.base_color_texture = Some((self.scene.textures.len() - 1) as u32);
-            self.scene.textures.push(normal);
+            self.scene.textures.push(maps.normal);
             m.normal_texture = Some((self.scene.textures.len() - 1) as u32);
+            m.depth_map = Some(maps.depth);
         }
         self.material(m)
     }

@@ -42,6 +42,10 @@ impl RoomScreen {
                 self.split = SplitMode::Off;
             }
         }
+        if pressed(Key::P) {
+            let on = !self.view.pixel_depth_offset();
+            self.view.set_pixel_depth_offset(on);
+        }
         if pressed(Key::V) {
             self.set_split(self.split.next());
         }

@@ -152,6 +152,11 @@ impl RoomScreen {
         self.heat_map
     }
 
+    /// Whether the pixel-depth offset is on (key P).
+    pub fn pixel_depth_offset(&self) -> bool {
+        self.view.pixel_depth_offset()
+    }
+
     /// The split screen's mode.
     pub fn split(&self) -> SplitMode {
         self.split
@@ -362,6 +367,7 @@ impl RoomScreen {
             technique: self.technique,
             layers: techniques::layers(self.technique),
             heat_map: self.heat_map,
+            depth_offset: self.view.pixel_depth_offset(),
             split: self.split,
             right: self.right,
             mouse_captured: self.look.captured(),
@@ -388,6 +394,9 @@ impl RoomScreen {
             }
             if let Some(p) = changes.complexity {
                 self.view.set_complexity(p)?;
+            }
+            if let Some(on) = changes.depth_offset {
+                self.view.set_pixel_depth_offset(on);
             }
             if let Some(mode) = changes.split {
                 self.set_split(mode);

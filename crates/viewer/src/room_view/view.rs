@@ -152,8 +152,21 @@ impl RoomView {
 
     /// Uploads the scene and materials again (after a change of light, height or maps).
     fn rebuild(&mut self) -> Result<(), ViewerError> {
+        let offset = self.renderer.pixel_depth_offset();
         self.renderer = ReliefRenderer::new(self.ctx, &self.scene, &self.materials)?;
+        self.renderer.set_pixel_depth_offset(offset);
         Ok(())
+    }
+
+    /// Whether the displaced depth goes into the depth buffer (the pixel-depth offset; see
+    /// `ReliefRenderer::set_pixel_depth_offset`). Kept across rebuilds.
+    pub fn set_pixel_depth_offset(&mut self, on: bool) {
+        self.renderer.set_pixel_depth_offset(on);
+    }
+
+    /// Whether the pixel-depth offset is on.
+    pub fn pixel_depth_offset(&self) -> bool {
+        self.renderer.pixel_depth_offset()
     }
 
     /// Draws `technique` from `camera` into the display texture (resized to the camera) and
@@ -307,7 +320,8 @@ impl RoomView {
             *m = material.clone();
         }
         let materials = prepare(&scene.materials, &self.complexity, self.with_cone);
-        let renderer = ReliefRenderer::new(self.ctx, &scene, &materials)?;
+        let mut renderer = ReliefRenderer::new(self.ctx, &scene, &materials)?;
+        renderer.set_pixel_depth_offset(self.renderer.pixel_depth_offset());
         (self.scene, self.materials, self.renderer) = (scene, materials, renderer);
         self.generation += 1;
         Ok(())

@@ -10,6 +10,7 @@ use clap::Args;
 use glam::Vec3;
 use renderlab_core::{io, Image};
 use renderlab_hybrid::reference::FLOOR_CANNOT_SEE;
+use renderlab_hybrid::relief::{ReliefSettings, ReliefTracer};
 use renderlab_hybrid::stages::NAMES;
 use renderlab_hybrid::{HybridRenderer, StageConfig, Term};
 use renderlab_lab::hybrid_lab::scenes;
@@ -44,6 +45,18 @@ pub struct HybridRenderArgs {
     /// to the image) and its ambient occlusion, beside --out as STEM.TERM.EXT.
     #[arg(long, requires = "reference")]
     pub passes: bool,
+    /// Trace the relief under surfaces whose material has a depth map (the built-in scenes'
+    /// bricks, pavements, bark and sand) in the geometry pass, with a relief technique
+    /// (pom:32, cone-newton, …: any of `renderlab relief`'s) or `exact` (the exact height-field
+    /// intersection); the G-buffer's texture coordinate and normal move to the hit. Off by
+    /// default: the surfaces stay flat under their normal maps. CPU backend only.
+    #[arg(long, value_name = "TECHNIQUE", value_parser = ReliefTracer::parse, conflicts_with = "reference")]
+    pub relief: Option<ReliefTracer>,
+    /// With --relief: the pixel-depth offset, the G-buffer's position (and depth) moved along
+    /// the camera ray to the displaced hit, so that shadows, AO and reflections see the
+    /// relief (a shadow's edge then steps with the bricks and mortar).
+    #[arg(long, requires = "relief")]
+    pub pdo: bool,
     /// Seed of the stages' (or the reference's) random numbers.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -83,7 +96,13 @@ pub(crate) fn run(a: HybridRenderArgs) -> Result<()> {
     let triangles: u64 = scene.meshes.iter().map(|m| m.triangles.len() as u64).sum();
     check_scene_memory(&a.scene, triangles, w, h)?;
     let camera = scenes::camera(&scene, &name, w, h)?;
-    let renderer = HybridRenderer::new(&scene)?;
+    let mut renderer = HybridRenderer::new(&scene)?;
+    if let Some(tracer) = a.relief {
+        if a.backend != FrameBackend::Cpu {
+            return Err(anyhow!("--relief runs on the CPU renderer only: use --backend cpu"));
+        }
+        renderer.raster.relief = ReliefSettings::new(tracer, a.pdo);
+    }
     let started = std::time::Instant::now();
     let mut passes = Vec::new();
     let (hdr, what) = match a.reference {
@@ -138,7 +157,11 @@ pub(crate) fn run(a: HybridRenderArgs) -> Result<()> {
             }
             let ms: Vec<String> =
                 f.stage_ms.in_frame_order().iter().map(|(pass, ms)| format!("{pass} {ms:.1}")).collect();
-            let what = format!("{}: {} rays; ms: {}", config.label(), f.rays.total(), ms.join(", "));
+            let relief = match renderer.raster.relief.tracer {
+                Some(_) => format!(", relief {}", renderer.raster.relief.label()),
+                None => String::new(),
+            };
+            let what = format!("{}{relief}: {} rays; ms: {}", config.label(), f.rays.total(), ms.join(", "));
             (f.hdr, what)
         }
     };

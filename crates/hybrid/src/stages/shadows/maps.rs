@@ -14,7 +14,9 @@
 //! A lookup compares the receiver's distance along the map's axis, minus a slope-scaled
 //! bias `s · (bias_constant + bias_slope · max(r, 1) · tan θ)` (s: a texel's world size at
 //! the receiver, r: the PCF radius, θ: between the geometric normal and the light), with
-//! the `(2r + 1)²` texels around it and returns the lit fraction. Points outside every map
+//! the `(2r + 1)²` texels around it and returns the lit fraction. A point below its surface
+//! (a relief's displaced hit) is looked up where its ray toward the light leaves the
+//! surface, the first point of that ray the maps' flat casters can block. Points outside every map
 //! are lit. Translucent instances cast no shadow-map shadow: glass lets the light through,
 //! and the raster pipeline has no caustics to put in its place.
 
@@ -24,6 +26,7 @@ use crate::deferred::settings::ShadowSettings;
 use glam::{DMat4, Mat4, Vec3, Vec4Swizzles};
 use rayon::prelude::*;
 use renderlab_raster::visibility::{Source, VisFrame, NO_TRIANGLE};
+use renderlab_scene::shading::surface_exit;
 use renderlab_scene::{Light, LightKind};
 use std::sync::{Arc, Mutex};
 
@@ -200,6 +203,15 @@ impl ShadowMaps {
 
     /// The lit fraction of `point` (with geometric normal `normal`) for light `light`.
     pub fn lookup(&self, light: &Light, index: usize, point: Vec3, normal: Vec3) -> f32 {
+        self.lookup_below(light, index, point, normal, 0.0)
+    }
+
+    /// [`Self::lookup`] for a point `depth` world units below its surface (a relief's
+    /// displaced hit, [`ShadingPoint::relief_depth`](renderlab_scene::ShadingPoint)): each
+    /// map is read where the ray toward its eye leaves the surface ([`surface_exit`]), so
+    /// that the flat surface above the point does not shadow it and the usual bias applies
+    /// there. Depth 0 is [`Self::lookup`].
+    pub fn lookup_below(&self, light: &Light, index: usize, point: Vec3, normal: Vec3, depth: f32) -> f32 {
         let Some(maps) = self.lights.get(index) else {
             return 1.0;
         };
@@ -207,16 +219,17 @@ impl ShadowMaps {
             LightKind::Directional => -light.direction,
             _ => (eye - point).normalize_or_zero(),
         };
+        let read = |m: &DepthMap, l: Vec3| m.lookup(surface_exit(point, normal, depth, l), normal, l, &self.settings);
         match maps {
-            LightShadow::Single(m) => m.lookup(point, normal, to_light(m.eye), &self.settings),
+            LightShadow::Single(m) => read(m, to_light(m.eye)),
             LightShadow::Cubes(cubes) => {
                 let sum: f32 = cubes
                     .iter()
                     .map(|faces| {
                         let eye = faces[0].eye;
-                        let d = point - eye;
-                        let face = face_of(d);
-                        faces[face].lookup(point, normal, to_light(eye), &self.settings)
+                        let l = to_light(eye);
+                        let from = surface_exit(point, normal, depth, l);
+                        read(&faces[face_of(from - eye)], l)
                     })
                     .sum();
                 sum / cubes.len() as f32
@@ -249,7 +262,8 @@ fn face_of(d: Vec3) -> usize {
 
 impl Visibility for ShadowMaps {
     fn visibility(&self, q: &ShadowQuery) -> f32 {
-        self.lookup(q.light, q.light_index, q.point.position, q.point.geometric_normal)
+        let p = q.point;
+        self.lookup_below(q.light, q.light_index, p.position, p.geometric_normal, p.relief_depth)
     }
 
     /// One lookup per light serves all of an area light's samples (the corner maps already
