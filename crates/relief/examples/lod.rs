@@ -60,8 +60,9 @@ fn print_tables(s: &LodStudy) {
         println!("{:>9}", "all");
     };
     type Get = fn(&renderlab_relief::study::lod::BandResult) -> f64;
-    let tables: [(&str, Get, usize); 5] = [
+    let tables: [(&str, Get, usize); 6] = [
         ("UV error (texels)", |b| b.uv_error, 3),
+        ("UV error (pixels)", |b| b.uv_error_px, 3),
         ("colour error (8-bit levels)", |b| b.colour_error, 3),
         ("fetches per pixel", |b| b.fetches, 1),
         ("band trace time (ms)", |b| b.trace_ms, 2),

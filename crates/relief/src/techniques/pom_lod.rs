@@ -39,7 +39,7 @@
 //!   materials' depths span exactly that, so any shorter march could miss the hit); what
 //!   follows the footprint is the step and, through the fade, the displacement.
 //!
-//! Where `max(p, q) ≥ MAX` and `p ≥ 2T` the result is POM with `MAX` layers, bit for bit. A
+//! Where `max(p, q) ≥ MAX`, `p ≥ 2T` and `p > 0` the result is POM with `MAX` layers, bit for bit. A
 //! frame that does not know the footprint (0, negative or NaN) gets exactly that; an infinite
 //! footprint (or a zero height scale) gives normal mapping.
 
@@ -54,7 +54,7 @@ use renderlab_core::counter::Counter;
 /// POM with its layer count and displacement following the parallax's screen length.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct PomLod {
-    /// Most layers (where the parallax spans `MAX` pixels or more).
+    /// Most layers (where the parallax spans `MAX` pixels or texels or more).
     pub max: u32,
     /// Fewest layers of a displaced pixel.
     pub min: u32,

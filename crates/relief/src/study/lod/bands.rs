@@ -7,7 +7,9 @@
 //!
 //! Colours are compared as displayed: linear light encoded to sRGB, in 8-bit levels (0–255),
 //! the mean of the three channels' absolute differences. UV errors are in texels of the
-//! height map. Flicker between frames `t − 1` and `t`, over pixels that show the surface in
+//! height map, and in pixels: the UV error over the pixel's footprint (UV per pixel, the
+//! longer screen derivative, as relief techniques are given it), which says how far on screen
+//! the hit moved however many texels a pixel covers. Flicker between frames `t − 1` and `t`, over pixels that show the surface in
 //! both, is `|(I_t − R_t) − (I_{t−1} − R_{t−1})|` for technique `I` and reference `R`: the
 //! change of the error, which is zero when the technique changes exactly as the reference
 //! does, whatever the camera's motion; a pixel's band is its band at frame `t`.
@@ -100,6 +102,8 @@ impl Sum {
 pub struct ErrorSums {
     /// UV error in texels.
     pub uv: [Sum; BANDS],
+    /// UV error in pixels.
+    pub uv_px: [Sum; BANDS],
     /// Displayed colour error in 8-bit levels.
     pub colour: [Sum; BANDS],
 }
@@ -107,12 +111,13 @@ pub struct ErrorSums {
 impl ErrorSums {
     /// Adds the errors of `frame` (displayed colours `shown`) against `reference`
     /// (`reference_shown`) over the pixels both cover, by band; UV errors scaled by
-    /// `texels` (the height map's size).
+    /// `texels` (the height map's size) and divided by the pixels' `footprints` (UV per
+    /// pixel; pixels whose footprint is not positive and finite are left out of that mean).
     pub fn add(
         &mut self,
         (frame, shown): (&Frame, &Image<Vec3>),
         (reference, reference_shown): (&Frame, &Image<Vec3>),
-        bands: &[Option<u8>],
+        (bands, footprints): (&[Option<u8>], &[f32]),
         texels: Vec2,
     ) {
         for (i, band) in bands.iter().enumerate() {
@@ -120,8 +125,12 @@ impl ErrorSums {
             if !(frame.mask.pixels()[i] && reference.mask.pixels()[i]) {
                 continue;
             }
-            let duv = (frame.uv.pixels()[i] - reference.uv.pixels()[i]) * texels;
-            self.uv[b].add(duv.length() as f64);
+            let duv = frame.uv.pixels()[i] - reference.uv.pixels()[i];
+            self.uv[b].add((duv * texels).length() as f64);
+            let f = footprints[i];
+            if f > 0.0 && f.is_finite() {
+                self.uv_px[b].add((duv.length() / f) as f64);
+            }
             self.colour[b].add(channel_diff(shown.pixels()[i] - reference_shown.pixels()[i]));
         }
     }

@@ -4,7 +4,7 @@
 //! has), so cost differences are the methods' own.
 //!
 //! Measured per distance band ([`bands`]): the UV error against the exact reference
-//! (texels) and the displayed colour error (8-bit levels), averaged over every frame of the
+//! (texels and pixels) and the displayed colour error (8-bit levels), averaged over every frame of the
 //! walk; height fetches per pixel and the trace time of the band's pixels alone (the first
 //! frame's points with every other pixel made background, run through the technique's trace
 //! without shading; median of `repeats`); and the flicker along the walk. Whole frames (trace
@@ -17,7 +17,7 @@ use crate::error::ReliefError;
 use crate::kernel::Kernel;
 use crate::maps::complexity::ComplexityParams;
 use crate::render::material::ReliefMaterial;
-use crate::render::shade::{Frame, FrameInput};
+use crate::render::shade::{footprint, Frame, FrameInput};
 use crate::render::{render, render_into, render_reference, trace_only};
 use crate::techniques::Technique;
 use bands::{band_map, band_points, displayed, overall, ErrorSums, FlickerSums, BANDS};
@@ -93,6 +93,8 @@ impl Default for LodConfig {
 pub struct BandResult {
     /// Mean UV error in texels over the walk.
     pub uv_error: f64,
+    /// Mean UV error in pixels (UV error over the footprint) over the walk.
+    pub uv_error_px: f64,
     /// Mean displayed colour error over the walk (8-bit levels).
     pub colour_error: f64,
     /// Height fetches per pixel of the band (first frame).
@@ -187,13 +189,15 @@ pub fn lod_study(config: &LodConfig) -> Result<LodStudy, LodStudyError> {
         let points = g.pixels();
         let input = FrameInput::new(w, h, points);
         let bands = band_map(points, tex_size);
+        let footprints: Vec<f32> =
+            points.iter().map(|p| p.as_ref().map_or(0.0, |sp| footprint(sp.duv_dx, sp.duv_dy))).collect();
         let reference =
             render_reference(input, &mats, config.techniques[0], scene.lighting, scene.background);
         let reference_shown = displayed(&reference);
         for (i, &t) in config.techniques.iter().enumerate() {
             let frame = lit(t, input, f == 0)?;
             let shown = displayed(&frame);
-            errors[i].add((&frame, &shown), (&reference, &reference_shown), &bands, texels);
+            errors[i].add((&frame, &shown), (&reference, &reference_shown), (&bands, &footprints), texels);
             if let (Some((ps, pm)), Some(pr)) = (&previous[i], &previous_reference) {
                 flicker[i].add((ps, pr, pm), (&shown, &reference_shown, &frame.mask), &bands);
             }
@@ -226,12 +230,14 @@ pub fn lod_study(config: &LodConfig) -> Result<LodStudy, LodStudyError> {
         for b in 0..BANDS {
             let band = &mut r.bands[b];
             band.uv_error = e.uv[b].mean();
+            band.uv_error_px = e.uv_px[b].mean();
             band.colour_error = e.colour[b].mean();
             band.flicker = fl.flicker[b].mean();
             band.change = fl.change[b].mean();
             reference_change.0[b] = fl.reference_change[b].mean();
         }
         r.all.uv_error = overall(&e.uv);
+        r.all.uv_error_px = overall(&e.uv_px);
         r.all.colour_error = overall(&e.colour);
         r.all.flicker = overall(&fl.flicker);
         r.all.change = overall(&fl.change);
@@ -300,4 +306,69 @@ fn measure_costs(
         out.push(result);
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn small(techniques: &[&str]) -> LodConfig {
+        LodConfig {
+            width: 96,
+            height: 54,
+            texture_size: 64,
+            frames: 3,
+            repeats: 1,
+            techniques: techniques.iter().map(|s| Technique::parse(s).unwrap()).collect(),
+            ..LodConfig::default()
+        }
+    }
+
+    /// The bands hold every covered pixel; normal mapping fetches nothing and is further from
+    /// the reference than POM-32 wherever the relief's parallax spans pixels; every mean is
+    /// finite.
+    #[test]
+    fn a_small_study_measures_what_it_says() {
+        let s = lod_study(&small(&["normal", "pom:32", "pom-lod"])).expect("runs");
+        let covered = s.reference.mask.pixels().iter().filter(|&&m| m).count() as u64;
+        assert_eq!(s.band_pixels.iter().sum::<u64>(), covered);
+        assert!(s.band_pixels.iter().filter(|&&n| n > 0).count() >= 3, "{:?}", s.band_pixels);
+        let [normal, pom, lod] = &s.results[..] else { panic!("three results") };
+        assert_eq!(normal.all.fetches, 0.0);
+        assert!(pom.all.fetches > 1.0 && lod.all.fetches > 1.0);
+        for b in (0..BANDS).filter(|&b| s.band_pixels[b] > 0) {
+            assert!(
+                pom.bands[b].colour_error < normal.bands[b].colour_error,
+                "band {b}: {:?} vs {:?}",
+                pom.bands[b],
+                normal.bands[b]
+            );
+            assert!(pom.bands[b].uv_error_px < normal.bands[b].uv_error_px);
+        }
+        for r in &s.results {
+            for v in [
+                r.all.uv_error,
+                r.all.uv_error_px,
+                r.all.colour_error,
+                r.all.flicker,
+                r.all.change,
+                r.frame_ms,
+            ] {
+                assert!(v.is_finite() && v >= 0.0, "{}: {v}", r.technique);
+            }
+            assert_eq!(r.first.image.size(), (96, 54));
+        }
+    }
+
+    #[test]
+    fn bad_configurations_are_refused() {
+        let one = LodConfig { frames: 1, ..small(&["pom:8"]) };
+        assert!(lod_study(&one).is_err());
+        let tile = LodConfig { tile: 0.0, ..small(&["pom:8"]) };
+        assert!(lod_study(&tile).is_err());
+        let nan = LodConfig { step: f32::NAN, ..small(&["pom:8"]) };
+        assert!(lod_study(&nan).is_err());
+        let unknown = LodConfig { material: "marble".into(), ..small(&["pom:8"]) };
+        assert!(matches!(lod_study(&unknown), Err(LodStudyError::Core(_))));
+    }
 }
