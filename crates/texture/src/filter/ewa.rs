@@ -24,9 +24,9 @@
 //! The weight is the pixel-filter model's Gaussian ([`PixelFilter::Gaussian`]) carried to
 //! texture space: with `Σ = J·Jᵀ + (ρ²/σ²)·I`, `Q/F = pᵀ·Σ⁻¹·p` is the squared screen distance
 //! `r²` in pixels, so the weight is `exp(−r²/(2σ²)) = 2^(−y)` with `y = log₂e·Q/(2σ²·F)`,
-//! evaluated without libm by a short series (`exp2_neg` in `ewa/scan.rs`, within 4·10⁻⁷
-//! relative of the exact value; no table, so neither a gather nor a quantised exponent) and
-//! normalised by the sum of the weights used. The support is the ellipse of
+//! evaluated without libm by a degree-4 minimax polynomial (`exp2_neg` in `ewa/scan.rs`,
+//! within 4·10⁻⁶ relative of the exact value; no table, so neither a gather nor a quantised
+//! exponent) and normalised by the sum of the weights used. The support is the ellipse of
 //! `cut²·J·Jᵀ + max(cut, 3)²·(ρ²/σ²)·I` (times σ²): the pixel-filter part truncated at
 //! `cut·σ`, the reconstruction part at no less than three of its own σ.
 //!

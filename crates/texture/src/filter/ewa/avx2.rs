@@ -7,13 +7,10 @@
 //! scalar twin's.
 
 use super::footprint::{Footprint, STORED_ROWS};
-use super::scan::{Batch, Rows, Weights};
-use crate::mip::Wrap;
-use renderlab_core::image::wrap_index;
+use super::scan::{Batch, Rows, Weights, EXP2_P, ROUND};
 #[allow(unused_imports)] // named in the docs
 use super::scan::Sums;
 use glam::Vec4;
-use renderlab_core::fastmath::EXP2_C;
 use std::arch::x86_64::*;
 
 /// Lanes below `n`, for `n` in `0..=8`: −1 where live.
@@ -58,9 +55,9 @@ struct Lanes {
     qa: __m256,
     cx: __m256,
     edge: __m256,
-    half: __m256,
+    round: __m256,
     one: __m256,
-    c: [__m256; 7],
+    c: [__m256; 4],
     lane: __m256i,
     pair: [__m256i; 4],
     acc: [__m256; 4],
@@ -77,9 +74,9 @@ impl Lanes {
             qa: _mm256_set1_ps(w.q[0]),
             cx: _mm256_set1_ps(w.cx),
             edge: _mm256_set1_ps(w.edge),
-            half: _mm256_set1_ps(0.5),
+            round: _mm256_set1_ps(ROUND),
             one: _mm256_set1_ps(1.0),
-            c: EXP2_C.map(|c| _mm256_set1_ps(c)),
+            c: EXP2_P.map(|c| _mm256_set1_ps(c)),
             lane: _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
             // Lane indices that broadcast lanes 2p and 2p + 1 across a register's halves.
             pair: [
@@ -178,17 +175,15 @@ impl Lanes {
         // max(q, 0) is 0 for NaN (maxps returns its second operand), as in the twin.
         let y = _mm256_min_ps(_mm256_max_ps(q, _mm256_setzero_ps()), self.edge);
         // exp2_neg(y), operation by operation.
-        let k = _mm256_cvttps_epi32(_mm256_add_ps(y, self.half));
-        let g = _mm256_sub_ps(_mm256_cvtepi32_ps(k), y);
+        let t = _mm256_add_ps(y, self.round);
+        let g = _mm256_sub_ps(_mm256_sub_ps(t, self.round), y);
         let c = &self.c;
         let g2 = _mm256_mul_ps(g, g);
-        let t0 = _mm256_add_ps(_mm256_mul_ps(c[1], g), self.one);
-        let t1 = _mm256_add_ps(_mm256_mul_ps(c[3], g), c[2]);
-        let t2 = _mm256_add_ps(_mm256_mul_ps(c[5], g), c[4]);
-        let e = _mm256_add_ps(t2, _mm256_mul_ps(g2, c[6]));
-        let e = _mm256_add_ps(t1, _mm256_mul_ps(g2, e));
+        let t0 = _mm256_add_ps(_mm256_mul_ps(c[0], g), self.one);
+        let t1 = _mm256_add_ps(_mm256_mul_ps(c[2], g), c[1]);
+        let e = _mm256_add_ps(t1, _mm256_mul_ps(g2, c[3]));
         let e = _mm256_add_ps(t0, _mm256_mul_ps(g2, e));
-        let wt = _mm256_sub_epi32(_mm256_castps_si256(e), _mm256_slli_epi32::<23>(k));
+        let wt = _mm256_sub_epi32(_mm256_castps_si256(e), _mm256_slli_epi32::<23>(_mm256_castps_si256(t)));
         let wt = _mm256_castsi256_ps(_mm256_and_si256(wt, live));
         self.wacc = _mm256_add_ps(self.wacc, wt);
         for (i, a) in self.acc.iter_mut().enumerate() {
@@ -230,42 +225,31 @@ impl Lanes {
 #[target_feature(enable = "avx2")]
 pub(super) unsafe fn scan(rows: &Rows, w: &Weights) -> (Vec4, f32, u32) {
     let mut lanes = Lanes::new(w);
-    if let Some(spans) = rows.spans {
-        let (j0, j1) = rows.fp.rows();
-        let width = rows.size.0;
-        let count = (j1 - j0 + 1) as usize;
-        let (mut lo_min, mut hi_max, mut n_max, mut texels) = (0i32, -1i32, 0i32, 0i32);
-        for &(lo, hi) in &spans[..count] {
-            let n = (hi - lo + 1).max(0);
-            // Empty rows (lo > hi) take no part in the bounds.
-            lo_min = lo_min.min(if n > 0 { lo } else { 0 });
-            hi_max = hi_max.max(hi);
-            n_max = n_max.max(n);
-            texels += n;
-        }
-        if lo_min >= 0 && hi_max < width as i32 {
-            let px = rows.px.as_ptr();
-            let row = |r: usize| row_at(rows, spans, j0, px, r, w);
-            if n_max <= 4 {
-                // Narrow: two rows a block (an odd last row with an empty partner).
-                for r in (0..count).step_by(2) {
-                    let b = if r + 1 < count { row(r + 1) } else { (px, 0, 0, 0.0, 0.0) };
-                    lanes.pair_of_rows(row(r), b);
-                }
-            } else {
-                for r in 0..count {
-                    let (p, n, lo, bv, cv) = row(r);
-                    lanes.block(p, n.min(8), lo, bv, cv);
-                    let mut k = 8;
-                    while k < n {
-                        lanes.block(p.wrapping_add(k), (n - k).min(8), lo + k as i32, bv, cv);
-                        k += 8;
-                    }
+    if let Some(d) = rows.direct() {
+        let px = rows.px.as_ptr();
+        let row = |r: usize| {
+            let (at, n, lo, bv, cv) = rows.row(&d, r, w);
+            (px.wrapping_add(at), n, lo, bv, cv)
+        };
+        if d.widest <= 4 {
+            // Narrow: two rows a block (an odd last row with an empty partner).
+            for r in (0..d.count).step_by(2) {
+                let b = if r + 1 < d.count { row(r + 1) } else { (px, 0, 0, 0.0, 0.0) };
+                lanes.pair_of_rows(row(r), b);
+            }
+        } else {
+            for r in 0..d.count {
+                let (p, n, lo, bv, cv) = row(r);
+                lanes.block(p, n.min(8), lo, bv, cv);
+                let mut k = 8;
+                while k < n {
+                    lanes.block(p.wrapping_add(k), (n - k).min(8), lo + k as i32, bv, cv);
+                    k += 8;
                 }
             }
-            let (acc, wsum) = lanes.total();
-            return (acc, wsum, texels as u32);
         }
+        let (acc, wsum) = lanes.total();
+        return (acc, wsum, d.texels);
     }
     let mut batch = Batch::new();
     let mut c = rows.start();
@@ -283,31 +267,6 @@ pub(super) unsafe fn scan(rows: &Rows, w: &Weights) -> (Vec4, f32, u32) {
     }
     let (acc, wsum) = lanes.total();
     (acc, wsum, c.texels)
-}
-
-/// Row `r` of a footprint whose spans are stored and lie inside the level's columns: its
-/// first texel, its texel count (0 for an empty span), its first column, `qb·V` and `qc·V²`.
-/// (A plain function, so that it inlines into the kernel and the sums stay in registers.)
-#[inline(always)]
-fn row_at(
-    rows: &Rows,
-    spans: &[(i32, i32); STORED_ROWS],
-    j0: i64,
-    px: *const Vec4,
-    r: usize,
-    w: &Weights,
-) -> (*const Vec4, usize, i32, f32, f32) {
-    let (width, height) = rows.size;
-    let (lo, hi) = spans[r];
-    let j = j0 + r as i64;
-    let yi = match rows.wrap {
-        Wrap::Repeat => wrap_index(j, height),
-        Wrap::Clamp => j.clamp(0, height as i64 - 1) as usize,
-    };
-    let v = j as f32 - rows.fp.centre.y;
-    // An empty row reads nothing, wherever `at` points.
-    let at = (yi * width as usize).wrapping_add(lo as usize);
-    (px.wrapping_add(at), (hi - lo + 1).max(0) as usize, lo, w.q[1] * v, w.q[2] * v * v)
 }
 
 /// The spans of rows `j ..= j + 7` of `fp`: first and last texel per lane, lo > hi for an
