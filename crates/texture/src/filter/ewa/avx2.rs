@@ -1,54 +1,18 @@
 //! The vector kernel of the scan (`scan.rs` states the order both kernels follow): eight
 //! texels of a row per block. The eight weights are `exp2_neg` evaluated lane by lane (lanes
-//! past the span masked to 0); the texels, four floats each, are loaded two to a register with the
-//! span's mask (so a block never reads past the span's texels), and each pair is multiplied by
-//! its two weights broadcast across its halves. Register `p` of the sums holds lanes `2p`
-//! (low half) and `2p + 1` (high half). No fused multiply-add, so that every operation is the
-//! scalar twin's.
+//! past the span masked to 0), lanes `0, 2, 4, 6` of the block in the low half of the
+//! register and `1, 3, 5, 7` in the high half; the texels, four floats each, are loaded two to
+//! a register with the span's mask (so a block never reads past the span's texels), and each
+//! pair is multiplied by its two weights spread across its halves by one in-lane shuffle.
+//! Register `p` of the sums holds lanes `2p` (low half) and `2p + 1` (high half). No fused
+//! multiply-add, so that every operation is the scalar twin's.
 
 use super::footprint::{Footprint, STORED_ROWS};
-use super::scan::{Batch, Rows, Weights, EXP2_P, ROUND};
+use super::scan::{Batch, Direct, Rows, Weights, EXP2_P, ROUND};
 #[allow(unused_imports)] // named in the docs
 use super::scan::Sums;
 use glam::Vec4;
 use std::arch::x86_64::*;
-
-/// Lanes below `n`, for `n` in `0..=8`: −1 where live.
-static LIVE: [[i32; 8]; 9] = {
-    let mut t = [[0; 8]; 9];
-    let mut n = 0;
-    while n <= 8 {
-        let mut l = 0;
-        while l < n {
-            t[n][l] = -1;
-            l += 1;
-        }
-        n += 1;
-    }
-    t
-};
-
-/// The load masks of a block of `n` texels: register `p` covers texels `2p` (low half) and
-/// `2p + 1` (high half), four floats each.
-static PAIRS: [[[i32; 8]; 4]; 9] = {
-    let mut t = [[[0; 8]; 4]; 9];
-    let mut n = 0;
-    while n <= 8 {
-        let mut p = 0;
-        while p < 4 {
-            let mut l = 0;
-            while l < 8 {
-                if 2 * p + l / 4 < n {
-                    t[n][p][l] = -1;
-                }
-                l += 1;
-            }
-            p += 1;
-        }
-        n += 1;
-    }
-    t
-};
 
 /// What every block of a lookup shares, and the sums.
 struct Lanes {
@@ -77,8 +41,10 @@ impl Lanes {
             round: _mm256_set1_ps(ROUND),
             one: _mm256_set1_ps(1.0),
             c: EXP2_P.map(|c| _mm256_set1_ps(c)),
-            lane: _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
-            // Lane indices that broadcast lanes 2p and 2p + 1 across a register's halves.
+            // The block's lane (texel) at each position of the weights' register.
+            lane: _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7),
+            // The texel of each float of texel register p: the load masks compare them with
+            // the block's texel count.
             pair: [
                 _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1),
                 _mm256_setr_epi32(2, 2, 2, 2, 3, 3, 3, 3),
@@ -100,8 +66,9 @@ impl Lanes {
     unsafe fn block(&mut self, p: *const Vec4, n: usize, x0: i32, bv: f32, cv: f32) {
         let (bv, cv) = (_mm256_set1_ps(bv), _mm256_set1_ps(cv));
         let x = _mm256_add_epi32(_mm256_set1_epi32(x0), self.lane);
-        let live = _mm256_loadu_si256(LIVE[n].as_ptr() as *const __m256i);
-        let masks = PAIRS[n].map(|m| _mm256_loadu_si256(m.as_ptr() as *const __m256i));
+        let n = _mm256_set1_epi32(n as i32);
+        let live = _mm256_cmpgt_epi32(n, self.lane);
+        let masks = self.pair.map(|t| _mm256_cmpgt_epi32(n, t));
         self.lanes(p, x, bv, cv, live, masks);
     }
 
@@ -115,9 +82,11 @@ impl Lanes {
     unsafe fn block_from(&mut self, first: usize, p: *const Vec4, n: usize, x0: i32, bv: f32, cv: f32) {
         let (bv, cv) = (_mm256_set1_ps(bv), _mm256_set1_ps(cv));
         let x = _mm256_add_epi32(_mm256_set1_epi32(x0 - first as i32), self.lane);
-        let below = |t: &[i32; 8]| _mm256_loadu_si256(t.as_ptr() as *const __m256i);
-        let live = _mm256_andnot_si256(below(&LIVE[first]), below(&LIVE[first + n]));
-        let masks = [0, 1, 2, 3].map(|i| _mm256_andnot_si256(below(&PAIRS[first][i]), below(&PAIRS[first + n][i])));
+        let (lo, hi) = (_mm256_set1_epi32(first as i32), _mm256_set1_epi32((first + n) as i32));
+        // Lanes (texels) from `first` to below `first + n`.
+        let within = |t: __m256i| _mm256_andnot_si256(_mm256_cmpgt_epi32(lo, t), _mm256_cmpgt_epi32(hi, t));
+        let live = within(self.lane);
+        let masks = self.pair.map(within);
         self.lanes(p.wrapping_sub(first), x, bv, cv, live, masks);
     }
 
@@ -133,17 +102,21 @@ impl Lanes {
     unsafe fn pair_of_rows(&mut self, a: (*const Vec4, usize, i32, f32, f32), b: (*const Vec4, usize, i32, f32, f32)) {
         let (pa, na, xa, bva, cva) = a;
         let (pb, nb, xb, bvb, cvb) = b;
-        let bv = _mm256_setr_m128(_mm_set1_ps(bva), _mm_set1_ps(bvb));
-        let cv = _mm256_setr_m128(_mm_set1_ps(cva), _mm_set1_ps(cvb));
-        let x = _mm256_add_epi32(_mm256_setr_m128i(_mm_set1_epi32(xa), _mm_set1_epi32(xb - 4)), self.lane);
-        let row = |t: &[i32; 8]| _mm_loadu_si128(t.as_ptr() as *const __m128i);
-        let live = _mm256_setr_m128i(row(&LIVE[na]), row(&LIVE[nb]));
-        let (ma, mb) = (&PAIRS[na], &PAIRS[nb]);
+        // Positions 0, 1, 4, 5 are row a's texels 0, 2, 1, 3; positions 2, 3, 6, 7 row b's.
+        let ab = |a: __m256, b: __m256| _mm256_shuffle_ps::<0b01_00_01_00>(a, b);
+        let abi = |a: __m256i, b: __m256i| _mm256_castps_si256(ab(_mm256_castsi256_ps(a), _mm256_castsi256_ps(b)));
+        let bv = ab(_mm256_set1_ps(bva), _mm256_set1_ps(bvb));
+        let cv = ab(_mm256_set1_ps(cva), _mm256_set1_ps(cvb));
+        let texel = _mm256_and_si256(self.lane, _mm256_set1_epi32(3));
+        let x = _mm256_add_epi32(abi(_mm256_set1_epi32(xa), _mm256_set1_epi32(xb)), texel);
+        let (na, nb) = (_mm256_set1_epi32(na as i32), _mm256_set1_epi32(nb as i32));
+        let live = _mm256_cmpgt_epi32(abi(na, nb), texel);
+        let t = &self.pair;
         let masks = [
-            _mm256_loadu_si256(ma[0].as_ptr() as *const __m256i),
-            _mm256_loadu_si256(ma[1].as_ptr() as *const __m256i),
-            _mm256_loadu_si256(mb[0].as_ptr() as *const __m256i),
-            _mm256_loadu_si256(mb[1].as_ptr() as *const __m256i),
+            _mm256_cmpgt_epi32(na, t[0]),
+            _mm256_cmpgt_epi32(na, t[1]),
+            _mm256_cmpgt_epi32(nb, t[0]),
+            _mm256_cmpgt_epi32(nb, t[1]),
         ];
         let p = [pa, pa.wrapping_add(2), pb, pb.wrapping_add(2)];
         self.weigh(p, x, bv, cv, live, masks);
@@ -186,11 +159,18 @@ impl Lanes {
         let wt = _mm256_sub_epi32(_mm256_castps_si256(e), _mm256_slli_epi32::<23>(_mm256_castps_si256(t)));
         let wt = _mm256_castsi256_ps(_mm256_and_si256(wt, live));
         self.wacc = _mm256_add_ps(self.wacc, wt);
+        // Lanes 2i and 2i + 1 across the halves: position i of each half.
+        let spread = [
+            _mm256_permute_ps::<0x00>(wt),
+            _mm256_permute_ps::<0x55>(wt),
+            _mm256_permute_ps::<0xAA>(wt),
+            _mm256_permute_ps::<0xFF>(wt),
+        ];
         for (i, a) in self.acc.iter_mut().enumerate() {
             // SAFETY: the mask enables only the lanes of the block's texels, which the caller
             // guarantees readable; masked lanes are not read.
             let t = _mm256_maskload_ps(p[i] as *const f32, masks[i]);
-            *a = _mm256_add_ps(*a, _mm256_mul_ps(t, _mm256_permutevar8x32_ps(wt, self.pair[i])));
+            *a = _mm256_add_ps(*a, _mm256_mul_ps(t, spread[i]));
         }
     }
 
@@ -225,7 +205,7 @@ impl Lanes {
 #[target_feature(enable = "avx2")]
 pub(super) unsafe fn scan(rows: &Rows, w: &Weights) -> (Vec4, f32, u32) {
     let mut lanes = Lanes::new(w);
-    if let Some(d) = rows.direct() {
+    if let Some(d) = direct(rows) {
         let px = rows.px.as_ptr();
         let row = |r: usize| {
             let (at, n, lo, bv, cv) = rows.row(&d, r, w);
@@ -267,6 +247,50 @@ pub(super) unsafe fn scan(rows: &Rows, w: &Weights) -> (Vec4, f32, u32) {
     }
     let (acc, wsum) = lanes.total();
     (acc, wsum, c.texels)
+}
+
+/// [`Rows::direct`] eight rows at a time (the same footprint, or `None` where that gives
+/// `None`).
+#[inline]
+#[target_feature(enable = "avx2")]
+fn direct<'a>(rows: &Rows<'a>) -> Option<Direct<'a>> {
+    let spans = rows.spans?;
+    let (j0, j1) = rows.fp.rows();
+    let count = (j1 - j0 + 1) as usize;
+    let lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    let (one, zero, none) = (_mm256_set1_epi32(1), _mm256_setzero_si256(), _mm256_set1_epi32(-1));
+    // Over the rows with texels: the least first column, the greatest last one, the greatest
+    // count; the counts' sum.
+    let (mut lo_min, mut hi_max, mut widest, mut texels) = (zero, none, zero, zero);
+    let src = spans.as_ptr() as *const __m256i;
+    for g in 0..count.div_ceil(8) {
+        // SAFETY: `spans` holds STORED_ROWS / 8 groups of eight (lo, hi) pairs, 64 bytes each.
+        let (a, b) = unsafe { (_mm256_loadu_si256(src.add(2 * g)), _mm256_loadu_si256(src.add(2 * g + 1))) };
+        // (lo, hi) pairs of rows 0-3 and 4-7 to lo and hi of rows 0-7.
+        let (a, b) = (_mm256_castsi256_ps(a), _mm256_castsi256_ps(b));
+        let order = |s: __m256| _mm256_permute4x64_epi64::<0b11_01_10_00>(_mm256_castps_si256(s));
+        let lo = order(_mm256_shuffle_ps::<0b10_00_10_00>(a, b));
+        let hi = order(_mm256_shuffle_ps::<0b11_01_11_01>(a, b));
+        let live = _mm256_cmpgt_epi32(_mm256_set1_epi32((count - 8 * g) as i32), lane);
+        let n = _mm256_and_si256(_mm256_max_epi32(_mm256_add_epi32(_mm256_sub_epi32(hi, lo), one), zero), live);
+        let some = _mm256_cmpgt_epi32(n, zero);
+        lo_min = _mm256_min_epi32(lo_min, _mm256_and_si256(lo, some));
+        hi_max = _mm256_max_epi32(hi_max, _mm256_blendv_epi8(none, hi, some));
+        widest = _mm256_max_epi32(widest, n);
+        texels = _mm256_add_epi32(texels, n);
+    }
+    let last = _mm256_set1_epi32(rows.size.0 as i32 - 1);
+    let outside = _mm256_or_si256(_mm256_cmpgt_epi32(zero, lo_min), _mm256_cmpgt_epi32(hi_max, last));
+    if _mm256_movemask_epi8(outside) != 0 {
+        return None;
+    }
+    let h = _mm_max_epi32(_mm256_castsi256_si128(widest), _mm256_extracti128_si256::<1>(widest));
+    let h = _mm_max_epi32(h, _mm_shuffle_epi32::<0b01_00_11_10>(h));
+    let widest = _mm_cvtsi128_si32(_mm_max_epi32(h, _mm_shuffle_epi32::<0b10_11_00_01>(h)));
+    let h = _mm_add_epi32(_mm256_castsi256_si128(texels), _mm256_extracti128_si256::<1>(texels));
+    let h = _mm_add_epi32(h, _mm_shuffle_epi32::<0b01_00_11_10>(h));
+    let texels = _mm_cvtsi128_si32(_mm_add_epi32(h, _mm_shuffle_epi32::<0b10_11_00_01>(h)));
+    Some(Direct { spans, j0, count, widest, texels: texels as u32 })
 }
 
 /// The spans of rows `j ..= j + 7` of `fp`: first and last texel per lane, lo > hi for an

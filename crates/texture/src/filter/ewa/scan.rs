@@ -282,12 +282,12 @@ pub(super) struct Sums {
 impl Sums {
     /// The weighted sum and the sum of the weights, reduced in the vector kernel's order:
     /// texels `((0 + 2) + (4 + 6)) + ((1 + 3) + (5 + 7))`, weights
-    /// `((0 + 4) + (2 + 6)) + ((1 + 5) + (3 + 7))`.
+    /// `((0 + 1) + (4 + 5)) + ((2 + 3) + (6 + 7))`.
     #[inline(always)]
     pub fn total(&self) -> (Vec4, f32) {
         let (a, w) = (&self.acc, &self.w);
         let acc = ((a[0] + a[2]) + (a[4] + a[6])) + ((a[1] + a[3]) + (a[5] + a[7]));
-        let wsum = ((w[0] + w[4]) + (w[2] + w[6])) + ((w[1] + w[5]) + (w[3] + w[7]));
+        let wsum = ((w[0] + w[1]) + (w[4] + w[5])) + ((w[2] + w[3]) + (w[6] + w[7]));
         (acc, wsum)
     }
 }
