@@ -7,7 +7,7 @@
 //! Register `p` of the sums holds lanes `2p` (low half) and `2p + 1` (high half). No fused
 //! multiply-add, so that every operation is the scalar twin's.
 
-use super::footprint::{Footprint, STORED_ROWS};
+use super::footprint::{Footprint, Store, STORED_ROWS};
 use super::scan::{Batch, Direct, Rows, Weights, EXP2_P, ROUND};
 #[allow(unused_imports)] // named in the docs
 use super::scan::Sums;
@@ -250,7 +250,7 @@ pub(super) unsafe fn scan(rows: &Rows, w: &Weights) -> (Vec4, f32, u32) {
 }
 
 /// [`Rows::direct`] eight rows at a time (the same footprint, or `None` where that gives
-/// `None`).
+/// `None` or the spans are not stored as whole groups of eight rows).
 #[inline]
 #[target_feature(enable = "avx2")]
 fn direct<'a>(rows: &Rows<'a>) -> Option<Direct<'a>> {
@@ -262,9 +262,13 @@ fn direct<'a>(rows: &Rows<'a>) -> Option<Direct<'a>> {
     // Over the rows with texels: the least first column, the greatest last one, the greatest
     // count; the counts' sum.
     let (mut lo_min, mut hi_max, mut widest, mut texels) = (zero, none, zero, zero);
+    // Whole groups of eight rows are read (the vector count writes them).
+    if spans.len() < count.div_ceil(8) * 8 {
+        return None;
+    }
     let src = spans.as_ptr() as *const __m256i;
     for g in 0..count.div_ceil(8) {
-        // SAFETY: `spans` holds STORED_ROWS / 8 groups of eight (lo, hi) pairs, 64 bytes each.
+        // SAFETY: `spans` holds these groups of eight (lo, hi) pairs, 64 bytes each.
         let (a, b) = unsafe { (_mm256_loadu_si256(src.add(2 * g)), _mm256_loadu_si256(src.add(2 * g + 1))) };
         // (lo, hi) pairs of rows 0-3 and 4-7 to lo and hi of rows 0-7.
         let (a, b) = (_mm256_castsi256_ps(a), _mm256_castsi256_ps(b));
@@ -320,8 +324,9 @@ fn spans8(fp: &Footprint, j: i64) -> (__m256i, __m256i) {
     (lo, hi)
 }
 
-/// [`Footprint::count`] eight rows at a time: the texels inside, the spans of the first
-/// [`STORED_ROWS`] rows kept in `store`; stops once the count passes `limit` (after a group
+/// [`Footprint::count`] eight rows at a time: the texels inside and the rows of `store`
+/// written (whole groups of eight), the spans of the first [`STORED_ROWS`] rows kept there;
+/// stops once the count passes `limit` (after a group
 /// of eight rows, so a count past `limit` may be larger than the scalar one's, never one
 /// within it).
 ///
@@ -329,18 +334,20 @@ fn spans8(fp: &Footprint, j: i64) -> (__m256i, __m256i) {
 /// The CPU must have AVX2.
 #[inline]
 #[target_feature(enable = "avx2")]
-pub(super) unsafe fn count(fp: &Footprint, limit: u64, store: &mut [(i32, i32); STORED_ROWS]) -> u64 {
+pub(super) unsafe fn count(fp: &Footprint, limit: u64, store: &mut Store) -> (u64, usize) {
     let (j0, j1) = fp.rows();
     let lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     let one = _mm256_set1_epi32(1);
     let mut n = 0u64;
+    let mut written = 0;
     let mut j = j0;
     while j <= j1 {
         let (lo, hi) = spans8(fp, j);
         let r = (j - j0) as usize;
         if r + 8 <= STORED_ROWS {
-            // Rows r .. r + 8 as (lo, hi) pairs, in order (rows past j1 are stored too and
-            // never read).
+            written = r + 8;
+            // Rows r .. r + 8 as (lo, hi) pairs, in order (rows past j1 are stored too, as
+            // whole groups of eight for the scan's loads).
             let (a, b) = (_mm256_unpacklo_epi32(lo, hi), _mm256_unpackhi_epi32(lo, hi));
             let p = store[r..r + 8].as_mut_ptr() as *mut __m256i;
             // SAFETY: `store[r..r + 8]` is 64 bytes.
@@ -362,5 +369,5 @@ pub(super) unsafe fn count(fp: &Footprint, limit: u64, store: &mut [(i32, i32); 
         }
         j += 8;
     }
-    n
+    (n, written)
 }

@@ -14,7 +14,7 @@
 //! ([`Sums::total`]). Both kernels follow this order operation by operation, so they return
 //! the same bits; a block's unused lanes add `+0`, which leaves a sum unchanged.
 
-use super::footprint::{Footprint, STORED_ROWS};
+use super::footprint::Footprint;
 use crate::mip::Wrap;
 use glam::Vec4;
 use renderlab_core::image::wrap_index;
@@ -79,8 +79,9 @@ impl Weights {
 pub(super) struct Rows<'a> {
     /// The footprint.
     pub fp: &'a Footprint,
-    /// Every row's span, when the footprint has at most [`STORED_ROWS`] rows.
-    pub spans: Option<&'a [(i32, i32); STORED_ROWS]>,
+    /// Every row's span (row `r` from the first at `r`; perhaps more), when the footprint
+    /// has at most [`STORED_ROWS`](super::footprint::STORED_ROWS) rows.
+    pub spans: Option<&'a [(i32, i32)]>,
     /// The level's texels, row-major.
     pub px: &'a [Vec4],
     /// The level's size.
@@ -222,7 +223,7 @@ impl Rows<'_> {
 /// usual case): the kernels read its rows straight from the spans, without [`Rows::fill`].
 pub(super) struct Direct<'a> {
     /// The spans, row `r` at `r`.
-    pub spans: &'a [(i32, i32); STORED_ROWS],
+    pub spans: &'a [(i32, i32)],
     /// The first row.
     pub j0: i64,
     /// Rows.

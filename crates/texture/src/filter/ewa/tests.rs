@@ -41,7 +41,7 @@ fn texture(w: u32, h: u32, seed: u32, wrap: Wrap) -> Texture {
 /// weight (`Weights::at`) and the exact Gaussian over the texels inside. `None` where the
 /// plan is the texture's mean or no texel lies inside.
 fn reference(ewa: &Ewa, tex: &Texture, uv: Vec2, dx: Vec2, dy: Vec2) -> Option<([f64; 4], f64, f64)> {
-    let mut store = [(0, 0); STORED_ROWS];
+    let mut store = store();
     let (level, fp, _) = ewa.plan(Kernel::Scalar, tex, uv, dx, dy, &mut store)?;
     let (sigma, cut) = ewa.params();
     let (e, g) = (&fp.e, &fp.g);
