@@ -24,9 +24,9 @@
 //! The weight is the pixel-filter model's Gaussian ([`PixelFilter::Gaussian`]) carried to
 //! texture space: with `Σ = J·Jᵀ + (ρ²/σ²)·I`, `Q/F = pᵀ·Σ⁻¹·p` is the squared screen distance
 //! `r²` in pixels, so the weight is `exp(−r²/(2σ²)) = 2^(−y)` with `y = log₂e·Q/(2σ²·F)`,
-//! evaluated without libm by a short series (`exp2_neg` in `ewa/scan.rs`, within 4·10⁻⁷
-//! relative of the exact value; no table, so neither a gather nor a quantised exponent) and
-//! normalised by the sum of the weights used. The support is the ellipse of
+//! evaluated without libm by a degree-4 minimax polynomial (`exp2_neg` in `ewa/scan.rs`,
+//! within 4·10⁻⁶ relative of the exact value; no table, so neither a gather nor a quantised
+//! exponent) and normalised by the sum of the weights used. The support is the ellipse of
 //! `cut²·J·Jᵀ + max(cut, 3)²·(ρ²/σ²)·I` (times σ²): the pixel-filter part truncated at
 //! `cut·σ`, the reconstruction part at no less than three of its own σ.
 //!
@@ -48,7 +48,7 @@ use super::sampling::Filter;
 use crate::ellipse::Ellipse;
 use crate::kernel::PixelFilter;
 use crate::mip::{Texture, Wrap};
-use footprint::{floor_i, floor_log2, second_moments, Footprint, STORED_ROWS};
+use footprint::{floor_i, floor_log2, second_moments, store, written, Footprint, Store, STORED_ROWS};
 use glam::{Vec2, Vec4};
 use renderlab_core::counter::Counter;
 use renderlab_core::kernel::Kernel;
@@ -117,6 +117,7 @@ impl Ewa {
 
     /// The eccentricity clamp and the texel budget as the filter uses them: clamped to
     /// `1..=64` (NaN meaning 16) and `16..=4096`.
+    #[inline]
     pub fn clamped_bounds(&self) -> (f32, u32) {
         let (lo, hi) = ECCENTRICITY_RANGE;
         let ecc = if self.max_eccentricity.is_nan() { DEFAULT_ECCENTRICITY } else { self.max_eccentricity.clamp(lo, hi) };
@@ -139,6 +140,7 @@ impl Ewa {
     }
 
     /// σ and cut clamped to the model's ranges (NaN becomes the default).
+    #[inline]
     fn params(&self) -> (f32, f32) {
         let (lo, hi) = crate::kernel::SIGMA_RANGE;
         let sigma = if self.sigma.is_nan() { 0.5 } else { self.sigma.clamp(lo, hi) };
@@ -158,10 +160,10 @@ impl Ewa {
     fn footprint(tex: &Texture, level: usize, m: [f32; 3], uv: Vec2, inv_s2: f32, cut: f32) -> Footprint {
         let recon =
             if level == 0 { RECONSTRUCTION_VARIANCE } else { COARSE_RECONSTRUCTION_VARIANCE } * inv_s2;
-        let s0 = tex.size();
         let (w, h) = tex.level(level).size();
         let sl = Vec2::new(w as f32, h as f32);
-        let k = sl / s0;
+        // Level texels per level-0 texel (exact for power-of-two sizes).
+        let k = sl * tex.size().recip();
         let (j00, j01, j11) = (m[0] * k.x * k.x, m[1] * k.x * k.y, m[2] * k.y * k.y);
         let (c2, r2) = (cut * cut / inv_s2, reconstruction_cut(cut).powi(2) / inv_s2);
         let e = Ellipse::from_moments(c2 * j00 + r2 * recon, c2 * j01, c2 * j11 + r2 * recon);
@@ -244,29 +246,21 @@ impl Ewa {
         duv_dy: Vec2,
         counter: &mut C,
     ) -> Vec4 {
-        let mut store = [(0i32, 0i32); STORED_ROWS];
-        let Some((level, fp, stored)) = self.plan(kernel, tex, uv, duv_dx, duv_dy, &mut store) else {
+        let mut store = store();
+        let Some((level, fp, n)) = self.plan(kernel, tex, uv, duv_dx, duv_dy, &mut store) else {
             counter.count(1);
             return tex.texel(tex.level_count() - 1, 0, 0);
         };
         let (j0, j1) = fp.rows();
-        let spans = if j1 - j0 < STORED_ROWS as i64 {
-            if !stored {
-                // Every row's span first: the rows' square roots are independent, so they
-                // overlap in the pipeline (or share a vector) instead of each row waiting on
-                // its own.
-                Self::count(kernel, &fp, u64::MAX, &mut store);
-            }
-            Some(&store)
-        } else {
-            None
-        };
+        let spans = (j1 - j0 < STORED_ROWS as i64).then(|| written(&store, n));
         self.scan(kernel, tex, level, &fp, spans, counter)
     }
 
-    /// Where the lookup reads: the level and the footprint on it, with whether `store`
-    /// holds every row's span already; `None` where the texture's mean (the top level) is the
-    /// answer. `kernel` (which the CPU must be able to run) only decides how rows are counted.
+    /// Where the lookup reads: the level and the footprint on it, `store` holding the spans
+    /// of its first [`STORED_ROWS`] rows (in the first of the rows written, the third
+    /// value); `None` where the texture's mean (the top level) is
+    /// the answer. `kernel` (which the CPU must be able to run) only decides how rows are
+    /// counted.
     #[inline(always)]
     fn plan(
         &self,
@@ -275,8 +269,8 @@ impl Ewa {
         uv: Vec2,
         duv_dx: Vec2,
         duv_dy: Vec2,
-        store: &mut [(i32, i32); STORED_ROWS],
-    ) -> Option<(usize, Footprint, bool)> {
+        store: &mut Store,
+    ) -> Option<(usize, Footprint, usize)> {
         let top = tex.level_count() - 1;
         let size = tex.size();
         let (dx, dy) = (duv_dx * size, duv_dy * size);
@@ -308,33 +302,30 @@ impl Ewa {
         let across2 = 4.0 * sigma * sigma * sh.minor2;
         let mut level = if across2 > 1.0 { ((floor_log2(across2) / 2) as usize).min(top) } else { 0 };
         let mut fp = Self::footprint(tex, level, m, uv, inv_s2, cut);
-        let mut stored = false;
-        // Area estimate first (cheap), then the exact count (one sqrt per row).
+        // Coarser while the footprint holds more texels than the budget: no count where the
+        // ellipse's area π·√F exceeds 1.5 times the budget (compared squared: no square
+        // root), else the exact count, which keeps the spans.
+        let most = (1.5 * budget as f32 / std::f32::consts::PI).powi(2);
+        let mut written = 0;
         while level < top {
-            // Unit squares around the texels inside are disjoint and lie in the ellipse grown
-            // by √½, whose area (Steiner) is at most π·a·b + π·√(a² + b²) + π/2, with
-            // a·b = √F and a² + b² = A + C; under that bound no exact count is needed.
-            let pi = std::f32::consts::PI;
-            let area = pi * fp.e.f.sqrt();
-            let bound = area + pi * (fp.e.a + fp.e.c).sqrt() + 0.5 * pi;
-            if bound <= budget as f32 {
-                break;
-            }
-            if area <= 1.5 * budget as f32 && Self::count(kernel, &fp, budget, store) <= budget {
-                stored = true;
-                break;
+            if fp.e.f <= most {
+                let (n, w) = Self::count(kernel, &fp, budget, store);
+                if n <= budget {
+                    written = w;
+                    break;
+                }
             }
             level += 1;
             fp = Self::footprint(tex, level, m, uv, inv_s2, cut);
         }
-        (level < top).then_some((level, fp, stored))
+        (level < top).then_some((level, fp, written))
     }
 }
 
 impl Ewa {
     /// [`Footprint::count`] on `kernel` (the same decisions and spans either way).
     #[inline(always)]
-    fn count(kernel: Kernel, fp: &Footprint, limit: u64, store: &mut [(i32, i32); STORED_ROWS]) -> u64 {
+    fn count(kernel: Kernel, fp: &Footprint, limit: u64, store: &mut Store) -> (u64, usize) {
         match kernel {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: `Kernel::Simd` is chosen only where the CPU has AVX2 (see `sample_on`).
@@ -353,7 +344,7 @@ impl Ewa {
         tex: &Texture,
         level: usize,
         fp: &Footprint,
-        spans: Option<&[(i32, i32); STORED_ROWS]>,
+        spans: Option<&[(i32, i32)]>,
         counter: &mut C,
     ) -> Vec4 {
         let (sigma, cut) = self.params();

@@ -111,7 +111,7 @@ fn ewa_footprint(level: i32, m: vec3<f32>, uv: vec2<f32>, inv_s2: f32, cut: f32)
     }
     let s0 = vec2<f32>(textureDimensions(filter_tex, 0));
     let sl = vec2<f32>(ewa_level_size(level));
-    let k = sl / s0;
+    let k = sl * (1.0 / s0);
     let j00 = m.x * k.x * k.x;
     let j01 = m.y * k.x * k.y;
     let j11 = m.z * k.y * k.y;

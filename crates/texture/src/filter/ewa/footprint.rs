@@ -10,6 +10,7 @@
 
 use crate::ellipse::Ellipse;
 use glam::Vec2;
+use std::mem::MaybeUninit;
 
 /// The footprint's second moments after the eccentricity clamp, with its squared semi-axes.
 pub(super) struct Shape {
@@ -56,6 +57,24 @@ pub(super) fn second_moments(dx: Vec2, dy: Vec2, ecc: f32) -> Shape {
 /// Rows whose spans [`Footprint::count`] keeps for the scan (a multiple of 8, the vector
 /// kernel's rows per step; 512 bytes, which the compiler clears without a call to `memset`).
 pub(super) const STORED_ROWS: usize = 64;
+
+/// Where [`Footprint::count`] keeps the spans: not cleared first (a lookup reads only the rows
+/// its count wrote, which the count reports).
+pub(super) type Store = [MaybeUninit<(i32, i32)>; STORED_ROWS];
+
+/// An empty [`Store`] (nothing written, nothing cleared).
+#[inline(always)]
+pub(super) fn store() -> Store {
+    [MaybeUninit::uninit(); STORED_ROWS]
+}
+
+/// The rows of `store` a count wrote (`written` from its result).
+#[inline(always)]
+pub(super) fn written(store: &Store, written: usize) -> &[(i32, i32)] {
+    let w = &store[..written.min(STORED_ROWS)];
+    // SAFETY: the count wrote these rows; `MaybeUninit<T>` has `T`'s layout.
+    unsafe { &*(w as *const [MaybeUninit<(i32, i32)>] as *const [(i32, i32)]) }
+}
 
 /// The ellipse on one level and the centre in that level's texel coordinates (texel `i` at
 /// `i`).
@@ -117,16 +136,18 @@ impl Footprint {
         (ceil_i(self.centre.y - self.half_v), floor_i(self.centre.y + self.half_v))
     }
 
-    /// Exact number of texels inside, stopping once it passes `limit`. The spans of the
-    /// first [`STORED_ROWS`] rows are kept in `store` so that the scan need not solve them
-    /// again.
-    pub fn count(&self, limit: u64, store: &mut [(i32, i32); STORED_ROWS]) -> u64 {
+    /// Exact number of texels inside, stopping once it passes `limit`, and the rows of
+    /// `store` written: the spans of the first [`STORED_ROWS`] rows are kept there (in
+    /// order from the first row) so that the scan need not solve them again.
+    pub fn count(&self, limit: u64, store: &mut Store) -> (u64, usize) {
         let (j0, j1) = self.rows();
         let mut n = 0u64;
+        let mut written = 0;
         for j in j0..=j1 {
             let (lo, hi) = self.span(j);
             if let Some(slot) = store.get_mut((j - j0) as usize) {
-                *slot = (lo as i32, hi as i32);
+                slot.write((lo as i32, hi as i32));
+                written += 1;
             }
             if hi >= lo {
                 n += (hi - lo + 1) as u64;
@@ -135,6 +156,6 @@ impl Footprint {
                 }
             }
         }
-        n
+        (n, written)
     }
 }

@@ -14,10 +14,9 @@
 //! ([`Sums::total`]). Both kernels follow this order operation by operation, so they return
 //! the same bits; a block's unused lanes add `+0`, which leaves a sum unchanged.
 
-use super::footprint::{Footprint, STORED_ROWS};
+use super::footprint::Footprint;
 use crate::mip::Wrap;
 use glam::Vec4;
-use renderlab_core::fastmath::EXP2_C;
 use renderlab_core::image::wrap_index;
 
 /// Texels per block: the vector kernel's lanes.
@@ -27,22 +26,31 @@ pub(super) const LANES: usize = 8;
 /// cut), far from `2⁻¹²⁶`.
 pub(super) const MAX_EXPONENT: f32 = 64.0;
 
+/// `1.5·2²³`: adding it to a `y` in `[0, 2²²)` rounds `y` to the nearest whole number (ties to
+/// even) and leaves that number in the low bits of the sum's mantissa.
+pub(super) const ROUND: f32 = 12_582_912.0;
+
+/// The minimax polynomial of `2^g` on `[−½, ½]` with `p(0) = 1`, coefficients of `g` to `g⁴`
+/// (relative error below 3.6·10⁻⁶, equioscillating; found by Remez exchange).
+pub(super) const EXP2_P: [f32; 4] = [0.693_113_6, 0.240_207_1, 0.055_976_88, 0.009_782_912];
+
 /// `2^(−y)` for `y` in `[0, MAX_EXPONENT]`, without libm: `2^(−n)·2^g` with `n` the nearest
-/// whole number to `y` and `g = n − y` in `[−½, ½]`, `2^g` by the Taylor series of `e^(g·ln 2)`
-/// to the sixth power (the first term dropped is below `(½·ln 2)⁷/7! < 1.3·10⁻⁷`; with
-/// rounding, within 4·10⁻⁷ relative of the exact value), evaluated in Estrin's order
-/// (`(1 + c₁g) + g²·((c₂ + c₃g) + g²·((c₄ + c₅g) + g²·c₆))`, a short dependency chain), the
-/// power of two subtracted from the exponent bits. The vector kernel evaluates the same
-/// operations lane by lane.
+/// whole number to `y` and `g = n − y` in `[−½, ½]`. `n` comes from `t = y + ROUND` (so
+/// `n = t − ROUND` exactly, and `t`'s bits shifted left by 23 are `n·2²³` modulo 2³², its
+/// other bits shifted out), with no float-to-integer conversion; `2^g` from the minimax
+/// polynomial [`EXP2_P`] in Estrin's order (`(1 + p₁g) + g²·((p₂ + p₃g) + g²·p₄)`, a short
+/// dependency chain; within 4·10⁻⁶ relative of the exact value with rounding), the power of
+/// two subtracted from the exponent bits. The vector kernel evaluates the same operations
+/// lane by lane.
 #[inline(always)]
 pub(super) fn exp2_neg(y: f32) -> f32 {
-    let n = (y + 0.5) as i32;
-    let g = n as f32 - y;
-    let c = &EXP2_C;
+    let t = y + ROUND;
+    let g = (t - ROUND) - y;
+    let c = &EXP2_P;
     let g2 = g * g;
-    let (t0, t1, t2) = (c[1] * g + 1.0, c[3] * g + c[2], c[5] * g + c[4]);
-    let p = t0 + g2 * (t1 + g2 * (t2 + g2 * c[6]));
-    f32::from_bits((p.to_bits() as i32 - (n << 23)) as u32)
+    let (t0, t1) = (c[0] * g + 1.0, c[2] * g + c[1]);
+    let p = t0 + g2 * (t1 + g2 * c[3]);
+    f32::from_bits(p.to_bits().wrapping_sub(t.to_bits() << 23))
 }
 
 /// What a texel's weight depends on in a lookup: the Gaussian's conic scaled to the weight's
@@ -71,8 +79,9 @@ impl Weights {
 pub(super) struct Rows<'a> {
     /// The footprint.
     pub fp: &'a Footprint,
-    /// Every row's span, when the footprint has at most [`STORED_ROWS`] rows.
-    pub spans: Option<&'a [(i32, i32); STORED_ROWS]>,
+    /// Every row's span (row `r` from the first at `r`; perhaps more), when the footprint
+    /// has at most [`STORED_ROWS`](super::footprint::STORED_ROWS) rows.
+    pub spans: Option<&'a [(i32, i32)]>,
     /// The level's texels, row-major.
     pub px: &'a [Vec4],
     /// The level's size.
@@ -210,6 +219,59 @@ impl Rows<'_> {
     }
 }
 
+/// A footprint whose every row's span is stored and lies inside the level's columns (the
+/// usual case): the kernels read its rows straight from the spans, without [`Rows::fill`].
+pub(super) struct Direct<'a> {
+    /// The spans, row `r` at `r`.
+    pub spans: &'a [(i32, i32)],
+    /// The first row.
+    pub j0: i64,
+    /// Rows.
+    pub count: usize,
+    /// The longest span's texels.
+    pub widest: i32,
+    /// Texels inside.
+    pub texels: u32,
+}
+
+impl<'a> Rows<'a> {
+    /// The rows as a [`Direct`] footprint, or `None` where a span is not stored or reaches
+    /// past a column edge.
+    #[inline(always)]
+    pub fn direct(&self) -> Option<Direct<'a>> {
+        let spans = self.spans?;
+        let (j0, j1) = self.fp.rows();
+        let count = (j1 - j0 + 1) as usize;
+        let (mut lo_min, mut hi_max, mut widest, mut texels) = (0i32, -1i32, 0i32, 0i32);
+        for &(lo, hi) in &spans[..count] {
+            let n = (hi - lo + 1).max(0);
+            // Empty rows (lo > hi) take no part in the bounds.
+            lo_min = lo_min.min(if n > 0 { lo } else { 0 });
+            hi_max = hi_max.max(hi);
+            widest = widest.max(n);
+            texels += n;
+        }
+        (lo_min >= 0 && hi_max < self.size.0 as i32).then_some(Direct { spans, j0, count, widest, texels: texels as u32 })
+    }
+
+    /// Row `r` of a [`Direct`] footprint: the index of its first texel in the level's texels
+    /// (any value for an empty span), its texel count (0 for an empty span), its first
+    /// column, `qb·V` and `qc·V²`.
+    #[inline(always)]
+    pub fn row(&self, d: &Direct, r: usize, w: &Weights) -> (usize, usize, i32, f32, f32) {
+        let (width, height) = self.size;
+        let (lo, hi) = d.spans[r];
+        let j = d.j0 + r as i64;
+        let yi = match self.wrap {
+            Wrap::Repeat => wrap_index(j, height),
+            Wrap::Clamp => j.clamp(0, height as i64 - 1) as usize,
+        };
+        let v = j as f32 - self.fp.centre.y;
+        let at = (yi * width as usize).wrapping_add(lo as usize);
+        (at, (hi - lo + 1).max(0) as usize, lo, w.q[1] * v, w.q[2] * v * v)
+    }
+}
+
 /// The per-lane sums of a scan.
 pub(super) struct Sums {
     /// Weighted texels per lane.
@@ -221,21 +283,43 @@ pub(super) struct Sums {
 impl Sums {
     /// The weighted sum and the sum of the weights, reduced in the vector kernel's order:
     /// texels `((0 + 2) + (4 + 6)) + ((1 + 3) + (5 + 7))`, weights
-    /// `((0 + 4) + (2 + 6)) + ((1 + 5) + (3 + 7))`.
+    /// `((0 + 1) + (4 + 5)) + ((2 + 3) + (6 + 7))`.
     #[inline(always)]
     pub fn total(&self) -> (Vec4, f32) {
         let (a, w) = (&self.acc, &self.w);
         let acc = ((a[0] + a[2]) + (a[4] + a[6])) + ((a[1] + a[3]) + (a[5] + a[7]));
-        let wsum = ((w[0] + w[4]) + (w[2] + w[6])) + ((w[1] + w[5]) + (w[3] + w[7]));
+        let wsum = ((w[0] + w[1]) + (w[4] + w[5])) + ((w[2] + w[3]) + (w[6] + w[7]));
         (acc, wsum)
     }
 }
 
 /// The scalar kernel: the weighted sum over `rows`, the sum of the weights and the texels
-/// read, one texel at a time in the lanes' order (the vector kernel's twin).
+/// read, in the lanes' order (the vector kernel's twin). A [`Direct`] footprint is read row
+/// by row from its spans, eight weights at a time (plain lane-wise arithmetic, which the
+/// compiler may put in whatever vector registers the target has: the same operations per
+/// lane); any other through [`Rows::fill`].
 #[inline]
 pub(super) fn scalar(rows: &Rows, w: &Weights) -> (Vec4, f32, u32) {
     let mut s = Sums { acc: [Vec4::ZERO; LANES], w: [0.0; LANES] };
+    if let Some(d) = rows.direct() {
+        let narrow = d.widest <= 4;
+        for r in 0..d.count {
+            let (at, n, lo, bv, cv) = rows.row(&d, r, w);
+            if n == 0 {
+                continue;
+            }
+            let texels = &rows.px[at..at + n];
+            if narrow {
+                s.add(w, 4 * (r & 1), texels, lo, bv, cv);
+            } else {
+                for (k, t) in texels.chunks(LANES).enumerate() {
+                    s.add(w, 0, t, lo + (k * LANES) as i32, bv, cv);
+                }
+            }
+        }
+        let (acc, wsum) = s.total();
+        return (acc, wsum, d.texels);
+    }
     let mut batch = Batch::new();
     let mut c = rows.start();
     let narrow = rows.narrow();
@@ -244,12 +328,7 @@ pub(super) fn scalar(rows: &Rows, w: &Weights) -> (Vec4, f32, u32) {
         for b in &batch.blocks[..batch.len] {
             let src = if b.copied { &batch.copies[..] } else { rows.px };
             let texels = &src[b.at as usize..(b.at + b.n) as usize];
-            for (l, &t) in texels.iter().enumerate() {
-                let wt = w.at(b.x0 + l as i32, b.bv, b.cv);
-                let lane = b.first as usize + l;
-                s.acc[lane] += t * wt;
-                s.w[lane] += wt;
-            }
+            s.add(w, b.first as usize, texels, b.x0, b.bv, b.cv);
         }
         if !more {
             break;
@@ -257,4 +336,22 @@ pub(super) fn scalar(rows: &Rows, w: &Weights) -> (Vec4, f32, u32) {
     }
     let (acc, wsum) = s.total();
     (acc, wsum, c.texels)
+}
+
+impl Sums {
+    /// Adds a block: `texels` (at most `LANES − first`) of columns from `x0` in lanes from
+    /// `first`, in a row with `qb·V = bv` and `qc·V² = cv`. The weights of all eight columns
+    /// from `x0` are evaluated (no branch on the count), those of the texels added.
+    #[inline(always)]
+    fn add(&mut self, w: &Weights, first: usize, texels: &[Vec4], x0: i32, bv: f32, cv: f32) {
+        let mut wt = [0.0f32; LANES];
+        for (l, slot) in wt.iter_mut().enumerate() {
+            *slot = w.at(x0 + l as i32, bv, cv);
+        }
+        let lanes = first..first + texels.len();
+        for ((t, &wt), (acc, ws)) in texels.iter().zip(&wt).zip(self.acc[lanes.clone()].iter_mut().zip(&mut self.w[lanes])) {
+            *acc += *t * wt;
+            *ws += wt;
+        }
+    }
 }
