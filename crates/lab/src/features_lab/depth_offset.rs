@@ -3,7 +3,7 @@
 //! and on against the exact tracer's G-buffer (with the offset), and the frame itself with
 //! the offset off and on.
 
-use super::{num, Figure, Section};
+use super::section::{num, Figure, Section};
 use crate::error::{LabError, Result};
 use renderlab_core::io::save_color;
 use renderlab_core::Image;

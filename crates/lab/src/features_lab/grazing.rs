@@ -3,7 +3,7 @@
 //! `pom-horizon` (the horizon toward the light marched in texel steps, a sun-sized disc's
 //! visible fraction), each against the exact hard shadow at its own hit.
 
-use super::{num, Figure, Section};
+use super::section::{num, Figure, Section};
 use crate::error::Result;
 use renderlab_core::io::{save_color, save_rgb8};
 use renderlab_relief::study::grazing::{grazing_images, grazing_study, GrazingConfig, GrazingRow};

@@ -3,7 +3,7 @@
 //! each band's trace time, and flicker (the frame-to-frame change of the error), for POM at
 //! fixed layer counts, adaptive POM, cone-newton and the footprint-driven `pom-lod`.
 
-use super::{num, Figure, Section};
+use super::section::{num, Figure, Section};
 use crate::error::{LabError, Result};
 use renderlab_core::io::{save_color, save_rgb8};
 use renderlab_measure::heatmap::{heat_image, with_legend};

@@ -11,6 +11,7 @@
 mod depth_offset;
 mod grazing;
 mod lod;
+mod section;
 mod silhouettes;
 
 use crate::error::Result;
@@ -21,6 +22,7 @@ pub use depth_offset::DepthOffsetSettings;
 use renderlab_relief::curved::study::StudyConfig;
 use renderlab_relief::study::grazing::GrazingConfig;
 use renderlab_relief::study::lod::LodConfig;
+pub use section::{Figure, Section};
 use serde::Serialize;
 pub use silhouettes::SilhouetteSettings;
 use std::path::{Path, PathBuf};
@@ -77,36 +79,6 @@ impl FeaturesConfig {
         };
         Self { silhouettes, depth_offset, lod, grazing }
     }
-}
-
-/// A figure of a section: an image file under the run's directory and its caption.
-#[derive(Clone, Debug, Serialize)]
-pub struct Figure {
-    /// Path relative to the page.
-    pub file: String,
-    /// What it shows.
-    pub caption: String,
-}
-
-/// One section of the page: a study's table, its figures and what it found.
-#[derive(Clone, Debug, Serialize)]
-pub struct Section {
-    /// Heading.
-    pub title: String,
-    /// File-name stem of its table (`STEM.json`).
-    pub stem: &'static str,
-    /// What was measured and how, in a paragraph.
-    pub intro: String,
-    /// Conclusions drawn from the rows.
-    pub findings: Vec<String>,
-    /// Column headings.
-    pub headers: Vec<String>,
-    /// One row per measurement.
-    pub rows: Vec<Vec<String>>,
-    /// Figures per row of the grid.
-    pub columns: usize,
-    /// The figures.
-    pub figures: Vec<Figure>,
 }
 
 /// What a finished run hands back.
@@ -176,9 +148,4 @@ fn headline(sections: &[Section]) -> String {
     } else {
         firsts.join(" ")
     }
-}
-
-/// `v` with `d` decimals (the tables' number format).
-fn num(v: f64, d: usize) -> String {
-    crate::report::format_number(v, d)
 }

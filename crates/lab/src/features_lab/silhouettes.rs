@@ -3,7 +3,7 @@
 //! the base shape's) and the silhouette technique (the ray bent by the patch's curvature,
 //! stopped at its UV rectangle) against the exact world-space reference's coverage.
 
-use super::{num, Figure, Section};
+use super::section::{num, Figure, Section};
 use crate::error::Result;
 use renderlab_core::io::save_color;
 use renderlab_relief::curved::study::{cases, silhouette_study, SilhouetteRow, StudyConfig};
