@@ -5,10 +5,9 @@
 use super::lanes::{ShadeConsts, ShadeLanes, LANES};
 use crate::error::ReliefError;
 use crate::kernel::Kernel;
-use crate::march::exact::exact_shadowed;
-use crate::render::horizon::{horizon_shadow, LIGHT_RADIUS};
 use crate::render::material::ReliefMaterial;
 use crate::render::shade::{trace_shade_points, Frame, RowScratch as TraceScratch, ShadeOptions, ShadowMode};
+use crate::render::shadow::shadow_term;
 use crate::render::{check, options};
 use crate::techniques::descriptor::WithTracer;
 use crate::techniques::Technique;
@@ -220,26 +219,10 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
                     start = end;
                 }
             }
-            (Shading::LitShadowed, ShadowMode::Horizon(steps)) => {
+            (Shading::LitShadowed, mode @ (ShadowMode::Horizon(_) | ShadowMode::Exact)) => {
                 for (i, (hit, sp)) in hits.iter().zip(points).enumerate() {
                     let mat = &self.materials[material(i)];
-                    out[i] = horizon_shadow(
-                        &mat.height,
-                        mat.height_scale,
-                        hit.uv,
-                        sp.light_ts,
-                        steps,
-                        LIGHT_RADIUS,
-                        counter,
-                    );
-                }
-            }
-            (Shading::LitShadowed, ShadowMode::Exact) => {
-                for (i, (hit, sp)) in hits.iter().zip(points).enumerate() {
-                    let mat = &self.materials[material(i)];
-                    if exact_shadowed(&mat.height, mat.height_scale, hit.uv, hit.depth, sp.light_ts) {
-                        out[i] = 0.0;
-                    }
+                    out[i] = shadow_term(mode, mat, hit.uv, hit.depth, sp.light_ts, counter);
                 }
             }
             _ => {}

@@ -2,11 +2,9 @@
 //! displaced point with the thesis's model. The reference goes through the same code with the
 //! exact tracer, so differences between images are the technique's alone.
 
-use crate::march::exact::exact_shadowed;
 use crate::march::ray::split_ray;
-use crate::render::horizon::{horizon_shadow, LIGHT_RADIUS};
 use crate::render::material::ReliefMaterial;
-use crate::render::shadow::soft_shadow;
+use crate::render::shadow::shadow_term;
 pub use crate::techniques::descriptor::ShadowMode;
 use crate::trace::{RayContext, ReliefHit, ReliefTechnique, Shading};
 use glam::{Vec2, Vec3};
@@ -164,35 +162,10 @@ fn shade_point<C: Counter>(
             }
             .truncate();
             let n = n.try_normalize().unwrap_or(Vec3::Z);
-            let shadow = match (opt.shading, opt.shadow) {
-                (Shading::LitShadowed, ShadowMode::Soft(samples)) => soft_shadow(
-                    &mat.height,
-                    mat.height_scale,
-                    hit.uv,
-                    hit.depth,
-                    sp.light_ts,
-                    samples,
-                    counter,
-                ),
-                (Shading::LitShadowed, ShadowMode::Horizon(steps)) => horizon_shadow(
-                    &mat.height,
-                    mat.height_scale,
-                    hit.uv,
-                    sp.light_ts,
-                    steps,
-                    LIGHT_RADIUS,
-                    counter,
-                ),
-                (Shading::LitShadowed, ShadowMode::Exact) => {
-                    let blocked =
-                        exact_shadowed(&mat.height, mat.height_scale, hit.uv, hit.depth, sp.light_ts);
-                    if blocked {
-                        0.0
-                    } else {
-                        1.0
-                    }
-                }
-                _ => 1.0,
+            let shadow = if opt.shading == Shading::LitShadowed {
+                shadow_term(opt.shadow, mat, hit.uv, hit.depth, sp.light_ts, counter)
+            } else {
+                1.0
             };
             light(albedo, n, sp.light_ts, sp.view_ts, &opt.lighting, shadow)
         }

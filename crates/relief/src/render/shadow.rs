@@ -1,6 +1,10 @@
 //! Self-shadowing of the height field toward a directional light.
 
+use crate::march::exact::exact_shadowed;
 use crate::march::layered::DepthSource;
+use crate::render::horizon::{horizon_shadow, LIGHT_RADIUS};
+use crate::render::material::ReliefMaterial;
+use crate::techniques::descriptor::ShadowMode;
 use crate::trace::MIN_VIEW_Z;
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
@@ -44,3 +48,34 @@ pub fn soft_shadow<S: DepthSource, C: Counter>(
 
 /// Penetration depth (in depth units) that gives a fully dark soft shadow, inverted.
 pub const SHADOW_SHARPNESS: f32 = 25.0;
+
+/// The light fraction (1 lit … 0 shadowed) at a hit `(uv, depth)` on `mat` toward `light_ts`
+/// under `mode`: soft samples, the horizon march, or the exact hard shadow ([`ShadowMode`]);
+/// 1 without shadows. The one place a mode picks its method, for the float frame, the fused
+/// frame's per-pixel modes and the studies.
+#[inline]
+pub fn shadow_term<C: Counter>(
+    mode: ShadowMode,
+    mat: &ReliefMaterial,
+    uv: Vec2,
+    depth: f32,
+    light_ts: Vec3,
+    counter: &mut C,
+) -> f32 {
+    match mode {
+        ShadowMode::None => 1.0,
+        ShadowMode::Soft(samples) => {
+            soft_shadow(&mat.height, mat.height_scale, uv, depth, light_ts, samples, counter)
+        }
+        ShadowMode::Horizon(steps) => {
+            horizon_shadow(&mat.height, mat.height_scale, uv, light_ts, steps, LIGHT_RADIUS, counter)
+        }
+        ShadowMode::Exact => {
+            if exact_shadowed(&mat.height, mat.height_scale, uv, depth, light_ts) {
+                0.0
+            } else {
+                1.0
+            }
+        }
+    }
+}

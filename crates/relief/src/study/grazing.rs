@@ -31,10 +31,9 @@
 use crate::error::ReliefError;
 use crate::maps::complexity::ComplexityParams;
 use crate::march::exact::exact_shadowed;
-use crate::render::horizon::{horizon_shadow, LIGHT_RADIUS};
 use crate::render::material::ReliefMaterial;
 use crate::render::shade::{Frame, FrameInput, ShadowMode};
-use crate::render::shadow::soft_shadow;
+use crate::render::shadow::shadow_term;
 use crate::render::{render, render_into, render_reference};
 use crate::techniques::Technique;
 use crate::Kernel;
@@ -161,10 +160,9 @@ fn shadow_at<C: Counter>(
     c: &mut C,
 ) -> f32 {
     match mode {
-        ShadowMode::Soft(n) => soft_shadow(&mat.height, mat.height_scale, uv, depth, l, n, c),
-        ShadowMode::Horizon(n) => horizon_shadow(&mat.height, mat.height_scale, uv, l, n, LIGHT_RADIUS, c),
+        // The exact shadow of the surface point itself, seated on the field at `uv`.
         ShadowMode::Exact => exact_at(mat, uv, l),
-        ShadowMode::None => 1.0,
+        _ => shadow_term(mode, mat, uv, depth, l, c),
     }
 }
 
