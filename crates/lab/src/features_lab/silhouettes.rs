@@ -70,7 +70,12 @@ pub(super) fn section(s: &SilhouetteSettings, img: &Path) -> Result<(Section, Op
     if let Some(e) = failed {
         return Err(e.into());
     }
-    figures.sort_by(|a, b| a.file.cmp(&b.file));
+    // Per case a row: the reference, then the methods in the study's order.
+    let rank = |f: &Figure| {
+        let case = f.file.split('_').next().unwrap_or_default().to_string();
+        (case, shown.iter().position(|m| f.file.ends_with(&format!("_{m}.png"))))
+    };
+    figures.sort_by_key(rank);
     let headline = img.join(format!("sphere_{shown_scale}_{}.png", last.replace(':', "-")));
     let findings = findings(&rows, shown_scale, &first, &last);
     let headers = [
