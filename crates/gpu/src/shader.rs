@@ -86,8 +86,11 @@ pub fn module_source(technique: Technique) -> Result<String> {
     let Some(trace) = technique.wgsl() else {
         return Err(GpuError::NoShader(technique.name(), with_shaders().join(", ")));
     };
+    // Whether the technique reads `ray_ctx`'s curvature and bounds: the entry points derive
+    // the curvature (extra screen derivatives per fragment) only then.
+    let context = format!("const RAY_CONTEXT: bool = {};\n", technique.uses_context());
     Ok(format!(
-        "// renderlab: {}\n{}\n{FRAME_UNIFORM_WGSL}\n{FRAME_WGSL}\n{FRAGMENT_WGSL}\n{}\n{COMPUTE_WGSL}\n{MAPS_WGSL}\n{MARCH_WGSL}\n{SHADOW_WGSL}\n// The technique.\n{trace}",
+        "// renderlab: {}\n{}{context}\n{FRAME_UNIFORM_WGSL}\n{FRAME_WGSL}\n{FRAGMENT_WGSL}\n{}\n{COMPUTE_WGSL}\n{MAPS_WGSL}\n{MARCH_WGSL}\n{SHADOW_WGSL}\n// The technique.\n{trace}",
         technique.name(),
         constants(),
         mesh_wgsl(SHADE_MESH_GROUP),

@@ -79,8 +79,7 @@ fn the_g_buffer_sees_the_same_surfaces_at_the_same_points() {
         let mut differ = 0usize;
         let mut same = 0usize;
         for i in 0..n {
-            let cpu_tri = g.visibility[i].map(|v| (v.instance, v.triangle));
-            if cpu_tri != f.gpu.visibility[i] {
+            if !same_surface(f, i) {
                 differ += 1;
                 continue;
             }
@@ -157,16 +156,17 @@ fn the_translucent_layers_are_the_same_surfaces_in_the_same_order() {
     }
 }
 
+/// Whether both renderers see the same triangle at pixel `i`.
+fn same_surface(f: &Frames, i: usize) -> bool {
+    f.cpu.geometry.visibility[i].map(|v| (v.instance, v.triangle)) == f.gpu.visibility[i]
+}
+
 /// PSNR of `test` against `reference` over the pixels where both renderers see the same
 /// triangle: a pixel on an edge that the two rasterizers give to different surfaces (at most
 /// [`COVERAGE_FRACTION`] of them, bounded by the G-buffer test) is a coverage difference, not
 /// a lighting one, and one such pixel on a bright edge of a dark frame costs 10 dB.
 fn psnr_same_surface(f: &Frames, test: &[Vec3], reference: &[Vec3]) -> f64 {
-    let g = &f.cpu.geometry;
-    let same = Image::from_fn(W, H, |x, y| {
-        let i = (y * W + x) as usize;
-        g.visibility[i].map(|v| (v.instance, v.triangle)) == f.gpu.visibility[i]
-    });
+    let same = Image::from_fn(W, H, |x, y| same_surface(f, (y * W + x) as usize));
     let img = |v: &[Vec3]| Image::from_fn(W, H, |x, y| v[(y * W + x) as usize]);
     renderlab_measure::metrics::psnr(&img(test), &img(reference), Some(&same))
 }
@@ -221,10 +221,9 @@ fn the_final_frame_and_its_tone_mapping_agree() {
         // code boundary the other way: one code, at a few channels.
         // Over the pixels where both see the same triangle, as the PSNR above.
         let cpu = f.cpu.to_srgb8(&settings);
-        let g = &f.cpu.geometry;
         let mut off = 0usize;
         for (i, (a, b)) in cpu.pixels().iter().zip(f.gpu.srgb.pixels()).enumerate() {
-            if g.visibility[i].map(|v| (v.instance, v.triangle)) != f.gpu.visibility[i] {
+            if !same_surface(f, i) {
                 continue;
             }
             for k in 0..3 {

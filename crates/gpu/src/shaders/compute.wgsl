@@ -52,10 +52,11 @@ fn surface_at(pixel: vec2<u32>, hit: vec2<u32>) -> Surface {
     let duv_dx = duv1 * dot(g1, dx) + duv2 * dot(g2, dx);
     let duv_dy = duv1 * dot(g1, dy) + duv2 * dot(g2, dy);
     // Per unit of u and v on the triangle: the inverse of its UV edge matrix maps (du, dv) to
-    // barycentric steps; position and normal are affine in them.
+    // barycentric steps; position and normal are affine in them. Only for a technique that
+    // reads the curvature (`RAY_CONTEXT`).
     let uv_det = duv1.x * duv2.y - duv1.y * duv2.x;
     var curvature = vec2<f32>(0.0);
-    if uv_det != 0.0 {
+    if RAY_CONTEXT && uv_det != 0.0 {
         let bu = vec2<f32>(duv2.y, -duv1.y) / uv_det;
         let bv = vec2<f32>(-duv2.x, duv1.x) / uv_det;
         let dn1 = b.normal - a.normal;

@@ -48,13 +48,17 @@ fn surface(in: Varyings) -> Surface {
     let dp_dx = (dpdxFine(g) - in.world * dpdxFine(q)) / q;
     let dp_dy = (dpdyFine(g) - in.world * dpdyFine(q)) / q;
     let scale = world_per_uv(dp_dx, dp_dy, duv_dx, duv_dy);
-    // The normal's Jacobian the same way, then both per unit of u and v.
-    let m = in.normal * q;
-    let dn_dx = (dpdxFine(m) - in.normal * dpdxFine(q)) / q;
-    let dn_dy = (dpdyFine(m) - in.normal * dpdyFine(q)) / q;
-    let dp = per_uv(dp_dx, dp_dy, duv_dx, duv_dy);
-    let dn = per_uv(dn_dx, dn_dy, duv_dx, duv_dy);
-    let curvature = curvature_of(dp[0], dp[1], dn[0], dn[1], in.normal);
+    // The normal's Jacobian the same way, then both per unit of u and v; only for a technique
+    // that reads the curvature (`RAY_CONTEXT` is a constant: the branch is uniform and folds).
+    var curvature = vec2<f32>(0.0);
+    if RAY_CONTEXT {
+        let m = in.normal * q;
+        let dn_dx = (dpdxFine(m) - in.normal * dpdxFine(q)) / q;
+        let dn_dy = (dpdyFine(m) - in.normal * dpdyFine(q)) / q;
+        let dp = per_uv(dp_dx, dp_dy, duv_dx, duv_dy);
+        let dn = per_uv(dn_dx, dn_dy, duv_dx, duv_dy);
+        curvature = curvature_of(dp[0], dp[1], dn[0], dn[1], in.normal);
+    }
     return surface_from(in.uv, duv_dx, duv_dy, in.world, in.normal, in.tangent, scale, curvature, in.object);
 }
 

@@ -8,7 +8,7 @@ use crate::error::{LabError, Result};
 use renderlab_core::io::{save_color, save_rgb8};
 use renderlab_measure::heatmap::{heat_image, with_legend};
 use renderlab_relief::study::lod::bands::BAND_NAMES;
-use renderlab_relief::study::lod::{lod_study, LodConfig, LodStudy, TechniqueResult};
+use renderlab_relief::study::lod::{lod_study, BandResult, LodConfig, LodStudy, TechniqueResult};
 use renderlab_relief::Frame;
 use std::path::Path;
 
@@ -52,35 +52,28 @@ pub(super) fn section(cfg: &LodConfig, img: &Path) -> Result<Section> {
         "change",
         "frame ms",
     ];
+    // One row per band and one for the whole frame (which alone has a frame time).
+    let row = |r: &TechniqueResult, band: &str, pixels: u64, m: &BandResult, frame: String| {
+        vec![
+            r.technique.name(),
+            band.into(),
+            pixels.to_string(),
+            num(m.uv_error, 3),
+            num(m.colour_error, 2),
+            num(m.fetches, 1),
+            num(m.trace_ms, 2),
+            num(m.flicker, 3),
+            num(m.change, 3),
+            frame,
+        ]
+    };
     let mut rows = Vec::new();
     for r in &study.results {
         for (b, band) in r.bands.iter().enumerate() {
-            rows.push(vec![
-                r.technique.name(),
-                BAND_NAMES[b].into(),
-                study.band_pixels[b].to_string(),
-                num(band.uv_error, 3),
-                num(band.colour_error, 2),
-                num(band.fetches, 1),
-                num(band.trace_ms, 2),
-                num(band.flicker, 3),
-                num(band.change, 3),
-                "–".into(),
-            ]);
+            rows.push(row(r, BAND_NAMES[b], study.band_pixels[b], band, "–".into()));
         }
-        let a = &r.all;
-        rows.push(vec![
-            r.technique.name(),
-            "all".into(),
-            study.band_pixels.iter().sum::<u64>().to_string(),
-            num(a.uv_error, 3),
-            num(a.colour_error, 2),
-            num(a.fetches, 1),
-            num(a.trace_ms, 2),
-            num(a.flicker, 3),
-            num(a.change, 3),
-            num(r.frame_ms, 2),
-        ]);
+        let all = study.band_pixels.iter().sum::<u64>();
+        rows.push(row(r, "all", all, &r.all, num(r.frame_ms, 2)));
     }
     Ok(Section {
         title: "Level of detail and fade".into(),

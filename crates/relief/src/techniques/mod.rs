@@ -13,7 +13,7 @@ pub mod lanes;
 use self::descriptor::ShadowMode;
 use crate::error::ReliefError;
 use crate::kernel::{Kernel, KernelChoice};
-use crate::trace::{Map, Shading};
+use crate::trace::{Map, ReliefTechnique, Shading};
 use descriptor::{BenchSetting, Descriptor, Entry, WithTracer};
 use renderlab_core::CoreError;
 use std::fmt;
@@ -219,6 +219,20 @@ impl Technique {
         self.descriptor().name
     }
 
+    /// Whether its tracer reads the pixel's [`crate::trace::RayContext`]
+    /// ([`ReliefTechnique::USES_CONTEXT`]): the renderers compute the footprint, curvature and
+    /// patch bounds for it only then.
+    pub fn uses_context(&self) -> bool {
+        struct UsesContext;
+        impl WithTracer for UsesContext {
+            type Output = bool;
+            fn run<T: ReliefTechnique>(self, _: &T) -> bool {
+                T::USES_CONTEXT
+            }
+        }
+        self.with_tracer(Kernel::Scalar, UsesContext)
+    }
+
     /// How this technique's result is lit.
     pub fn shading(&self) -> Shading {
         self.descriptor().shading
@@ -351,6 +365,16 @@ mod tests {
         ] {
             assert!(Technique::parse(s).is_err(), "{s}");
         }
+    }
+
+    #[test]
+    fn only_the_techniques_that_read_the_ray_context_say_so() {
+        let reads: Vec<&str> = DESCRIPTORS
+            .iter()
+            .filter(|d| Technique::parse(d.name).unwrap().uses_context())
+            .map(|d| d.name)
+            .collect();
+        assert_eq!(reads, ["silhouette", "pom-lod"]);
     }
 
     #[test]
