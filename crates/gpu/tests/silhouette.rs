@@ -12,8 +12,8 @@ use renderlab_core::{Mesh, Scene, SceneObject, Vertex};
 use renderlab_gpu::{ReliefPipeline, ReliefRenderer};
 use renderlab_relief::curved::any_shape::AnyShape;
 use renderlab_relief::curved::shape::ReliefShape;
-use renderlab_relief::curved::study::{cases, prepare};
 use renderlab_relief::maps::complexity::ComplexityParams;
+use renderlab_relief::study::silhouettes::{cases, prepare};
 use renderlab_relief::{ReliefMaterial, Technique};
 
 const W: u32 = 240;

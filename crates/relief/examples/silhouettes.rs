@@ -1,4 +1,4 @@
-//! The silhouette study's table (`renderlab_relief::curved::study`): the built-in bricks on a
+//! The silhouette study's table (`renderlab_relief::study::silhouettes`): the built-in bricks on a
 //! sphere, a cylinder side-on and oblique and a finite patch at a grazing view, at three
 //! height scales; POM (the flat outline) and the silhouette technique against the exact
 //! reference's coverage, with UV error, frame time (median of `RL_REPEATS`, default 5, scalar
@@ -8,8 +8,8 @@
 //! `cargo run -p renderlab-relief --example silhouettes [-- WIDTH HEIGHT TEXTURE]` (defaults
 //! 320 240 256).
 
-use renderlab_relief::curved::study::{cases, silhouette_study, StudyConfig};
 use renderlab_relief::maps::complexity::ComplexityParams;
+use renderlab_relief::study::silhouettes::{cases, silhouette_study, StudyConfig};
 use renderlab_relief::{ReliefMaterial, Technique};
 use std::path::PathBuf;
 

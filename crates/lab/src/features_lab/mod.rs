@@ -2,7 +2,7 @@
 //! against its exact reference: silhouettes on curved and finite patches, the pixel-depth
 //! offset in a deferred renderer's G-buffer, level of detail per distance band and on a
 //! camera path, and self-shadowing at grazing light. Each section runs one study (the relief
-//! crate's `curved::study`, `study::lod` and `study::grazing`, the hybrid renderer's
+//! crate's `study::silhouettes`, `study::lod` and `study::grazing`, the hybrid renderer's
 //! `relief::measure`), and the page shows its table, its images and what it found.
 //!
 //! Every section's table is also written as `SECTION.json` (`{"headers": […], "rows": […]}`)
@@ -19,9 +19,9 @@ use crate::lab::{create_dir, Progress};
 use crate::report::{write_page, Template};
 use crate::results::write_json;
 pub use depth_offset::DepthOffsetSettings;
-use renderlab_relief::curved::study::StudyConfig;
 use renderlab_relief::study::grazing::GrazingConfig;
 use renderlab_relief::study::lod::LodConfig;
+use renderlab_relief::study::silhouettes::StudyConfig;
 pub use section::{Figure, Section};
 use serde::Serialize;
 pub use silhouettes::SilhouetteSettings;

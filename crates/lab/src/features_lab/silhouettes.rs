@@ -6,8 +6,8 @@
 use super::section::{num, Figure, Section};
 use crate::error::Result;
 use renderlab_core::io::save_color;
-use renderlab_relief::curved::study::{cases, silhouette_study, SilhouetteRow, StudyConfig};
 use renderlab_relief::maps::complexity::ComplexityParams;
+use renderlab_relief::study::silhouettes::{cases, silhouette_study, SilhouetteRow, StudyConfig};
 use renderlab_relief::{ReliefMaterial, Technique};
 use std::path::{Path, PathBuf};
 

@@ -3,7 +3,7 @@
 //! Analytic base shapes ([`sphere`], [`cylinder`], a finite flat [`patch`]) behind one
 //! interface ([`shape`]) carry the relief displaced inward along their normals; [`frame`]
 //! turns a shape and a camera into a frame's per-pixel surface points and patch information;
-//! [`reference`] is the exact world-space reference, which knows coverage; [`study`] measures
+//! [`reference`](mod@reference) is the exact world-space reference, which knows coverage; [`crate::study::silhouettes`] measures
 //! the silhouette methods against it.
 
 pub mod any_shape;
@@ -13,4 +13,3 @@ pub mod patch;
 pub mod reference;
 pub mod shape;
 pub mod sphere;
-pub mod study;

@@ -5,6 +5,9 @@
 //!
 //! - [`grazing`]: self-shadowing at grazing light against the exact hard shadow.
 //! - [`lod`]: level of detail per distance band and on a camera path.
+//! - [`silhouettes`]: coverage of the relief's outline on curved and finite shapes
+//!   ([`crate::curved`]).
 
 pub mod grazing;
 pub mod lod;
+pub mod silhouettes;

@@ -15,13 +15,13 @@
 //! Methods run on the scalar kernel (the silhouette technique has only that one), so their
 //! times compare the methods, not the kernels.
 
-use super::any_shape::AnyShape;
-use super::cylinder::Cylinder;
-use super::frame::{shape_frame, stretch, surface_point, ShapeFrame};
-use super::patch::Patch;
-use super::reference::{reference_frame, ShapeHit};
-use super::shape::ReliefShape;
-use super::sphere::Sphere;
+use crate::curved::any_shape::AnyShape;
+use crate::curved::cylinder::Cylinder;
+use crate::curved::frame::{shape_frame, stretch, surface_point, ShapeFrame};
+use crate::curved::patch::Patch;
+use crate::curved::reference::{reference_frame, ShapeHit};
+use crate::curved::shape::ReliefShape;
+use crate::curved::sphere::Sphere;
 use crate::error::ReliefError;
 use crate::kernel::Kernel;
 use crate::render::material::ReliefMaterial;
@@ -207,7 +207,8 @@ impl Prepared {
                     Some(sp) => SurfacePoint { uv: hit.uv, ..*sp },
                     None => {
                         let (px, py) = ((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
-                        let (d, ddx, ddy) = super::frame::ray_with_differentials(&case.camera, px, py);
+                        let (d, ddx, ddy) =
+                            crate::curved::frame::ray_with_differentials(&case.camera, px, py);
                         let light = case.light.as_dvec3();
                         let (sp, _) = surface_point(
                             &case.shape,
