@@ -81,6 +81,7 @@ use renderlab_measure::fixtures::{benchmark_camera, benchmark_scene, room_camera
 use renderlab_measure::metrics::{flip, flip_masked_mean, psnr};
 use renderlab_raster::rasterize;
 use renderlab_relief::maps::complexity::ComplexityParams;
+use renderlab_relief::render::patch::median_world_per_uv;
 use renderlab_relief::render::{render, render_reference};
 use renderlab_relief::techniques::DESCRIPTORS;
 use renderlab_relief::{
@@ -295,9 +296,7 @@ fn check_bounds(
 /// The relief's full depth in world units: the first material's depth scale (UV per unit
 /// depth) times the median world units per UV of the covered pixels.
 fn relief_depth(patches: &[PatchInfo], mats: &[ReliefMaterial]) -> f32 {
-    let mut scales: Vec<f32> = patches.iter().map(|p| p.world_per_uv).filter(|&s| s > 0.0).collect();
-    scales.sort_by(f32::total_cmp);
-    mats[0].height_scale * scales.get(scales.len() / 2).copied().unwrap_or(1.0)
+    mats[0].height_scale * median_world_per_uv(patches)
 }
 
 /// A GPU frame in the CPU frame's form, to compare two GPU frames with [`compare`].

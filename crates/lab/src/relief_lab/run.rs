@@ -20,6 +20,7 @@ use renderlab_core::{Camera, CoreError, Material, Scene};
 use renderlab_gpu::ReliefRenderer;
 use renderlab_raster::{rasterize, GBuffer};
 use renderlab_relief::fused::{render_fused, render_fused_records, FusedFrame};
+use renderlab_relief::render::patch::median_world_per_uv;
 use renderlab_relief::render::{check, render, render_reference, trace_only};
 use renderlab_relief::{
     patches_from_scene, Frame, FrameInput, Kernel, KernelChoice, Map, PatchInfo, ReliefMaterial, Shading,
@@ -56,12 +57,7 @@ impl View {
     /// (UV per unit depth): the scale times the median world units per UV of the covered
     /// pixels (0 when none is covered).
     pub fn relief_depth(&self, height_scale: f32) -> f32 {
-        let mut scales: Vec<f32> = self.patches.iter().map(|p| p.world_per_uv).filter(|&s| s > 0.0).collect();
-        if scales.is_empty() {
-            return 0.0;
-        }
-        let mid = scales.len() / 2;
-        height_scale * *scales.select_nth_unstable_by(mid, f32::total_cmp).1
+        height_scale * median_world_per_uv(&self.patches)
     }
 }
 

@@ -46,6 +46,18 @@ pub fn patches_from_scene(scene: &Scene, points: &[Option<SurfacePoint>]) -> Vec
         .collect()
 }
 
+/// The median world units per UV over `patches` of known scale (0 when none is known): with a
+/// material's depth scale, the relief's full depth in world units, which the pixel-depth
+/// offset's errors are measured against.
+pub fn median_world_per_uv(patches: &[PatchInfo]) -> f32 {
+    let mut scales: Vec<f32> = patches.iter().map(|p| p.world_per_uv).filter(|&s| s > 0.0).collect();
+    if scales.is_empty() {
+        return 0.0;
+    }
+    let mid = scales.len() / 2;
+    *scales.select_nth_unstable_by(mid, f32::total_cmp).1
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
