@@ -56,7 +56,7 @@ impl Accel {
 
     /// The nearest hit of the ray `origin + t·dir` (`dir` unit) for `t` in `(0, t_max]`.
     pub fn closest(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<Hit> {
-        self.tlas.closest_hit(&Ray::segment(origin, dir, 0.0, t_max))
+        self.tlas.closest_hit(&closest_ray(origin, dir, t_max))
     }
 
     /// The nearest hit whose instance `keep` accepts (e.g. only opaque surfaces).
@@ -80,9 +80,21 @@ impl Accel {
     /// Whether anything lies between `origin` and the point `distance` along the unit `dir`
     /// (`f32::INFINITY` for a directional light).
     pub fn occluded(&self, origin: Vec3, dir: Vec3, distance: f32) -> bool {
-        let t_max = if distance.is_finite() { distance * SHADOW_END } else { f32::INFINITY };
-        self.tlas.any_hit(&Ray::segment(origin, dir, 0.0, t_max))
+        self.tlas.any_hit(&shadow_ray(origin, dir, distance))
     }
+}
+
+/// The ray [`Accel::occluded`] traces for a light `distance` along the unit `dir` from
+/// `origin`: it stops [`SHADOW_END`] of the way there (or runs on, for a directional light),
+/// for batches of shadow rays ([`crate::stages::tiles`]).
+pub fn shadow_ray(origin: Vec3, dir: Vec3, distance: f32) -> Ray {
+    let t_max = if distance.is_finite() { distance * SHADOW_END } else { f32::INFINITY };
+    Ray::segment(origin, dir, 0.0, t_max)
+}
+
+/// The ray [`Accel::closest`] traces: `origin + t·dir` for `t` in `(0, t_max]`.
+pub fn closest_ray(origin: Vec3, dir: Vec3, t_max: f32) -> Ray {
+    Ray::segment(origin, dir, 0.0, t_max)
 }
 
 /// A hit resolved into a shading point seen along `dir`.

@@ -3,12 +3,13 @@
 //! [`crate::deferred::weights`], so that a ray-traced stage and the raster stage it replaces
 //! weight the light they gather alike).
 
-use crate::accel::Accel;
+use crate::accel::{shadow_ray, Accel};
 use crate::deferred::weights;
 use crate::rng::{stratified, Rng};
 use glam::{Vec2, Vec3};
 use renderlab_scene::brdf::eval;
 use renderlab_scene::{HybridScene, ShadingPoint};
+use renderlab_trace::Ray;
 
 /// Direct light at `sp` seen from the unit direction `v` (toward the viewer): for every
 /// light, `brdf::eval · radiance · visible`, visibility from one shadow ray per sample. A
@@ -64,14 +65,44 @@ pub fn direct_light_parts(
     rng: &mut Rng,
     rays: &mut u64,
 ) -> DirectParts {
-    let mut out = DirectParts::default();
-    for light in &scene.lights {
+    let mut sum = LightSum::new(scene, area_samples);
+    light_samples(scene, sp, v, area_samples, with_area, rng, |ray, s| {
+        *rays += 1;
+        sum.add(&s, !accel.tlas().any_hit(&ray));
+    });
+    sum.finish()
+}
+
+/// One shadow ray's worth of direct light: the light it samples and the light it brings
+/// when nothing blocks it (`brdf::eval · radiance`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightSample {
+    /// Index of the light in the scene's list.
+    pub light: u32,
+    /// The sample's contribution when visible.
+    pub contribution: Vec3,
+}
+
+/// The first half of [`direct_light_parts`]: draws the light samples at `sp` (the same
+/// random numbers, in the same order) and hands `push` each shadow ray
+/// ([`crate::accel::shadow_ray`]) that can change the result, in order of light, then
+/// sample; samples with no radiance or no reflected light are left out.
+#[allow(clippy::too_many_arguments)]
+pub fn light_samples(
+    scene: &HybridScene,
+    sp: &ShadingPoint,
+    v: Vec3,
+    area_samples: u32,
+    with_area: bool,
+    rng: &mut Rng,
+    mut push: impl FnMut(Ray, LightSample),
+) {
+    for (index, light) in scene.lights.iter().enumerate() {
         if !with_area && light.is_area() {
             continue;
         }
         let n = if light.is_area() { area_samples.max(1) } else { 1 };
         let shift = rng.vec2();
-        let mut acc = Vec3::ZERO;
         for i in 0..n {
             let s = light.sample(sp.position, stratified(i, n, shift));
             if s.radiance == Vec3::ZERO {
@@ -81,18 +112,70 @@ pub fn direct_light_parts(
             if f == Vec3::ZERO {
                 continue;
             }
-            *rays += 1;
-            if !accel.occluded(sp.offset_origin(s.to_light), s.to_light, s.distance) {
-                acc += f * s.radiance;
-            }
-        }
-        let c = acc / n as f32;
-        out.total += c;
-        if light.is_area() {
-            out.area += c;
+            let ray = shadow_ray(sp.offset_origin(s.to_light), s.to_light, s.distance);
+            push(ray, LightSample { light: index as u32, contribution: f * s.radiance });
         }
     }
-    out
+}
+
+/// The second half of [`direct_light_parts`]: sums the samples [`light_samples`] drew
+/// (`samples`, in its order) whose shadow rays are not `blocked`, light by light, into the
+/// direct light.
+pub fn combine_light(
+    scene: &HybridScene,
+    area_samples: u32,
+    samples: &[LightSample],
+    blocked: &[bool],
+) -> DirectParts {
+    let mut sum = LightSum::new(scene, area_samples);
+    for (s, &b) in samples.iter().zip(blocked) {
+        sum.add(s, !b);
+    }
+    sum.finish()
+}
+
+/// Sums light samples as they come, in [`light_samples`]' order: each light's visible
+/// contributions, divided by its sample count, added to the total (a light none of whose
+/// samples could contribute adds nothing, as its zero would).
+struct LightSum<'a> {
+    scene: &'a HybridScene,
+    area_samples: u32,
+    out: DirectParts,
+    light: Option<u32>,
+    acc: Vec3,
+}
+
+impl<'a> LightSum<'a> {
+    fn new(scene: &'a HybridScene, area_samples: u32) -> Self {
+        Self { scene, area_samples, out: DirectParts::default(), light: None, acc: Vec3::ZERO }
+    }
+
+    fn add(&mut self, s: &LightSample, visible: bool) {
+        if self.light != Some(s.light) {
+            self.flush();
+            self.light = Some(s.light);
+        }
+        if visible {
+            self.acc += s.contribution;
+        }
+    }
+
+    fn flush(&mut self) {
+        let Some(index) = self.light.take() else { return };
+        let light = &self.scene.lights[index as usize];
+        let n = if light.is_area() { self.area_samples.max(1) } else { 1 };
+        let c = self.acc / n as f32;
+        self.out.total += c;
+        if light.is_area() {
+            self.out.area += c;
+        }
+        self.acc = Vec3::ZERO;
+    }
+
+    fn finish(mut self) -> DirectParts {
+        self.flush();
+        self.out
+    }
 }
 
 /// Direct light without shadows, area lights by a fixed `n`-sample stratified pattern (the

@@ -45,11 +45,12 @@ pub mod noise;
 pub mod path;
 pub mod tracer;
 
-use crate::accel::{resolve, Accel};
+use crate::accel::{closest_ray, resolve, Accel};
 use crate::lighting::unshadowed_direct_parts;
 use crate::rng::{Rng, Stream};
 use crate::stages::ao::openness;
 use crate::stages::context::par_pixels;
+use crate::stages::tiles::{par_tiles, Closest};
 use crate::terms::score::{luminance, PixelKind};
 use crate::terms::term::{Term, TermImages};
 use glam::Vec3;
@@ -105,6 +106,23 @@ impl PathTracer {
         let total_rows = 2 * n.div_ceil(w);
         let every = total_rows.div_ceil(100).max(1);
         let rows_done = AtomicUsize::new(0);
+        // The pixel-centre ray is the same for every path of both halves: traced once per
+        // pixel, an 8 × 4 tile's rays as one packet.
+        let mut firsts: Vec<Option<Hit>> = vec![None; n];
+        let first_rays = par_tiles(
+            &mut firsts,
+            camera.width,
+            accel,
+            Closest,
+            |i, batch| {
+                batch.push(closest_ray(camera.position, g.view_dir(i), f32::INFINITY), ());
+                Some(())
+            },
+            |_, out, (), _, hits| {
+                *out = hits[0];
+                1
+            },
+        );
         let run = |stream: Stream, ao_stream: Stream| {
             let empty =
                 PixelHalf { terms: [Vec3::ZERO; 5], occlusion: 1.0, area_share: 0.0, kind: PixelKind::Sky };
@@ -112,9 +130,8 @@ impl PathTracer {
             let rays = par_pixels(&mut img, camera.width, |i, out| {
                 let mut rng = Rng::new(seed, i as u64, stream);
                 let dir = g.view_dir(i);
-                // The pixel-centre ray is the same for every path: traced once.
-                let mut rays = 1;
-                let first = accel.closest(camera.position, dir, f32::INFINITY);
+                let mut rays = 0;
+                let first = firsts[i];
                 for _ in 0..half {
                     let p = self.trace_from(scene, accel, camera.position, dir, first, &mut rng, &mut rays);
                     for (sum, t) in out.terms.iter_mut().zip(p.terms) {
@@ -160,7 +177,7 @@ impl PathTracer {
             height: camera.height,
             spp: half * 2,
             noise,
-            rays: rays_a + rays_b,
+            rays: first_rays + rays_a + rays_b,
             area_share: a.iter().map(|p| p.area_share).collect(),
             kinds: a.iter().map(|p| p.kind).collect(),
             terms,

@@ -13,6 +13,7 @@
 pub mod context;
 pub mod entry;
 pub mod syntax;
+pub mod tiles;
 
 use context::StageContext;
 use entry::{Descriptor, Entry, Phase};

@@ -21,10 +21,11 @@
 
 pub mod ssr;
 
-use super::context::{par_pixels, StageContext};
+use super::context::StageContext;
+use super::tiles::{par_tiles, Closest};
 use super::entry::{Descriptor, Entry, Phase, THESIS_ROUGHNESS};
 use super::syntax::{check_count, check_roughness, count, number, split, unknown};
-use crate::accel::Accel;
+use crate::accel::{closest_ray, resolve, Accel};
 use crate::deferred::compose::lit_opaque;
 use crate::lighting::{ambient, direct_light, specular_weight};
 use crate::rng::{Rng, Stream};
@@ -33,6 +34,7 @@ use glam::Vec3;
 use renderlab_scene::brdf::alpha;
 use renderlab_scene::sampling::{ggx_visible_normal, reflect, Frame};
 use renderlab_scene::{GBuffer, HybridScene, ShadingPoint};
+use renderlab_trace::Hit;
 use serde::{Deserialize, Serialize};
 use ssr::screen_space_reflections;
 
@@ -195,18 +197,31 @@ pub fn run(
     seed: u64,
     specular: &mut [Vec3],
 ) -> u64 {
-    par_pixels(specular, g.width(), |i, out| {
-        let Some(sp) = &g.opaque[i] else { return 0 };
-        if sp.roughness > max_roughness {
-            return 0;
-        }
-        let mut rng = Rng::new(seed, i as u64, STREAM);
-        let mut rays = 0;
-        let v = -g.view_dir(i);
-        let gathered = gather(scene, accel, sp, v, max_bounces, max_roughness, &mut rng, &mut rays);
-        *out = specular_weight(sp, v) * gathered;
-        rays
-    })
+    // The first reflected rays of a tile go out in packets; each pixel then follows its
+    // own ray on alone.
+    par_tiles(
+        specular,
+        g.width(),
+        accel,
+        Closest,
+        |i, batch| {
+            let sp = g.opaque[i].as_ref().filter(|sp| sp.roughness <= max_roughness)?;
+            let mut rng = Rng::new(seed, i as u64, STREAM);
+            let v = -g.view_dir(i);
+            let dir = reflected_dir(sp, v, &mut rng);
+            batch.push(closest_ray(sp.offset_origin(dir), dir, f32::INFINITY), dir);
+            Some(rng)
+        },
+        |i, out, mut rng, dirs, hits| {
+            let Some(sp) = &g.opaque[i] else { return 0 };
+            let v = -g.view_dir(i);
+            let mut rays = 1;
+            let first = (dirs[0], hits[0]);
+            let gathered = gather(scene, accel, sp, v, first, max_bounces, max_roughness, &mut rng, &mut rays);
+            *out = specular_weight(sp, v) * gathered;
+            rays
+        },
+    )
 }
 
 /// A reflected direction at `sp` for the viewer direction `v`: the mirror direction for
@@ -230,13 +245,15 @@ pub fn reflected_dir(sp: &ShadingPoint, v: Vec3, rng: &mut Rng) -> Vec3 {
 }
 
 /// The radiance arriving at `sp` from its reflected ray, followed for up to `bounces`
-/// surfaces.
+/// surfaces; `first` is the first reflected direction and its nearest hit (traced by the
+/// caller, counted in `rays` by it).
 #[allow(clippy::too_many_arguments)]
 fn gather(
     scene: &HybridScene,
     accel: &Accel,
     sp: &ShadingPoint,
     v: Vec3,
+    first: (Vec3, Option<Hit>),
     bounces: u32,
     max_roughness: f32,
     rng: &mut Rng,
@@ -245,10 +262,14 @@ fn gather(
     let mut radiance = Vec3::ZERO;
     let mut throughput = Vec3::ONE;
     let (mut at, mut v) = (*sp, v);
+    let mut first = Some(first);
     for bounce in 1..=bounces {
-        let dir = reflected_dir(&at, v, rng);
-        *rays += 1;
-        let Some(hit) = accel.surface(scene, at.offset_origin(dir), dir) else {
+        let (dir, hit) = first.take().unwrap_or_else(|| {
+            let dir = reflected_dir(&at, v, rng);
+            *rays += 1;
+            (dir, accel.closest(at.offset_origin(dir), dir, f32::INFINITY))
+        });
+        let Some(hit) = hit.map(|h| resolve(scene, &h, dir)) else {
             return radiance + throughput * scene.sky;
         };
         let hv = -dir;

@@ -13,12 +13,13 @@
 
 pub mod maps;
 
-use super::context::{par_pixels, StageContext};
+use super::context::StageContext;
+use super::tiles::{par_tiles, Occluded};
 use super::entry::{Descriptor, Entry, Phase};
 use super::syntax::{check_count, count, split, unknown};
 use crate::accel::Accel;
 use crate::deferred::lighting::{direct_lighting, ShadowQuery, Visibility};
-use crate::lighting::direct_light;
+use crate::lighting::{combine_light, light_samples};
 use crate::rng::{Rng, Stream};
 use crate::terms::term::Term;
 use glam::Vec3;
@@ -164,7 +165,9 @@ impl Visibility for RayTracedVisibility<'_> {
 }
 
 /// Writes the shadowed direct light of every opaque pixel to `direct`; returns the shadow
-/// rays traced.
+/// rays traced. The rays of each 8 × 4 tile go out in packets, a light sample of every
+/// pixel in each ([`par_tiles`]); the light is
+/// [`crate::lighting::direct_light`]'s, bit for bit.
 pub fn run(
     scene: &HybridScene,
     accel: &Accel,
@@ -173,11 +176,20 @@ pub fn run(
     seed: u64,
     direct: &mut [Vec3],
 ) -> u64 {
-    par_pixels(direct, g.width(), |i, out| {
-        let Some(sp) = &g.opaque[i] else { return 0 };
-        let mut rng = Rng::new(seed, i as u64, STREAM);
-        let mut rays = 0;
-        *out = direct_light(scene, accel, sp, -g.view_dir(i), samples_per_light, &mut rng, &mut rays);
-        rays
-    })
+    par_tiles(
+        direct,
+        g.width(),
+        accel,
+        Occluded,
+        |i, batch| {
+            let sp = g.opaque[i].as_ref()?;
+            let mut rng = Rng::new(seed, i as u64, STREAM);
+            light_samples(scene, sp, -g.view_dir(i), samples_per_light, true, &mut rng, |ray, s| batch.push(ray, s));
+            Some(())
+        },
+        |_, out, (), samples, blocked| {
+            *out = combine_light(scene, samples_per_light, samples, blocked).total;
+            samples.len() as u64
+        },
+    )
 }
