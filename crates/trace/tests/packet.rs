@@ -210,7 +210,7 @@ fn packet_node_tests_agree_between_kernels() {
     use renderlab_trace::traverse::avx2::Avx2;
     use renderlab_trace::traverse::backend::{Backend, RayQuery};
     use renderlab_trace::traverse::scalar::Scalar;
-    if !renderlab_trace::Kernel::Simd.available() {
+    if !renderlab_trace::kernel::available(renderlab_trace::Kernel::Simd) {
         return;
     }
     let mut tris = Vec::new();

@@ -1,15 +1,20 @@
 //! The AVX2 kernel: a wide node's eight slab tests in one 256-bit register per plane, a leaf's
 //! four watertight triangle tests in one 128-bit register per quantity; a packet's node test
 //! runs the node test for each of its rays and keeps the masks and least distances in registers. Each lane performs
-//! exactly the scalar kernel's operations (no fused multiply-adds, `maxps`/`minps` operand
-//! order as the scalar `max_ps`/`min_ps`), so both kernels produce the same bits.
+//! exactly the scalar kernel's operations (fused multiply-adds where the scalar test calls
+//! `mul_add`, separate operations elsewhere, `maxps`/`minps` operand order as the scalar
+//! `max_ps`/`min_ps`), so both kernels produce the same bits. The kernel needs AVX2 and FMA.
 
 #![cfg(target_arch = "x86_64")]
 
 use crate::node::{TriBlock, WideNode, WIDTH};
-use crate::traverse::backend::{Backend, BlockHits, PacketNode, RayQuery, IZE, PACKET};
-use crate::triangle::{edge_functions_f64, TriRay};
+use crate::traverse::backend::{Backend, BlockHits, PacketNode, RayQuery, FUSED_SLABS, IZE, PACKET};
+use crate::triangle::{edge_functions_f64, TriRay, EXACT_EDGES, FUSED};
 use std::arch::x86_64::*;
+
+/// Whether the block test computes every lane's distance even when no lane is inside its
+/// triangle (on only to measure what the early exit saves).
+const EAGER: bool = cfg!(feature = "measure-eager-division");
 
 /// The AVX2 kernel.
 #[derive(Clone, Copy, Debug)]
@@ -20,6 +25,7 @@ pub struct Avx2;
 pub struct Prepared {
     org: [__m256; 3],
     inv: [__m256; 3],
+    org_inv: [__m256; 3],
     near: [usize; 3],
     far: [usize; 3],
     t_min: __m256,
@@ -33,12 +39,17 @@ impl Backend for Avx2 {
     type Prepared = Prepared;
 
     #[inline]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     unsafe fn prepare(q: &RayQuery) -> Prepared {
         let k = q.tri.k;
         Prepared {
             org: [_mm256_set1_ps(q.org[0]), _mm256_set1_ps(q.org[1]), _mm256_set1_ps(q.org[2])],
             inv: [_mm256_set1_ps(q.inv[0]), _mm256_set1_ps(q.inv[1]), _mm256_set1_ps(q.inv[2])],
+            org_inv: [
+                _mm256_set1_ps(q.org_inv[0]),
+                _mm256_set1_ps(q.org_inv[1]),
+                _mm256_set1_ps(q.org_inv[2]),
+            ],
             near: q.near,
             far: q.far,
             t_min: _mm256_set1_ps(q.t_min),
@@ -54,7 +65,7 @@ impl Backend for Avx2 {
     }
 
     #[inline]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     unsafe fn node(p: &Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; 8]) {
         let (near, hit) = slabs(p, node, t_max);
         let mut dist = [0.0f32; 8];
@@ -63,7 +74,7 @@ impl Backend for Avx2 {
     }
 
     #[inline]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     unsafe fn node_packet(
         p: &[Prepared; PACKET],
         node: &WideNode,
@@ -87,7 +98,7 @@ impl Backend for Avx2 {
     }
 
     #[inline]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     unsafe fn block(p: &Prepared, block: &TriBlock, t_max: f32) -> BlockHits {
         let [kx, ky, kz] = p.tri.k;
         let [sx, sy, sz] = p.shear;
@@ -105,33 +116,38 @@ impl Backend for Avx2 {
         let (a_x, a_y, a_z) = rel!(0);
         let (b_x, b_y, b_z) = rel!(1);
         let (c_x, c_y, c_z) = rel!(2);
-        let ax = _mm_sub_ps(a_x, _mm_mul_ps(sx, a_z));
-        let ay = _mm_sub_ps(a_y, _mm_mul_ps(sy, a_z));
-        let bx = _mm_sub_ps(b_x, _mm_mul_ps(sx, b_z));
-        let by = _mm_sub_ps(b_y, _mm_mul_ps(sy, b_z));
-        let cx = _mm_sub_ps(c_x, _mm_mul_ps(sx, c_z));
-        let cy = _mm_sub_ps(c_y, _mm_mul_ps(sy, c_z));
+        let ax = fnmadd(sx, a_z, a_x);
+        let ay = fnmadd(sy, a_z, a_y);
+        let bx = fnmadd(sx, b_z, b_x);
+        let by = fnmadd(sy, b_z, b_y);
+        let cx = fnmadd(sx, c_z, c_x);
+        let cy = fnmadd(sy, c_z, c_y);
         let mut u = _mm_sub_ps(_mm_mul_ps(cx, by), _mm_mul_ps(cy, bx));
         let mut v = _mm_sub_ps(_mm_mul_ps(ax, cy), _mm_mul_ps(ay, cx));
         let mut w = _mm_sub_ps(_mm_mul_ps(bx, ay), _mm_mul_ps(by, ax));
         let zero = _mm_setzero_ps();
-        let on_edge =
-            _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(u, zero), _mm_cmpeq_ps(v, zero)), _mm_cmpeq_ps(w, zero));
-        let on_edge = _mm_movemask_ps(on_edge);
-        if on_edge != 0 {
-            (u, v, w) = exact_edges(on_edge, [ax, ay, bx, by, cx, cy], [u, v, w]);
+        let mut inside = inside(u, v, w);
+        if !EAGER && _mm_movemask_ps(inside) == 0 {
+            return BlockHits::default();
         }
-        let neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(u, zero), _mm_cmplt_ps(v, zero)), _mm_cmplt_ps(w, zero));
-        let pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(u, zero), _mm_cmpgt_ps(v, zero)), _mm_cmpgt_ps(w, zero));
+        if EXACT_EDGES {
+            let on_edge =
+                _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(u, zero), _mm_cmpeq_ps(v, zero)), _mm_cmpeq_ps(w, zero));
+            let on_edge = _mm_movemask_ps(_mm_and_ps(on_edge, inside));
+            if on_edge != 0 {
+                (u, v, w) = exact_edges(on_edge, [ax, ay, bx, by, cx, cy], [u, v, w]);
+                inside = self::inside(u, v, w);
+            }
+        }
         let det = _mm_add_ps(_mm_add_ps(u, v), w);
         let az = _mm_mul_ps(sz, a_z);
         let bz = _mm_mul_ps(sz, b_z);
         let cz = _mm_mul_ps(sz, c_z);
-        let tt = _mm_add_ps(_mm_add_ps(_mm_mul_ps(u, az), _mm_mul_ps(v, bz)), _mm_mul_ps(w, cz));
+        let tt = fmadd(w, cz, fmadd(v, bz, _mm_mul_ps(u, az)));
         let rcp = _mm_div_ps(_mm_set1_ps(1.0), det);
         let t = _mm_mul_ps(tt, rcp);
         let in_range = _mm_and_ps(_mm_cmpge_ps(t, p.t_min4), _mm_cmple_ps(t, _mm_set1_ps(t_max)));
-        let ok = _mm_andnot_ps(_mm_and_ps(neg, pos), _mm_and_ps(_mm_cmpneq_ps(det, zero), in_range));
+        let ok = _mm_and_ps(inside, _mm_and_ps(_mm_cmpneq_ps(det, zero), in_range));
         let mask = _mm_movemask_ps(ok) as u32;
         let mut hits = BlockHits { mask, ..BlockHits::default() };
         if mask != 0 {
@@ -146,7 +162,7 @@ impl Backend for Avx2 {
 /// The slab tests of a node's eight children: the entry distances and which children the
 /// ray enters before `t_max`.
 #[inline]
-#[target_feature(enable = "avx2")]
+#[target_feature(enable = "avx2,fma")]
 unsafe fn slabs(p: &Prepared, node: &WideNode, t_max: f32) -> (__m256, __m256) {
     let b = &node.bounds;
     // Rows are 32-byte aligned ([`WideNode`] is `align(32)`, rows are 32 bytes); the row
@@ -154,7 +170,14 @@ unsafe fn slabs(p: &Prepared, node: &WideNode, t_max: f32) -> (__m256, __m256) {
     // every intrinsic inside this function's target features.)
     macro_rules! slab {
         ($a:expr, $r:expr) => {
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b.get_unchecked($r).as_ptr()), p.org[$a]), p.inv[$a])
+            if FUSED_SLABS {
+                _mm256_fmsub_ps(_mm256_load_ps(b.get_unchecked($r).as_ptr()), p.inv[$a], p.org_inv[$a])
+            } else {
+                _mm256_mul_ps(
+                    _mm256_sub_ps(_mm256_load_ps(b.get_unchecked($r).as_ptr()), p.org[$a]),
+                    p.inv[$a],
+                )
+            }
         };
     }
     let near = _mm256_max_ps(
@@ -171,10 +194,44 @@ unsafe fn slabs(p: &Prepared, node: &WideNode, t_max: f32) -> (__m256, __m256) {
     (near, _mm256_cmp_ps::<_CMP_LE_OQ>(near, far))
 }
 
+/// `c − a·b`, fused as [`crate::triangle::fused`].
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn fnmadd(a: __m128, b: __m128, c: __m128) -> __m128 {
+    if FUSED {
+        _mm_fnmadd_ps(a, b, c)
+    } else {
+        _mm_sub_ps(c, _mm_mul_ps(a, b))
+    }
+}
+
+/// `a·b + c`, fused as [`crate::triangle::fused`].
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn fmadd(a: __m128, b: __m128, c: __m128) -> __m128 {
+    if FUSED {
+        _mm_fmadd_ps(a, b, c)
+    } else {
+        _mm_add_ps(_mm_mul_ps(a, b), c)
+    }
+}
+
+/// The lanes whose edge functions share a sign: `min(u, v, w) ≥ 0` or `max(u, v, w) ≤ 0`, as
+/// [`crate::triangle::inside`].
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn inside(u: __m128, v: __m128, w: __m128) -> __m128 {
+    let zero = _mm_setzero_ps();
+    _mm_or_ps(
+        _mm_cmpge_ps(_mm_min_ps(u, _mm_min_ps(v, w)), zero),
+        _mm_cmple_ps(_mm_max_ps(u, _mm_max_ps(v, w)), zero),
+    )
+}
+
 /// Recomputes the edge functions of the lanes in `lanes` in f64, as the scalar test does.
 #[cold]
 #[inline(never)]
-#[target_feature(enable = "avx2")]
+#[target_feature(enable = "avx2,fma")]
 unsafe fn exact_edges(lanes: i32, proj: [__m128; 6], uvw: [__m128; 3]) -> (__m128, __m128, __m128) {
     let mut p = [[0.0f32; 4]; 6];
     for (dst, src) in p.iter_mut().zip(proj) {

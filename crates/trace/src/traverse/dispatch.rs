@@ -26,7 +26,7 @@ mod simd {
     use super::*;
     use crate::traverse::avx2::Avx2;
 
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     pub unsafe fn blas(blas: &Blas, ray: &Ray, filter: &mut impl HitFilter, query: Query) -> Option<Hit> {
         match query {
             Query::Closest => leaves::blas_closest::<Avx2, _>(blas, ray, filter),
@@ -34,7 +34,7 @@ mod simd {
         }
     }
 
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     pub unsafe fn tlas(tlas: &Tlas, ray: &Ray, filter: &mut impl HitFilter, query: Query) -> Option<Hit> {
         match query {
             Query::Closest => leaves::tlas_closest::<Avx2, _>(tlas, ray, filter),
@@ -42,22 +42,22 @@ mod simd {
         }
     }
 
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     pub unsafe fn closest_packet(blas: &Blas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
         packet_leaves::blas_closest::<Avx2>(blas, rays)
     }
 
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     pub unsafe fn any_packet(blas: &Blas, rays: &[Ray]) -> [bool; PACKET] {
         packet_leaves::blas_any::<Avx2>(blas, rays)
     }
 
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     pub unsafe fn tlas_closest_packet(tlas: &Tlas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
         packet_leaves::tlas_closest::<Avx2>(tlas, rays)
     }
 
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     pub unsafe fn tlas_any_packet(tlas: &Tlas, rays: &[Ray]) -> [bool; PACKET] {
         packet_leaves::tlas_any::<Avx2>(tlas, rays)
     }
@@ -67,8 +67,8 @@ mod simd {
 #[inline]
 pub fn blas(blas: &Blas, ray: &Ray, filter: &mut impl HitFilter, query: Query) -> Option<Hit> {
     match blas.kernel {
-        // SAFETY: a hierarchy's kernel is `Simd` only when the CPU has AVX2 (`with_kernel`,
-        // `Kernel::best`).
+        // SAFETY: a hierarchy's kernel is `Simd` only when the CPU has AVX2 and FMA (`with_kernel`,
+        // `kernel::best`).
         #[cfg(target_arch = "x86_64")]
         Kernel::Simd => unsafe { simd::blas(blas, ray, filter, query) },
         // SAFETY: the scalar kernel needs no CPU feature.
