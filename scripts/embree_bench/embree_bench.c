@@ -7,12 +7,12 @@
  * Build and run (Debian: `apt-get install libembree-dev`):
  *
  *     cc -O2 -o out/embree_bench scripts/embree_bench/embree_bench.c -lembree3 -lm
- *     cargo run --release -p renderlab-trace --example embree -- out/embree_bench
+ *     cargo run --release -p renderlab-trace --example embree -- out/embree_bench [REPS] [ROUNDS] [MESHES]
  *
- * The example writes out/embree/scene.bin, runs `embree_bench out/embree/scene.bin
- * out/embree/hits.bin REPS` and parses the `rate` lines it prints. By hand:
+ * The example writes out/embree/MESH.bin for each mesh, runs `embree_bench out/embree/MESH.bin
+ * out/embree/MESH.hits REPS` and parses the `rate` and `build` lines it prints. By hand:
  *
- *     out/embree_bench out/embree/scene.bin out/embree/hits.bin 5
+ *     out/embree_bench out/embree/terrain.bin out/embree/terrain.hits 5
  *
  * Input (little-endian): "RLTRACE1"; u32 vertices, u32 triangles; f32 x,y,z per vertex; u32
  * i,j,k per triangle; u32 sets; per set: 16 bytes of name (NUL-padded), u32 flags (bit 0: an

@@ -1,32 +1,39 @@
-//! Our BVH against Embree 3 on the BVH bench's terrain and rays, side by side in one run. Run
-//! by hand from the repository root (not by CI; nothing in the workspace links Embree):
+//! Our BVH against Embree 3 on the benchmark meshes and rays, side by side in one run. Run by
+//! hand from the repository root (not by CI; nothing in the workspace links Embree):
 //!
 //! ```text
 //! apt-get install libembree-dev
 //! cc -O2 -o out/embree_bench scripts/embree_bench/embree_bench.c -lembree3 -lm
-//! cargo run --release -p renderlab-trace --example embree -- out/embree_bench [REPS] [ROUNDS]
+//! cargo run --release -p renderlab-trace --example embree -- out/embree_bench [REPS] [ROUNDS] [MESHES]
 //! ```
 //!
-//! The example builds the scene of `benches/common` (the 1M-triangle terrain; primary rays in
-//! tiled Morton order, one diffuse bounce, shadow segments), writes it to
-//! `out/embree/scene.bin`, and then, ROUNDS times (default 2), traces every ray set with our
-//! single-ray and packet queries and runs the Embree program (`scripts/embree_bench`) on the
-//! same file, which traces them with `rtcIntersect1`, 8- and 16-ray packets and streams. Every
-//! rate is the median of REPS passes (default 5) over a set on one thread, timed by that
-//! thread's CPU time. It prints, per set, the rates, the ratios to Embree's single-ray query
-//! and to its best mode, and the agreement of our hits with Embree's: the same triangle and a
-//! distance within 1e-4 (relative, at least 1e-4 absolute) for closest hits, the same answer
-//! for shadow rays. Our packet queries are checked against our single-ray queries bit for bit.
+//! MESHES is a comma-separated list of `renderlab_trace::workload::MESHES` (default all: the
+//! 1M-triangle terrain, the 69k-triangle blob, 48 blobs in one 3.3M-triangle mesh). For each
+//! mesh the example builds our hierarchy (median of 3 builds), makes its rays (primary rays in
+//! tiled Morton order, one diffuse bounce, shadow segments), writes them with the mesh to
+//! `out/embree/MESH.bin` and a depth image of the primary hits to `out/embree/MESH.pgm`. Then,
+//! ROUNDS times (default 2), mesh after mesh, it traces every ray set with our single-ray and
+//! packet queries and runs the Embree program (`scripts/embree_bench`) on the same file, which
+//! builds Embree's scene and traces the rays with `rtcIntersect1`, 8- and 16-ray packets and
+//! streams. Every rate is the median of REPS passes (default 5) over a set on one thread,
+//! timed by that thread's CPU time. It prints, per mesh and set, the rates, the ratios to
+//! Embree's single-ray query and to its best mode, and the agreement of our hits with
+//! Embree's: the same triangle and a distance within 1e-4 (relative, at least 1e-4 absolute)
+//! for closest hits, the same answer for shadow rays; then a summary table over all rounds and
+//! both libraries' build times. Our packet queries are checked against our single-ray queries
+//! bit for bit.
 
 #[path = "../benches/common/mod.rs"]
 mod common;
 
-use common::{camera_rays, load_average, secondary_rays, terrain, thread_cpu};
+use common::{
+    load_average, mesh, secondary_rays_to, thread_cpu, tiled_morton, view_rays, HEIGHT, MESHES, WIDTH,
+};
 use glam::Vec3;
 use renderlab_trace::{Blas, Hit, Ray, PACKET};
 use std::collections::BTreeMap;
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 
@@ -170,14 +177,12 @@ fn ours(blas: &Blas, set: &RaySet, reps: usize) -> Vec<(&'static str, f64)> {
     }
 }
 
-/// Runs the Embree program; returns its `rate` lines as (scene, set, mode) → rate, and prints
-/// its other lines.
-fn embree(
-    exe: &Path,
-    scene: &Path,
-    hits: &Path,
-    reps: usize,
-) -> BTreeMap<(String, String, String), (f64, u64)> {
+/// Embree's rates: (scene flag, set, mode) → (M rays per CPU second, rays as its single query).
+type Rates = BTreeMap<(String, String, String), (f64, u64)>;
+
+/// Runs the Embree program; returns its `rate` lines and its build times (`SCENE MS`), and
+/// prints its other lines.
+fn embree(exe: &Path, scene: &Path, hits: &Path, reps: usize) -> (Rates, Vec<String>) {
     let out = Command::new(exe)
         .arg(scene)
         .arg(hits)
@@ -187,29 +192,40 @@ fn embree(
     if !out.status.success() {
         panic!("{} failed: {}", exe.display(), String::from_utf8_lossy(&out.stderr));
     }
-    let mut rates = BTreeMap::new();
+    let (mut rates, mut builds) = (BTreeMap::new(), Vec::new());
     for line in String::from_utf8_lossy(&out.stdout).lines() {
         let f: Vec<&str> = line.split_whitespace().collect();
         if f.first() == Some(&"rate") && f.len() == 7 {
             let key = (f[1].to_string(), f[2].to_string(), f[3].to_string());
             rates.insert(key, (f[4].parse().unwrap(), f[6].parse().unwrap()));
         } else {
+            if f.first() == Some(&"build") && f.len() >= 3 {
+                builds.push(format!("{} {} ms", f[1], f[2]));
+            }
             println!("  embree: {line}");
         }
     }
-    rates
+    (rates, builds)
 }
 
-fn main() {
-    let args: Vec<String> = std::env::args().collect();
-    let exe = Path::new(args.get(1).map_or("out/embree_bench", String::as_str)).to_path_buf();
-    let reps: usize = args.get(2).map_or(5, |s| s.parse().expect("REPS"));
-    let rounds: usize = args.get(3).map_or(2, |s| s.parse().expect("ROUNDS"));
-    let dir = Path::new("out/embree");
-    std::fs::create_dir_all(dir).expect("cannot create out/embree");
-    let (scene_path, hits_path) = (dir.join("scene.bin"), dir.join("hits.bin"));
+/// One round's figures for one mesh and set: ours single, ours best, Embree single, Embree
+/// best mode and its rate.
+type Row = (f64, f64, f64, String, f64);
 
-    let (pos, tris) = terrain();
+/// One mesh's hierarchy, rays and the files shared with the Embree program.
+struct Bench {
+    name: &'static str,
+    blas: Blas,
+    build_ms: f64,
+    sets: Vec<RaySet>,
+    scene_path: PathBuf,
+    hits_path: PathBuf,
+}
+
+/// Builds our hierarchy of mesh `name` (median of 3 builds), makes its rays, writes its scene
+/// file and a depth image of its primary hits, and checks our packets against single rays.
+fn prepare(name: &'static str, dir: &Path) -> Bench {
+    let (pos, tris, view) = mesh(name).expect("a known mesh");
     let mut builds = Vec::new();
     let mut blas = None;
     for _ in 0..3 {
@@ -220,20 +236,21 @@ fn main() {
     builds.sort_by(f64::total_cmp);
     let blas = blas.unwrap();
     println!(
-        "ours: {} triangles, build {:.1} ms (median of 3, wall clock), kernel {}",
+        "{name}: {} triangles, our build {:.1} ms (median of 3, wall clock), kernel {}",
         tris.len(),
         builds[1],
         blas.kernel()
     );
-    let primary = camera_rays();
-    let (bounce, shadow) = secondary_rays(&blas, &pos, &tris, &primary);
-    let sets = [
+    let primary = view_rays(&view);
+    write_depth(&dir.join(format!("{name}.pgm")), &blas, &primary).expect("cannot write the depth image");
+    let (bounce, shadow) = secondary_rays_to(&blas, &pos, &tris, &primary, view.light);
+    let sets = vec![
         RaySet { name: "primary", occlusion: false, coherent: true, rays: primary },
         RaySet { name: "bounce", occlusion: false, coherent: false, rays: bounce },
         RaySet { name: "shadow", occlusion: true, coherent: true, rays: shadow },
     ];
+    let scene_path = dir.join(format!("{name}.bin"));
     write_scene(&scene_path, &pos, &tris, &sets).expect("cannot write the scene file");
-
     // Our packet queries against our single-ray queries, bit for bit.
     for s in &sets {
         let same = if s.occlusion {
@@ -250,60 +267,147 @@ fn main() {
             })
         };
         println!(
-            "{}: {} rays; packet query equals single-ray query bit for bit: {same}",
+            "  {}: {} rays; packet query equals single-ray query bit for bit: {same}",
             s.name,
             s.rays.len()
         );
     }
+    Bench { name, blas, build_ms: builds[1], sets, scene_path, hits_path: dir.join(format!("{name}.hits")) }
+}
 
-    for round in 1..=rounds {
-        println!("\nround {round} (load average {})", load_average());
-        let ours: Vec<Vec<(&str, f64)>> = sets.iter().map(|s| ours(&blas, s, reps)).collect();
-        let theirs = embree(&exe, &scene_path, &hits_path, reps);
-        println!("  load average after: {}", load_average());
-        println!(
-            "  {:8} {:>7} {:>7} | {:>7} {:>7} {:>7} {:>7} | {:>7} {:>7} {:>7} | ours/1  best/best  (M rays/s, CPU time)",
-            "set", "single", "packet", "emb 1", "emb 8", "emb 16", "emb 1M", "rob 1", "rob 16", "rob 1M"
-        );
-        for (s, o) in sets.iter().zip(&ours) {
-            let e = |scene: &str, mode: &str| {
-                theirs
-                    .get(&(scene.to_string(), s.name.to_string(), mode.to_string()))
-                    .map_or(f64::NAN, |r| r.0)
-            };
-            let best_ours = o.iter().map(|m| m.1).fold(0.0, f64::max);
-            let best_emb = ["1", "8", "16", "1M"].iter().map(|m| e("default", m)).fold(0.0, f64::max);
-            println!(
-                "  {:8} {:7.2} {:7.2} | {:7.2} {:7.2} {:7.2} {:7.2} | {:7.2} {:7.2} {:7.2} | {:5.2}x  {:5.2}x",
-                s.name,
-                o[0].1,
-                o[1].1,
-                e("default", "1"),
-                e("default", "8"),
-                e("default", "16"),
-                e("default", "1M"),
-                e("robust", "1"),
-                e("robust", "16"),
-                e("robust", "1M"),
-                o[0].1 / e("default", "1"),
-                best_ours / best_emb,
-            );
+/// A greyscale image of the primary hits' distances (near bright, misses black), to see the view.
+fn write_depth(path: &Path, blas: &Blas, primary: &[Ray]) -> std::io::Result<()> {
+    let hits = closest_single(blas, primary);
+    let ts: Vec<f32> = hits.iter().flatten().map(|h| h.t).collect();
+    let (lo, hi) = ts.iter().fold((f32::INFINITY, 0.0f32), |(lo, hi), &t| (lo.min(t), hi.max(t)));
+    let mut img = vec![0u8; WIDTH * HEIGHT];
+    for (k, h) in hits.iter().enumerate() {
+        let (x, y) = tiled_morton(k);
+        if let Some(h) = h {
+            img[y * WIDTH + x] = (255.0 - 215.0 * (h.t - lo) / (hi - lo).max(1e-6)) as u8;
         }
-        for ((scene, set, mode), (_, same)) in &theirs {
-            let n = sets.iter().find(|s| s.name == set).map_or(0, |s| s.rays.len());
-            if *same as usize != n {
-                println!("  embree {scene} {set} {mode}: {same} of {n} rays as rtcIntersect1/rtcOccluded1 (default)");
+    }
+    let mut out = format!("P5 {WIDTH} {HEIGHT} 255\n").into_bytes();
+    out.extend_from_slice(&img);
+    std::fs::write(path, out)
+}
+
+/// The best mode's name and rate among `modes`.
+fn best(modes: &[(&str, f64)]) -> (String, f64) {
+    modes.iter().fold((String::new(), 0.0), |b, &(m, r)| if r > b.1 { (m.to_string(), r) } else { b })
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let exe = Path::new(args.get(1).map_or("out/embree_bench", String::as_str)).to_path_buf();
+    let reps: usize = args.get(2).map_or(5, |s| s.parse().expect("REPS"));
+    let rounds: usize = args.get(3).map_or(2, |s| s.parse().expect("ROUNDS"));
+    let names: Vec<&'static str> = match args.get(4) {
+        None => MESHES.to_vec(),
+        Some(list) => list
+            .split(',')
+            .map(|n| *MESHES.iter().find(|&&m| m == n).unwrap_or_else(|| panic!("meshes: {MESHES:?}")))
+            .collect(),
+    };
+    let dir = Path::new("out/embree");
+    std::fs::create_dir_all(dir).expect("cannot create out/embree");
+    let benches: Vec<Bench> = names.iter().map(|&n| prepare(n, dir)).collect();
+
+    // (mesh, set) → per round: ours single, ours best, Embree single, Embree best (mode).
+    let mut summary: BTreeMap<(usize, usize), Vec<Row>> = BTreeMap::new();
+    let mut embree_builds: BTreeMap<usize, Vec<String>> = BTreeMap::new();
+    for round in 1..=rounds {
+        for (b, bench) in benches.iter().enumerate() {
+            println!("\n{} round {round} (load average {})", bench.name, load_average());
+            let ours: Vec<Vec<(&str, f64)>> = bench.sets.iter().map(|s| ours(&bench.blas, s, reps)).collect();
+            let (theirs, builds) = embree(&exe, &bench.scene_path, &bench.hits_path, reps);
+            embree_builds.entry(b).or_default().extend(builds);
+            println!("  load average after: {}", load_average());
+            println!(
+                "  {:8} {:>7} {:>7} | {:>7} {:>7} {:>7} {:>7} | {:>7} {:>7} {:>7} | ours/1  best/best  (M rays/s, CPU time)",
+                "set", "single", "packet", "emb 1", "emb 8", "emb 16", "emb 1M", "rob 1", "rob 16", "rob 1M"
+            );
+            for (k, (s, o)) in bench.sets.iter().zip(&ours).enumerate() {
+                let e = |scene: &str, mode: &str| {
+                    theirs
+                        .get(&(scene.to_string(), s.name.to_string(), mode.to_string()))
+                        .map_or(f64::NAN, |r| r.0)
+                };
+                let (_, best_ours) = best(o);
+                let emb: Vec<(&str, f64)> =
+                    ["1", "8", "16", "1M"].iter().map(|&m| (m, e("default", m))).collect();
+                let (best_mode, best_emb) = best(&emb);
+                println!(
+                    "  {:8} {:7.2} {:7.2} | {:7.2} {:7.2} {:7.2} {:7.2} | {:7.2} {:7.2} {:7.2} | {:5.2}x  {:5.2}x",
+                    s.name,
+                    o[0].1,
+                    o[1].1,
+                    e("default", "1"),
+                    e("default", "8"),
+                    e("default", "16"),
+                    e("default", "1M"),
+                    e("robust", "1"),
+                    e("robust", "16"),
+                    e("robust", "1M"),
+                    o[0].1 / e("default", "1"),
+                    best_ours / best_emb,
+                );
+                summary.entry((b, k)).or_default().push((
+                    o[0].1,
+                    best_ours,
+                    e("default", "1"),
+                    best_mode,
+                    best_emb,
+                ));
+            }
+            for ((scene, set, mode), (_, same)) in &theirs {
+                let n = bench.sets.iter().find(|s| s.name == set).map_or(0, |s| s.rays.len());
+                if *same as usize != n {
+                    println!("  embree {scene} {set} {mode}: {same} of {n} rays as rtcIntersect1/rtcOccluded1 (default)");
+                }
             }
         }
     }
 
-    // Agreement of our single-ray hits with Embree's rtcIntersect1 / rtcOccluded1.
-    let theirs = read_hits(&hits_path, &sets).expect("cannot read the hits file");
-    println!("\nagreement with Embree (default scene, single-ray queries):");
+    for bench in &benches {
+        agreement(bench);
+    }
+
+    println!("\nsummary (rounds separated by /; M rays/s of one thread's CPU time):");
+    println!(
+        "| mesh | rays | ours single | ours packet | Embree 1 | Embree best (mode) | single/1 | best/best |"
+    );
+    println!("|---|---|---|---|---|---|---|---|");
+    for ((b, k), rows) in &summary {
+        let join = |f: &dyn Fn(&Row) -> String| rows.iter().map(f).collect::<Vec<_>>().join(" / ");
+        println!(
+            "| {} | {} | {} | {} | {} | {} | {} | {} |",
+            benches[*b].name,
+            benches[*b].sets[*k].name,
+            join(&|r| format!("{:.2}", r.0)),
+            join(&|r| format!("{:.2}", r.1)),
+            join(&|r| format!("{:.2}", r.2)),
+            join(&|r| format!("{:.2} ({})", r.4, r.3)),
+            join(&|r| format!("{:.2}", r.0 / r.2)),
+            join(&|r| format!("{:.2}", r.1 / r.4)),
+        );
+    }
+    println!("\nbuilds (median of 3, wall clock, all cores):");
+    for (b, bench) in benches.iter().enumerate() {
+        println!("  {}: ours {:.0} ms; Embree {}", bench.name, bench.build_ms, embree_builds[&b].join("; "));
+    }
+}
+
+/// Prints the agreement of our single-ray hits with Embree's rtcIntersect1 / rtcOccluded1 on
+/// one mesh (from the hits file of its last run).
+fn agreement(bench: &Bench) {
+    let sets = &bench.sets;
+    let theirs = read_hits(&bench.hits_path, sets).expect("cannot read the hits file");
+    println!("\n{}: agreement with Embree (default scene, single-ray queries):", bench.name);
     for (s, r) in sets.iter().zip(&theirs) {
         match r {
             Results::Closest(e) => {
-                let ours = closest_single(&blas, &s.rays);
+                let ours = closest_single(&bench.blas, &s.rays);
                 let (mut agree, mut exact, mut hits, mut other_tri, mut other_t, mut hit_miss) =
                     (0, 0, 0, 0, 0, 0);
                 for (a, b) in ours.iter().zip(e) {
@@ -330,7 +434,7 @@ fn main() {
                 );
             }
             Results::Occluded(e) => {
-                let ours = any_single(&blas, &s.rays);
+                let ours = any_single(&bench.blas, &s.rays);
                 let agree = ours.iter().zip(e).filter(|(a, b)| a == b).count();
                 let n = s.rays.len();
                 println!(
