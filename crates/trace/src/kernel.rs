@@ -22,6 +22,13 @@ pub fn best() -> Kernel {
     }
 }
 
+/// Whether the vector kernel may be compiled with AVX-512's registers (the CPU has AVX-512 F
+/// and VL); checked once and cached by the standard library.
+#[inline]
+pub fn wide_registers() -> bool {
+    renderlab_core::kernel::has_avx512()
+}
+
 /// Whether the CPU has fused multiply-add instructions.
 fn has_fma() -> bool {
     #[cfg(target_arch = "x86_64")]

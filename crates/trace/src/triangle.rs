@@ -49,6 +49,7 @@ pub struct TriRay {
 
 impl TriRay {
     /// The sheared frame of a ray with a non-zero, finite direction.
+    #[inline(always)]
     pub fn new(org: Vec3, dir: Vec3) -> TriRay {
         let a = dir.abs();
         let kz = if a.x > a.y && a.x > a.z {

@@ -89,6 +89,7 @@ pub struct RayQuery {
 impl RayQuery {
     /// The query for `ray`, or `None` when the ray can hit nothing: a non-finite origin or
     /// direction, a zero direction, or an empty or NaN interval.
+    #[inline(always)]
     pub fn new(ray: &Ray) -> Option<RayQuery> {
         let t_min = if ray.t_min > 0.0 { ray.t_min } else { 0.0 };
         if ray.t_min.is_nan()
