@@ -7,8 +7,10 @@
 //! cargo run --release -p renderlab-trace --example embree -- out/embree_bench [REPS] [ROUNDS] [MESHES]
 //! ```
 //!
-//! MESHES is a comma-separated list of `renderlab_trace::workload::MESHES` (default all: the
-//! 1M-triangle terrain, the 69k-triangle blob, 48 blobs in one 3.3M-triangle mesh). For each
+//! MESHES is a comma-separated list of `renderlab_trace::workload::MESHES` and `instances`
+//! (default all: the 1M-triangle terrain, the 69k-triangle blob, 48 blobs in one 3.3M-triangle
+//! mesh, and the same 48 blobs as instances of one blob: our `Tlas` against Embree's instances,
+//! tracing the flattened blobs' rays, hits numbered as in the flattened mesh). For each
 //! mesh the example builds our hierarchy (median of 3 builds), makes its rays (primary rays in
 //! tiled Morton order, one diffuse bounce, shadow segments), writes them with the mesh to
 //! `out/embree/MESH.bin` and a depth image of the primary hits to `out/embree/MESH.pgm`. Then,
@@ -29,8 +31,10 @@ mod common;
 use common::{
     load_average, mesh, secondary_rays_to, thread_cpu, tiled_morton, view_rays, HEIGHT, MESHES, WIDTH,
 };
+use glam::Affine3A;
 use glam::Vec3;
-use renderlab_trace::{Blas, Hit, Ray, PACKET};
+use renderlab_trace::workload::{blob, placements};
+use renderlab_trace::{Blas, Hit, Instance, Ray, Tlas, PACKET};
 use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -38,6 +42,7 @@ use std::process::Command;
 use std::time::Instant;
 
 /// A named set of rays and its query.
+#[derive(Clone)]
 struct RaySet {
     name: &'static str,
     occlusion: bool,
@@ -45,9 +50,17 @@ struct RaySet {
     rays: Vec<Ray>,
 }
 
-fn write_scene(path: &Path, pos: &[Vec3], tris: &[[u32; 3]], sets: &[RaySet]) -> std::io::Result<()> {
+/// Writes the scene file: the mesh, or with `instances` that many placed copies of it, and the
+/// ray sets (the format is described in `scripts/embree_bench/embree_bench.c`).
+fn write_scene(
+    path: &Path,
+    pos: &[Vec3],
+    tris: &[[u32; 3]],
+    instances: Option<&[Affine3A]>,
+    sets: &[RaySet],
+) -> std::io::Result<()> {
     let mut out = Vec::new();
-    out.extend_from_slice(b"RLTRACE1");
+    out.extend_from_slice(if instances.is_some() { b"RLTRACE2" } else { b"RLTRACE1" });
     out.extend_from_slice(&(pos.len() as u32).to_le_bytes());
     out.extend_from_slice(&(tris.len() as u32).to_le_bytes());
     for p in pos {
@@ -58,6 +71,15 @@ fn write_scene(path: &Path, pos: &[Vec3], tris: &[[u32; 3]], sets: &[RaySet]) ->
     for t in tris {
         for i in t {
             out.extend_from_slice(&i.to_le_bytes());
+        }
+    }
+    if let Some(instances) = instances {
+        out.extend_from_slice(&(instances.len() as u32).to_le_bytes());
+        for m in instances {
+            let cols = [m.matrix3.x_axis, m.matrix3.y_axis, m.matrix3.z_axis, m.translation];
+            for c in cols.iter().flat_map(|c| c.to_array()) {
+                out.extend_from_slice(&c.to_le_bytes());
+            }
         }
     }
     out.extend_from_slice(&(sets.len() as u32).to_le_bytes());
@@ -134,24 +156,69 @@ fn rate(reps: usize, n: usize, mut trace: impl FnMut() -> usize) -> f64 {
     rates[reps / 2]
 }
 
-fn closest_single(blas: &Blas, rays: &[Ray]) -> Vec<Option<Hit>> {
+/// What we trace: one mesh's hierarchy, or a two-level scene of instances of one mesh of
+/// `triangles` triangles, whose hits are numbered as in the flattened mesh
+/// (instance · triangles + triangle) to compare with Embree's.
+enum Accel {
+    Mesh(Blas),
+    Scene(Tlas, u32),
+}
+
+impl Accel {
+    fn number(&self, hit: Option<Hit>) -> Option<Hit> {
+        match self {
+            Accel::Mesh(_) => hit,
+            Accel::Scene(_, n) => hit.map(|h| Hit { primitive: h.instance * n + h.primitive, ..h }),
+        }
+    }
+
+    fn closest_hit(&self, r: &Ray) -> Option<Hit> {
+        match self {
+            Accel::Mesh(b) => b.closest_hit(r),
+            Accel::Scene(t, _) => self.number(t.closest_hit(r)),
+        }
+    }
+
+    fn any_hit(&self, r: &Ray) -> bool {
+        match self {
+            Accel::Mesh(b) => b.any_hit(r),
+            Accel::Scene(t, _) => t.any_hit(r),
+        }
+    }
+
+    fn closest_packet(&self, rays: &[Ray]) -> [Option<Hit>; PACKET] {
+        match self {
+            Accel::Mesh(b) => b.closest_packet(rays),
+            Accel::Scene(t, _) => t.closest_packet(rays).map(|h| self.number(h)),
+        }
+    }
+
+    fn any_packet(&self, rays: &[Ray]) -> [bool; PACKET] {
+        match self {
+            Accel::Mesh(b) => b.any_packet(rays),
+            Accel::Scene(t, _) => t.any_packet(rays),
+        }
+    }
+}
+
+fn closest_single(blas: &Accel, rays: &[Ray]) -> Vec<Option<Hit>> {
     rays.iter().map(|r| blas.closest_hit(r)).collect()
 }
 
-fn closest_packets(blas: &Blas, rays: &[Ray]) -> Vec<Option<Hit>> {
+fn closest_packets(blas: &Accel, rays: &[Ray]) -> Vec<Option<Hit>> {
     rays.chunks(PACKET).flat_map(|c| blas.closest_packet(c).into_iter().take(c.len())).collect()
 }
 
-fn any_single(blas: &Blas, rays: &[Ray]) -> Vec<bool> {
+fn any_single(blas: &Accel, rays: &[Ray]) -> Vec<bool> {
     rays.iter().map(|r| blas.any_hit(r)).collect()
 }
 
-fn any_packets(blas: &Blas, rays: &[Ray]) -> Vec<bool> {
+fn any_packets(blas: &Accel, rays: &[Ray]) -> Vec<bool> {
     rays.chunks(PACKET).flat_map(|c| blas.any_packet(c).into_iter().take(c.len())).collect()
 }
 
 /// Our rates by mode for one set: the single-ray query and the packet query.
-fn ours(blas: &Blas, set: &RaySet, reps: usize) -> Vec<(&'static str, f64)> {
+fn ours(blas: &Accel, set: &RaySet, reps: usize) -> Vec<(&'static str, f64)> {
     let n = set.rays.len();
     let r = &set.rays;
     if set.occlusion {
@@ -215,7 +282,7 @@ type Row = (f64, f64, f64, String, f64);
 /// One mesh's hierarchy, rays and the files shared with the Embree program.
 struct Bench {
     name: &'static str,
-    blas: Blas,
+    accel: Accel,
     build_ms: f64,
     sets: Vec<RaySet>,
     scene_path: PathBuf,
@@ -242,7 +309,8 @@ fn prepare(name: &'static str, dir: &Path) -> Bench {
         blas.kernel()
     );
     let primary = view_rays(&view);
-    write_depth(&dir.join(format!("{name}.pgm")), &blas, &primary).expect("cannot write the depth image");
+    let hits: Vec<Option<Hit>> = primary.iter().map(|r| blas.closest_hit(r)).collect();
+    write_depth(&dir.join(format!("{name}.pgm")), &hits).expect("cannot write the depth image");
     let (bounce, shadow) = secondary_rays_to(&blas, &pos, &tris, &primary, view.light);
     let sets = vec![
         RaySet { name: "primary", occlusion: false, coherent: true, rays: primary },
@@ -250,13 +318,48 @@ fn prepare(name: &'static str, dir: &Path) -> Bench {
         RaySet { name: "shadow", occlusion: true, coherent: true, rays: shadow },
     ];
     let scene_path = dir.join(format!("{name}.bin"));
-    write_scene(&scene_path, &pos, &tris, &sets).expect("cannot write the scene file");
-    // Our packet queries against our single-ray queries, bit for bit.
-    for s in &sets {
+    write_scene(&scene_path, &pos, &tris, None, &sets).expect("cannot write the scene file");
+    let accel = Accel::Mesh(blas);
+    check_packets(&accel, &sets);
+    Bench { name, accel, build_ms: builds[1], sets, scene_path, hits_path: dir.join(format!("{name}.hits")) }
+}
+
+/// The 48 blobs as instances of one blob's hierarchy (median of 3 builds of both levels), with
+/// the rays of the flattened copies (`blobs`, the same surfaces).
+fn prepare_instances(blobs: &Bench, dir: &Path) -> Bench {
+    let (pos, tris) = blob();
+    let place = placements();
+    let instances: Vec<Instance> = place.iter().map(|&m| Instance::new(0, m)).collect();
+    let mut builds = Vec::new();
+    let mut tlas = None;
+    for _ in 0..3 {
+        let t = Instant::now();
+        tlas = Some(Tlas::build(vec![Blas::build(&pos, &tris).unwrap()], &instances).unwrap());
+        builds.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    builds.sort_by(f64::total_cmp);
+    let name = "instances";
+    println!(
+        "{name}: {} instances of {} triangles, our build {:.1} ms (both levels, median of 3, wall clock)",
+        place.len(),
+        tris.len(),
+        builds[1]
+    );
+    let sets = blobs.sets.clone();
+    let scene_path = dir.join(format!("{name}.bin"));
+    write_scene(&scene_path, &pos, &tris, Some(&place), &sets).expect("cannot write the scene file");
+    let accel = Accel::Scene(tlas.unwrap(), tris.len() as u32);
+    check_packets(&accel, &sets);
+    Bench { name, accel, build_ms: builds[1], sets, scene_path, hits_path: dir.join(format!("{name}.hits")) }
+}
+
+/// Checks our packet queries against our single-ray queries, bit for bit, and prints the result.
+fn check_packets(accel: &Accel, sets: &[RaySet]) {
+    for s in sets {
         let same = if s.occlusion {
-            any_single(&blas, &s.rays) == any_packets(&blas, &s.rays)
+            any_single(accel, &s.rays) == any_packets(accel, &s.rays)
         } else {
-            let (a, b) = (closest_single(&blas, &s.rays), closest_packets(&blas, &s.rays));
+            let (a, b) = (closest_single(accel, &s.rays), closest_packets(accel, &s.rays));
             a.iter().zip(&b).all(|(a, b)| match (a, b) {
                 (Some(a), Some(b)) => {
                     (a.t.to_bits(), a.u.to_bits(), a.v.to_bits(), a.primitive)
@@ -272,12 +375,10 @@ fn prepare(name: &'static str, dir: &Path) -> Bench {
             s.rays.len()
         );
     }
-    Bench { name, blas, build_ms: builds[1], sets, scene_path, hits_path: dir.join(format!("{name}.hits")) }
 }
 
-/// A greyscale image of the primary hits' distances (near bright, misses black), to see the view.
-fn write_depth(path: &Path, blas: &Blas, primary: &[Ray]) -> std::io::Result<()> {
-    let hits = closest_single(blas, primary);
+/// A greyscale image of the primary hits' distances (`hits` in the rays' order) (near bright, misses black), to see the view.
+fn write_depth(path: &Path, hits: &[Option<Hit>]) -> std::io::Result<()> {
     let ts: Vec<f32> = hits.iter().flatten().map(|h| h.t).collect();
     let (lo, hi) = ts.iter().fold((f32::INFINITY, 0.0f32), |(lo, hi), &t| (lo.min(t), hi.max(t)));
     let mut img = vec![0u8; WIDTH * HEIGHT];
@@ -302,16 +403,34 @@ fn main() {
     let exe = Path::new(args.get(1).map_or("out/embree_bench", String::as_str)).to_path_buf();
     let reps: usize = args.get(2).map_or(5, |s| s.parse().expect("REPS"));
     let rounds: usize = args.get(3).map_or(2, |s| s.parse().expect("ROUNDS"));
+    let all: Vec<&'static str> = MESHES.iter().copied().chain(["instances"]).collect();
     let names: Vec<&'static str> = match args.get(4) {
-        None => MESHES.to_vec(),
+        None => all.clone(),
         Some(list) => list
             .split(',')
-            .map(|n| *MESHES.iter().find(|&&m| m == n).unwrap_or_else(|| panic!("meshes: {MESHES:?}")))
+            .map(|n| *all.iter().find(|&&m| m == n).unwrap_or_else(|| panic!("meshes: {all:?}")))
             .collect(),
     };
     let dir = Path::new("out/embree");
     std::fs::create_dir_all(dir).expect("cannot create out/embree");
-    let benches: Vec<Bench> = names.iter().map(|&n| prepare(n, dir)).collect();
+    let mut benches: Vec<Bench> = Vec::new();
+    for &n in &names {
+        let bench = if n == "instances" {
+            let blobs = benches.iter().find(|b| b.name == "blobs");
+            let flat;
+            let blobs = match blobs {
+                Some(b) => b,
+                None => {
+                    flat = prepare("blobs", dir);
+                    &flat
+                }
+            };
+            prepare_instances(blobs, dir)
+        } else {
+            prepare(n, dir)
+        };
+        benches.push(bench);
+    }
 
     // (mesh, set) → per round: ours single, ours best, Embree single, Embree best (mode).
     let mut summary: BTreeMap<(usize, usize), Vec<Row>> = BTreeMap::new();
@@ -319,7 +438,8 @@ fn main() {
     for round in 1..=rounds {
         for (b, bench) in benches.iter().enumerate() {
             println!("\n{} round {round} (load average {})", bench.name, load_average());
-            let ours: Vec<Vec<(&str, f64)>> = bench.sets.iter().map(|s| ours(&bench.blas, s, reps)).collect();
+            let ours: Vec<Vec<(&str, f64)>> =
+                bench.sets.iter().map(|s| ours(&bench.accel, s, reps)).collect();
             let (theirs, builds) = embree(&exe, &bench.scene_path, &bench.hits_path, reps);
             embree_builds.entry(b).or_default().extend(builds);
             println!("  load average after: {}", load_average());
@@ -407,9 +527,9 @@ fn agreement(bench: &Bench) {
     for (s, r) in sets.iter().zip(&theirs) {
         match r {
             Results::Closest(e) => {
-                let ours = closest_single(&bench.blas, &s.rays);
-                let (mut agree, mut exact, mut hits, mut other_tri, mut other_t, mut hit_miss) =
-                    (0, 0, 0, 0, 0, 0);
+                let ours = closest_single(&bench.accel, &s.rays);
+                let (mut agree, mut exact, mut hits, mut other_tri, mut other_t, mut hit_miss, mut tie) =
+                    (0, 0, 0, 0, 0, 0, 0);
                 for (a, b) in ours.iter().zip(e) {
                     hits += a.is_some() as usize;
                     match (a, b) {
@@ -422,19 +542,25 @@ fn agreement(bench: &Bench) {
                             }
                             exact += (a.t.to_bits() == t.to_bits()) as usize;
                         }
-                        (Some(_), Some(_)) => other_tri += 1,
+                        (Some(a), Some((_, t))) => {
+                            other_tri += 1;
+                            // Another triangle at the same distance: a tie at a shared edge or
+                            // vertex, which the two libraries may break differently.
+                            tie += ((a.t - t).abs() <= 1e-4 * a.t.max(1.0)) as usize;
+                        }
                         _ => hit_miss += 1,
                     }
                 }
                 let n = s.rays.len();
                 println!(
-                    "  {:8} {n} rays, {hits} hit; same triangle and t within 1e-4: {agree} ({:.4}%), t bit-equal: {exact}; other triangle: {other_tri}; t differs: {other_t}; hit/miss differ: {hit_miss}",
+                    "  {:8} {n} rays, {hits} hit; same triangle and t within 1e-4: {agree} ({:.4}%), t bit-equal: {exact}; other triangle: {other_tri} ({tie} of them at the same t, so the same point: {:.4}%); t differs: {other_t}; hit/miss differ: {hit_miss}",
                     s.name,
                     100.0 * agree as f64 / n as f64,
+                    100.0 * (agree + tie) as f64 / n as f64,
                 );
             }
             Results::Occluded(e) => {
-                let ours = any_single(&bench.blas, &s.rays);
+                let ours = any_single(&bench.accel, &s.rays);
                 let agree = ours.iter().zip(e).filter(|(a, b)| a == b).count();
                 let n = s.rays.len();
                 println!(
