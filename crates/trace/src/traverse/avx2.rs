@@ -42,6 +42,10 @@ impl Backend for Avx2 {
     #[target_feature(enable = "avx2,fma")]
     unsafe fn prepare(q: &RayQuery) -> Prepared {
         let k = q.tri.k;
+        // The origin permuted to (kx, ky, kz) in registers (indexing the array by `k` would
+        // store and reload it).
+        let o = _mm_setr_ps(q.tri.org[0], q.tri.org[1], q.tri.org[2], 0.0);
+        let o = _mm_permutevar_ps(o, _mm_setr_epi32(k[0] as i32, k[1] as i32, k[2] as i32, 3));
         Prepared {
             org: [_mm256_set1_ps(q.org[0]), _mm256_set1_ps(q.org[1]), _mm256_set1_ps(q.org[2])],
             inv: [_mm256_set1_ps(q.inv[0]), _mm256_set1_ps(q.inv[1]), _mm256_set1_ps(q.inv[2])],
@@ -55,9 +59,9 @@ impl Backend for Avx2 {
             t_min: _mm256_set1_ps(q.t_min),
             tri: q.tri,
             tri_org: [
-                _mm_set1_ps(q.tri.org[k[0]]),
-                _mm_set1_ps(q.tri.org[k[1]]),
-                _mm_set1_ps(q.tri.org[k[2]]),
+                _mm_shuffle_ps::<0x00>(o, o),
+                _mm_shuffle_ps::<0x55>(o, o),
+                _mm_shuffle_ps::<0xaa>(o, o),
             ],
             shear: [_mm_set1_ps(q.tri.shear[0]), _mm_set1_ps(q.tri.shear[1]), _mm_set1_ps(q.tri.shear[2])],
             t_min4: _mm_set1_ps(q.t_min),
