@@ -18,10 +18,12 @@
 //! stops after the six edge products and a sign test (`min(U, V, W) ≥ 0` or
 //! `max(U, V, W) ≤ 0`), before the f64 check, the distance and the division.
 //!
-//! Fused multiply-adds: the projection `a[kx] − Sx·a[kz]` is one fused operation (per vertex,
-//! so a shared vertex projects to the same point in every triangle), and so is the distance's
-//! sum; the edge functions are not fused (`cx·by − cy·bx` fused would round the two products
-//! differently for the two triangles of an edge, and the edge would leak). Every operation is
+//! Fused multiply-adds: the distance's sum `U·az + V·bz + W·cz` is two fused operations. The
+//! edge functions are not fused (`cx·by − cy·bx` fused would round the two products
+//! differently for the two triangles of an edge, and the edge would leak), and neither is the
+//! projection `a[kx] − Sx·a[kz]`: fusing it (per vertex, so still watertight) moved the hybrid
+//! renderer's shadow-term test against its reference past its bound, which is not understood
+//! yet, so it stays two operations. Every operation is
 //! an IEEE operation in a fixed order — separate or fused as written (`f32::mul_add`), since
 //! Rust never contracts on its own — which is what lets the AVX2 kernel agree exactly.
 
@@ -106,12 +108,12 @@ pub fn intersect(
     let (a_x, a_y, a_z) = (v0[kx] - o[kx], v0[ky] - o[ky], v0[kz] - o[kz]);
     let (b_x, b_y, b_z) = (v1[kx] - o[kx], v1[ky] - o[ky], v1[kz] - o[kz]);
     let (c_x, c_y, c_z) = (v2[kx] - o[kx], v2[ky] - o[ky], v2[kz] - o[kz]);
-    let ax = fused(-sx, a_z, a_x);
-    let ay = fused(-sy, a_z, a_y);
-    let bx = fused(-sx, b_z, b_x);
-    let by = fused(-sy, b_z, b_y);
-    let cx = fused(-sx, c_z, c_x);
-    let cy = fused(-sy, c_z, c_y);
+    let ax = a_x - sx * a_z;
+    let ay = a_y - sy * a_z;
+    let bx = b_x - sx * b_z;
+    let by = b_y - sy * b_z;
+    let cx = c_x - sx * c_z;
+    let cy = c_y - sy * c_z;
     let mut e = [cx * by - cy * bx, ax * cy - ay * cx, bx * ay - by * ax];
     if !inside(e) {
         return None;

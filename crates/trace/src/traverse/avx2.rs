@@ -120,12 +120,12 @@ impl Backend for Avx2 {
         let (a_x, a_y, a_z) = rel!(0);
         let (b_x, b_y, b_z) = rel!(1);
         let (c_x, c_y, c_z) = rel!(2);
-        let ax = fnmadd(sx, a_z, a_x);
-        let ay = fnmadd(sy, a_z, a_y);
-        let bx = fnmadd(sx, b_z, b_x);
-        let by = fnmadd(sy, b_z, b_y);
-        let cx = fnmadd(sx, c_z, c_x);
-        let cy = fnmadd(sy, c_z, c_y);
+        let ax = _mm_sub_ps(a_x, _mm_mul_ps(sx, a_z));
+        let ay = _mm_sub_ps(a_y, _mm_mul_ps(sy, a_z));
+        let bx = _mm_sub_ps(b_x, _mm_mul_ps(sx, b_z));
+        let by = _mm_sub_ps(b_y, _mm_mul_ps(sy, b_z));
+        let cx = _mm_sub_ps(c_x, _mm_mul_ps(sx, c_z));
+        let cy = _mm_sub_ps(c_y, _mm_mul_ps(sy, c_z));
         let mut u = _mm_sub_ps(_mm_mul_ps(cx, by), _mm_mul_ps(cy, bx));
         let mut v = _mm_sub_ps(_mm_mul_ps(ax, cy), _mm_mul_ps(ay, cx));
         let mut w = _mm_sub_ps(_mm_mul_ps(bx, ay), _mm_mul_ps(by, ax));
@@ -196,17 +196,6 @@ unsafe fn slabs(p: &Prepared, node: &WideNode, t_max: f32) -> (__m256, __m256) {
         _mm256_set1_ps(IZE),
     );
     (near, _mm256_cmp_ps::<_CMP_LE_OQ>(near, far))
-}
-
-/// `c − a·b`, fused as [`crate::triangle::fused`].
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn fnmadd(a: __m128, b: __m128, c: __m128) -> __m128 {
-    if FUSED {
-        _mm_fnmadd_ps(a, b, c)
-    } else {
-        _mm_sub_ps(c, _mm_mul_ps(a, b))
-    }
 }
 
 /// `a·b + c`, fused as [`crate::triangle::fused`].
