@@ -11,6 +11,7 @@ use crate::node::{TriBlock, WideNode, WIDTH};
 use crate::traverse::backend::{Backend, BlockHits, PacketNode, RayQuery, FUSED_SLABS, IZE, PACKET};
 use crate::triangle::{edge_functions_f64, TriRay, EXACT_EDGES, FUSED};
 use std::arch::x86_64::*;
+use std::mem::MaybeUninit;
 
 /// Whether the block test computes every lane's distance even when no lane is inside its
 /// triangle (on only to measure what the early exit saves).
@@ -80,7 +81,7 @@ impl Backend for Avx2 {
     #[inline]
     #[target_feature(enable = "avx2,fma")]
     unsafe fn node_packet(
-        p: &[Prepared; PACKET],
+        p: &[MaybeUninit<Prepared>; PACKET],
         node: &WideNode,
         active: u32,
         t_max: &[f32; PACKET],
@@ -92,7 +93,7 @@ impl Backend for Avx2 {
         while a != 0 {
             let r = a.trailing_zeros() as usize;
             a &= a - 1;
-            let (near, hit) = slabs(p.get_unchecked(r), node, *t_max.get_unchecked(r));
+            let (near, hit) = slabs(p.get_unchecked(r).assume_init_ref(), node, *t_max.get_unchecked(r));
             *rows.get_unchecked_mut(r / 8) |= (_mm256_movemask_ps(hit) as u32 as u64) << (8 * (r % 8));
             least = _mm256_min_ps(_mm256_blendv_ps(inf, near, hit), least);
         }

@@ -18,6 +18,7 @@ use crate::triangle::TriRay;
 
 pub use crate::lanes::{max_ps, min_ps};
 use glam::Vec3;
+use std::mem::MaybeUninit;
 
 /// `1 + 2γ₃` with `γₙ = nε / (1 − nε)`, `ε = 2⁻²⁴`: Ize's factor for the far slab distance.
 /// (1 only to measure what the factor costs; then rounding may drop a box a ray touches.)
@@ -158,13 +159,14 @@ pub trait Backend {
 
     /// A packet's test of a wide node: each ray `r` of `active` runs [`Backend::node`] with
     /// its own `t_max[r]`; which rays enter each child, and the least distance at which they
-    /// do. Kernels may override it with a faster form of the same results.
+    /// do. Kernels may override it with a faster form of the same results. Only the lanes of
+    /// `active` are read (the others may be uninitialised).
     ///
     /// # Safety
-    /// The CPU has the kernel's features.
+    /// The CPU has the kernel's features; every lane of `active` is initialised.
     #[inline(always)]
     unsafe fn node_packet(
-        p: &[Self::Prepared; PACKET],
+        p: &[MaybeUninit<Self::Prepared>; PACKET],
         node: &WideNode,
         active: u32,
         t_max: &[f32; PACKET],
@@ -175,7 +177,7 @@ pub trait Backend {
         while a != 0 {
             let r = a.trailing_zeros() as usize;
             a &= a - 1;
-            let (mask, d) = Self::node(p.get_unchecked(r), node, *t_max.get_unchecked(r));
+            let (mask, d) = Self::node(p.get_unchecked(r).assume_init_ref(), node, *t_max.get_unchecked(r));
             *rows.get_unchecked_mut(r / 8) |= (mask as u64) << (8 * (r % 8));
             for c in 0..WIDTH {
                 if (mask >> c) & 1 != 0 && d[c] < dist[c] {
