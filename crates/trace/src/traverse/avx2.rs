@@ -9,7 +9,7 @@
 
 use crate::node::{TriBlock, WideNode, WIDTH};
 use crate::traverse::backend::{Backend, BlockHits, PacketNode, RayQuery, FUSED_SLABS, IZE, PACKET};
-use crate::triangle::{edge_functions_f64, TriRay, EXACT_EDGES, FUSED};
+use crate::triangle::{edge_functions_f64, EXACT_EDGES, FUSED};
 use std::arch::x86_64::*;
 use std::mem::MaybeUninit;
 
@@ -21,19 +21,20 @@ const EAGER: bool = cfg!(feature = "measure-eager-division");
 #[derive(Clone, Copy, Debug)]
 pub struct Avx2;
 
-/// A ray broadcast into registers.
+/// A ray as the kernel reads it: scalars, broadcast into registers where used (a broadcast
+/// from memory costs what a vector load does), so that a packet's rays take little space.
 #[derive(Clone, Copy, Debug)]
 pub struct Prepared {
-    org: [__m256; 3],
-    inv: [__m256; 3],
-    org_inv: [__m256; 3],
-    near: [usize; 3],
-    far: [usize; 3],
-    t_min: __m256,
-    tri: TriRay,
-    tri_org: [__m128; 3],
-    shear: [__m128; 3],
-    t_min4: __m128,
+    org: [f32; 3],
+    inv: [f32; 3],
+    org_inv: [f32; 3],
+    near: [u32; 3],
+    far: [u32; 3],
+    t_min: f32,
+    k: [u32; 3],
+    /// The origin's coordinates along `kx`, `ky`, `kz`.
+    tri_org: [f32; 3],
+    shear: [f32; 3],
 }
 
 impl Backend for Avx2 {
@@ -48,24 +49,19 @@ impl Backend for Avx2 {
         let o = _mm_setr_ps(q.tri.org[0], q.tri.org[1], q.tri.org[2], 0.0);
         let o = _mm_permutevar_ps(o, _mm_setr_epi32(k[0] as i32, k[1] as i32, k[2] as i32, 3));
         Prepared {
-            org: [_mm256_set1_ps(q.org[0]), _mm256_set1_ps(q.org[1]), _mm256_set1_ps(q.org[2])],
-            inv: [_mm256_set1_ps(q.inv[0]), _mm256_set1_ps(q.inv[1]), _mm256_set1_ps(q.inv[2])],
-            org_inv: [
-                _mm256_set1_ps(q.org_inv[0]),
-                _mm256_set1_ps(q.org_inv[1]),
-                _mm256_set1_ps(q.org_inv[2]),
-            ],
-            near: q.near,
-            far: q.far,
-            t_min: _mm256_set1_ps(q.t_min),
-            tri: q.tri,
+            org: q.org,
+            inv: q.inv,
+            org_inv: q.org_inv,
+            near: q.near.map(|r| r as u32),
+            far: q.far.map(|r| r as u32),
+            t_min: q.t_min,
+            k: k.map(|a| a as u32),
             tri_org: [
-                _mm_shuffle_ps::<0x00>(o, o),
-                _mm_shuffle_ps::<0x55>(o, o),
-                _mm_shuffle_ps::<0xaa>(o, o),
+                _mm_cvtss_f32(o),
+                _mm_cvtss_f32(_mm_shuffle_ps::<0x55>(o, o)),
+                _mm_cvtss_f32(_mm_shuffle_ps::<0xaa>(o, o)),
             ],
-            shear: [_mm_set1_ps(q.tri.shear[0]), _mm_set1_ps(q.tri.shear[1]), _mm_set1_ps(q.tri.shear[2])],
-            t_min4: _mm_set1_ps(q.t_min),
+            shear: q.tri.shear,
         }
     }
 
@@ -105,16 +101,17 @@ impl Backend for Avx2 {
     #[inline]
     #[target_feature(enable = "avx2,fma")]
     unsafe fn block(p: &Prepared, block: &TriBlock, t_max: f32) -> BlockHits {
-        let [kx, ky, kz] = p.tri.k;
-        let [sx, sy, sz] = p.shear;
+        let [kx, ky, kz] = p.k.map(|a| a as usize);
+        let [sx, sy, sz] = p.shear.map(|x| _mm_set1_ps(x));
+        let tri_org = p.tri_org.map(|x| _mm_set1_ps(x));
         // Rows are 16-byte aligned ([`TriBlock`] is `align(16)`, rows are 16 bytes); `k` is a
         // permutation of 0..3.
         macro_rules! rel {
             ($j:expr) => {
                 (
-                    _mm_sub_ps(_mm_load_ps(block.v.get_unchecked(3 * $j + kx).as_ptr()), p.tri_org[0]),
-                    _mm_sub_ps(_mm_load_ps(block.v.get_unchecked(3 * $j + ky).as_ptr()), p.tri_org[1]),
-                    _mm_sub_ps(_mm_load_ps(block.v.get_unchecked(3 * $j + kz).as_ptr()), p.tri_org[2]),
+                    _mm_sub_ps(_mm_load_ps(block.v.get_unchecked(3 * $j + kx).as_ptr()), tri_org[0]),
+                    _mm_sub_ps(_mm_load_ps(block.v.get_unchecked(3 * $j + ky).as_ptr()), tri_org[1]),
+                    _mm_sub_ps(_mm_load_ps(block.v.get_unchecked(3 * $j + kz).as_ptr()), tri_org[2]),
                 )
             };
         }
@@ -151,7 +148,7 @@ impl Backend for Avx2 {
         let tt = fmadd(w, cz, fmadd(v, bz, _mm_mul_ps(u, az)));
         let rcp = _mm_div_ps(_mm_set1_ps(1.0), det);
         let t = _mm_mul_ps(tt, rcp);
-        let in_range = _mm_and_ps(_mm_cmpge_ps(t, p.t_min4), _mm_cmple_ps(t, _mm_set1_ps(t_max)));
+        let in_range = _mm_and_ps(_mm_cmpge_ps(t, _mm_set1_ps(p.t_min)), _mm_cmple_ps(t, _mm_set1_ps(t_max)));
         let ok = _mm_and_ps(inside, _mm_and_ps(_mm_cmpneq_ps(det, zero), in_range));
         let mask = _mm_movemask_ps(ok) as u32;
         let mut hits = BlockHits { mask, ..BlockHits::default() };
@@ -176,18 +173,25 @@ unsafe fn slabs(p: &Prepared, node: &WideNode, t_max: f32) -> (__m256, __m256) {
     macro_rules! slab {
         ($a:expr, $r:expr) => {
             if FUSED_SLABS {
-                _mm256_fmsub_ps(_mm256_load_ps(b.get_unchecked($r).as_ptr()), p.inv[$a], p.org_inv[$a])
+                _mm256_fmsub_ps(
+                    _mm256_load_ps(b.get_unchecked($r as usize).as_ptr()),
+                    _mm256_set1_ps(p.inv[$a]),
+                    _mm256_set1_ps(p.org_inv[$a]),
+                )
             } else {
                 _mm256_mul_ps(
-                    _mm256_sub_ps(_mm256_load_ps(b.get_unchecked($r).as_ptr()), p.org[$a]),
-                    p.inv[$a],
+                    _mm256_sub_ps(
+                        _mm256_load_ps(b.get_unchecked($r as usize).as_ptr()),
+                        _mm256_set1_ps(p.org[$a]),
+                    ),
+                    _mm256_set1_ps(p.inv[$a]),
                 )
             }
         };
     }
     let near = _mm256_max_ps(
         slab!(0, p.near[0]),
-        _mm256_max_ps(slab!(1, p.near[1]), _mm256_max_ps(slab!(2, p.near[2]), p.t_min)),
+        _mm256_max_ps(slab!(1, p.near[1]), _mm256_max_ps(slab!(2, p.near[2]), _mm256_set1_ps(p.t_min))),
     );
     let far = _mm256_mul_ps(
         _mm256_min_ps(
