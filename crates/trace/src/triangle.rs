@@ -23,15 +23,15 @@
 //! differently for the two triangles of an edge, and the edge would leak), and neither is the
 //! projection `a[kx] − Sx·a[kz]`: fusing it (per vertex, so still watertight) moved the hybrid
 //! renderer's shadow-term test against its reference past its bound, which is not understood
-//! yet, so it stays two operations. Every operation is
-//! an IEEE operation in a fixed order — separate or fused as written (`f32::mul_add`), since
-//! Rust never contracts on its own — which is what lets the AVX2 kernel agree exactly.
+//! yet, so it stays two operations. Every operation is an IEEE operation in a fixed order,
+//! separate or fused as written (`f32::mul_add`, exactly rounded on every CPU), since Rust never
+//! contracts on its own: that is what lets the AVX2 kernel agree exactly.
 
 use crate::lanes::{max_ps, min_ps};
 use glam::{DVec3, Vec3};
 
-/// Whether the projection and the distance use fused multiply-adds (off only to measure what
-/// fusion saves).
+/// Whether the distance's sum uses fused multiply-adds (off only to measure what fusion
+/// saves).
 pub const FUSED: bool = !cfg!(feature = "measure-unfused");
 
 /// Whether edge functions that round to 0 are recomputed in f64 (off only to measure what the
