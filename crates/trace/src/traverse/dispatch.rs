@@ -1,6 +1,7 @@
-//! The run-time choice of kernel: each query is instantiated once per kernel, the AVX2 copy
-//! inside a function compiled for AVX2, and called after the CPU check made when the
-//! hierarchy's kernel was chosen.
+//! The run-time choice of kernel: each query is instantiated once per kernel, the vector copy
+//! inside a function compiled for AVX2 and FMA (and a second one also compiled for AVX-512,
+//! whose 32 registers the same code then uses, taken where the CPU has it), and called after
+//! the CPU check made when the hierarchy's kernel was chosen.
 
 use crate::blas::Blas;
 use crate::hit::{Hit, HitFilter};
