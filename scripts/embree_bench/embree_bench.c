@@ -7,20 +7,22 @@
  * Build and run (Debian: `apt-get install libembree-dev`):
  *
  *     cc -O2 -o out/embree_bench scripts/embree_bench/embree_bench.c -lembree3 -lm
- *     cargo run --release -p renderlab-trace --example embree -- out/embree_bench
+ *     cargo run --release -p renderlab-trace --example embree -- out/embree_bench [REPS] [ROUNDS] [MESHES]
  *
- * The example writes out/embree/scene.bin, runs `embree_bench out/embree/scene.bin
- * out/embree/hits.bin REPS` and parses the `rate` lines it prints. By hand:
+ * The example writes out/embree/MESH.bin for each mesh, runs `embree_bench out/embree/MESH.bin
+ * out/embree/MESH.hits REPS` and parses the `rate` and `build` lines it prints. By hand:
  *
- *     out/embree_bench out/embree/scene.bin out/embree/hits.bin 5
+ *     out/embree_bench out/embree/terrain.bin out/embree/terrain.hits 5
  *
- * Input (little-endian): "RLTRACE1"; u32 vertices, u32 triangles; f32 x,y,z per vertex; u32
- * i,j,k per triangle; u32 sets; per set: 16 bytes of name (NUL-padded), u32 flags (bit 0: an
+ * Input (little-endian): "RLTRACE1" or "RLTRACE2"; u32 vertices, u32 triangles; f32 x,y,z per
+ * vertex; u32 i,j,k per triangle; with "RLTRACE2" then u32 instances and per instance twelve f32,
+ * its object-to-world transform as a column-major 3×4 matrix (the scene is then those instances
+ * of the mesh, built as Embree instances over one mesh scene); u32 sets; per set: 16 bytes of name (NUL-padded), u32 flags (bit 0: an
  * occlusion query, bit 1: coherent rays), u32 rays, then per ray eight f32: origin x,y,z,
  * t_min, direction x,y,z, t_max.
  *
  * Output: per set, per ray, the result of rtcIntersect1 (u32 primitive, 0xffffffff for a miss,
- * and f32 t) or of rtcOccluded1 (u8, 1 when occluded). Printed: the build times and, per scene
+ * and f32 t; in an instanced scene the primitive is instance · triangles + triangle) or of rtcOccluded1 (u8, 1 when occluded). Printed: the build times and, per scene
  * flag (default, robust), set and mode, one line
  *
  *     rate SCENE SET MODE MRAYS_PER_CPU_SECOND MRAYS_PER_WALL_SECOND SAME_AS_SINGLE
@@ -31,8 +33,8 @@
  * absolute, or the same occlusion). Modes: "1" (rtcIntersect1/rtcOccluded1
  * per ray), "8" and "16" (packets of consecutive rays, rtcIntersect8/16), "1M" (streams of 256
  * consecutive rays, rtcIntersect1M/rtcOccluded1M). Packets and streams use the coherent
- * context flag when the set says its rays are coherent. Builds use Embree's default quality
- * (medium) and all cores.
+ * context flag when the set says its rays are coherent (except occlusion in an instanced
+ * scene). Builds use Embree's default quality (medium) and all cores.
  */
 
 #define _POSIX_C_SOURCE 199309L
@@ -111,12 +113,26 @@ static void init_rayhit(struct RTCRayHit *rh, const Ray *r) {
     rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
 
+/* The triangles of the mesh, to number a hit in an instance as instance · triangles + triangle. */
+static uint32_t mesh_triangles;
+
+static uint32_t hit_prim(unsigned geom, unsigned inst, unsigned prim) {
+    if (geom == RTC_INVALID_GEOMETRY_ID) return 0xffffffffu;
+    return inst == RTC_INVALID_GEOMETRY_ID ? prim : inst * mesh_triangles + prim;
+}
+
 /* One pass of `mode` over the set: results into prim/t or occ. */
 typedef void (*Pass)(RTCScene, const Set *, uint32_t *, float *, uint8_t *);
 
+/* Whether the scene is instanced: there occlusion queries go without the coherent flag (with
+ * it, Embree 3.13.5's rtcOccluded16 through instances did not finish in minutes, and its
+ * rtcOccluded8 ran at two thirds of the incoherent rate). */
+static int instanced;
+
 static void context(struct RTCIntersectContext *ctx, const Set *s) {
     rtcInitIntersectContext(ctx);
-    ctx->flags = (s->flags & 2) ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    int coherent = (s->flags & 2) && !(instanced && (s->flags & 1));
+    ctx->flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
 }
 
 static void pass1(RTCScene scene, const Set *s, uint32_t *prim, float *t, uint8_t *occ) {
@@ -130,7 +146,7 @@ static void pass1(RTCScene scene, const Set *s, uint32_t *prim, float *t, uint8_
             occ[i] = rh.ray.tfar == -INFINITY;
         } else {
             rtcIntersect1(scene, &ctx, &rh);
-            prim[i] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? 0xffffffffu : rh.hit.primID;
+            prim[i] = hit_prim(rh.hit.geomID, rh.hit.instID[0], rh.hit.primID);
             t[i] = rh.ray.tfar;
         }
     }
@@ -151,7 +167,7 @@ static void pass1m(RTCScene scene, const Set *s, uint32_t *prim, float *t, uint8
         } else {
             rtcIntersect1M(scene, &ctx, rh, m, sizeof(struct RTCRayHit));
             for (uint32_t j = 0; j < m; j++) {
-                prim[base + j] = rh[j].hit.geomID == RTC_INVALID_GEOMETRY_ID ? 0xffffffffu : rh[j].hit.primID;
+                prim[base + j] = hit_prim(rh[j].hit.geomID, rh[j].hit.instID[0], rh[j].hit.primID);
                 t[base + j] = rh[j].ray.tfar;
             }
         }
@@ -192,8 +208,7 @@ static void pass1m(RTCScene scene, const Set *s, uint32_t *prim, float *t, uint8
             } else {                                                                            \
                 rtcIntersect##W(valid, scene, &ctx, &rh);                                       \
                 for (int j = 0; j < W && base + j < s->n; j++) {                                \
-                    prim[base + j] =                                                            \
-                        rh.hit.geomID[j] == RTC_INVALID_GEOMETRY_ID ? 0xffffffffu : rh.hit.primID[j]; \
+                    prim[base + j] = hit_prim(rh.hit.geomID[j], rh.hit.instID[0][j], rh.hit.primID[j]); \
                     t[base + j] = rh.ray.tfar[j];                                               \
                 }                                                                               \
             }                                                                                   \
@@ -202,8 +217,10 @@ static void pass1m(RTCScene scene, const Set *s, uint32_t *prim, float *t, uint8
 PACKET_PASS(8)
 PACKET_PASS(16)
 
+/* The scene of the mesh, or of `ninst` instances of it (transforms `xfm`, 12 floats each);
+ * `ms` is the time of the commits. */
 static RTCScene build(RTCDevice device, uint32_t nv, const float *pos, uint32_t nt, const uint32_t *idx,
-                      enum RTCSceneFlags flags, double *ms) {
+                      uint32_t ninst, const float *xfm, enum RTCSceneFlags flags, double *ms) {
     RTCScene scene = rtcNewScene(device);
     rtcSetSceneFlags(scene, flags);
     rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_MEDIUM);
@@ -217,6 +234,22 @@ static RTCScene build(RTCDevice device, uint32_t nv, const float *pos, uint32_t 
     rtcReleaseGeometry(geom);
     double t0 = now(CLOCK_MONOTONIC);
     rtcCommitScene(scene);
+    if (ninst > 0) {
+        RTCScene top = rtcNewScene(device);
+        rtcSetSceneFlags(top, flags);
+        rtcSetSceneBuildQuality(top, RTC_BUILD_QUALITY_MEDIUM);
+        for (uint32_t i = 0; i < ninst; i++) {
+            RTCGeometry inst = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+            rtcSetGeometryInstancedScene(inst, scene);
+            rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm + 12 * (size_t)i);
+            rtcCommitGeometry(inst);
+            rtcAttachGeometryByID(top, inst, i);
+            rtcReleaseGeometry(inst);
+        }
+        rtcCommitScene(top);
+        rtcReleaseScene(scene); /* the instances hold it */
+        scene = top;
+    }
     *ms = (now(CLOCK_MONOTONIC) - t0) * 1e3;
     if (rtcGetDeviceError(device) != RTC_ERROR_NONE) die("Embree could not build the scene");
     return scene;
@@ -230,7 +263,8 @@ int main(int argc, char **argv) {
     if (!f) die("cannot open the scene file");
     char magic[8];
     read_exact(f, magic, 8);
-    if (memcmp(magic, "RLTRACE1", 8)) die("not a scene file (magic)");
+    instanced = !memcmp(magic, "RLTRACE2", 8);
+    if (!instanced && memcmp(magic, "RLTRACE1", 8)) die("not a scene file (magic)");
     uint32_t nv, nt, nsets;
     read_exact(f, &nv, 4);
     read_exact(f, &nt, 4);
@@ -241,6 +275,15 @@ int main(int argc, char **argv) {
     read_exact(f, idx, (size_t)nt * 12);
     for (size_t i = 0; i < (size_t)nt * 3; i++)
         if (idx[i] >= nv) die("index out of range");
+    mesh_triangles = nt;
+    uint32_t ninst = 0;
+    float *xfm = NULL;
+    if (instanced) {
+        read_exact(f, &ninst, 4);
+        if (ninst < 1 || ninst > (1u << 16)) die("instance count out of range");
+        xfm = alloc((size_t)ninst * 48);
+        read_exact(f, xfm, (size_t)ninst * 48);
+    }
     read_exact(f, &nsets, 4);
     if (nsets > MAX_SETS) die("too many ray sets");
     Set sets[MAX_SETS];
@@ -260,8 +303,8 @@ int main(int argc, char **argv) {
 
     RTCDevice device = rtcNewDevice(NULL);
     if (!device) die("Embree found no device");
-    printf("embree %d.%d.%d, %u triangles, %d passes per mode\n", RTC_VERSION_MAJOR, RTC_VERSION_MINOR,
-           RTC_VERSION_PATCH, nt, reps);
+    printf("embree %d.%d.%d, %u triangles, %u instances, %d passes per mode\n", RTC_VERSION_MAJOR,
+           RTC_VERSION_MINOR, RTC_VERSION_PATCH, nt, ninst, reps);
 
     const char *scene_names[2] = {"default", "robust"};
     enum RTCSceneFlags scene_flags[2] = {RTC_SCENE_FLAG_NONE, RTC_SCENE_FLAG_ROBUST};
@@ -272,7 +315,7 @@ int main(int argc, char **argv) {
         RTCScene scene = NULL;
         for (int b = 0; b < 3; b++) {
             if (scene) rtcReleaseScene(scene);
-            scene = build(device, nv, pos, nt, idx, scene_flags[sc], &ms[b]);
+            scene = build(device, nv, pos, nt, idx, ninst, xfm, scene_flags[sc], &ms[b]);
         }
         printf("build %s %.1f ms (median of 3, wall clock)\n", scene_names[sc], median(ms, 3));
         for (uint32_t s = 0; s < nsets; s++) {

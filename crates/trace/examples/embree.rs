@@ -1,36 +1,48 @@
-//! Our BVH against Embree 3 on the BVH bench's terrain and rays, side by side in one run. Run
-//! by hand from the repository root (not by CI; nothing in the workspace links Embree):
+//! Our BVH against Embree 3 on the benchmark meshes and rays, side by side in one run. Run by
+//! hand from the repository root (not by CI; nothing in the workspace links Embree):
 //!
 //! ```text
 //! apt-get install libembree-dev
 //! cc -O2 -o out/embree_bench scripts/embree_bench/embree_bench.c -lembree3 -lm
-//! cargo run --release -p renderlab-trace --example embree -- out/embree_bench [REPS] [ROUNDS]
+//! cargo run --release -p renderlab-trace --example embree -- out/embree_bench [REPS] [ROUNDS] [MESHES]
 //! ```
 //!
-//! The example builds the scene of `benches/common` (the 1M-triangle terrain; primary rays in
-//! tiled Morton order, one diffuse bounce, shadow segments), writes it to
-//! `out/embree/scene.bin`, and then, ROUNDS times (default 2), traces every ray set with our
-//! single-ray and packet queries and runs the Embree program (`scripts/embree_bench`) on the
-//! same file, which traces them with `rtcIntersect1`, 8- and 16-ray packets and streams. Every
-//! rate is the median of REPS passes (default 5) over a set on one thread, timed by that
-//! thread's CPU time. It prints, per set, the rates, the ratios to Embree's single-ray query
-//! and to its best mode, and the agreement of our hits with Embree's: the same triangle and a
-//! distance within 1e-4 (relative, at least 1e-4 absolute) for closest hits, the same answer
-//! for shadow rays. Our packet queries are checked against our single-ray queries bit for bit.
+//! MESHES is a comma-separated list of `renderlab_trace::workload::MESHES` and `instances`
+//! (default all: the 1M-triangle terrain, the 69k-triangle blob, 48 blobs in one 3.3M-triangle
+//! mesh, and the same 48 blobs as instances of one blob: our `Tlas` against Embree's instances,
+//! tracing the flattened blobs' rays, hits numbered as in the flattened mesh). For each
+//! mesh the example builds our hierarchy (median of 3 builds), makes its rays (primary rays in
+//! tiled Morton order, one diffuse bounce, shadow segments), writes them with the mesh to
+//! `out/embree/MESH.bin` and a depth image of the primary hits to `out/embree/MESH.pgm`. Then,
+//! ROUNDS times (default 2), mesh after mesh, it traces every ray set with our single-ray and
+//! packet queries and runs the Embree program (`scripts/embree_bench`) on the same file, which
+//! builds Embree's scene and traces the rays with `rtcIntersect1`, 8- and 16-ray packets and
+//! streams. Every rate is the median of REPS passes (default 5) over a set on one thread,
+//! timed by that thread's CPU time. It prints, per mesh and set, the rates, the ratios to
+//! Embree's single-ray query and to its best mode, and the agreement of our hits with
+//! Embree's: the same triangle and a distance within 1e-4 (relative, at least 1e-4 absolute)
+//! for closest hits, the same answer for shadow rays; then a summary table over all rounds and
+//! both libraries' build times. Our packet queries are checked against our single-ray queries
+//! bit for bit.
 
 #[path = "../benches/common/mod.rs"]
 mod common;
 
-use common::{camera_rays, load_average, secondary_rays, terrain, thread_cpu};
+use common::{
+    load_average, mesh, secondary_rays_to, thread_cpu, tiled_morton, view_rays, HEIGHT, MESHES, WIDTH,
+};
+use glam::Affine3A;
 use glam::Vec3;
-use renderlab_trace::{Blas, Hit, Ray, PACKET};
+use renderlab_trace::workload::{blob, placements};
+use renderlab_trace::{Blas, Hit, Instance, Ray, Tlas, PACKET};
 use std::collections::BTreeMap;
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 
 /// A named set of rays and its query.
+#[derive(Clone)]
 struct RaySet {
     name: &'static str,
     occlusion: bool,
@@ -38,9 +50,17 @@ struct RaySet {
     rays: Vec<Ray>,
 }
 
-fn write_scene(path: &Path, pos: &[Vec3], tris: &[[u32; 3]], sets: &[RaySet]) -> std::io::Result<()> {
+/// Writes the scene file: the mesh, or with `instances` that many placed copies of it, and the
+/// ray sets (the format is described in `scripts/embree_bench/embree_bench.c`).
+fn write_scene(
+    path: &Path,
+    pos: &[Vec3],
+    tris: &[[u32; 3]],
+    instances: Option<&[Affine3A]>,
+    sets: &[RaySet],
+) -> std::io::Result<()> {
     let mut out = Vec::new();
-    out.extend_from_slice(b"RLTRACE1");
+    out.extend_from_slice(if instances.is_some() { b"RLTRACE2" } else { b"RLTRACE1" });
     out.extend_from_slice(&(pos.len() as u32).to_le_bytes());
     out.extend_from_slice(&(tris.len() as u32).to_le_bytes());
     for p in pos {
@@ -51,6 +71,15 @@ fn write_scene(path: &Path, pos: &[Vec3], tris: &[[u32; 3]], sets: &[RaySet]) ->
     for t in tris {
         for i in t {
             out.extend_from_slice(&i.to_le_bytes());
+        }
+    }
+    if let Some(instances) = instances {
+        out.extend_from_slice(&(instances.len() as u32).to_le_bytes());
+        for m in instances {
+            let cols = [m.matrix3.x_axis, m.matrix3.y_axis, m.matrix3.z_axis, m.translation];
+            for c in cols.iter().flat_map(|c| c.to_array()) {
+                out.extend_from_slice(&c.to_le_bytes());
+            }
         }
     }
     out.extend_from_slice(&(sets.len() as u32).to_le_bytes());
@@ -127,24 +156,69 @@ fn rate(reps: usize, n: usize, mut trace: impl FnMut() -> usize) -> f64 {
     rates[reps / 2]
 }
 
-fn closest_single(blas: &Blas, rays: &[Ray]) -> Vec<Option<Hit>> {
+/// What we trace: one mesh's hierarchy, or a two-level scene of instances of one mesh of
+/// `triangles` triangles, whose hits are numbered as in the flattened mesh
+/// (instance · triangles + triangle) to compare with Embree's.
+enum Accel {
+    Mesh(Blas),
+    Scene(Tlas, u32),
+}
+
+impl Accel {
+    fn number(&self, hit: Option<Hit>) -> Option<Hit> {
+        match self {
+            Accel::Mesh(_) => hit,
+            Accel::Scene(_, n) => hit.map(|h| Hit { primitive: h.instance * n + h.primitive, ..h }),
+        }
+    }
+
+    fn closest_hit(&self, r: &Ray) -> Option<Hit> {
+        match self {
+            Accel::Mesh(b) => b.closest_hit(r),
+            Accel::Scene(t, _) => self.number(t.closest_hit(r)),
+        }
+    }
+
+    fn any_hit(&self, r: &Ray) -> bool {
+        match self {
+            Accel::Mesh(b) => b.any_hit(r),
+            Accel::Scene(t, _) => t.any_hit(r),
+        }
+    }
+
+    fn closest_packet(&self, rays: &[Ray]) -> [Option<Hit>; PACKET] {
+        match self {
+            Accel::Mesh(b) => b.closest_packet(rays),
+            Accel::Scene(t, _) => t.closest_packet(rays).map(|h| self.number(h)),
+        }
+    }
+
+    fn any_packet(&self, rays: &[Ray]) -> [bool; PACKET] {
+        match self {
+            Accel::Mesh(b) => b.any_packet(rays),
+            Accel::Scene(t, _) => t.any_packet(rays),
+        }
+    }
+}
+
+fn closest_single(blas: &Accel, rays: &[Ray]) -> Vec<Option<Hit>> {
     rays.iter().map(|r| blas.closest_hit(r)).collect()
 }
 
-fn closest_packets(blas: &Blas, rays: &[Ray]) -> Vec<Option<Hit>> {
+fn closest_packets(blas: &Accel, rays: &[Ray]) -> Vec<Option<Hit>> {
     rays.chunks(PACKET).flat_map(|c| blas.closest_packet(c).into_iter().take(c.len())).collect()
 }
 
-fn any_single(blas: &Blas, rays: &[Ray]) -> Vec<bool> {
+fn any_single(blas: &Accel, rays: &[Ray]) -> Vec<bool> {
     rays.iter().map(|r| blas.any_hit(r)).collect()
 }
 
-fn any_packets(blas: &Blas, rays: &[Ray]) -> Vec<bool> {
+fn any_packets(blas: &Accel, rays: &[Ray]) -> Vec<bool> {
     rays.chunks(PACKET).flat_map(|c| blas.any_packet(c).into_iter().take(c.len())).collect()
 }
 
 /// Our rates by mode for one set: the single-ray query and the packet query.
-fn ours(blas: &Blas, set: &RaySet, reps: usize) -> Vec<(&'static str, f64)> {
+fn ours(blas: &Accel, set: &RaySet, reps: usize) -> Vec<(&'static str, f64)> {
     let n = set.rays.len();
     let r = &set.rays;
     if set.occlusion {
@@ -170,14 +244,12 @@ fn ours(blas: &Blas, set: &RaySet, reps: usize) -> Vec<(&'static str, f64)> {
     }
 }
 
-/// Runs the Embree program; returns its `rate` lines as (scene, set, mode) → rate, and prints
-/// its other lines.
-fn embree(
-    exe: &Path,
-    scene: &Path,
-    hits: &Path,
-    reps: usize,
-) -> BTreeMap<(String, String, String), (f64, u64)> {
+/// Embree's rates: (scene flag, set, mode) → (M rays per CPU second, rays as its single query).
+type Rates = BTreeMap<(String, String, String), (f64, u64)>;
+
+/// Runs the Embree program; returns its `rate` lines and its build times (`SCENE MS`), and
+/// prints its other lines.
+fn embree(exe: &Path, scene: &Path, hits: &Path, reps: usize) -> (Rates, Vec<String>) {
     let out = Command::new(exe)
         .arg(scene)
         .arg(hits)
@@ -187,29 +259,40 @@ fn embree(
     if !out.status.success() {
         panic!("{} failed: {}", exe.display(), String::from_utf8_lossy(&out.stderr));
     }
-    let mut rates = BTreeMap::new();
+    let (mut rates, mut builds) = (BTreeMap::new(), Vec::new());
     for line in String::from_utf8_lossy(&out.stdout).lines() {
         let f: Vec<&str> = line.split_whitespace().collect();
         if f.first() == Some(&"rate") && f.len() == 7 {
             let key = (f[1].to_string(), f[2].to_string(), f[3].to_string());
             rates.insert(key, (f[4].parse().unwrap(), f[6].parse().unwrap()));
         } else {
+            if f.first() == Some(&"build") && f.len() >= 3 {
+                builds.push(format!("{} {} ms", f[1], f[2]));
+            }
             println!("  embree: {line}");
         }
     }
-    rates
+    (rates, builds)
 }
 
-fn main() {
-    let args: Vec<String> = std::env::args().collect();
-    let exe = Path::new(args.get(1).map_or("out/embree_bench", String::as_str)).to_path_buf();
-    let reps: usize = args.get(2).map_or(5, |s| s.parse().expect("REPS"));
-    let rounds: usize = args.get(3).map_or(2, |s| s.parse().expect("ROUNDS"));
-    let dir = Path::new("out/embree");
-    std::fs::create_dir_all(dir).expect("cannot create out/embree");
-    let (scene_path, hits_path) = (dir.join("scene.bin"), dir.join("hits.bin"));
+/// One round's figures for one mesh and set: ours single, ours best, Embree single, Embree
+/// best mode and its rate.
+type Row = (f64, f64, f64, String, f64);
 
-    let (pos, tris) = terrain();
+/// One mesh's hierarchy, rays and the files shared with the Embree program.
+struct Bench {
+    name: &'static str,
+    accel: Accel,
+    build_ms: f64,
+    sets: Vec<RaySet>,
+    scene_path: PathBuf,
+    hits_path: PathBuf,
+}
+
+/// Builds our hierarchy of mesh `name` (median of 3 builds), makes its rays, writes its scene
+/// file and a depth image of its primary hits, and checks our packets against single rays.
+fn prepare(name: &'static str, dir: &Path) -> Bench {
+    let (pos, tris, view) = mesh(name).expect("a known mesh");
     let mut builds = Vec::new();
     let mut blas = None;
     for _ in 0..3 {
@@ -220,26 +303,63 @@ fn main() {
     builds.sort_by(f64::total_cmp);
     let blas = blas.unwrap();
     println!(
-        "ours: {} triangles, build {:.1} ms (median of 3, wall clock), kernel {}",
+        "{name}: {} triangles, our build {:.1} ms (median of 3, wall clock), kernel {}",
         tris.len(),
         builds[1],
         blas.kernel()
     );
-    let primary = camera_rays();
-    let (bounce, shadow) = secondary_rays(&blas, &pos, &tris, &primary);
-    let sets = [
+    let primary = view_rays(&view);
+    let hits: Vec<Option<Hit>> = primary.iter().map(|r| blas.closest_hit(r)).collect();
+    write_depth(&dir.join(format!("{name}.pgm")), &hits).expect("cannot write the depth image");
+    let (bounce, shadow) = secondary_rays_to(&blas, &pos, &tris, &primary, view.light);
+    let sets = vec![
         RaySet { name: "primary", occlusion: false, coherent: true, rays: primary },
         RaySet { name: "bounce", occlusion: false, coherent: false, rays: bounce },
         RaySet { name: "shadow", occlusion: true, coherent: true, rays: shadow },
     ];
-    write_scene(&scene_path, &pos, &tris, &sets).expect("cannot write the scene file");
+    let scene_path = dir.join(format!("{name}.bin"));
+    write_scene(&scene_path, &pos, &tris, None, &sets).expect("cannot write the scene file");
+    let accel = Accel::Mesh(blas);
+    check_packets(&accel, &sets);
+    Bench { name, accel, build_ms: builds[1], sets, scene_path, hits_path: dir.join(format!("{name}.hits")) }
+}
 
-    // Our packet queries against our single-ray queries, bit for bit.
-    for s in &sets {
+/// The 48 blobs as instances of one blob's hierarchy (median of 3 builds of both levels), with
+/// the rays of the flattened copies (`blobs`, the same surfaces).
+fn prepare_instances(blobs: &Bench, dir: &Path) -> Bench {
+    let (pos, tris) = blob();
+    let place = placements();
+    let instances: Vec<Instance> = place.iter().map(|&m| Instance::new(0, m)).collect();
+    let mut builds = Vec::new();
+    let mut tlas = None;
+    for _ in 0..3 {
+        let t = Instant::now();
+        tlas = Some(Tlas::build(vec![Blas::build(&pos, &tris).unwrap()], &instances).unwrap());
+        builds.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    builds.sort_by(f64::total_cmp);
+    let name = "instances";
+    println!(
+        "{name}: {} instances of {} triangles, our build {:.1} ms (both levels, median of 3, wall clock)",
+        place.len(),
+        tris.len(),
+        builds[1]
+    );
+    let sets = blobs.sets.clone();
+    let scene_path = dir.join(format!("{name}.bin"));
+    write_scene(&scene_path, &pos, &tris, Some(&place), &sets).expect("cannot write the scene file");
+    let accel = Accel::Scene(tlas.unwrap(), tris.len() as u32);
+    check_packets(&accel, &sets);
+    Bench { name, accel, build_ms: builds[1], sets, scene_path, hits_path: dir.join(format!("{name}.hits")) }
+}
+
+/// Checks our packet queries against our single-ray queries, bit for bit, and prints the result.
+fn check_packets(accel: &Accel, sets: &[RaySet]) {
+    for s in sets {
         let same = if s.occlusion {
-            any_single(&blas, &s.rays) == any_packets(&blas, &s.rays)
+            any_single(accel, &s.rays) == any_packets(accel, &s.rays)
         } else {
-            let (a, b) = (closest_single(&blas, &s.rays), closest_packets(&blas, &s.rays));
+            let (a, b) = (closest_single(accel, &s.rays), closest_packets(accel, &s.rays));
             a.iter().zip(&b).all(|(a, b)| match (a, b) {
                 (Some(a), Some(b)) => {
                     (a.t.to_bits(), a.u.to_bits(), a.v.to_bits(), a.primitive)
@@ -250,62 +370,166 @@ fn main() {
             })
         };
         println!(
-            "{}: {} rays; packet query equals single-ray query bit for bit: {same}",
+            "  {}: {} rays; packet query equals single-ray query bit for bit: {same}",
             s.name,
             s.rays.len()
         );
     }
+}
 
-    for round in 1..=rounds {
-        println!("\nround {round} (load average {})", load_average());
-        let ours: Vec<Vec<(&str, f64)>> = sets.iter().map(|s| ours(&blas, s, reps)).collect();
-        let theirs = embree(&exe, &scene_path, &hits_path, reps);
-        println!("  load average after: {}", load_average());
-        println!(
-            "  {:8} {:>7} {:>7} | {:>7} {:>7} {:>7} {:>7} | {:>7} {:>7} {:>7} | ours/1  best/best  (M rays/s, CPU time)",
-            "set", "single", "packet", "emb 1", "emb 8", "emb 16", "emb 1M", "rob 1", "rob 16", "rob 1M"
-        );
-        for (s, o) in sets.iter().zip(&ours) {
-            let e = |scene: &str, mode: &str| {
-                theirs
-                    .get(&(scene.to_string(), s.name.to_string(), mode.to_string()))
-                    .map_or(f64::NAN, |r| r.0)
-            };
-            let best_ours = o.iter().map(|m| m.1).fold(0.0, f64::max);
-            let best_emb = ["1", "8", "16", "1M"].iter().map(|m| e("default", m)).fold(0.0, f64::max);
-            println!(
-                "  {:8} {:7.2} {:7.2} | {:7.2} {:7.2} {:7.2} {:7.2} | {:7.2} {:7.2} {:7.2} | {:5.2}x  {:5.2}x",
-                s.name,
-                o[0].1,
-                o[1].1,
-                e("default", "1"),
-                e("default", "8"),
-                e("default", "16"),
-                e("default", "1M"),
-                e("robust", "1"),
-                e("robust", "16"),
-                e("robust", "1M"),
-                o[0].1 / e("default", "1"),
-                best_ours / best_emb,
-            );
+/// A greyscale image of the primary hits' distances (`hits` in the rays' order) (near bright, misses black), to see the view.
+fn write_depth(path: &Path, hits: &[Option<Hit>]) -> std::io::Result<()> {
+    let ts: Vec<f32> = hits.iter().flatten().map(|h| h.t).collect();
+    let (lo, hi) = ts.iter().fold((f32::INFINITY, 0.0f32), |(lo, hi), &t| (lo.min(t), hi.max(t)));
+    let mut img = vec![0u8; WIDTH * HEIGHT];
+    for (k, h) in hits.iter().enumerate() {
+        let (x, y) = tiled_morton(k);
+        if let Some(h) = h {
+            img[y * WIDTH + x] = (255.0 - 215.0 * (h.t - lo) / (hi - lo).max(1e-6)) as u8;
         }
-        for ((scene, set, mode), (_, same)) in &theirs {
-            let n = sets.iter().find(|s| s.name == set).map_or(0, |s| s.rays.len());
-            if *same as usize != n {
-                println!("  embree {scene} {set} {mode}: {same} of {n} rays as rtcIntersect1/rtcOccluded1 (default)");
+    }
+    let mut out = format!("P5 {WIDTH} {HEIGHT} 255\n").into_bytes();
+    out.extend_from_slice(&img);
+    std::fs::write(path, out)
+}
+
+/// The best mode's name and rate among `modes`.
+fn best(modes: &[(&str, f64)]) -> (String, f64) {
+    modes.iter().fold((String::new(), 0.0), |b, &(m, r)| if r > b.1 { (m.to_string(), r) } else { b })
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let exe = Path::new(args.get(1).map_or("out/embree_bench", String::as_str)).to_path_buf();
+    let reps: usize = args.get(2).map_or(5, |s| s.parse().expect("REPS"));
+    let rounds: usize = args.get(3).map_or(2, |s| s.parse().expect("ROUNDS"));
+    let all: Vec<&'static str> = MESHES.iter().copied().chain(["instances"]).collect();
+    let names: Vec<&'static str> = match args.get(4) {
+        None => all.clone(),
+        Some(list) => list
+            .split(',')
+            .map(|n| *all.iter().find(|&&m| m == n).unwrap_or_else(|| panic!("meshes: {all:?}")))
+            .collect(),
+    };
+    let dir = Path::new("out/embree");
+    std::fs::create_dir_all(dir).expect("cannot create out/embree");
+    let mut benches: Vec<Bench> = Vec::new();
+    for &n in &names {
+        let bench = if n == "instances" {
+            let blobs = benches.iter().find(|b| b.name == "blobs");
+            let flat;
+            let blobs = match blobs {
+                Some(b) => b,
+                None => {
+                    flat = prepare("blobs", dir);
+                    &flat
+                }
+            };
+            prepare_instances(blobs, dir)
+        } else {
+            prepare(n, dir)
+        };
+        benches.push(bench);
+    }
+
+    // (mesh, set) → per round: ours single, ours best, Embree single, Embree best (mode).
+    let mut summary: BTreeMap<(usize, usize), Vec<Row>> = BTreeMap::new();
+    let mut embree_builds: BTreeMap<usize, Vec<String>> = BTreeMap::new();
+    for round in 1..=rounds {
+        for (b, bench) in benches.iter().enumerate() {
+            println!("\n{} round {round} (load average {})", bench.name, load_average());
+            let ours: Vec<Vec<(&str, f64)>> =
+                bench.sets.iter().map(|s| ours(&bench.accel, s, reps)).collect();
+            let (theirs, builds) = embree(&exe, &bench.scene_path, &bench.hits_path, reps);
+            embree_builds.entry(b).or_default().extend(builds);
+            println!("  load average after: {}", load_average());
+            println!(
+                "  {:8} {:>7} {:>7} | {:>7} {:>7} {:>7} {:>7} | {:>7} {:>7} {:>7} | ours/1  best/best  (M rays/s, CPU time)",
+                "set", "single", "packet", "emb 1", "emb 8", "emb 16", "emb 1M", "rob 1", "rob 16", "rob 1M"
+            );
+            for (k, (s, o)) in bench.sets.iter().zip(&ours).enumerate() {
+                let e = |scene: &str, mode: &str| {
+                    theirs
+                        .get(&(scene.to_string(), s.name.to_string(), mode.to_string()))
+                        .map_or(f64::NAN, |r| r.0)
+                };
+                let (_, best_ours) = best(o);
+                let emb: Vec<(&str, f64)> =
+                    ["1", "8", "16", "1M"].iter().map(|&m| (m, e("default", m))).collect();
+                let (best_mode, best_emb) = best(&emb);
+                println!(
+                    "  {:8} {:7.2} {:7.2} | {:7.2} {:7.2} {:7.2} {:7.2} | {:7.2} {:7.2} {:7.2} | {:5.2}x  {:5.2}x",
+                    s.name,
+                    o[0].1,
+                    o[1].1,
+                    e("default", "1"),
+                    e("default", "8"),
+                    e("default", "16"),
+                    e("default", "1M"),
+                    e("robust", "1"),
+                    e("robust", "16"),
+                    e("robust", "1M"),
+                    o[0].1 / e("default", "1"),
+                    best_ours / best_emb,
+                );
+                summary.entry((b, k)).or_default().push((
+                    o[0].1,
+                    best_ours,
+                    e("default", "1"),
+                    best_mode,
+                    best_emb,
+                ));
+            }
+            for ((scene, set, mode), (_, same)) in &theirs {
+                let n = bench.sets.iter().find(|s| s.name == set).map_or(0, |s| s.rays.len());
+                if *same as usize != n {
+                    println!("  embree {scene} {set} {mode}: {same} of {n} rays as rtcIntersect1/rtcOccluded1 (default)");
+                }
             }
         }
     }
 
-    // Agreement of our single-ray hits with Embree's rtcIntersect1 / rtcOccluded1.
-    let theirs = read_hits(&hits_path, &sets).expect("cannot read the hits file");
-    println!("\nagreement with Embree (default scene, single-ray queries):");
+    for bench in &benches {
+        agreement(bench);
+    }
+
+    println!("\nsummary (rounds separated by /; M rays/s of one thread's CPU time):");
+    println!(
+        "| mesh | rays | ours single | ours packet | Embree 1 | Embree best (mode) | single/1 | best/best |"
+    );
+    println!("|---|---|---|---|---|---|---|---|");
+    for ((b, k), rows) in &summary {
+        let join = |f: &dyn Fn(&Row) -> String| rows.iter().map(f).collect::<Vec<_>>().join(" / ");
+        println!(
+            "| {} | {} | {} | {} | {} | {} | {} | {} |",
+            benches[*b].name,
+            benches[*b].sets[*k].name,
+            join(&|r| format!("{:.2}", r.0)),
+            join(&|r| format!("{:.2}", r.1)),
+            join(&|r| format!("{:.2}", r.2)),
+            join(&|r| format!("{:.2} ({})", r.4, r.3)),
+            join(&|r| format!("{:.2}", r.0 / r.2)),
+            join(&|r| format!("{:.2}", r.1 / r.4)),
+        );
+    }
+    println!("\nbuilds (median of 3, wall clock, all cores):");
+    for (b, bench) in benches.iter().enumerate() {
+        println!("  {}: ours {:.0} ms; Embree {}", bench.name, bench.build_ms, embree_builds[&b].join("; "));
+    }
+}
+
+/// Prints the agreement of our single-ray hits with Embree's rtcIntersect1 / rtcOccluded1 on
+/// one mesh (from the hits file of its last run).
+fn agreement(bench: &Bench) {
+    let sets = &bench.sets;
+    let theirs = read_hits(&bench.hits_path, sets).expect("cannot read the hits file");
+    println!("\n{}: agreement with Embree (default scene, single-ray queries):", bench.name);
     for (s, r) in sets.iter().zip(&theirs) {
         match r {
             Results::Closest(e) => {
-                let ours = closest_single(&blas, &s.rays);
-                let (mut agree, mut exact, mut hits, mut other_tri, mut other_t, mut hit_miss) =
-                    (0, 0, 0, 0, 0, 0);
+                let ours = closest_single(&bench.accel, &s.rays);
+                let (mut agree, mut exact, mut hits, mut other_tri, mut other_t, mut hit_miss, mut tie) =
+                    (0, 0, 0, 0, 0, 0, 0);
                 for (a, b) in ours.iter().zip(e) {
                     hits += a.is_some() as usize;
                     match (a, b) {
@@ -318,19 +542,25 @@ fn main() {
                             }
                             exact += (a.t.to_bits() == t.to_bits()) as usize;
                         }
-                        (Some(_), Some(_)) => other_tri += 1,
+                        (Some(a), Some((_, t))) => {
+                            other_tri += 1;
+                            // Another triangle at the same distance: a tie at a shared edge or
+                            // vertex, which the two libraries may break differently.
+                            tie += ((a.t - t).abs() <= 1e-4 * a.t.max(1.0)) as usize;
+                        }
                         _ => hit_miss += 1,
                     }
                 }
                 let n = s.rays.len();
                 println!(
-                    "  {:8} {n} rays, {hits} hit; same triangle and t within 1e-4: {agree} ({:.4}%), t bit-equal: {exact}; other triangle: {other_tri}; t differs: {other_t}; hit/miss differ: {hit_miss}",
+                    "  {:8} {n} rays, {hits} hit; same triangle and t within 1e-4: {agree} ({:.4}%), t bit-equal: {exact}; other triangle: {other_tri} ({tie} of them at the same t, so the same point: {:.4}%); t differs: {other_t}; hit/miss differ: {hit_miss}",
                     s.name,
                     100.0 * agree as f64 / n as f64,
+                    100.0 * (agree + tie) as f64 / n as f64,
                 );
             }
             Results::Occluded(e) => {
-                let ours = any_single(&blas, &s.rays);
+                let ours = any_single(&bench.accel, &s.rays);
                 let agree = ours.iter().zip(e).filter(|(a, b)| a == b).count();
                 let n = s.rays.len();
                 println!(

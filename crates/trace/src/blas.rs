@@ -67,12 +67,12 @@ impl Blas {
             LEAF_BIT | (blocks.len() - 1) as u32
         });
         let bounds = if hittable == 0 { Aabb::EMPTY } else { bvh.nodes[0].bounds() };
-        Ok(Blas { nodes, blocks, root, kernel: Kernel::best(), bounds, triangles: count, hittable })
+        Ok(Blas { nodes, blocks, root, kernel: crate::kernel::best(), bounds, triangles: count, hittable })
     }
 
     /// The same hierarchy queried with `kernel` (the scalar kernel where the CPU lacks it).
     pub fn with_kernel(mut self, kernel: Kernel) -> Blas {
-        self.kernel = if kernel.available() { kernel } else { Kernel::Scalar };
+        self.kernel = if crate::kernel::available(kernel) { kernel } else { Kernel::Scalar };
         self
     }
 

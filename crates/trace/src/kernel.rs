@@ -1,7 +1,42 @@
 //! Kernels: how a query's arithmetic runs. [`Kernel::Scalar`] tests one child box and one
 //! triangle at a time; [`Kernel::Simd`] tests eight child boxes in one AVX2 register and four
-//! triangles in one SSE register. Both give bit-identical hits; the choice is recorded with
-//! results, never a method of its own. The type is shared with the relief kernels
-//! (`renderlab_core::kernel`).
+//! triangles in one SSE register, with fused multiply-adds where the scalar test calls
+//! `f32::mul_add`, so it needs FMA beside AVX2 ([`available`]). Both give bit-identical hits;
+//! the choice is recorded with results, never a method of its own. The type is shared with the
+//! relief kernels (`renderlab_core::kernel`).
 
 pub use renderlab_core::kernel::{has_avx2, Kernel};
+
+/// Whether this CPU runs the trace crate's `kernel`: [`Kernel::available`], and for
+/// [`Kernel::Simd`] also FMA.
+pub fn available(kernel: Kernel) -> bool {
+    kernel.available() && (kernel == Kernel::Scalar || has_fma())
+}
+
+/// The fastest kernel this CPU runs the queries on.
+pub fn best() -> Kernel {
+    if available(Kernel::Simd) {
+        Kernel::Simd
+    } else {
+        Kernel::Scalar
+    }
+}
+
+/// Whether the vector kernel may be compiled with AVX-512's registers (the CPU has AVX-512 F
+/// and VL); checked once and cached by the standard library.
+#[inline]
+pub fn wide_registers() -> bool {
+    renderlab_core::kernel::has_avx512()
+}
+
+/// Whether the CPU has fused multiply-add instructions.
+fn has_fma() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("fma")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}

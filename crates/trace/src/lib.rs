@@ -84,6 +84,7 @@ pub mod build;
 pub mod error;
 pub mod hit;
 pub mod kernel;
+pub mod lanes;
 pub mod node;
 pub mod packet;
 pub mod query;

@@ -16,8 +16,8 @@
 //! continue ray by ray, so they gain less; measure before batching them. A short last packet
 //! is fine; lanes
 //! past the slice's end report no hit, and invalid rays in a packet hit nothing, as alone.
-//! A query keeps its rays' kernel forms and its stack on the thread's stack: about 20 KB with the
-//! AVX2 kernel.
+//! A query keeps its rays' kernel forms and its stack on the thread's stack: about 10 KB with the
+//! AVX2 kernel (twice that through a scene's instances).
 
 use crate::blas::Blas;
 use crate::hit::Hit;

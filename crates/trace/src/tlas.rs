@@ -106,12 +106,12 @@ impl Tlas {
         let bvh = binned::build(refs, &TLAS_SAH);
         let (nodes, root) = collapse(&bvh, &mut |leaf: &[PrimRef]| LEAF_BIT | leaf[0].index());
         let bounds = if live == 0 { Aabb::EMPTY } else { bvh.nodes[0].bounds() };
-        Ok(Tlas { meshes, placed, nodes, root, kernel: Kernel::best(), bounds, live })
+        Ok(Tlas { meshes, placed, nodes, root, kernel: crate::kernel::best(), bounds, live })
     }
 
     /// The same structure queried with `kernel` (the scalar kernel where the CPU lacks it).
     pub fn with_kernel(mut self, kernel: Kernel) -> Tlas {
-        self.kernel = if kernel.available() { kernel } else { Kernel::Scalar };
+        self.kernel = if crate::kernel::available(kernel) { kernel } else { Kernel::Scalar };
         self
     }
 

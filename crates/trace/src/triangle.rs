@@ -9,13 +9,34 @@
 //! `U, V, W` (twice the signed areas opposite each vertex) share a sign. An edge shared by two
 //! triangles projects to the *same* 2D segment in both, computed from the same rounded
 //! numbers, so a ray through it gets edge functions of opposite signs for the two triangles and
-//! cannot fall between them; edge functions that round to exactly 0 are recomputed in f64,
-//! where the products of f32 numbers are exact. Then `t = (U·az + V·bz + W·cz) / (U + V + W)`.
+//! cannot fall between them. Rounding is monotone, so an edge function computed in f32 has the
+//! exact sign or is 0; only edge functions that round to exactly 0, on a ray that the other two
+//! place inside the triangle, are recomputed in f64, where the products of f32 numbers are
+//! exact. Then `t = (U·az + V·bz + W·cz) / (U + V + W)`.
 //!
-//! Every operation is a separate IEEE multiply, add or subtract in a fixed order (Rust never
-//! contracts them into fused multiply-adds), which is what lets the AVX2 kernel agree exactly.
+//! Cost is paid where it is needed: a ray outside the projected triangle (almost every test)
+//! stops after the six edge products and a sign test (`min(U, V, W) ≥ 0` or
+//! `max(U, V, W) ≤ 0`), before the f64 check, the distance and the division.
+//!
+//! Fused multiply-adds: the distance's sum `U·az + V·bz + W·cz` is two fused operations. The
+//! edge functions are not fused (`cx·by − cy·bx` fused would round the two products
+//! differently for the two triangles of an edge, and the edge would leak), and neither is the
+//! projection `a[kx] − Sx·a[kz]`: fusing it (per vertex, so still watertight) moved the hybrid
+//! renderer's shadow-term test against its reference past its bound, which is not understood
+//! yet, so it stays two operations. Every operation is an IEEE operation in a fixed order,
+//! separate or fused as written (`f32::mul_add`, exactly rounded on every CPU), since Rust never
+//! contracts on its own: that is what lets the AVX2 kernel agree exactly.
 
+use crate::lanes::{max_ps, min_ps};
 use glam::{DVec3, Vec3};
+
+/// Whether the distance's sum uses fused multiply-adds (off only to measure what fusion
+/// saves).
+pub const FUSED: bool = !cfg!(feature = "measure-unfused");
+
+/// Whether edge functions that round to 0 are recomputed in f64 (off only to measure what the
+/// recomputation costs; off, rays exactly through an edge may leak).
+pub const EXACT_EDGES: bool = !cfg!(feature = "measure-no-exact-edges");
 
 /// What the test needs of a ray, computed once per ray (and once per instance it enters).
 #[derive(Clone, Copy, Debug)]
@@ -30,6 +51,7 @@ pub struct TriRay {
 
 impl TriRay {
     /// The sheared frame of a ray with a non-zero, finite direction.
+    #[inline(always)]
     pub fn new(org: Vec3, dir: Vec3) -> TriRay {
         let a = dir.abs();
         let kz = if a.x > a.y && a.x > a.z {
@@ -93,23 +115,44 @@ pub fn intersect(
     let cx = c_x - sx * c_z;
     let cy = c_y - sy * c_z;
     let mut e = [cx * by - cy * bx, ax * cy - ay * cx, bx * ay - by * ax];
-    if e[0] == 0.0 || e[1] == 0.0 || e[2] == 0.0 {
+    if !inside(e) {
+        return None;
+    }
+    if EXACT_EDGES && (e[0] == 0.0 || e[1] == 0.0 || e[2] == 0.0) {
         e = edge_functions_f64(ax, ay, bx, by, cx, cy);
+        if !inside(e) {
+            return None;
+        }
     }
     let [u, v, w] = e;
-    let neg = u < 0.0 || v < 0.0 || w < 0.0;
-    let pos = u > 0.0 || v > 0.0 || w > 0.0;
     let det = u + v + w;
     let az = sz * a_z;
     let bz = sz * b_z;
     let cz = sz * c_z;
-    let tt = u * az + v * bz + w * cz;
+    let tt = fused(w, cz, fused(v, bz, u * az));
     let rcp = 1.0 / det;
     let t = tt * rcp;
-    if (neg && pos) || det == 0.0 || !(t >= t_min && t <= t_max) {
+    if det == 0.0 || !(t >= t_min && t <= t_max) {
         return None;
     }
     Some(TriHit { t, u: v * rcp, v: w * rcp })
+}
+
+/// `a·b + c` with one rounding (two with the measuring feature that turns fusion off).
+#[inline(always)]
+pub fn fused(a: f32, b: f32, c: f32) -> f32 {
+    if FUSED {
+        a.mul_add(b, c)
+    } else {
+        a * b + c
+    }
+}
+
+/// Whether the edge functions share a sign (zeros count as either): `min ≥ 0` or `max ≤ 0`,
+/// with `maxps`/`minps` semantics as the vector kernel (false when all are NaN).
+#[inline(always)]
+pub fn inside([u, v, w]: [f32; 3]) -> bool {
+    min_ps(u, min_ps(v, w)) >= 0.0 || max_ps(u, max_ps(v, w)) <= 0.0
 }
 
 /// Whether a triangle can ever be hit: all vertices finite and not collinear (the cross product

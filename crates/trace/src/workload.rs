@@ -2,15 +2,81 @@
 //! comparison and the GPU ray-rate example, so that every one of them traces the same triangles
 //! and rays.
 //!
-//! Scene: a procedural terrain of 708 × 708 quads (1,002,528 triangles), displaced by a sum of
-//! ridged sine octaves into hills and canyons. Primary rays: a 512 × 512 pinhole camera looking
-//! across it, in tiles of 8 × 8 pixels (tiles row by row, pixels in Morton order inside a
-//! tile), so that every 8 consecutive rays are a 4 × 2 block of pixels, every 16 a 4 × 4 block
-//! and every 32 an 8 × 4 block. Incoherent rays: one cosine-weighted diffuse bounce from every primary hit. Shadow
-//! rays: segments from every primary hit to a point light (any-hit).
+//! Meshes ([`MESHES`]), each with its own view ([`View`]): a procedural terrain of 708 × 708
+//! quads (1,002,528 triangles), displaced by a sum of ridged sine octaves into hills and
+//! canyons; a closed lumpy blob of the Stanford bunny's size (69,312 triangles, [`blob`]); and
+//! 48 transformed copies of the blob flattened into one mesh (3,326,976 triangles). Primary
+//! rays: a 512 × 512 pinhole camera, in tiles of 8 × 8 pixels (tiles row by row, pixels in
+//! Morton order inside a tile), so that every 8 consecutive rays are a 4 × 2 block of pixels,
+//! every 16 a 4 × 4 block and every 32 an 8 × 4 block. Incoherent rays: one cosine-weighted
+//! diffuse bounce from every primary hit. Shadow rays: segments from every primary hit to a
+//! point light (any-hit).
+
+mod blob;
+
+pub use blob::{blob, flatten, placements, BLOB_GRID, COPIES};
 
 use crate::{Blas, Ray};
 use glam::Vec3;
+
+/// Where a mesh is seen from and lit from.
+#[derive(Clone, Copy, Debug)]
+pub struct View {
+    /// The camera's position.
+    pub eye: Vec3,
+    /// The point at the image's centre.
+    pub target: Vec3,
+    /// The vertical (and horizontal: the image is square) field of view in degrees.
+    pub fov_deg: f32,
+    /// The point light the shadow rays go to.
+    pub light: Vec3,
+}
+
+/// The terrain's view: across the hills from one edge.
+pub const TERRAIN_VIEW: View = View {
+    eye: Vec3::new(50.0, 32.0, -12.0),
+    target: Vec3::new(50.0, 0.0, 45.0),
+    fov_deg: 55.0,
+    light: Vec3::new(20.0, 60.0, 80.0),
+};
+
+/// The blob's view: the whole blob, ears included, filling most of the image.
+pub const BLOB_VIEW: View = View {
+    eye: Vec3::new(1.1, 1.3, 3.3),
+    target: Vec3::new(0.0, 0.45, 0.0),
+    fov_deg: 44.0,
+    light: Vec3::new(4.0, 6.0, 3.0),
+};
+
+/// The copies' view: over the field of blobs from its front edge.
+pub const BLOBS_VIEW: View = View {
+    eye: Vec3::new(0.0, 15.0, -5.0),
+    target: Vec3::new(0.0, 0.0, 7.0),
+    fov_deg: 58.0,
+    light: Vec3::new(-10.0, 25.0, 5.0),
+};
+
+/// The benchmark meshes by name: `terrain`, `blob`, `blobs`.
+pub const MESHES: [&str; 3] = ["terrain", "blob", "blobs"];
+
+/// The mesh named `name` (one of [`MESHES`]) and its view, or `None`.
+pub fn mesh(name: &str) -> Option<(Vec<Vec3>, Vec<[u32; 3]>, View)> {
+    Some(match name {
+        "terrain" => {
+            let (p, t) = terrain();
+            (p, t, TERRAIN_VIEW)
+        }
+        "blob" => {
+            let (p, t) = blob();
+            (p, t, BLOB_VIEW)
+        }
+        "blobs" => {
+            let (p, t) = flatten(&blob(), &placements());
+            (p, t, BLOBS_VIEW)
+        }
+        _ => return None,
+    })
+}
 
 /// Quads along each side of the terrain.
 pub const GRID: usize = 708;
@@ -74,13 +140,18 @@ pub fn tiled_morton(k: usize) -> (usize, usize) {
     (tx * TILE + x, ty * TILE + y)
 }
 
-/// The primary rays, in tiled Morton order.
+/// The terrain's primary rays, in tiled Morton order.
 pub fn camera_rays() -> Vec<Ray> {
-    let eye = Vec3::new(50.0, 32.0, -12.0);
-    let forward = (Vec3::new(50.0, 0.0, 45.0) - eye).normalize();
+    view_rays(&TERRAIN_VIEW)
+}
+
+/// The primary rays of `view`, in tiled Morton order.
+pub fn view_rays(view: &View) -> Vec<Ray> {
+    let eye = view.eye;
+    let forward = (view.target - eye).normalize();
     let right = forward.cross(Vec3::Y).normalize();
     let up = right.cross(forward);
-    let half = (55f32.to_radians() / 2.0).tan();
+    let half = (view.fov_deg.to_radians() / 2.0).tan();
     (0..WIDTH * HEIGHT)
         .map(|k| {
             let (x, y) = tiled_morton(k);
@@ -101,10 +172,21 @@ impl Pcg {
     }
 }
 
-/// From every primary hit (in the primary rays' order): a cosine-weighted bounce about the
-/// facing geometric normal, and a shadow segment towards a point light.
+/// The terrain's secondary rays ([`secondary_rays_to`] its light).
 pub fn secondary_rays(blas: &Blas, pos: &[Vec3], tris: &[[u32; 3]], primary: &[Ray]) -> (Vec<Ray>, Vec<Ray>) {
-    let light = Vec3::new(20.0, 60.0, 80.0);
+    secondary_rays_to(blas, pos, tris, primary, TERRAIN_VIEW.light)
+}
+
+/// From every primary hit (in the primary rays' order): a cosine-weighted bounce about the
+/// facing geometric normal, and a shadow segment towards the point light at `light`. The new
+/// origins are offset 1e-3 along that normal.
+pub fn secondary_rays_to(
+    blas: &Blas,
+    pos: &[Vec3],
+    tris: &[[u32; 3]],
+    primary: &[Ray],
+    light: Vec3,
+) -> (Vec<Ray>, Vec<Ray>) {
     let mut rng = Pcg(7);
     let (mut bounce, mut shadow) = (Vec::new(), Vec::new());
     for ray in primary {

@@ -210,7 +210,8 @@ fn packet_node_tests_agree_between_kernels() {
     use renderlab_trace::traverse::avx2::Avx2;
     use renderlab_trace::traverse::backend::{Backend, RayQuery};
     use renderlab_trace::traverse::scalar::Scalar;
-    if !renderlab_trace::Kernel::Simd.available() {
+    use std::mem::MaybeUninit;
+    if !renderlab_trace::kernel::available(renderlab_trace::Kernel::Simd) {
         return;
     }
     let mut tris = Vec::new();
@@ -251,8 +252,8 @@ fn packet_node_tests_agree_between_kernels() {
         let all = u32::MAX >> (32 - PACKET);
         // SAFETY: the CPU has AVX2 (checked above).
         unsafe {
-            let ps: [_; PACKET] = std::array::from_fn(|i| Scalar::prepare(&queries[i]));
-            let pa: [_; PACKET] = std::array::from_fn(|i| Avx2::prepare(&queries[i]));
+            let ps: [_; PACKET] = std::array::from_fn(|i| MaybeUninit::new(Scalar::prepare(&queries[i])));
+            let pa: [_; PACKET] = std::array::from_fn(|i| MaybeUninit::new(Avx2::prepare(&queries[i])));
             for node in blas.nodes() {
                 for active in [all, all & 0x5a5a_a5a5, all & 0x0000_0007, all & 0x8000_0001] {
                     let s = Scalar::node_packet(&ps, node, active, &t_max);

@@ -169,3 +169,43 @@ fn edge_functions_that_round_to_zero_are_decided_exactly() {
         assert!(hits(inside).is_some(), "kernel {k}");
     }
 }
+
+#[test]
+fn rays_at_a_displaced_grids_vertices_and_edges_never_leak() {
+    // An open height field (the benchmarks' kind of mesh), seen from above by rays aimed exactly
+    // at every interior vertex and the midpoint of every interior edge (shared by two
+    // triangles), from origins that make the projections' shears irrational-looking: each ray
+    // must hit at its target: the rays fall more steeply than any slope of the surface, so each
+    // crosses it exactly once, there.
+    let n = 20usize;
+    let h = |i: usize, j: usize| ((i as f32 * 0.7).sin() * (j as f32 * 0.45).cos()) * 0.8;
+    let pos: Vec<Vec3> = (0..=n)
+        .flat_map(|j| (0..=n).map(move |i| Vec3::new(i as f32 * 0.37, h(i, j), j as f32 * 0.41)))
+        .collect();
+    let at = |i: usize, j: usize| (j * (n + 1) + i) as u32;
+    let mut tris = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            tris.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+            tris.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+        }
+    }
+    let interior =
+        |p: Vec3| p.x > 0.2 && p.x < n as f32 * 0.37 - 0.2 && p.z > 0.2 && p.z < n as f32 * 0.41 - 0.2;
+    let aims: Vec<Vec3> = targets(&pos, &tris).into_iter().filter(|&p| interior(p)).collect();
+    let origins = [Vec3::new(3.1, 26.0, 2.7), Vec3::new(-1.3, 24.2, 9.9), Vec3::new(4.0, 29.0, 4.1)];
+    for k in kernels() {
+        let blas = Blas::build(&pos, &tris).unwrap().with_kernel(k);
+        for origin in origins {
+            for &target in &aims {
+                let ray = Ray::new(origin, target - origin);
+                let hit = blas.closest_hit(&ray);
+                assert!(
+                    hit.is_some_and(|h| (h.t - 1.0).abs() < 1e-4),
+                    "kernel {k}: ray from {origin} at {target} gave {hit:?}"
+                );
+                assert!(blas.any_hit(&ray), "kernel {k}: any-hit from {origin} at {target}");
+            }
+        }
+    }
+}

@@ -1,60 +1,72 @@
 //! The AVX2 kernel: a wide node's eight slab tests in one 256-bit register per plane, a leaf's
 //! four watertight triangle tests in one 128-bit register per quantity; a packet's node test
 //! runs the node test for each of its rays and keeps the masks and least distances in registers. Each lane performs
-//! exactly the scalar kernel's operations (no fused multiply-adds, `maxps`/`minps` operand
-//! order as the scalar `max_ps`/`min_ps`), so both kernels produce the same bits.
+//! exactly the scalar kernel's operations (fused multiply-adds where the scalar test calls
+//! `mul_add`, separate operations elsewhere, `maxps`/`minps` operand order as the scalar
+//! `max_ps`/`min_ps`), so both kernels produce the same bits. The kernel needs AVX2 and FMA.
 
 #![cfg(target_arch = "x86_64")]
 
 use crate::node::{TriBlock, WideNode, WIDTH};
-use crate::traverse::backend::{Backend, BlockHits, PacketNode, RayQuery, IZE, PACKET};
-use crate::triangle::{edge_functions_f64, TriRay};
+use crate::traverse::backend::{Backend, BlockHits, PacketNode, RayQuery, FUSED_SLABS, IZE, PACKET};
+use crate::triangle::{edge_functions_f64, EXACT_EDGES, FUSED};
 use std::arch::x86_64::*;
+use std::mem::MaybeUninit;
+
+/// Whether the block test computes every lane's distance even when no lane is inside its
+/// triangle (on only to measure what the early exit saves).
+const EAGER: bool = cfg!(feature = "measure-eager-division");
 
 /// The AVX2 kernel.
 #[derive(Clone, Copy, Debug)]
 pub struct Avx2;
 
-/// A ray broadcast into registers.
+/// A ray as the kernel reads it: scalars, broadcast into registers where used (a broadcast
+/// from memory costs what a vector load does), so that a packet's rays take little space.
 #[derive(Clone, Copy, Debug)]
 pub struct Prepared {
-    org: [__m256; 3],
-    inv: [__m256; 3],
-    near: [usize; 3],
-    far: [usize; 3],
-    t_min: __m256,
-    tri: TriRay,
-    tri_org: [__m128; 3],
-    shear: [__m128; 3],
-    t_min4: __m128,
+    org: [f32; 3],
+    inv: [f32; 3],
+    org_inv: [f32; 3],
+    near: [u32; 3],
+    far: [u32; 3],
+    t_min: f32,
+    k: [u32; 3],
+    /// The origin's coordinates along `kx`, `ky`, `kz`.
+    tri_org: [f32; 3],
+    shear: [f32; 3],
 }
 
 impl Backend for Avx2 {
     type Prepared = Prepared;
 
     #[inline]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     unsafe fn prepare(q: &RayQuery) -> Prepared {
         let k = q.tri.k;
+        // The origin permuted to (kx, ky, kz) in registers (indexing the array by `k` would
+        // store and reload it).
+        let o = _mm_setr_ps(q.tri.org[0], q.tri.org[1], q.tri.org[2], 0.0);
+        let o = _mm_permutevar_ps(o, _mm_setr_epi32(k[0] as i32, k[1] as i32, k[2] as i32, 3));
         Prepared {
-            org: [_mm256_set1_ps(q.org[0]), _mm256_set1_ps(q.org[1]), _mm256_set1_ps(q.org[2])],
-            inv: [_mm256_set1_ps(q.inv[0]), _mm256_set1_ps(q.inv[1]), _mm256_set1_ps(q.inv[2])],
-            near: q.near,
-            far: q.far,
-            t_min: _mm256_set1_ps(q.t_min),
-            tri: q.tri,
+            org: q.org,
+            inv: q.inv,
+            org_inv: q.org_inv,
+            near: q.near.map(|r| r as u32),
+            far: q.far.map(|r| r as u32),
+            t_min: q.t_min,
+            k: k.map(|a| a as u32),
             tri_org: [
-                _mm_set1_ps(q.tri.org[k[0]]),
-                _mm_set1_ps(q.tri.org[k[1]]),
-                _mm_set1_ps(q.tri.org[k[2]]),
+                _mm_cvtss_f32(o),
+                _mm_cvtss_f32(_mm_shuffle_ps::<0x55>(o, o)),
+                _mm_cvtss_f32(_mm_shuffle_ps::<0xaa>(o, o)),
             ],
-            shear: [_mm_set1_ps(q.tri.shear[0]), _mm_set1_ps(q.tri.shear[1]), _mm_set1_ps(q.tri.shear[2])],
-            t_min4: _mm_set1_ps(q.t_min),
+            shear: q.tri.shear,
         }
     }
 
     #[inline]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     unsafe fn node(p: &Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; 8]) {
         let (near, hit) = slabs(p, node, t_max);
         let mut dist = [0.0f32; 8];
@@ -63,9 +75,9 @@ impl Backend for Avx2 {
     }
 
     #[inline]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     unsafe fn node_packet(
-        p: &[Prepared; PACKET],
+        p: &[MaybeUninit<Prepared>; PACKET],
         node: &WideNode,
         active: u32,
         t_max: &[f32; PACKET],
@@ -77,7 +89,7 @@ impl Backend for Avx2 {
         while a != 0 {
             let r = a.trailing_zeros() as usize;
             a &= a - 1;
-            let (near, hit) = slabs(p.get_unchecked(r), node, *t_max.get_unchecked(r));
+            let (near, hit) = slabs(p.get_unchecked(r).assume_init_ref(), node, *t_max.get_unchecked(r));
             *rows.get_unchecked_mut(r / 8) |= (_mm256_movemask_ps(hit) as u32 as u64) << (8 * (r % 8));
             least = _mm256_min_ps(_mm256_blendv_ps(inf, near, hit), least);
         }
@@ -87,18 +99,19 @@ impl Backend for Avx2 {
     }
 
     #[inline]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     unsafe fn block(p: &Prepared, block: &TriBlock, t_max: f32) -> BlockHits {
-        let [kx, ky, kz] = p.tri.k;
-        let [sx, sy, sz] = p.shear;
+        let [kx, ky, kz] = p.k.map(|a| a as usize);
+        let [sx, sy, sz] = p.shear.map(|x| _mm_set1_ps(x));
+        let tri_org = p.tri_org.map(|x| _mm_set1_ps(x));
         // Rows are 16-byte aligned ([`TriBlock`] is `align(16)`, rows are 16 bytes); `k` is a
         // permutation of 0..3.
         macro_rules! rel {
             ($j:expr) => {
                 (
-                    _mm_sub_ps(_mm_load_ps(block.v.get_unchecked(3 * $j + kx).as_ptr()), p.tri_org[0]),
-                    _mm_sub_ps(_mm_load_ps(block.v.get_unchecked(3 * $j + ky).as_ptr()), p.tri_org[1]),
-                    _mm_sub_ps(_mm_load_ps(block.v.get_unchecked(3 * $j + kz).as_ptr()), p.tri_org[2]),
+                    _mm_sub_ps(_mm_load_ps(block.v.get_unchecked(3 * $j + kx).as_ptr()), tri_org[0]),
+                    _mm_sub_ps(_mm_load_ps(block.v.get_unchecked(3 * $j + ky).as_ptr()), tri_org[1]),
+                    _mm_sub_ps(_mm_load_ps(block.v.get_unchecked(3 * $j + kz).as_ptr()), tri_org[2]),
                 )
             };
         }
@@ -115,23 +128,28 @@ impl Backend for Avx2 {
         let mut v = _mm_sub_ps(_mm_mul_ps(ax, cy), _mm_mul_ps(ay, cx));
         let mut w = _mm_sub_ps(_mm_mul_ps(bx, ay), _mm_mul_ps(by, ax));
         let zero = _mm_setzero_ps();
-        let on_edge =
-            _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(u, zero), _mm_cmpeq_ps(v, zero)), _mm_cmpeq_ps(w, zero));
-        let on_edge = _mm_movemask_ps(on_edge);
-        if on_edge != 0 {
-            (u, v, w) = exact_edges(on_edge, [ax, ay, bx, by, cx, cy], [u, v, w]);
+        let mut inside = inside(u, v, w);
+        if !EAGER && _mm_movemask_ps(inside) == 0 {
+            return BlockHits::default();
         }
-        let neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(u, zero), _mm_cmplt_ps(v, zero)), _mm_cmplt_ps(w, zero));
-        let pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(u, zero), _mm_cmpgt_ps(v, zero)), _mm_cmpgt_ps(w, zero));
+        if EXACT_EDGES {
+            let on_edge =
+                _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(u, zero), _mm_cmpeq_ps(v, zero)), _mm_cmpeq_ps(w, zero));
+            let on_edge = _mm_movemask_ps(_mm_and_ps(on_edge, inside));
+            if on_edge != 0 {
+                (u, v, w) = exact_edges(on_edge, [ax, ay, bx, by, cx, cy], [u, v, w]);
+                inside = self::inside(u, v, w);
+            }
+        }
         let det = _mm_add_ps(_mm_add_ps(u, v), w);
         let az = _mm_mul_ps(sz, a_z);
         let bz = _mm_mul_ps(sz, b_z);
         let cz = _mm_mul_ps(sz, c_z);
-        let tt = _mm_add_ps(_mm_add_ps(_mm_mul_ps(u, az), _mm_mul_ps(v, bz)), _mm_mul_ps(w, cz));
+        let tt = fmadd(w, cz, fmadd(v, bz, _mm_mul_ps(u, az)));
         let rcp = _mm_div_ps(_mm_set1_ps(1.0), det);
         let t = _mm_mul_ps(tt, rcp);
-        let in_range = _mm_and_ps(_mm_cmpge_ps(t, p.t_min4), _mm_cmple_ps(t, _mm_set1_ps(t_max)));
-        let ok = _mm_andnot_ps(_mm_and_ps(neg, pos), _mm_and_ps(_mm_cmpneq_ps(det, zero), in_range));
+        let in_range = _mm_and_ps(_mm_cmpge_ps(t, _mm_set1_ps(p.t_min)), _mm_cmple_ps(t, _mm_set1_ps(t_max)));
+        let ok = _mm_and_ps(inside, _mm_and_ps(_mm_cmpneq_ps(det, zero), in_range));
         let mask = _mm_movemask_ps(ok) as u32;
         let mut hits = BlockHits { mask, ..BlockHits::default() };
         if mask != 0 {
@@ -146,7 +164,7 @@ impl Backend for Avx2 {
 /// The slab tests of a node's eight children: the entry distances and which children the
 /// ray enters before `t_max`.
 #[inline]
-#[target_feature(enable = "avx2")]
+#[target_feature(enable = "avx2,fma")]
 unsafe fn slabs(p: &Prepared, node: &WideNode, t_max: f32) -> (__m256, __m256) {
     let b = &node.bounds;
     // Rows are 32-byte aligned ([`WideNode`] is `align(32)`, rows are 32 bytes); the row
@@ -154,12 +172,26 @@ unsafe fn slabs(p: &Prepared, node: &WideNode, t_max: f32) -> (__m256, __m256) {
     // every intrinsic inside this function's target features.)
     macro_rules! slab {
         ($a:expr, $r:expr) => {
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b.get_unchecked($r).as_ptr()), p.org[$a]), p.inv[$a])
+            if FUSED_SLABS {
+                _mm256_fmsub_ps(
+                    _mm256_load_ps(b.get_unchecked($r as usize).as_ptr()),
+                    _mm256_set1_ps(p.inv[$a]),
+                    _mm256_set1_ps(p.org_inv[$a]),
+                )
+            } else {
+                _mm256_mul_ps(
+                    _mm256_sub_ps(
+                        _mm256_load_ps(b.get_unchecked($r as usize).as_ptr()),
+                        _mm256_set1_ps(p.org[$a]),
+                    ),
+                    _mm256_set1_ps(p.inv[$a]),
+                )
+            }
         };
     }
     let near = _mm256_max_ps(
         slab!(0, p.near[0]),
-        _mm256_max_ps(slab!(1, p.near[1]), _mm256_max_ps(slab!(2, p.near[2]), p.t_min)),
+        _mm256_max_ps(slab!(1, p.near[1]), _mm256_max_ps(slab!(2, p.near[2]), _mm256_set1_ps(p.t_min))),
     );
     let far = _mm256_mul_ps(
         _mm256_min_ps(
@@ -171,10 +203,33 @@ unsafe fn slabs(p: &Prepared, node: &WideNode, t_max: f32) -> (__m256, __m256) {
     (near, _mm256_cmp_ps::<_CMP_LE_OQ>(near, far))
 }
 
+/// `a·b + c`, fused as [`crate::triangle::fused`].
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn fmadd(a: __m128, b: __m128, c: __m128) -> __m128 {
+    if FUSED {
+        _mm_fmadd_ps(a, b, c)
+    } else {
+        _mm_add_ps(_mm_mul_ps(a, b), c)
+    }
+}
+
+/// The lanes whose edge functions share a sign: `min(u, v, w) ≥ 0` or `max(u, v, w) ≤ 0`, as
+/// [`crate::triangle::inside`].
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn inside(u: __m128, v: __m128, w: __m128) -> __m128 {
+    let zero = _mm_setzero_ps();
+    _mm_or_ps(
+        _mm_cmpge_ps(_mm_min_ps(u, _mm_min_ps(v, w)), zero),
+        _mm_cmple_ps(_mm_max_ps(u, _mm_max_ps(v, w)), zero),
+    )
+}
+
 /// Recomputes the edge functions of the lanes in `lanes` in f64, as the scalar test does.
 #[cold]
 #[inline(never)]
-#[target_feature(enable = "avx2")]
+#[target_feature(enable = "avx2,fma")]
 unsafe fn exact_edges(lanes: i32, proj: [__m128; 6], uvw: [__m128; 3]) -> (__m128, __m128, __m128) {
     let mut p = [[0.0f32; 4]; 6];
     for (dst, src) in p.iter_mut().zip(proj) {

@@ -15,10 +15,23 @@
 use crate::node::{TriBlock, WideNode, WIDTH};
 use crate::ray::Ray;
 use crate::triangle::TriRay;
+
+pub use crate::lanes::{max_ps, min_ps};
 use glam::Vec3;
+use std::mem::MaybeUninit;
 
 /// `1 + 2γ₃` with `γₙ = nε / (1 − nε)`, `ε = 2⁻²⁴`: Ize's factor for the far slab distance.
-pub const IZE: f32 = 1.0 + 2.0 * (3.0 * 5.960_464_5e-8 / (1.0 - 3.0 * 5.960_464_5e-8));
+/// (1 only to measure what the factor costs; then rounding may drop a box a ray touches.)
+pub const IZE: f32 = if cfg!(feature = "measure-no-ize") {
+    1.0
+} else {
+    1.0 + 2.0 * (3.0 * 5.960_464_5e-8 / (1.0 - 3.0 * 5.960_464_5e-8))
+};
+
+/// Whether slab distances are computed as one fused `b·inv − o·inv` (with `o·inv` per ray)
+/// instead of `(b − o)·inv`: on only to measure what the exact subtraction costs; the fused
+/// form's error is relative to `o·inv`, not to the distance, so Ize's factor no longer covers it.
+pub const FUSED_SLABS: bool = cfg!(feature = "measure-fused-slabs");
 
 /// Rays a packet query traces together (a multiple of 8, at most 32: ray masks are `u32`).
 pub const PACKET: usize = 32;
@@ -68,6 +81,8 @@ pub struct RayQuery {
     pub t_min: f32,
     /// The interval's end as the ray was given.
     pub t_max: f32,
+    /// `org · inv` per axis (used only by the fused slab form, [`FUSED_SLABS`]).
+    pub org_inv: [f32; 3],
     /// The sheared frame of the watertight test.
     pub tri: TriRay,
 }
@@ -75,6 +90,7 @@ pub struct RayQuery {
 impl RayQuery {
     /// The query for `ray`, or `None` when the ray can hit nothing: a non-finite origin or
     /// direction, a zero direction, or an empty or NaN interval.
+    #[inline(always)]
     pub fn new(ray: &Ray) -> Option<RayQuery> {
         let t_min = if ray.t_min > 0.0 { ray.t_min } else { 0.0 };
         if ray.t_min.is_nan()
@@ -86,6 +102,7 @@ impl RayQuery {
         let inv = d.map(|x| 1.0 / x);
         let near = [0, 1, 2].map(|a| 2 * a + inv[a].is_sign_negative() as usize);
         let far = [0, 1, 2].map(|a| 2 * a + 1 - inv[a].is_sign_negative() as usize);
+        let d_org = ray.origin.to_array();
         Some(RayQuery {
             org: ray.origin.to_array(),
             inv,
@@ -93,6 +110,7 @@ impl RayQuery {
             far,
             t_min,
             t_max: ray.t_max,
+            org_inv: [0, 1, 2].map(|a| d_org[a] * inv[a]),
             tri: TriRay::new(ray.origin, ray.dir),
         })
     }
@@ -141,13 +159,14 @@ pub trait Backend {
 
     /// A packet's test of a wide node: each ray `r` of `active` runs [`Backend::node`] with
     /// its own `t_max[r]`; which rays enter each child, and the least distance at which they
-    /// do. Kernels may override it with a faster form of the same results.
+    /// do. Kernels may override it with a faster form of the same results. Only the lanes of
+    /// `active` are read (the others may be uninitialised).
     ///
     /// # Safety
-    /// The CPU has the kernel's features.
+    /// The CPU has the kernel's features; every lane of `active` is initialised.
     #[inline(always)]
     unsafe fn node_packet(
-        p: &[Self::Prepared; PACKET],
+        p: &[MaybeUninit<Self::Prepared>; PACKET],
         node: &WideNode,
         active: u32,
         t_max: &[f32; PACKET],
@@ -158,7 +177,7 @@ pub trait Backend {
         while a != 0 {
             let r = a.trailing_zeros() as usize;
             a &= a - 1;
-            let (mask, d) = Self::node(p.get_unchecked(r), node, *t_max.get_unchecked(r));
+            let (mask, d) = Self::node(p.get_unchecked(r).assume_init_ref(), node, *t_max.get_unchecked(r));
             *rows.get_unchecked_mut(r / 8) |= (mask as u64) << (8 * (r % 8));
             for c in 0..WIDTH {
                 if (mask >> c) & 1 != 0 && d[c] < dist[c] {
@@ -180,26 +199,6 @@ pub fn transpose8(mut x: u64) -> u64 {
     x ^= t ^ (t << 14);
     let t = (x ^ (x >> 28)) & 0x0000_0000_F0F0_F0F0;
     x ^ t ^ (t << 28)
-}
-
-/// `maxps(a, b)`: `b` unless `a > b` (so a NaN `a` is ignored).
-#[inline(always)]
-pub fn max_ps(a: f32, b: f32) -> f32 {
-    if a > b {
-        a
-    } else {
-        b
-    }
-}
-
-/// `minps(a, b)`: `b` unless `a < b` (so a NaN `a` is ignored).
-#[inline(always)]
-pub fn min_ps(a: f32, b: f32) -> f32 {
-    if a < b {
-        a
-    } else {
-        b
-    }
 }
 
 /// Asks the CPU to start loading every cache line of `x` (a node or leaf block about to be

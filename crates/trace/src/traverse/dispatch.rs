@@ -1,6 +1,7 @@
-//! The run-time choice of kernel: each query is instantiated once per kernel, the AVX2 copy
-//! inside a function compiled for AVX2, and called after the CPU check made when the
-//! hierarchy's kernel was chosen.
+//! The run-time choice of kernel: each query is instantiated once per kernel, the vector copy
+//! inside a function compiled for AVX2 and FMA (and a second one also compiled for AVX-512,
+//! whose 32 registers the same code then uses, taken where the CPU has it), and called after
+//! the CPU check made when the hierarchy's kernel was chosen.
 
 use crate::blas::Blas;
 use crate::hit::{Hit, HitFilter};
@@ -21,56 +22,88 @@ pub enum Query {
     Any,
 }
 
+/// The queries instantiated in a module compiled for the given CPU features.
+macro_rules! instantiate {
+    ($name:ident, $features:literal) => {
+        #[cfg(target_arch = "x86_64")]
+        mod $name {
+            use super::*;
+            use crate::traverse::avx2::Avx2;
+
+            #[target_feature(enable = $features)]
+            pub unsafe fn blas(
+                blas: &Blas,
+                ray: &Ray,
+                filter: &mut impl HitFilter,
+                query: Query,
+            ) -> Option<Hit> {
+                match query {
+                    Query::Closest => leaves::blas_closest::<Avx2, _>(blas, ray, filter),
+                    Query::Any => leaves::blas_any::<Avx2, _>(blas, ray, filter),
+                }
+            }
+
+            #[target_feature(enable = $features)]
+            pub unsafe fn tlas(
+                tlas: &Tlas,
+                ray: &Ray,
+                filter: &mut impl HitFilter,
+                query: Query,
+            ) -> Option<Hit> {
+                match query {
+                    Query::Closest => leaves::tlas_closest::<Avx2, _>(tlas, ray, filter),
+                    Query::Any => leaves::tlas_any::<Avx2, _>(tlas, ray, filter),
+                }
+            }
+
+            #[target_feature(enable = $features)]
+            pub unsafe fn closest_packet(blas: &Blas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
+                packet_leaves::blas_closest::<Avx2>(blas, rays)
+            }
+
+            #[target_feature(enable = $features)]
+            pub unsafe fn any_packet(blas: &Blas, rays: &[Ray]) -> [bool; PACKET] {
+                packet_leaves::blas_any::<Avx2>(blas, rays)
+            }
+
+            #[target_feature(enable = $features)]
+            pub unsafe fn tlas_closest_packet(tlas: &Tlas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
+                packet_leaves::tlas_closest::<Avx2>(tlas, rays)
+            }
+
+            #[target_feature(enable = $features)]
+            pub unsafe fn tlas_any_packet(tlas: &Tlas, rays: &[Ray]) -> [bool; PACKET] {
+                packet_leaves::tlas_any::<Avx2>(tlas, rays)
+            }
+        }
+    };
+}
+
+instantiate!(simd, "avx2,fma");
+// The same AVX2 code, compiled where the CPU has AVX-512 with its 32 vector registers and mask
+// registers, so that a walk's state need not spill; the same operations, so the same bits.
+instantiate!(simd512, "avx2,fma,avx512f,avx512vl");
+
+/// Which instantiation of the vector queries runs.
 #[cfg(target_arch = "x86_64")]
-mod simd {
-    use super::*;
-    use crate::traverse::avx2::Avx2;
-
-    #[target_feature(enable = "avx2")]
-    pub unsafe fn blas(blas: &Blas, ray: &Ray, filter: &mut impl HitFilter, query: Query) -> Option<Hit> {
-        match query {
-            Query::Closest => leaves::blas_closest::<Avx2, _>(blas, ray, filter),
-            Query::Any => leaves::blas_any::<Avx2, _>(blas, ray, filter),
+macro_rules! vector {
+    ($f:ident($($arg:expr),*)) => {
+        if crate::kernel::wide_registers() {
+            simd512::$f($($arg),*)
+        } else {
+            simd::$f($($arg),*)
         }
-    }
-
-    #[target_feature(enable = "avx2")]
-    pub unsafe fn tlas(tlas: &Tlas, ray: &Ray, filter: &mut impl HitFilter, query: Query) -> Option<Hit> {
-        match query {
-            Query::Closest => leaves::tlas_closest::<Avx2, _>(tlas, ray, filter),
-            Query::Any => leaves::tlas_any::<Avx2, _>(tlas, ray, filter),
-        }
-    }
-
-    #[target_feature(enable = "avx2")]
-    pub unsafe fn closest_packet(blas: &Blas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
-        packet_leaves::blas_closest::<Avx2>(blas, rays)
-    }
-
-    #[target_feature(enable = "avx2")]
-    pub unsafe fn any_packet(blas: &Blas, rays: &[Ray]) -> [bool; PACKET] {
-        packet_leaves::blas_any::<Avx2>(blas, rays)
-    }
-
-    #[target_feature(enable = "avx2")]
-    pub unsafe fn tlas_closest_packet(tlas: &Tlas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
-        packet_leaves::tlas_closest::<Avx2>(tlas, rays)
-    }
-
-    #[target_feature(enable = "avx2")]
-    pub unsafe fn tlas_any_packet(tlas: &Tlas, rays: &[Ray]) -> [bool; PACKET] {
-        packet_leaves::tlas_any::<Avx2>(tlas, rays)
-    }
+    };
 }
 
 /// Runs `query` on one mesh with the mesh's kernel.
 #[inline]
 pub fn blas(blas: &Blas, ray: &Ray, filter: &mut impl HitFilter, query: Query) -> Option<Hit> {
     match blas.kernel {
-        // SAFETY: a hierarchy's kernel is `Simd` only when the CPU has AVX2 (`with_kernel`,
-        // `Kernel::best`).
+        // SAFETY: a hierarchy's kernel is `Simd` only when the CPU has AVX2 and FMA (`with_kernel`,
+        // `kernel::best`).
         #[cfg(target_arch = "x86_64")]
-        Kernel::Simd => unsafe { simd::blas(blas, ray, filter, query) },
+        Kernel::Simd => unsafe { vector!(blas(blas, ray, filter, query)) },
         // SAFETY: the scalar kernel needs no CPU feature.
         _ => unsafe {
             match query {
@@ -87,7 +120,7 @@ pub fn tlas(tlas: &Tlas, ray: &Ray, filter: &mut impl HitFilter, query: Query) -
     match tlas.kernel {
         // SAFETY: as in [`blas`].
         #[cfg(target_arch = "x86_64")]
-        Kernel::Simd => unsafe { simd::tlas(tlas, ray, filter, query) },
+        Kernel::Simd => unsafe { vector!(tlas(tlas, ray, filter, query)) },
         // SAFETY: the scalar kernel needs no CPU feature.
         _ => unsafe {
             match query {
@@ -104,7 +137,7 @@ pub fn closest_packet(blas: &Blas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
     match blas.kernel {
         // SAFETY: as in [`blas`].
         #[cfg(target_arch = "x86_64")]
-        Kernel::Simd => unsafe { simd::closest_packet(blas, rays) },
+        Kernel::Simd => unsafe { vector!(closest_packet(blas, rays)) },
         // SAFETY: the scalar kernel needs no CPU feature.
         _ => unsafe { packet_leaves::blas_closest::<Scalar>(blas, rays) },
     }
@@ -116,7 +149,7 @@ pub fn any_packet(blas: &Blas, rays: &[Ray]) -> [bool; PACKET] {
     match blas.kernel {
         // SAFETY: as in [`blas`].
         #[cfg(target_arch = "x86_64")]
-        Kernel::Simd => unsafe { simd::any_packet(blas, rays) },
+        Kernel::Simd => unsafe { vector!(any_packet(blas, rays)) },
         // SAFETY: the scalar kernel needs no CPU feature.
         _ => unsafe { packet_leaves::blas_any::<Scalar>(blas, rays) },
     }
@@ -128,7 +161,7 @@ pub fn tlas_closest_packet(tlas: &Tlas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
     match tlas.kernel {
         // SAFETY: as in [`blas`].
         #[cfg(target_arch = "x86_64")]
-        Kernel::Simd => unsafe { simd::tlas_closest_packet(tlas, rays) },
+        Kernel::Simd => unsafe { vector!(tlas_closest_packet(tlas, rays)) },
         // SAFETY: the scalar kernel needs no CPU feature.
         _ => unsafe { packet_leaves::tlas_closest::<Scalar>(tlas, rays) },
     }
@@ -140,7 +173,7 @@ pub fn tlas_any_packet(tlas: &Tlas, rays: &[Ray]) -> [bool; PACKET] {
     match tlas.kernel {
         // SAFETY: as in [`blas`].
         #[cfg(target_arch = "x86_64")]
-        Kernel::Simd => unsafe { simd::tlas_any_packet(tlas, rays) },
+        Kernel::Simd => unsafe { vector!(tlas_any_packet(tlas, rays)) },
         // SAFETY: the scalar kernel needs no CPU feature.
         _ => unsafe { packet_leaves::tlas_any::<Scalar>(tlas, rays) },
     }

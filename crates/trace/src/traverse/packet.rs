@@ -26,7 +26,6 @@ use crate::node::{WideNode, EMPTY, LEAF_BIT};
 use crate::ray::Ray;
 use crate::traverse::backend::{Backend, PacketNode, RayQuery, IZE, PACKET};
 use crate::traverse::walk::STACK;
-use glam::Vec3;
 use std::mem::MaybeUninit;
 
 /// A node reached by this many active rays or fewer is walked by each of them alone.
@@ -41,7 +40,7 @@ struct Entry {
 
 /// A packet's rays in kernel form, with their intervals.
 pub(crate) struct Packet<B: Backend> {
-    /// Every lane written by [`Packet::finish`].
+    /// The lanes of `valid` written by [`Packet::set`]; the others never read.
     prepared: [MaybeUninit<B::Prepared>; PACKET],
     /// Each ray's interval end, lowered by its hits (−∞ once it takes no further part).
     pub(crate) t_max: [f32; PACKET],
@@ -50,8 +49,8 @@ pub(crate) struct Packet<B: Backend> {
 }
 
 impl<B: Backend> Packet<B> {
-    /// A packet of no rays, to be filled in place by [`Packet::set`] and [`Packet::finish`]
-    /// (it is several kilobytes).
+    /// A packet of no rays, to be filled in place by [`Packet::set`] (it is several
+    /// kilobytes, left uninitialised until then).
     #[inline(always)]
     pub(crate) fn empty() -> Packet<B> {
         Packet {
@@ -72,20 +71,6 @@ impl<B: Backend> Packet<B> {
         self.prepared[r].write(B::prepare(q));
     }
 
-    /// Gives every lane without a ray a harmless query that stays out of every mask.
-    ///
-    /// # Safety
-    /// The CPU has `B`'s features.
-    #[inline(always)]
-    pub(crate) unsafe fn finish(&mut self) {
-        let idle = RayQuery::new(&Ray::new(Vec3::ZERO, Vec3::X)).expect("a valid ray");
-        for r in 0..PACKET {
-            if self.valid & (1 << r) == 0 {
-                self.prepared[r].write(B::prepare(&idle));
-            }
-        }
-    }
-
     /// The packet of `rays` (at most [`PACKET`]; invalid rays leave their lane empty).
     ///
     /// # Safety
@@ -97,13 +82,12 @@ impl<B: Backend> Packet<B> {
                 self.set(r, &q);
             }
         }
-        self.finish();
     }
 
     /// Ray `r`'s kernel form.
     ///
     /// # Safety
-    /// The packet is finished.
+    /// Lane `r` holds a ray (bit `r` of `valid`).
     #[inline(always)]
     pub(crate) unsafe fn ray(&self, r: usize) -> &B::Prepared {
         self.prepared.get_unchecked(r).assume_init_ref()
@@ -112,10 +96,8 @@ impl<B: Backend> Packet<B> {
     /// Which rays of `active` enter each child, and their least entry distance.
     #[inline(always)]
     unsafe fn node(&self, node: &WideNode, active: u32) -> PacketNode {
-        // SAFETY: every lane is initialised, and `MaybeUninit<T>` has the layout of `T`.
-        let prepared =
-            &*(&self.prepared as *const [MaybeUninit<B::Prepared>; PACKET] as *const [B::Prepared; PACKET]);
-        B::node_packet(prepared, node, active, &self.t_max)
+        // The walks keep `active` within `valid`, whose lanes are written.
+        B::node_packet(&self.prepared, node, active, &self.t_max)
     }
 
     /// The rays of `rays` whose interval still reaches distance `dist`.
@@ -144,7 +126,7 @@ pub(crate) trait PacketLeaves<B: Backend> {
     /// [`LEAF_BIT`]), lowering their `t_max` to them.
     ///
     /// # Safety
-    /// The CPU has `B`'s features; the packet is finished.
+    /// The CPU has `B`'s features; the lanes of the rays walked hold rays.
     unsafe fn closest_leaf(&mut self, p: &mut Packet<B>, best: &mut [Hit; PACKET], leaf: u32, active: u32);
 
     /// Ray `r` looks for closer hits in the subtree at `node` with the single-ray walk.
@@ -169,7 +151,7 @@ pub(crate) trait PacketLeaves<B: Backend> {
 /// Walks the hierarchy from `root` for each ray's closest hit, updating `best` and `p.t_max`.
 ///
 /// # Safety
-/// The CPU has `B`'s features; the packet is finished; `root` and the leaves come from one
+/// The CPU has `B`'s features; the lanes of the rays walked hold rays; `root` and the leaves come from one
 /// build.
 #[inline(always)]
 pub(crate) unsafe fn closest<B: Backend, L: PacketLeaves<B>>(

@@ -131,7 +131,6 @@ impl Placed<'_> {
                 object.set(r, &q);
             }
         }
-        object.finish();
         self.tlas.meshes.get_unchecked(placed.mesh as usize)
     }
 

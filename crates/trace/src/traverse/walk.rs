@@ -4,14 +4,15 @@
 //! directly, two are ordered by entry distance (the farther pushed), more are pushed and sorted
 //! so the nearest is on top, and the nearest is entered. A leaf may shorten the ray (`t_max`);
 //! popped entries farther than the shortened ray are dropped. Any hit: the same without
-//! ordering, stopping at the first accepted hit.
+//! ordering, stopping at the first accepted hit. Every node pushed is prefetched, so that its
+//! lines are on their way while the walk descends the nearer child.
 //!
 //! The stack is a fixed array: each level of a path leaves at most seven entries, and the
 //! builder bounds paths to [`MAX_DEPTH`] levels.
 
 use crate::build::binned::MAX_DEPTH;
 use crate::node::{WideNode, EMPTY, LEAF_BIT, WIDTH};
-use crate::traverse::backend::{Backend, IZE};
+use crate::traverse::backend::{prefetch, Backend, IZE};
 use std::mem::MaybeUninit;
 
 /// Stack entries a walk can need.
@@ -37,6 +38,15 @@ pub trait Leaves {
 struct Entry {
     node: u32,
     dist: f32,
+}
+
+/// Starts loading `child` when it is a node (its box rows and references), so that a walk
+/// that comes back to it later need not wait.
+#[inline(always)]
+unsafe fn fetch(nodes: &[WideNode], child: u32) {
+    if child & LEAF_BIT == 0 {
+        prefetch(nodes.get_unchecked(child as usize));
+    }
 }
 
 /// Walks the hierarchy `nodes` from `root` for the closest hit.
@@ -74,6 +84,7 @@ pub unsafe fn closest<B: Backend, L: Leaves>(
                 mask &= mask - 1;
                 if mask == 0 {
                     let (near, far) = if dist[i1] < dist[i0] { (i1, i0) } else { (i0, i1) };
+                    fetch(nodes, node.children[far]);
                     debug_assert!(sp < STACK);
                     stack.get_unchecked_mut(sp).write(Entry { node: node.children[far], dist: dist[far] });
                     sp += 1;
@@ -84,12 +95,14 @@ pub unsafe fn closest<B: Backend, L: Leaves>(
                 // at equal distances, the lowest slot).
                 let base = sp;
                 for i in [i0, i1] {
+                    fetch(nodes, node.children[i]);
                     stack.get_unchecked_mut(sp).write(Entry { node: node.children[i], dist: dist[i] });
                     sp += 1;
                 }
                 while mask != 0 {
                     let i = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
+                    fetch(nodes, node.children[i]);
                     stack.get_unchecked_mut(sp).write(Entry { node: node.children[i], dist: dist[i] });
                     sp += 1;
                 }
@@ -154,6 +167,7 @@ pub unsafe fn any<B: Backend, L: Leaves>(
                 while mask != 0 {
                     let i = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
+                    fetch(nodes, node.children[i]);
                     debug_assert!(sp < STACK);
                     stack.get_unchecked_mut(sp).write(node.children[i]);
                     sp += 1;

@@ -107,5 +107,5 @@ pub fn check(
 
 /// Both kernels where the CPU has them.
 pub fn kernels() -> Vec<Kernel> {
-    Kernel::ALL.into_iter().filter(|k| k.available()).collect()
+    Kernel::ALL.into_iter().filter(|&k| renderlab_trace::kernel::available(k)).collect()
 }
