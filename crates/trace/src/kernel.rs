@@ -22,12 +22,17 @@ pub fn best() -> Kernel {
     }
 }
 
-/// Whether the vector kernel may be compiled with AVX-512's registers (the CPU has AVX-512 F
-/// and VL); checked once and cached by the standard library.
+/// Whether the vector kernel may be compiled with AVX-512's registers: the CPU has AVX-512 F
+/// and VL, and the environment variable [`NO_AVX512`] is not set (it selects the plain AVX2
+/// copy on such CPUs, to test or time it). Read once, on the first query.
 #[inline]
 pub fn wide_registers() -> bool {
-    renderlab_core::kernel::has_avx512()
+    static WIDE: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *WIDE.get_or_init(|| renderlab_core::kernel::has_avx512() && std::env::var_os(NO_AVX512).is_none())
 }
+
+/// The environment variable that keeps the vector kernel to its AVX2 copy on AVX-512 CPUs.
+pub const NO_AVX512: &str = "RENDERLAB_NO_AVX512";
 
 /// Whether the CPU has fused multiply-add instructions.
 fn has_fma() -> bool {
