@@ -13,19 +13,21 @@
 //! constants, the 8-bit sRGB albedo and unorm normal map with their mip chains, the packed
 //! map's 16-bit depths), and starts the GL program on it with `LP_NUM_THREADS` threads
 //! (default 2; our frame gets a pool of as many). Per view it reads back one llvmpipe frame
-//! per technique and prints the PSNR between it and ours (linear RGB, peak 1, every pixel),
-//! then, after one warm-up frame each, times REPS rounds (default 9) in which every
+//! per technique and prints the PSNR between it and ours, and between ours and the float
+//! renderer's frame of the same technique (the precision the 8-bit formats give up; both as
+//! the relief lab measures PSNR: sRGB-encoded, peak 1, over the pixels showing the wall), then, after one warm-up frame each, times REPS rounds (default 9) in which every
 //! technique's frame is drawn by us and then by llvmpipe, alternating: ours by wall time
 //! around `render_fused`, llvmpipe's by wall time around clear + draw + `glFinish`. It
 //! prints the medians and our time over llvmpipe's, with `lscpu`'s model and the load.
 //! Techniques (default all): basic, normal, parallax, pom:32 (the GL program's four).
 
+use renderlab_core::color::linear_to_srgb;
 use renderlab_core::scene::{bricks_wall, BRICKS_WALL_CENTRE};
 use renderlab_core::stats::median;
 use renderlab_core::{Camera, Scene, SceneObject};
 use renderlab_relief::fused::{render_fused, FusedFrame, Texture8};
 use renderlab_relief::maps::complexity::ComplexityParams;
-use renderlab_relief::{KernelChoice, ReliefMaterial, Technique};
+use renderlab_relief::{FrameInput, KernelChoice, ReliefMaterial, Technique};
 use std::io::{BufRead, BufReader, Write};
 use std::path::Path;
 use std::process::{Command, Stdio};
@@ -144,22 +146,21 @@ impl Gl {
     }
 }
 
-/// PSNR (dB) between two RGBA8 sRGB frames, in linear RGB with peak 1.
-fn psnr(a: &FusedFrame, b: &[u32]) -> f64 {
-    let gl = FusedFrame { width: a.width, height: a.height, pixels: b.to_vec() };
-    let (x, y) = (a.to_linear(), gl.to_linear());
-    let se: f64 = x
-        .pixels()
-        .iter()
-        .zip(y.pixels())
-        .map(|(p, q)| (*p - *q).to_array().iter().map(|d| (*d as f64).powi(2)).sum::<f64>())
-        .sum();
-    let mse = se / (3 * a.pixels.len()) as f64;
-    if mse == 0.0 {
-        f64::INFINITY
-    } else {
-        10.0 * (1.0 / mse).log10()
+/// The sRGB-encoded channels of an RGBA8 pixel, in [0, 1].
+fn srgb(p: u32) -> [f64; 3] {
+    [p & 0xff, p >> 8 & 0xff, p >> 16 & 0xff].map(|c| c as f64 / 255.0)
+}
+
+/// PSNR (dB) between `ours` and `other` (sRGB-encoded channels in [0, 1] per pixel) over the
+/// pixels `mask` marks, as the relief lab measures: peak 1, every channel.
+fn psnr(ours: &[u32], other: impl Fn(usize) -> [f64; 3], mask: &[bool]) -> f64 {
+    let (mut se, mut n) = (0.0, 0usize);
+    for (i, &p) in ours.iter().enumerate().filter(|&(i, _)| mask[i]) {
+        let (a, b) = (srgb(p), other(i));
+        se += (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>();
+        n += 3;
     }
+    10.0 * (n as f64 / se).log10()
 }
 
 /// `lscpu`'s model name and the load average, for the record.
@@ -223,8 +224,10 @@ fn main() {
         .collect();
     let (model, load) = machine();
     println!("CPU: {model}; {threads} threads each; load at start {load}; {reps} rounds, medians");
-    println!("| technique (CPU kernel) | angle | ours ms | llvmpipe ms | ours / llvmpipe | PSNR ours vs llvmpipe dB |");
-    println!("|---|---|---|---|---|---|");
+    println!(
+        "| technique (CPU kernel) | angle | ours ms | llvmpipe ms | ours / llvmpipe | PSNR ours vs llvmpipe dB | PSNR ours vs float frame dB |"
+    );
+    println!("|---|---|---|---|---|---|---|");
     let mut frame = FusedFrame::default();
     let render = |t: usize, v: usize, frame: &mut FusedFrame| {
         let (tech, kernel) = kernels[t];
@@ -232,10 +235,30 @@ fn main() {
     };
     for (v, angle) in ANGLES.iter().enumerate() {
         let mut psnrs = Vec::new();
+        let g = renderlab_raster::rasterize(&scene, &cams[v]);
+        let input = FrameInput::new(cams[v].width, cams[v].height, g.pixels());
         for &t in &techs {
             render(t, v, &mut frame);
             let theirs = gl.pixels(t, v, &dir.join(format!("gl_{t}_{v}.rgba")));
-            psnrs.push(psnr(&frame, &theirs));
+            let (tech, kernel) = kernels[t];
+            let float = renderlab_relief::render::render(
+                input,
+                &mats,
+                tech,
+                kernel,
+                scene.lighting,
+                scene.background,
+                false,
+            )
+            .expect("renders");
+            let mask = float.mask.pixels();
+            let vs_gl = psnr(&frame.pixels, |i| srgb(theirs[i]), mask);
+            let vs_float = psnr(
+                &frame.pixels,
+                |i| float.image.pixels()[i].to_array().map(|c| linear_to_srgb(c) as f64),
+                mask,
+            );
+            psnrs.push((vs_gl, vs_float));
             gl.time(t, v);
         }
         let mut ours = vec![Vec::new(); techs.len()];
@@ -251,12 +274,13 @@ fn main() {
         for (i, &t) in techs.iter().enumerate() {
             let (a, b) = (median(&mut ours[i]), median(&mut theirs[i]));
             println!(
-                "| `{}` ({}) | {}° | {a:.1} | {b:.1} | {:.2} | {:.1} |",
+                "| `{}` ({}) | {}° | {a:.1} | {b:.1} | {:.2} | {:.1} | {:.1} |",
                 TECHS[t],
                 kernels[t].1.name(),
                 angle,
                 a / b,
-                psnrs[i]
+                psnrs[i].0,
+                psnrs[i].1
             );
         }
     }

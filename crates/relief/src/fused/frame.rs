@@ -155,18 +155,16 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
         opt: ShadeOptions,
         vector: bool,
     ) -> Self {
-        let (decode, encode) = (srgb8_to_linear_table(), srgb8_encode_table());
+        let encode = srgb8_encode_table();
         let consts = materials
             .iter()
             .map(|m| ShadeConsts {
                 albedo: &m.textures8.albedo,
                 normal: &m.textures8.normal,
-                pair: m.textures8.pair.as_deref(),
                 shading: opt.shading,
                 ambient: scene.lighting.ambient,
                 exponent: scene.lighting.specular_exponent,
                 strength: scene.lighting.specular_strength,
-                decode,
                 encode,
             })
             .collect();

@@ -4,12 +4,19 @@
 //! per texel before filtering (an `rgba8unorm-srgb` texture); normals are stored as
 //! `(n + 1) / 2` in unorm (an `rgba8unorm` texture) and filtered as stored.
 //!
+//! The sRGB decode is done once, when the texture is built, not per fetch: beside the 8-bit
+//! codes an sRGB texture keeps each texel's decoded linear value in 16 bits per channel
+//! (`round(linear · 65535)`, red in the low 16 bits of a `u64`, then green, blue, and 0), the
+//! values its filter reads ([`Texture8::linear`]). What that rounding gives up (at most
+//! 2⁻¹⁷ of linear light per texel) is below the 8-bit output's step everywhere, and is
+//! included in the fused frame's measured precision.
+//!
 //! The levels are the float pyramid's own levels, rounded: the 8-bit path differs from the
 //! float one only by that rounding (and the per-texel decode), which the relief lab
 //! measures as the PSNR between the two frames.
 
 use glam::Vec4;
-use renderlab_core::color::linear_to_srgb;
+use renderlab_core::color::{linear_to_srgb, srgb8_to_linear_table};
 use renderlab_texture::Texture;
 
 /// Most levels a [`Texture8`] holds: a 16,384-texel side (renderlab's image limit) has 15.
@@ -24,10 +31,16 @@ pub enum Encoding {
     SignedUnorm,
 }
 
+/// The value of one unit of a [`Texture8::linear`] channel: `1 / 65535`.
+pub const LINEAR_STEP: f32 = 1.0 / 65535.0;
+
 /// An 8-bit RGBA texture with its mip pyramid (repeat wrap).
 #[derive(Clone, Debug)]
 pub struct Texture8 {
     texels: Vec<u32>,
+    /// For sRGB textures, each texel decoded to linear light in 16 bits per channel; empty
+    /// otherwise.
+    linear: Vec<u64>,
     encoding: Encoding,
     levels: usize,
     /// Start of each level in `texels` (the last real level repeated to [`MAX_LEVELS`]).
@@ -63,6 +76,7 @@ impl Texture8 {
         let pack = |c: Vec4| enc(c.x) | enc(c.y) << 8 | enc(c.z) << 16 | 0xff00_0000;
         let mut out = Self {
             texels: Vec::new(),
+            linear: Vec::new(),
             encoding,
             levels,
             offsets: [0; MAX_LEVELS],
@@ -86,7 +100,20 @@ impl Texture8 {
             out.widths_f[k] = w as f32;
             out.heights_f[k] = h as f32;
         }
+        if encoding == Encoding::Srgb {
+            let decode = srgb8_to_linear_table();
+            let wide = |code: u32| (decode[(code & 0xff) as usize] * 65535.0).round() as u64;
+            out.linear =
+                out.texels.iter().map(|&t| wide(t) | wide(t >> 8) << 16 | wide(t >> 16) << 32).collect();
+        }
         out
+    }
+
+    /// For an sRGB texture, every texel decoded to linear light, 16 bits per channel (red
+    /// in the low bits, then green, blue and 0; one unit is [`LINEAR_STEP`]), indexed as
+    /// [`Texture8::texels`]; empty for a unorm texture.
+    pub fn linear(&self) -> &[u64] {
+        &self.linear
     }
 
     /// Every level's texels, level 0 first.
@@ -124,15 +151,6 @@ impl Texture8 {
     }
 }
 
-/// The texels of `low` and `high` interleaved, `low`'s in the low 32 bits of each entry,
-/// where the two textures have the same shape (levels, sizes and offsets); `None` otherwise.
-/// A tap's two texels are then one 64-bit load, from one cache line.
-pub fn interleave(low: &Texture8, high: &Texture8) -> Option<Vec<u64>> {
-    low.same_shape(high).then(|| {
-        low.texels().iter().zip(high.texels()).map(|(&a, &b)| u64::from(a) | u64::from(b) << 32).collect()
-    })
-}
-
 /// A material's textures in the fused frame's 8-bit formats.
 #[derive(Clone, Debug)]
 pub struct Textures8 {
@@ -140,8 +158,6 @@ pub struct Textures8 {
     pub albedo: Texture8,
     /// Tangent-space normals, unorm-encoded (`rgba8unorm`).
     pub normal: Texture8,
-    /// Both interleaved, where they have the same shape ([`interleave`]).
-    pub pair: Option<Vec<u64>>,
 }
 
 impl Textures8 {
@@ -149,8 +165,7 @@ impl Textures8 {
     pub fn new(albedo: &Texture, normal: &Texture) -> Self {
         let albedo = Texture8::from_texture(albedo, Encoding::Srgb);
         let normal = Texture8::from_texture(normal, Encoding::SignedUnorm);
-        let pair = interleave(&albedo, &normal);
-        Self { albedo, normal, pair }
+        Self { albedo, normal }
     }
 }
 
@@ -180,6 +195,17 @@ mod tests {
         // Codes: linear 0.5 is sRGB 0.7354 → 188; alpha 255.
         assert_eq!(t8.texels()[0] >> 16 & 0xff, 188);
         assert_eq!(t8.texels()[0] >> 24, 255);
+        // The linear copy: code 188 decodes to 0.50289 → 32957 of 65535; code 0 to 0; no alpha.
+        assert_eq!(t8.linear().len(), t8.texels().len());
+        assert_eq!(t8.linear()[0] >> 32, 32957);
+        assert_eq!(t8.linear()[0] & 0xffff, 0);
+        for (&c, &l) in t8.texels().iter().zip(t8.linear()) {
+            for ch in 0..3 {
+                let exact = srgb8_to_linear_table()[(c >> (8 * ch) & 0xff) as usize];
+                let wide = (l >> (16 * ch) & 0xffff) as f32 * LINEAR_STEP;
+                assert!((wide - exact).abs() <= 0.5 / 65535.0 + 1e-7, "{wide} vs {exact}");
+            }
+        }
     }
 
     #[test]
@@ -193,5 +219,6 @@ mod tests {
         let t8 = Texture8::from_texture(&Texture::from_rgb(&img, Wrap::Repeat), Encoding::SignedUnorm);
         assert_eq!(t8.texels()[0] & 0xff_ffff, 128 << 8 | 255 << 16);
         assert_eq!(t8.texels()[1] & 0xff_ffff, 0, "NaN stores as 0, not garbage");
+        assert!(t8.linear().is_empty(), "unorm textures are filtered as stored");
     }
 }

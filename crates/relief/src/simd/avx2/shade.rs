@@ -5,7 +5,7 @@
 
 use super::math::log2;
 use crate::fused::lanes::{ShadeConsts, ShadeLanes, LANES};
-use crate::fused::texture8::{Encoding, Texture8};
+use crate::fused::texture8::{Encoding, Texture8, LINEAR_STEP};
 use crate::trace::{ReliefHit, Shading};
 use renderlab_core::srgb8::{ENCODE_MAX_BITS, ENCODE_MIN_BITS};
 use renderlab_core::ShadePoint;
@@ -33,17 +33,6 @@ unsafe fn sanitize(v: V) -> V {
 #[target_feature(enable = "avx2")]
 unsafe fn ld(a: &[f32; LANES]) -> V {
     _mm256_load_ps(a.as_ptr())
-}
-
-/// Channel at bit `shift` of the texels `p` as the filter sees it.
-#[inline]
-#[target_feature(enable = "avx2")]
-unsafe fn channel(p: I, shift: i32, enc: Encoding, decode: &[f32; 256]) -> V {
-    let code = _mm256_and_si256(_mm256_srlv_epi32(p, _mm256_set1_epi32(shift)), _mm256_set1_epi32(0xff));
-    match enc {
-        Encoding::Srgb => _mm256_i32gather_ps::<4>(decode.as_ptr(), code),
-        Encoding::SignedUnorm => _mm256_cvtepi32_ps(code),
-    }
 }
 
 /// `x - x == 0`: the lanes holding finite values.
@@ -102,27 +91,12 @@ unsafe fn taps(tex: &Texture8, k: I, u: V, v: V) -> ([I; 4], V, V) {
     (idx, _mm256_sub_ps(x, xf), _mm256_sub_ps(y, yf))
 }
 
-/// Bilinear RGB from `tex` at the taps `(idx, fx, fy)`.
+/// The 64-bit entries of `table` at `idx`: two 4-lane 64-bit gathers, then each entry's
+/// low and high 32 bits sorted apart, in lane order.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn bilinear(tex: &Texture8, taps: &([I; 4], V, V), decode: &[f32; 256]) -> [V; 3] {
-    let (idx, ..) = taps;
-    let base = tex.texels().as_ptr() as *const i32;
-    let px = [
-        _mm256_i32gather_epi32::<4>(base, idx[0]),
-        _mm256_i32gather_epi32::<4>(base, idx[1]),
-        _mm256_i32gather_epi32::<4>(base, idx[2]),
-        _mm256_i32gather_epi32::<4>(base, idx[3]),
-    ];
-    filter(px, tex.encoding(), taps, decode)
-}
-
-/// The texels at `idx` of two textures interleaved in `pair` (the first's texel in the low
-/// half of each 64-bit entry): two 4-lane 64-bit gathers, then the halves sorted apart.
-#[inline]
-#[target_feature(enable = "avx2")]
-unsafe fn gather_pair(pair: &[u64], idx: I) -> (I, I) {
-    let base = pair.as_ptr() as *const i64;
+unsafe fn gather_halves(table: &[u64], idx: I) -> (I, I) {
+    let base = table.as_ptr() as *const i64;
     let lo = _mm256_castsi256_ps(_mm256_i32gather_epi64::<8>(base, _mm256_castsi256_si128(idx)));
     let hi = _mm256_castsi256_ps(_mm256_i32gather_epi64::<8>(base, _mm256_extracti128_si256::<1>(idx)));
     // lo = [a0 b0 a1 b1 | a2 b2 a3 b3], hi = [a4 b4 a5 b5 | a6 b6 a7 b7] (32-bit elements).
@@ -131,36 +105,38 @@ unsafe fn gather_pair(pair: &[u64], idx: I) -> (I, I) {
     (_mm256_permute4x64_epi64::<0b11_01_10_00>(a), _mm256_permute4x64_epi64::<0b11_01_10_00>(b))
 }
 
-/// Bilinear RGB of the albedo and the normal map, interleaved in `pair`, at the taps.
+/// The three channels of the texels at `idx` as the filter reads them (the scalar twin's
+/// `channels`): for sRGB, the linear copy's 16-bit values; for unorm, the codes.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn bilinear_pair(
-    k: &ShadeConsts,
-    pair: &[u64],
-    taps: &([I; 4], V, V),
-    decode: &[f32; 256],
-) -> ([V; 3], [V; 3]) {
-    let (idx, ..) = taps;
-    let t = [
-        gather_pair(pair, idx[0]),
-        gather_pair(pair, idx[1]),
-        gather_pair(pair, idx[2]),
-        gather_pair(pair, idx[3]),
-    ];
-    let a = filter(t.map(|p| p.0), k.albedo.encoding(), taps, decode);
-    let b = filter(t.map(|p| p.1), k.normal.encoding(), taps, decode);
-    (a, b)
+unsafe fn fetch(tex: &Texture8, idx: I) -> [V; 3] {
+    match tex.encoding() {
+        Encoding::Srgb => {
+            let (rg, b) = gather_halves(tex.linear(), idx);
+            let r = _mm256_and_si256(rg, _mm256_set1_epi32(0xffff));
+            [_mm256_cvtepi32_ps(r), _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(rg)), _mm256_cvtepi32_ps(b)]
+        }
+        Encoding::SignedUnorm => {
+            let p = _mm256_i32gather_epi32::<4>(tex.texels().as_ptr() as *const i32, idx);
+            let m = _mm256_set1_epi32(0xff);
+            [
+                _mm256_cvtepi32_ps(_mm256_and_si256(p, m)),
+                _mm256_cvtepi32_ps(_mm256_and_si256(_mm256_srli_epi32::<8>(p), m)),
+                _mm256_cvtepi32_ps(_mm256_and_si256(_mm256_srli_epi32::<16>(p), m)),
+            ]
+        }
+    }
 }
 
-/// Bilinear RGB of the four taps' texels `px` with the weights of `(idx, fx, fy)`.
+/// Bilinear RGB from `tex` at the taps `(idx, fx, fy)`, in the units of [`fetch`].
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn filter(px: [I; 4], enc: Encoding, (_, fx, fy): &([I; 4], V, V), decode: &[f32; 256]) -> [V; 3] {
+unsafe fn bilinear(tex: &Texture8, (idx, fx, fy): &([I; 4], V, V)) -> [V; 3] {
+    // No closure here: a closure is compiled without this function's target features.
+    let px = [fetch(tex, idx[0]), fetch(tex, idx[1]), fetch(tex, idx[2]), fetch(tex, idx[3])];
     let mut out = [_mm256_setzero_ps(); 3];
     for (c, o) in out.iter_mut().enumerate() {
-        let s = 8 * c as i32;
-        let (a, b) = (channel(px[0], s, enc, decode), channel(px[1], s, enc, decode));
-        let (cc, d) = (channel(px[2], s, enc, decode), channel(px[3], s, enc, decode));
+        let (a, b, cc, d) = (px[0][c], px[1][c], px[2][c], px[3][c]);
         let top = _mm256_add_ps(a, _mm256_mul_ps(_mm256_sub_ps(b, a), *fx));
         let bottom = _mm256_add_ps(cc, _mm256_mul_ps(_mm256_sub_ps(d, cc), *fx));
         *o = _mm256_add_ps(top, _mm256_mul_ps(_mm256_sub_ps(bottom, top), *fy));
@@ -201,15 +177,16 @@ unsafe fn one_level(t: V) -> bool {
     _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_EQ_OQ>(t, _mm256_setzero_ps())) == 0xff
 }
 
+/// Trilinear RGB at levels of detail `l`, in the units of [`fetch`].
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn trilinear(tex: &Texture8, u: V, v: V, l: V, decode: &[f32; 256]) -> [V; 3] {
+unsafe fn trilinear(tex: &Texture8, u: V, v: V, l: V) -> [V; 3] {
     let (k0, k1, t) = levels(tex, l);
-    let s0 = bilinear(tex, &taps(tex, k0, u, v), decode);
+    let s0 = bilinear(tex, &taps(tex, k0, u, v));
     if one_level(t) {
         return s0;
     }
-    let s1 = bilinear(tex, &taps(tex, k1, u, v), decode);
+    let s1 = bilinear(tex, &taps(tex, k1, u, v));
     blend(s0, s1, t)
 }
 
@@ -217,35 +194,23 @@ unsafe fn trilinear(tex: &Texture8, u: V, v: V, l: V, decode: &[f32; 256]) -> [V
 /// level of detail and the taps are computed once.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn trilinear_pair(
-    a: &Texture8,
-    b: &Texture8,
-    u: V,
-    v: V,
-    l: V,
-    decode: &[f32; 256],
-) -> ([V; 3], [V; 3]) {
+unsafe fn trilinear_pair(a: &Texture8, b: &Texture8, u: V, v: V, l: V) -> ([V; 3], [V; 3]) {
     let (k0, k1, t) = levels(a, l);
     let t0 = taps(a, k0, u, v);
-    let (a0, b0) = (bilinear(a, &t0, decode), bilinear(b, &t0, decode));
+    let (a0, b0) = (bilinear(a, &t0), bilinear(b, &t0));
     if one_level(t) {
         return (a0, b0);
     }
     let t1 = taps(a, k1, u, v);
-    (blend(a0, bilinear(a, &t1, decode), t), blend(b0, bilinear(b, &t1, decode), t))
+    (blend(a0, bilinear(a, &t1), t), blend(b0, bilinear(b, &t1), t))
 }
 
-/// [`trilinear_pair`] from the interleaved texels `pair` of `k`'s albedo and normal map.
+/// `c · s` for each channel.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn trilinear_interleaved(k: &ShadeConsts, pair: &[u64], u: V, v: V, l: V) -> ([V; 3], [V; 3]) {
-    let (k0, k1, t) = levels(k.albedo, l);
-    let (a0, b0) = bilinear_pair(k, pair, &taps(k.albedo, k0, u, v), k.decode);
-    if one_level(t) {
-        return (a0, b0);
-    }
-    let (a1, b1) = bilinear_pair(k, pair, &taps(k.albedo, k1, u, v), k.decode);
-    (blend(a0, a1, t), blend(b0, b1, t))
+unsafe fn scaled(c: [V; 3], s: f32) -> [V; 3] {
+    let s = splat(s);
+    [_mm256_mul_ps(c[0], s), _mm256_mul_ps(c[1], s), _mm256_mul_ps(c[2], s)]
 }
 
 #[inline]
@@ -298,19 +263,15 @@ pub(crate) unsafe fn shade(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANE
     let d = [ld(&p.dudx), ld(&p.dvdx), ld(&p.dudy), ld(&p.dvdy)];
     let la = lod(&d, k.albedo);
     let color = match k.shading {
-        Shading::Unlit => trilinear(k.albedo, u, v, la, k.decode),
+        Shading::Unlit => scaled(trilinear(k.albedo, u, v, la), LINEAR_STEP),
         Shading::Lit | Shading::LitShadowed => {
             let zero = _mm256_setzero_ps();
-            let (albedo, nu) = if let Some(pair) = k.pair {
-                trilinear_interleaved(k, pair, u, v, la)
-            } else if k.albedo.same_shape(k.normal) {
-                trilinear_pair(k.albedo, k.normal, u, v, la, k.decode)
+            let (albedo, nu) = if k.albedo.same_shape(k.normal) {
+                trilinear_pair(k.albedo, k.normal, u, v, la)
             } else {
-                (
-                    trilinear(k.albedo, u, v, la, k.decode),
-                    trilinear(k.normal, u, v, lod(&d, k.normal), k.decode),
-                )
+                (trilinear(k.albedo, u, v, la), trilinear(k.normal, u, v, lod(&d, k.normal)))
             };
+            let albedo = scaled(albedo, LINEAR_STEP);
             let mut n = nu;
             for c in &mut n {
                 *c = _mm256_sub_ps(_mm256_mul_ps(*c, splat(2.0 / 255.0)), splat(1.0));

@@ -3,14 +3,16 @@
 //!
 //! 1. Level of detail as [`renderlab_texture::filter::lod`] defines it, with `log2` by a
 //!    short series ([`log2`], within 2⁻²⁰ of the true value) that a vector unit can run.
-//! 2. Trilinear albedo from the sRGB texture, decoding each texel by table before filtering,
-//!    as a GPU samples an `rgba8unorm-srgb` texture.
+//! 2. Trilinear albedo from the sRGB texture's texels decoded to linear light before
+//!    filtering, as a GPU samples an `rgba8unorm-srgb` texture (the decoded values are the
+//!    texture's 16-bit linear copy, [`Texture8::linear`], filtered in its units and scaled
+//!    by [`LINEAR_STEP`] at the end).
 //! 3. For lit techniques, the trilinear normal from the unorm normal map, normalised, and
 //!    the thesis's ambient + Lambert + Blinn–Phong light (`renderlab_relief::render::shade::light`).
 //! 4. sRGB encoding by table ([`renderlab_core::srgb8::encode_srgb8`]) into one RGBA8 `u32`.
 
 use crate::fused::lanes::{ShadeConsts, ShadeLanes, LANES};
-use crate::fused::texture8::{Encoding, Texture8};
+use crate::fused::texture8::{Encoding, Texture8, LINEAR_STEP};
 use crate::trace::{ReliefHit, Shading};
 use renderlab_core::srgb8::encode_srgb8;
 use renderlab_core::ShadePoint;
@@ -60,41 +62,45 @@ fn taps(tex: &Texture8, k: usize, u: f32, v: f32) -> ([usize; 4], f32, f32) {
     ([at(x0, y0), at(x1, y0), at(x0, y1), at(x1, y1)], x - xf, y - yf)
 }
 
-/// Channel `c` of `texel` as the filter sees it (linear light for sRGB, the code for unorm).
+/// The three channels of texel `i` as the filter reads them (for sRGB, the linear copy's
+/// 16-bit values; for unorm, the codes).
 #[inline]
-fn channel(texel: u32, c: u32, enc: Encoding, decode: &[f32; 256]) -> f32 {
-    let code = (texel >> (8 * c)) & 0xff;
-    match enc {
-        Encoding::Srgb => decode[code as usize],
-        Encoding::SignedUnorm => code as f32,
+fn channels(tex: &Texture8, i: usize) -> [f32; 3] {
+    match tex.encoding() {
+        Encoding::Srgb => {
+            let t = tex.linear()[i];
+            std::array::from_fn(|c| (t >> (16 * c) & 0xffff) as f32)
+        }
+        Encoding::SignedUnorm => {
+            let t = tex.texels()[i];
+            std::array::from_fn(|c| (t >> (8 * c) & 0xff) as f32)
+        }
     }
 }
 
-/// Bilinear RGB of level `k`.
+/// Bilinear RGB of level `k`, in the units of [`channels`].
 #[inline]
-fn bilinear(tex: &Texture8, k: usize, u: f32, v: f32, decode: &[f32; 256]) -> [f32; 3] {
+fn bilinear(tex: &Texture8, k: usize, u: f32, v: f32) -> [f32; 3] {
     let (idx, fx, fy) = taps(tex, k, u, v);
-    let t = tex.texels();
-    let px = idx.map(|i| t[i]);
-    let enc = tex.encoding();
+    let px = idx.map(|i| channels(tex, i));
     std::array::from_fn(|c| {
-        let [a, b, cc, d] = px.map(|p| channel(p, c as u32, enc, decode));
+        let [a, b, cc, d] = px.map(|p| p[c]);
         let top = a + (b - a) * fx;
         let bottom = cc + (d - cc) * fx;
         top + (bottom - top) * fy
     })
 }
 
-/// Trilinear RGB at level of detail `l`: the two levels around it (the upper one clamped to
-/// the last), blended.
+/// Trilinear RGB at level of detail `l`, in the units of [`channels`]: the two levels around
+/// it (the upper one clamped to the last), blended.
 #[inline]
-fn trilinear(tex: &Texture8, u: f32, v: f32, l: f32, decode: &[f32; 256]) -> [f32; 3] {
+fn trilinear(tex: &Texture8, u: f32, v: f32, l: f32) -> [f32; 3] {
     let lf = l.floor();
     let t = l - lf;
     let k0 = lf as i32 as usize;
     let k1 = (k0 + 1).min(tex.level_count() - 1);
-    let s0 = bilinear(tex, k0, u, v, decode);
-    let s1 = bilinear(tex, k1, u, v, decode);
+    let s0 = bilinear(tex, k0, u, v);
+    let s1 = bilinear(tex, k1, u, v);
     std::array::from_fn(|c| s0[c] + (s1[c] - s0[c]) * t)
 }
 
@@ -128,13 +134,13 @@ pub(crate) fn shade_lane(p: &ShadeLanes, i: usize, k: &ShadeConsts) -> u32 {
     let d = [p.dudx[i], p.dvdx[i], p.dudy[i], p.dvdy[i]];
     let a = k.albedo;
     let la = lod(d, a.widths_f[0], a.heights_f[0], a.level_count());
-    let albedo = trilinear(a, u, v, la, k.decode);
+    let albedo = trilinear(a, u, v, la).map(|c| c * LINEAR_STEP);
     let color = match k.shading {
         Shading::Unlit => albedo,
         Shading::Lit | Shading::LitShadowed => {
             let nt = k.normal;
             let ln = lod(d, nt.widths_f[0], nt.heights_f[0], nt.level_count());
-            let n = trilinear(nt, u, v, ln, k.decode).map(|c| c * (2.0 / 255.0) - 1.0);
+            let n = trilinear(nt, u, v, ln).map(|c| c * (2.0 / 255.0) - 1.0);
             let n = normalized(n).unwrap_or([0.0, 0.0, 1.0]);
             let l = [p.lx[i], p.ly[i], p.lz[i]];
             let diff = (n[0] * l[0] + n[1] * l[1] + n[2] * l[2]).max(0.0);
