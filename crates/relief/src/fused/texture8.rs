@@ -4,12 +4,15 @@
 //! per texel before filtering (an `rgba8unorm-srgb` texture); normals are stored as
 //! `(n + 1) / 2` in unorm (an `rgba8unorm` texture) and filtered as stored.
 //!
-//! The sRGB decode is done once, when the texture is built, not per fetch: beside the 8-bit
-//! codes an sRGB texture keeps each texel's decoded linear value in 16 bits per channel
-//! (`round(linear · 65535)`, red in the low 16 bits of a `u64`, then green, blue, and 0), the
-//! values its filter reads ([`Texture8::linear`]). What that rounding gives up (at most
-//! 2⁻¹⁷ of linear light per texel) is below the 8-bit output's step everywhere, and is
-//! included in the fused frame's measured precision.
+//! Beside the 8-bit codes each texture keeps the values its filter reads, 16 bits per channel
+//! in a `u64` (red in the low 16 bits, then green, blue, and 0): the code itself for unorm,
+//! and for sRGB the texel decoded to linear light once, when the texture is built, not per
+//! fetch (`round(linear · 65535)`; what that rounding gives up, at most 2⁻¹⁷ of linear light
+//! per texel, is below the 8-bit output's step, and is included in the fused frame's measured
+//! precision). That copy is padded: each level has one more column and one more row, copies
+//! of its first column and row, so the four texels of a bilinear cell are two pairs of
+//! neighbours in memory, `(x, y), (x + 1, y)` and the same one padded row further, whatever
+//! the wrap ([`Texture8::wide`]).
 //!
 //! The levels are the float pyramid's own levels, rounded: the 8-bit path differs from the
 //! float one only by that rounding (and the per-texel decode), which the relief lab
@@ -31,16 +34,17 @@ pub enum Encoding {
     SignedUnorm,
 }
 
-/// The value of one unit of a [`Texture8::linear`] channel: `1 / 65535`.
+/// The value of one unit of a [`Texture8::wide`] channel of an sRGB texture: `1 / 65535`.
 pub const LINEAR_STEP: f32 = 1.0 / 65535.0;
 
 /// An 8-bit RGBA texture with its mip pyramid (repeat wrap).
 #[derive(Clone, Debug)]
 pub struct Texture8 {
     texels: Vec<u32>,
-    /// For sRGB textures, each texel decoded to linear light in 16 bits per channel; empty
-    /// otherwise.
-    linear: Vec<u64>,
+    /// The filter's values, padded ([`Texture8::wide`]).
+    wide: Vec<u64>,
+    /// Start of each level in `wide` (the last real level repeated to [`MAX_LEVELS`]).
+    pub(crate) wide_offsets: [i32; MAX_LEVELS],
     encoding: Encoding,
     levels: usize,
     /// Start of each level in `texels` (the last real level repeated to [`MAX_LEVELS`]).
@@ -76,7 +80,8 @@ impl Texture8 {
         let pack = |c: Vec4| enc(c.x) | enc(c.y) << 8 | enc(c.z) << 16 | 0xff00_0000;
         let mut out = Self {
             texels: Vec::new(),
-            linear: Vec::new(),
+            wide: Vec::new(),
+            wide_offsets: [0; MAX_LEVELS],
             encoding,
             levels,
             offsets: [0; MAX_LEVELS],
@@ -100,20 +105,37 @@ impl Texture8 {
             out.widths_f[k] = w as f32;
             out.heights_f[k] = h as f32;
         }
-        if encoding == Encoding::Srgb {
-            let decode = srgb8_to_linear_table();
-            let wide = |code: u32| (decode[(code & 0xff) as usize] * 65535.0).round() as u64;
-            out.linear =
-                out.texels.iter().map(|&t| wide(t) | wide(t >> 8) << 16 | wide(t >> 16) << 32).collect();
+        let decode = srgb8_to_linear_table();
+        let channel = |t: u32, c: u32| {
+            let code = t >> (8 * c) & 0xff;
+            match encoding {
+                Encoding::Srgb => (decode[code as usize] * 65535.0).round() as u64,
+                Encoding::SignedUnorm => u64::from(code),
+            }
+        };
+        let wide = |t: u32| channel(t, 0) | channel(t, 1) << 16 | channel(t, 2) << 32;
+        for k in 0..MAX_LEVELS {
+            if k < levels {
+                out.wide_offsets[k] = out.wide.len() as i32;
+                let (w, h, o) = (out.widths[k] as usize, out.heights[k] as usize, out.offsets[k] as usize);
+                for y in 0..=h {
+                    let row = &out.texels[o + (y % h) * w..][..w];
+                    out.wide.extend(row.iter().chain(&row[..1]).map(|&t| wide(t)));
+                }
+            } else {
+                out.wide_offsets[k] = out.wide_offsets[levels - 1];
+            }
         }
         out
     }
 
-    /// For an sRGB texture, every texel decoded to linear light, 16 bits per channel (red
-    /// in the low bits, then green, blue and 0; one unit is [`LINEAR_STEP`]), indexed as
-    /// [`Texture8::texels`]; empty for a unorm texture.
-    pub fn linear(&self) -> &[u64] {
-        &self.linear
+    /// The values the filter reads, 16 bits per channel (red in the low bits, then green,
+    /// blue and 0): for sRGB, each texel decoded to linear light (one unit is
+    /// [`LINEAR_STEP`]); for unorm, the code. Level `k` (`w × h` texels) starts at
+    /// `wide_offsets[k]` and holds `(w + 1) × (h + 1)` entries, row-major: texel `(x, y)` at
+    /// `y · (w + 1) + x`, column `w` repeating column 0 and row `h` repeating row 0.
+    pub fn wide(&self) -> &[u64] {
+        &self.wide
     }
 
     /// Every level's texels, level 0 first.
@@ -196,16 +218,27 @@ mod tests {
         assert_eq!(t8.texels()[0] >> 16 & 0xff, 188);
         assert_eq!(t8.texels()[0] >> 24, 255);
         // The linear copy: code 188 decodes to 0.50289 → 32957 of 65535; code 0 to 0; no alpha.
-        assert_eq!(t8.linear().len(), t8.texels().len());
-        assert_eq!(t8.linear()[0] >> 32, 32957);
-        assert_eq!(t8.linear()[0] & 0xffff, 0);
-        for (&c, &l) in t8.texels().iter().zip(t8.linear()) {
-            for ch in 0..3 {
-                let exact = srgb8_to_linear_table()[(c >> (8 * ch) & 0xff) as usize];
-                let wide = (l >> (16 * ch) & 0xffff) as f32 * LINEAR_STEP;
-                assert!((wide - exact).abs() <= 0.5 / 65535.0 + 1e-7, "{wide} vs {exact}");
+        assert_eq!(t8.wide()[0] >> 32, 32957);
+        assert_eq!(t8.wide()[0] & 0xffff, 0);
+        let mut padded = 0;
+        for k in 0..t8.level_count() {
+            let (w, h) = (t8.widths[k], t8.heights[k]);
+            assert_eq!(t8.wide_offsets[k], padded);
+            for y in 0..=h {
+                for x in 0..=w {
+                    let c = t8.texels()[(t8.offsets[k] + (y % h) * w + x % w) as usize];
+                    let l = t8.wide()[(padded + y * (w + 1) + x) as usize];
+                    for ch in 0..3 {
+                        let exact = srgb8_to_linear_table()[(c >> (8 * ch) & 0xff) as usize];
+                        let wide = (l >> (16 * ch) & 0xffff) as f32 * LINEAR_STEP;
+                        assert!((wide - exact).abs() <= 0.5 / 65535.0 + 1e-7, "{wide} vs {exact}");
+                    }
+                }
             }
+            padded += (w + 1) * (h + 1);
         }
+        assert_eq!(t8.wide().len(), padded as usize);
+        assert_eq!(t8.wide_offsets[MAX_LEVELS - 1], t8.wide_offsets[last]);
     }
 
     #[test]
@@ -219,6 +252,9 @@ mod tests {
         let t8 = Texture8::from_texture(&Texture::from_rgb(&img, Wrap::Repeat), Encoding::SignedUnorm);
         assert_eq!(t8.texels()[0] & 0xff_ffff, 128 << 8 | 255 << 16);
         assert_eq!(t8.texels()[1] & 0xff_ffff, 0, "NaN stores as 0, not garbage");
-        assert!(t8.linear().is_empty(), "unorm textures are filtered as stored");
+        // Unorm textures are filtered as stored: the wide copy holds the codes.
+        assert_eq!(t8.wide()[0], 128 << 16 | 255 << 32);
+        assert_eq!(t8.wide()[1], 0);
+        assert_eq!(t8.wide()[2], t8.wide()[0], "column 0 repeated");
     }
 }

@@ -193,6 +193,17 @@ pub fn load_lanes(lanes: &mut ShadeLanes, hits: &[ReliefHit], points: &[ShadePoi
     backend!(shade::load_lanes(lanes, hits, points, shadows) if crate::cpu::has_avx2())
 }
 
+/// The hits of `points` for a technique that does not displace (what [`split_rays`], the
+/// tracer and the move back give), eight at a time where the CPU has AVX2.
+///
+/// # Panics
+///
+/// If `hits` is shorter than `points` (on the vector kernel).
+#[inline]
+pub(crate) fn undisplaced_hits(points: &[ShadePoint], hits: &mut [ReliefHit]) {
+    backend!(rays::undisplaced_hits(points, hits) if crate::cpu::has_avx2())
+}
+
 /// Splits shade points into rays moved into the first tile and the tiles' corners, as
 /// [`crate::march::ray::split_ray`] does for each, eight at a time where the CPU has AVX2.
 ///

@@ -5,7 +5,7 @@
 
 use super::math::log2;
 use crate::fused::lanes::{ShadeConsts, ShadeLanes, LANES};
-use crate::fused::texture8::{Encoding, Texture8, LINEAR_STEP};
+use crate::fused::texture8::{Texture8, LINEAR_STEP};
 use crate::trace::{ReliefHit, Shading};
 use renderlab_core::srgb8::{ENCODE_MAX_BITS, ENCODE_MIN_BITS};
 use renderlab_core::ShadePoint;
@@ -58,88 +58,97 @@ unsafe fn lod(d: &[V; 4], tex: &Texture8) -> V {
     _mm256_blendv_ps(top, l, ok)
 }
 
-/// The bilinear taps of `(u, v)` in level `k` (per lane) of a texture whose level 0 is
-/// `w0 × h0` texels and whose levels start at `offsets`: the four texel indices and the
-/// weights. A level's side is `max(side₀ >> k, 1)`, as the pyramid halves it.
+/// A bilinear cell per lane: the index in [`Texture8::wide`] of its top-left texel, the
+/// padded row length (the bottom-left texel is that far on), and the weights.
+type Cell = (I, I, V, V);
+
+/// The bilinear cells of `(u, v)` in level `k` (per lane) of a texture whose level 0 is
+/// `w0 × h0` texels: the scalar twin's `taps`, on the padded copy, where the right and bottom
+/// neighbours need no wrap. A level's side is `max(side₀ >> k, 1)`, as the pyramid halves it.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn taps(tex: &Texture8, k: I, u: V, v: V) -> ([I; 4], V, V) {
+unsafe fn taps(tex: &Texture8, k: I, u: V, v: V) -> Cell {
     let one = _mm256_set1_epi32(1);
     let w = _mm256_max_epi32(_mm256_srlv_epi32(_mm256_set1_epi32(tex.widths[0]), k), one);
     let h = _mm256_max_epi32(_mm256_srlv_epi32(_mm256_set1_epi32(tex.heights[0]), k), one);
-    let off = _mm256_i32gather_epi32::<4>(tex.offsets.as_ptr(), k);
+    let off = _mm256_i32gather_epi32::<4>(tex.wide_offsets.as_ptr(), k);
     let half = splat(0.5);
     let x = _mm256_sub_ps(_mm256_mul_ps(_mm256_sub_ps(u, _mm256_floor_ps(u)), _mm256_cvtepi32_ps(w)), half);
     let y = _mm256_sub_ps(_mm256_mul_ps(_mm256_sub_ps(v, _mm256_floor_ps(v)), _mm256_cvtepi32_ps(h)), half);
     let (xf, yf) = (_mm256_floor_ps(x), _mm256_floor_ps(y));
     let (xi, yi) = (_mm256_cvttps_epi32(xf), _mm256_cvttps_epi32(yf));
     let zero = _mm256_setzero_si256();
-    let (wm1, hm1) = (_mm256_sub_epi32(w, one), _mm256_sub_epi32(h, one));
-    let x0 = _mm256_blendv_epi8(xi, wm1, _mm256_cmpgt_epi32(zero, xi));
-    let y0 = _mm256_blendv_epi8(yi, hm1, _mm256_cmpgt_epi32(zero, yi));
-    let (x1, y1) = (_mm256_add_epi32(xi, one), _mm256_add_epi32(yi, one));
-    let x1 = _mm256_andnot_si256(_mm256_cmpgt_epi32(x1, wm1), x1);
-    let y1 = _mm256_andnot_si256(_mm256_cmpgt_epi32(y1, hm1), y1);
-    let (r0, r1) =
-        (_mm256_add_epi32(off, _mm256_mullo_epi32(y0, w)), _mm256_add_epi32(off, _mm256_mullo_epi32(y1, w)));
-    let idx = [
-        _mm256_add_epi32(r0, x0),
-        _mm256_add_epi32(r0, x1),
-        _mm256_add_epi32(r1, x0),
-        _mm256_add_epi32(r1, x1),
+    let x0 = _mm256_blendv_epi8(xi, _mm256_sub_epi32(w, one), _mm256_cmpgt_epi32(zero, xi));
+    let y0 = _mm256_blendv_epi8(yi, _mm256_sub_epi32(h, one), _mm256_cmpgt_epi32(zero, yi));
+    let stride = _mm256_add_epi32(w, one);
+    let idx = _mm256_add_epi32(_mm256_add_epi32(off, _mm256_mullo_epi32(y0, stride)), x0);
+    (idx, stride, _mm256_sub_ps(x, xf), _mm256_sub_ps(y, yf))
+}
+
+/// Entries `i` and `i + 1` of `wide` for lane `a` (low half) and lane `b` (high half).
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn pair_of_lanes(wide: *const u64, ix: &[i32; LANES], a: usize, b: usize) -> I {
+    // SAFETY (caller): each index is a texel of a level's unpadded grid, so the entry after
+    // it (the padded column at worst) is inside `wide`.
+    let lo = _mm_loadu_si128(wide.add(ix[a] as usize) as *const __m128i);
+    let hi = _mm_loadu_si128(wide.add(ix[b] as usize) as *const __m128i);
+    _mm256_inserti128_si256::<1>(_mm256_castsi128_si256(lo), hi)
+}
+
+/// The channels of the left and right texels of the eight lanes' rows starting at `idx`: one
+/// 16-byte load per lane (the two neighbours), then the lanes transposed into channels.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn row(wide: *const u64, idx: I) -> ([V; 3], [V; 3]) {
+    let mut ix = [0i32; LANES];
+    _mm256_storeu_si256(ix.as_mut_ptr() as *mut I, idx);
+    // Element j of `p[i]` (16-bit) is channel j % 4 of the left (j < 4) or right texel, of
+    // lane i in the low half and of lane i + 4 in the high half.
+    let p = [
+        pair_of_lanes(wide, &ix, 0, 4),
+        pair_of_lanes(wide, &ix, 1, 5),
+        pair_of_lanes(wide, &ix, 2, 6),
+        pair_of_lanes(wide, &ix, 3, 7),
     ];
-    (idx, _mm256_sub_ps(x, xf), _mm256_sub_ps(y, yf))
+    // No closures here: a closure is compiled without this function's target features.
+    let z = _mm256_setzero_si256();
+    let l = transpose_halves(
+        _mm256_castsi256_ps(_mm256_unpacklo_epi16(p[0], z)),
+        _mm256_castsi256_ps(_mm256_unpacklo_epi16(p[1], z)),
+        _mm256_castsi256_ps(_mm256_unpacklo_epi16(p[2], z)),
+        _mm256_castsi256_ps(_mm256_unpacklo_epi16(p[3], z)),
+    );
+    let r = transpose_halves(
+        _mm256_castsi256_ps(_mm256_unpackhi_epi16(p[0], z)),
+        _mm256_castsi256_ps(_mm256_unpackhi_epi16(p[1], z)),
+        _mm256_castsi256_ps(_mm256_unpackhi_epi16(p[2], z)),
+        _mm256_castsi256_ps(_mm256_unpackhi_epi16(p[3], z)),
+    );
+    ([to_float(l[0]), to_float(l[1]), to_float(l[2])], [to_float(r[0]), to_float(r[1]), to_float(r[2])])
 }
 
-/// The 64-bit entries of `table` at `idx`: two 4-lane 64-bit gathers, then each entry's
-/// low and high 32 bits sorted apart, in lane order.
+/// The 32-bit integers in `x`'s lanes as floats.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn gather_halves(table: &[u64], idx: I) -> (I, I) {
-    let base = table.as_ptr() as *const i64;
-    let lo = _mm256_castsi256_ps(_mm256_i32gather_epi64::<8>(base, _mm256_castsi256_si128(idx)));
-    let hi = _mm256_castsi256_ps(_mm256_i32gather_epi64::<8>(base, _mm256_extracti128_si256::<1>(idx)));
-    // lo = [a0 b0 a1 b1 | a2 b2 a3 b3], hi = [a4 b4 a5 b5 | a6 b6 a7 b7] (32-bit elements).
-    let a = _mm256_castps_si256(_mm256_shuffle_ps::<0b10_00_10_00>(lo, hi)); // [a0 a1 a4 a5 | a2 a3 a6 a7]
-    let b = _mm256_castps_si256(_mm256_shuffle_ps::<0b11_01_11_01>(lo, hi));
-    (_mm256_permute4x64_epi64::<0b11_01_10_00>(a), _mm256_permute4x64_epi64::<0b11_01_10_00>(b))
+unsafe fn to_float(x: V) -> V {
+    _mm256_cvtepi32_ps(_mm256_castps_si256(x))
 }
 
-/// The three channels of the texels at `idx` as the filter reads them (the scalar twin's
-/// `channels`): for sRGB, the linear copy's 16-bit values; for unorm, the codes.
+/// Bilinear RGB from `tex` at the cells `(idx, stride, fx, fy)`, in the units of
+/// [`Texture8::wide`].
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn fetch(tex: &Texture8, idx: I) -> [V; 3] {
-    match tex.encoding() {
-        Encoding::Srgb => {
-            let (rg, b) = gather_halves(tex.linear(), idx);
-            let r = _mm256_and_si256(rg, _mm256_set1_epi32(0xffff));
-            [_mm256_cvtepi32_ps(r), _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(rg)), _mm256_cvtepi32_ps(b)]
-        }
-        Encoding::SignedUnorm => {
-            let p = _mm256_i32gather_epi32::<4>(tex.texels().as_ptr() as *const i32, idx);
-            let m = _mm256_set1_epi32(0xff);
-            [
-                _mm256_cvtepi32_ps(_mm256_and_si256(p, m)),
-                _mm256_cvtepi32_ps(_mm256_and_si256(_mm256_srli_epi32::<8>(p), m)),
-                _mm256_cvtepi32_ps(_mm256_and_si256(_mm256_srli_epi32::<16>(p), m)),
-            ]
-        }
-    }
-}
-
-/// Bilinear RGB from `tex` at the taps `(idx, fx, fy)`, in the units of [`fetch`].
-#[inline]
-#[target_feature(enable = "avx2")]
-unsafe fn bilinear(tex: &Texture8, (idx, fx, fy): &([I; 4], V, V)) -> [V; 3] {
-    // No closure here: a closure is compiled without this function's target features.
-    let px = [fetch(tex, idx[0]), fetch(tex, idx[1]), fetch(tex, idx[2]), fetch(tex, idx[3])];
+unsafe fn bilinear(tex: &Texture8, &(idx, stride, fx, fy): &Cell) -> [V; 3] {
+    let wide = tex.wide().as_ptr();
+    let (t00, t10) = row(wide, idx);
+    let (t01, t11) = row(wide, _mm256_add_epi32(idx, stride));
     let mut out = [_mm256_setzero_ps(); 3];
     for (c, o) in out.iter_mut().enumerate() {
-        let (a, b, cc, d) = (px[0][c], px[1][c], px[2][c], px[3][c]);
-        let top = _mm256_add_ps(a, _mm256_mul_ps(_mm256_sub_ps(b, a), *fx));
-        let bottom = _mm256_add_ps(cc, _mm256_mul_ps(_mm256_sub_ps(d, cc), *fx));
-        *o = _mm256_add_ps(top, _mm256_mul_ps(_mm256_sub_ps(bottom, top), *fy));
+        let (a, b, cc, d) = (t00[c], t10[c], t01[c], t11[c]);
+        let top = _mm256_add_ps(a, _mm256_mul_ps(_mm256_sub_ps(b, a), fx));
+        let bottom = _mm256_add_ps(cc, _mm256_mul_ps(_mm256_sub_ps(d, cc), fx));
+        *o = _mm256_add_ps(top, _mm256_mul_ps(_mm256_sub_ps(bottom, top), fy));
     }
     out
 }
@@ -334,7 +343,7 @@ pub(crate) unsafe fn shade(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANE
 /// element `j` of input `i` (the halves transposed apart).
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn transpose_halves(a: V, b: V, c: V, d: V) -> [V; 4] {
+pub(super) unsafe fn transpose_halves(a: V, b: V, c: V, d: V) -> [V; 4] {
     let (ab_lo, ab_hi) = (_mm256_unpacklo_ps(a, b), _mm256_unpackhi_ps(a, b));
     let (cd_lo, cd_hi) = (_mm256_unpacklo_ps(c, d), _mm256_unpackhi_ps(c, d));
     [

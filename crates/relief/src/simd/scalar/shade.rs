@@ -5,14 +5,14 @@
 //!    short series ([`log2`], within 2⁻²⁰ of the true value) that a vector unit can run.
 //! 2. Trilinear albedo from the sRGB texture's texels decoded to linear light before
 //!    filtering, as a GPU samples an `rgba8unorm-srgb` texture (the decoded values are the
-//!    texture's 16-bit linear copy, [`Texture8::linear`], filtered in its units and scaled
-//!    by [`LINEAR_STEP`] at the end).
+//!    texture's 16-bit copy, [`Texture8::wide`], filtered in its units and scaled by
+//!    [`LINEAR_STEP`] at the end).
 //! 3. For lit techniques, the trilinear normal from the unorm normal map, normalised, and
 //!    the thesis's ambient + Lambert + Blinn–Phong light (`renderlab_relief::render::shade::light`).
 //! 4. sRGB encoding by table ([`renderlab_core::srgb8::encode_srgb8`]) into one RGBA8 `u32`.
 
 use crate::fused::lanes::{ShadeConsts, ShadeLanes, LANES};
-use crate::fused::texture8::{Encoding, Texture8, LINEAR_STEP};
+use crate::fused::texture8::{Texture8, LINEAR_STEP};
 use crate::trace::{ReliefHit, Shading};
 use renderlab_core::srgb8::encode_srgb8;
 use renderlab_core::ShadePoint;
@@ -45,7 +45,8 @@ pub(crate) fn lod(d: [f32; 4], w: f32, h: f32, levels: usize) -> f32 {
     (0.5 * log2(rho2)).max(0.0).min(top)
 }
 
-/// The bilinear texel addresses and weights of `(u, v)` in level `k` (repeat wrap).
+/// The bilinear texel addresses in [`Texture8::wide`] and weights of `(u, v)` in level `k`
+/// (repeat wrap).
 #[inline]
 fn taps(tex: &Texture8, k: usize, u: f32, v: f32) -> ([usize; 4], f32, f32) {
     let (w, h) = (tex.widths[k], tex.heights[k]);
@@ -57,25 +58,17 @@ fn taps(tex: &Texture8, k: usize, u: f32, v: f32) -> ([usize; 4], f32, f32) {
     let y0 = if yi < 0 { h - 1 } else { yi };
     let x1 = if xi + 1 >= w { 0 } else { xi + 1 };
     let y1 = if yi + 1 >= h { 0 } else { yi + 1 };
-    let o = tex.offsets[k];
-    let at = |x: i32, y: i32| (o + y * w + x) as usize;
+    let o = tex.wide_offsets[k];
+    let at = |x: i32, y: i32| (o + y * (w + 1) + x) as usize;
     ([at(x0, y0), at(x1, y0), at(x0, y1), at(x1, y1)], x - xf, y - yf)
 }
 
-/// The three channels of texel `i` as the filter reads them (for sRGB, the linear copy's
-/// 16-bit values; for unorm, the codes).
+/// The three channels of entry `i` of [`Texture8::wide`] as the filter reads them (for sRGB,
+/// linear light in units of [`LINEAR_STEP`]; for unorm, the codes).
 #[inline]
 fn channels(tex: &Texture8, i: usize) -> [f32; 3] {
-    match tex.encoding() {
-        Encoding::Srgb => {
-            let t = tex.linear()[i];
-            std::array::from_fn(|c| (t >> (16 * c) & 0xffff) as f32)
-        }
-        Encoding::SignedUnorm => {
-            let t = tex.texels()[i];
-            std::array::from_fn(|c| (t >> (8 * c) & 0xff) as f32)
-        }
-    }
+    let t = tex.wide()[i];
+    std::array::from_fn(|c| (t >> (16 * c) & 0xffff) as f32)
 }
 
 /// Bilinear RGB of level `k`, in the units of [`channels`].
