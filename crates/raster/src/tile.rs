@@ -182,6 +182,29 @@ impl Frame<'_> {
                 #[cfg(target_arch = "x86_64")]
                 if let (true, Some(tbn)) = (vector, setup.flat_frame) {
                     let k = crate::resolve_x4::FlatConstants::new(tbn, constants);
+                    while x + 8 <= end {
+                        // `n ≤ x`, so the eight lanes fit in the row's buffer.
+                        let dst: &mut [ShadePoint; 8] =
+                            (&mut points[n..n + 8]).try_into().expect("eight points");
+                        // SAFETY: AVX2 is present (checked above).
+                        let mask =
+                            unsafe { crate::resolve_x4::resolve_x8(setup, &k, x as u32, y, constants, dst) };
+                        if mask == 0xff {
+                            let x = x as u32;
+                            for (l, d) in xs[n..n + 8].iter_mut().enumerate() {
+                                *d = x + l as u32;
+                            }
+                            n += 8;
+                        } else {
+                            let first = n;
+                            for l in (0..8).filter(|&l| mask & (1 << l) != 0) {
+                                points[n] = points[first + l];
+                                xs[n] = (x + l) as u32;
+                                n += 1;
+                            }
+                        }
+                        x += 8;
+                    }
                     while x + 4 <= end {
                         // `n ≤ x`, so the four lanes fit in the row's buffer.
                         let dst: &mut [ShadePoint; 4] =
