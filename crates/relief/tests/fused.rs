@@ -16,7 +16,7 @@ use renderlab_relief::fused::{render_fused, render_fused_records, FusedFrame, Te
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::render::render;
 use renderlab_relief::render::shadow::soft_shadow;
-use renderlab_relief::simd::shade_lanes;
+use renderlab_relief::simd::{shade_lanes, shade_lanes2};
 use renderlab_relief::ReliefHit;
 use renderlab_relief::{FrameInput, Kernel, KernelChoice, ReliefMaterial, Shading, Technique};
 use renderlab_texture::{Texture, Wrap};
@@ -80,13 +80,14 @@ fn lanes_strategy() -> impl Strategy<Value = ShadeLanes> {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(400))]
 
-    /// The AVX2 kernel and the scalar twin give the same pixels, bit for bit, lit and unlit,
-    /// with a whole and a fractional exponent, on odd-sized textures, and with every lane
-    /// magnified or at the last level (where the vector kernel skips the second level's
-    /// fetches).
+    /// The AVX2 kernel (one group of eight pixels, or two shaded together) and the scalar twin
+    /// give the same pixels, bit for bit, lit and unlit, with a whole and a fractional
+    /// exponent, on odd-sized textures, and with every lane of one group magnified or at the
+    /// last level (where the vector kernel skips the second level's fetches).
     #[test]
     fn vector_shading_equals_the_scalar_twin(
         p in lanes_strategy(),
+        q in lanes_strategy(),
         lit in any::<bool>(),
         whole in any::<bool>(),
         magnified in any::<bool>(),
@@ -117,6 +118,12 @@ proptest! {
         if renderlab_relief::cpu::has_avx2() {
             shade_lanes(&p, &k, &mut vector, true);
             prop_assert_eq!(scalar, vector);
+            // Two groups shaded together: each group's pixels as shaded alone.
+            let mut scalar_q = [0u32; LANES];
+            shade_lanes(&q, &k, &mut scalar_q, false);
+            let (mut a, mut b) = ([0u32; LANES], [0u32; LANES]);
+            shade_lanes2([&p, &q], &k, [&mut a, &mut b], true);
+            prop_assert_eq!((scalar, scalar_q), (a, b));
         } else {
             eprintln!("skipped: no AVX2 here");
         }

@@ -118,6 +118,8 @@ struct Worker {
     raster: RowScratch,
     trace: TraceScratch,
     lanes: ShadeLanes,
+    /// A second group, for the fast path's sixteen pixels at a time.
+    lanes_b: ShadeLanes,
     xs: [usize; LANES],
     /// The row's light factors.
     shadows: Vec<f32>,
@@ -256,8 +258,27 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
             while i < count {
                 let (x, sp, hit, shadow) = (xs[i] as usize, &points[i], &hits[i], shadows[i]);
                 let m = material(sp);
-                // Eight pixels of one material at the start of a lane group, outside the lab's
-                // records: their lanes are filled in vector registers (the same values).
+                // Sixteen, or eight, pixels of one material at the start of a lane group,
+                // outside the lab's records: their lanes are filled in vector registers and
+                // shaded together (the same values, the same pixels).
+                if n == 0
+                    && records.is_none()
+                    && self.vector
+                    && i + 2 * LANES <= count
+                    && points[i..i + 2 * LANES].iter().all(|p| material(p) == m)
+                {
+                    let j = i + LANES;
+                    crate::simd::load_lanes(&mut worker.lanes, &hits[i..], &points[i..], &shadows[i..]);
+                    crate::simd::load_lanes(&mut worker.lanes_b, &hits[j..], &points[j..], &shadows[j..]);
+                    let (mut pa, mut pb) = ([0u32; LANES], [0u32; LANES]);
+                    let lanes = [&worker.lanes, &worker.lanes_b];
+                    crate::simd::shade_lanes2(lanes, &self.consts[m], [&mut pa, &mut pb], true);
+                    for (&x, &p) in xs[i..i + 2 * LANES].iter().zip(pa.iter().chain(&pb)) {
+                        out_row[x as usize] = p;
+                    }
+                    i += 2 * LANES;
+                    continue;
+                }
                 if n == 0
                     && records.is_none()
                     && self.vector

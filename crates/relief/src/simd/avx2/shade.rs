@@ -260,6 +260,70 @@ unsafe fn encode(x: V, table: &[u32]) -> I {
     _mm256_srli_epi32::<16>(_mm256_add_epi32(bias, _mm256_mullo_epi32(slope, t)))
 }
 
+/// The thesis's light on eight pixels of `p`: `albedo` (linear) lit with the filtered normal
+/// map's values `nu` (codes).
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn light(albedo: [V; 3], nu: [V; 3], p: &ShadeLanes, k: &ShadeConsts) -> [V; 3] {
+    let zero = _mm256_setzero_ps();
+    let mut n = nu;
+    for c in &mut n {
+        *c = _mm256_sub_ps(_mm256_mul_ps(*c, splat(2.0 / 255.0)), splat(1.0));
+    }
+    let n = normalized(n, [zero, zero, splat(1.0)]);
+    let l = [ld(&p.lx), ld(&p.ly), ld(&p.lz)];
+    let diff = _mm256_max_ps(dot(&n, &l), zero);
+    let h = [_mm256_add_ps(l[0], ld(&p.vx)), _mm256_add_ps(l[1], ld(&p.vy)), _mm256_add_ps(l[2], ld(&p.vz))];
+    let h = normalized(h, [zero; 3]);
+    let nh = _mm256_max_ps(dot(&n, &h), zero);
+    let powed = match k.whole_exponent() {
+        Some(mut e) => {
+            let (mut result, mut base) = (splat(1.0), nh);
+            while e > 0 {
+                if e & 1 == 1 {
+                    result = _mm256_mul_ps(result, base);
+                }
+                base = _mm256_mul_ps(base, base);
+                e >>= 1;
+            }
+            result
+        }
+        None => {
+            let mut lanes = [0.0f32; LANES];
+            _mm256_storeu_ps(lanes.as_mut_ptr(), nh);
+            for x in &mut lanes {
+                *x = x.powf(k.exponent);
+            }
+            _mm256_loadu_ps(lanes.as_ptr())
+        }
+    };
+    let spec = _mm256_mul_ps(powed, splat(k.strength));
+    let facing = _mm256_and_ps(_mm256_cmp_ps::<_CMP_GT_OQ>(l[2], zero), ld(&p.shadow));
+    let ambient = splat(k.ambient);
+    let mut lit = albedo;
+    for c in &mut lit {
+        *c = _mm256_add_ps(
+            _mm256_mul_ps(*c, ambient),
+            _mm256_mul_ps(_mm256_add_ps(_mm256_mul_ps(*c, diff), spec), facing),
+        );
+    }
+    lit
+}
+
+/// Encodes `color` into `out` (RGBA8, alpha 255).
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn store(color: [V; 3], k: &ShadeConsts, out: &mut [u32; LANES]) {
+    let r = encode(color[0], k.encode);
+    let g = encode(color[1], k.encode);
+    let b = encode(color[2], k.encode);
+    let rgba = _mm256_or_si256(
+        _mm256_or_si256(r, _mm256_slli_epi32::<8>(g)),
+        _mm256_or_si256(_mm256_slli_epi32::<16>(b), _mm256_set1_epi32(0xff00_0000u32 as i32)),
+    );
+    _mm256_storeu_si256(out.as_mut_ptr() as *mut I, rgba);
+}
+
 /// Shades the eight lanes of `p` into `out` (RGBA8, alpha 255).
 ///
 /// # Safety
@@ -274,69 +338,70 @@ pub(crate) unsafe fn shade(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANE
     let color = match k.shading {
         Shading::Unlit => scaled(trilinear(k.albedo, u, v, la), LINEAR_STEP),
         Shading::Lit | Shading::LitShadowed => {
-            let zero = _mm256_setzero_ps();
             let (albedo, nu) = if k.albedo.same_shape(k.normal) {
                 trilinear_pair(k.albedo, k.normal, u, v, la)
             } else {
                 (trilinear(k.albedo, u, v, la), trilinear(k.normal, u, v, lod(&d, k.normal)))
             };
-            let albedo = scaled(albedo, LINEAR_STEP);
-            let mut n = nu;
-            for c in &mut n {
-                *c = _mm256_sub_ps(_mm256_mul_ps(*c, splat(2.0 / 255.0)), splat(1.0));
-            }
-            let n = normalized(n, [zero, zero, splat(1.0)]);
-            let l = [ld(&p.lx), ld(&p.ly), ld(&p.lz)];
-            let diff = _mm256_max_ps(dot(&n, &l), zero);
-            let h = [
-                _mm256_add_ps(l[0], ld(&p.vx)),
-                _mm256_add_ps(l[1], ld(&p.vy)),
-                _mm256_add_ps(l[2], ld(&p.vz)),
-            ];
-            let h = normalized(h, [zero; 3]);
-            let nh = _mm256_max_ps(dot(&n, &h), zero);
-            let powed = match k.whole_exponent() {
-                Some(mut e) => {
-                    let (mut result, mut base) = (splat(1.0), nh);
-                    while e > 0 {
-                        if e & 1 == 1 {
-                            result = _mm256_mul_ps(result, base);
-                        }
-                        base = _mm256_mul_ps(base, base);
-                        e >>= 1;
-                    }
-                    result
-                }
-                None => {
-                    let mut lanes = [0.0f32; LANES];
-                    _mm256_storeu_ps(lanes.as_mut_ptr(), nh);
-                    for x in &mut lanes {
-                        *x = x.powf(k.exponent);
-                    }
-                    _mm256_loadu_ps(lanes.as_ptr())
-                }
-            };
-            let spec = _mm256_mul_ps(powed, splat(k.strength));
-            let facing = _mm256_and_ps(_mm256_cmp_ps::<_CMP_GT_OQ>(l[2], zero), ld(&p.shadow));
-            let ambient = splat(k.ambient);
-            let mut lit = albedo;
-            for c in &mut lit {
-                *c = _mm256_add_ps(
-                    _mm256_mul_ps(*c, ambient),
-                    _mm256_mul_ps(_mm256_add_ps(_mm256_mul_ps(*c, diff), spec), facing),
-                );
-            }
-            lit
+            light(scaled(albedo, LINEAR_STEP), nu, p, k)
         }
     };
-    let r = encode(color[0], k.encode);
-    let g = encode(color[1], k.encode);
-    let b = encode(color[2], k.encode);
-    let rgba = _mm256_or_si256(
-        _mm256_or_si256(r, _mm256_slli_epi32::<8>(g)),
-        _mm256_or_si256(_mm256_slli_epi32::<16>(b), _mm256_set1_epi32(0xff00_0000u32 as i32)),
-    );
-    _mm256_storeu_si256(out.as_mut_ptr() as *mut I, rgba);
+    store(color, k, out);
+}
+
+/// [`shade`] for two groups of eight pixels, `p[0]` into `out[0]` and `p[1]` into `out[1]`,
+/// their steps interleaved: each group's work is one long chain of dependent steps (level of
+/// detail, addresses, loads, filter, normalisation, encoding), and two independent chains side
+/// by side keep the vector units busy while each waits. The same pixels as two calls of
+/// [`shade`] (a group whose blend weights are all zero blends in its second level with weight
+/// 0, which gives the first level's value bit for bit; see [`one_level`]).
+///
+/// # Safety
+///
+/// As [`shade`].
+#[target_feature(enable = "avx2")]
+pub(crate) unsafe fn shade2(p: [&ShadeLanes; 2], k: &ShadeConsts, out: [&mut [u32; LANES]; 2]) {
+    let lit = !matches!(k.shading, Shading::Unlit);
+    if lit && !k.albedo.same_shape(k.normal) {
+        let [o0, o1] = out;
+        shade(p[0], k, o0);
+        shade(p[1], k, o1);
+        return;
+    }
+    let zero = _mm256_setzero_ps();
+    let (mut u, mut v, mut t) = ([zero; 2], [zero; 2], [zero; 2]);
+    let mut k0 = [_mm256_setzero_si256(); 2];
+    let mut k1 = k0;
+    for g in 0..2 {
+        let q = p[g];
+        (u[g], v[g]) = (sanitize(ld(&q.u)), sanitize(ld(&q.v)));
+        let l = lod(&[ld(&q.dudx), ld(&q.dvdx), ld(&q.dudy), ld(&q.dvdy)], k.albedo);
+        (k0[g], k1[g], t[g]) = levels(k.albedo, l);
+    }
+    let (mut a, mut n) = ([[zero; 3]; 2], [[zero; 3]; 2]);
+    for g in 0..2 {
+        let c = taps(k.albedo, k0[g], u[g], v[g]);
+        a[g] = bilinear(k.albedo, &c);
+        if lit {
+            n[g] = bilinear(k.normal, &c);
+        }
+    }
+    if !(one_level(t[0]) && one_level(t[1])) {
+        for g in 0..2 {
+            let c = taps(k.albedo, k1[g], u[g], v[g]);
+            a[g] = blend(a[g], bilinear(k.albedo, &c), t[g]);
+            if lit {
+                n[g] = blend(n[g], bilinear(k.normal, &c), t[g]);
+            }
+        }
+    }
+    let [o0, o1] = out;
+    let outs = [o0, o1];
+    for (g, o) in outs.into_iter().enumerate() {
+        let albedo = scaled(a[g], LINEAR_STEP);
+        let color = if lit { light(albedo, n[g], p[g], k) } else { albedo };
+        store(color, k, o);
+    }
 }
 
 /// Rows `a`, `b`, `c`, `d` to columns within each 128-bit half: element `i` of result `j` is

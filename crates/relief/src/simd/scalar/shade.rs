@@ -160,6 +160,13 @@ pub(crate) fn shade(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANES]) {
     }
 }
 
+/// Shades two groups of eight lanes, `p[0]` into `out[0]` and `p[1]` into `out[1]`.
+pub(crate) fn shade2(p: [&ShadeLanes; 2], k: &ShadeConsts, out: [&mut [u32; LANES]; 2]) {
+    let [o0, o1] = out;
+    shade(p[0], k, o0);
+    shade(p[1], k, o1);
+}
+
 /// Fills the eight lanes of `lanes` from eight pixels' hits, shade points and light factors
 /// (the first eight of each slice), one lane at a time.
 ///
