@@ -16,7 +16,7 @@ use renderlab_relief::fused::{render_fused, render_fused_records, FusedFrame, Te
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::render::render;
 use renderlab_relief::render::shadow::soft_shadow;
-use renderlab_relief::simd::{shade_lanes, shade_lanes2};
+use renderlab_relief::simd::{shade_groups, shade_lanes};
 use renderlab_relief::ReliefHit;
 use renderlab_relief::{FrameInput, Kernel, KernelChoice, ReliefMaterial, Shading, Technique};
 use renderlab_texture::{Texture, Wrap};
@@ -122,7 +122,7 @@ proptest! {
             let mut scalar_q = [0u32; LANES];
             shade_lanes(&q, &k, &mut scalar_q, false);
             let (mut a, mut b) = ([0u32; LANES], [0u32; LANES]);
-            shade_lanes2([&p, &q], &k, [&mut a, &mut b], true);
+            shade_groups([&p, &q], &k, [&mut a, &mut b], true);
             prop_assert_eq!((scalar, scalar_q), (a, b));
         } else {
             eprintln!("skipped: no AVX2 here");

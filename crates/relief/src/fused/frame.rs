@@ -112,14 +112,17 @@ struct BandRecords<'a> {
     mask: &'a mut [bool],
 }
 
+/// Groups of eight pixels the fast path shades together.
+const GROUPS: usize = 2;
+
 /// One worker's buffers, reused from band to band.
 #[derive(Default)]
 struct Worker {
     raster: RowScratch,
     trace: TraceScratch,
     lanes: ShadeLanes,
-    /// A second group, for the fast path's sixteen pixels at a time.
-    lanes_b: ShadeLanes,
+    /// The fast path's groups of eight pixels, shaded [`GROUPS`] at a time.
+    groups: [ShadeLanes; GROUPS],
     xs: [usize; LANES],
     /// The row's light factors.
     shadows: Vec<f32>,
@@ -258,25 +261,27 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
             while i < count {
                 let (x, sp, hit, shadow) = (xs[i] as usize, &points[i], &hits[i], shadows[i]);
                 let m = material(sp);
-                // Sixteen, or eight, pixels of one material at the start of a lane group,
+                // `GROUPS × 8`, or eight, pixels of one material at the start of a lane group,
                 // outside the lab's records: their lanes are filled in vector registers and
                 // shaded together (the same values, the same pixels).
+                const RUN: usize = GROUPS * LANES;
                 if n == 0
                     && records.is_none()
                     && self.vector
-                    && i + 2 * LANES <= count
-                    && points[i..i + 2 * LANES].iter().all(|p| material(p) == m)
+                    && i + RUN <= count
+                    && points[i..i + RUN].iter().all(|p| material(p) == m)
                 {
-                    let j = i + LANES;
-                    crate::simd::load_lanes(&mut worker.lanes, &hits[i..], &points[i..], &shadows[i..]);
-                    crate::simd::load_lanes(&mut worker.lanes_b, &hits[j..], &points[j..], &shadows[j..]);
-                    let (mut pa, mut pb) = ([0u32; LANES], [0u32; LANES]);
-                    let lanes = [&worker.lanes, &worker.lanes_b];
-                    crate::simd::shade_lanes2(lanes, &self.consts[m], [&mut pa, &mut pb], true);
-                    for (&x, &p) in xs[i..i + 2 * LANES].iter().zip(pa.iter().chain(&pb)) {
+                    for (g, lanes) in worker.groups.iter_mut().enumerate() {
+                        let j = i + g * LANES;
+                        crate::simd::load_lanes(lanes, &hits[j..], &points[j..], &shadows[j..]);
+                    }
+                    let mut px = [[0u32; LANES]; GROUPS];
+                    let groups = std::array::from_fn(|g| &worker.groups[g]);
+                    crate::simd::shade_groups(groups, &self.consts[m], px.each_mut(), true);
+                    for (&x, &p) in xs[i..i + RUN].iter().zip(px.iter().flatten()) {
                         out_row[x as usize] = p;
                     }
-                    i += 2 * LANES;
+                    i += RUN;
                     continue;
                 }
                 if n == 0

@@ -182,12 +182,17 @@ pub fn shade_lanes(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANES], vect
     backend!(shade::shade(p, k, out) if vector && crate::cpu::has_avx2())
 }
 
-/// Shades two groups of eight pixels with the fused frame's shading kernel (`p[0]` into
-/// `out[0]`, `p[1]` into `out[1]`; the same pixels as two calls of [`shade_lanes`]), their
-/// steps interleaved in vector lanes where `vector` and the CPU allow it.
+/// Shades `G` groups of eight pixels with the fused frame's shading kernel (`p[g]` into
+/// `out[g]`; the same pixels as `G` calls of [`shade_lanes`]), their steps interleaved in
+/// vector lanes where `vector` and the CPU allow it.
 #[inline]
-pub fn shade_lanes2(p: [&ShadeLanes; 2], k: &ShadeConsts, out: [&mut [u32; LANES]; 2], vector: bool) {
-    backend!(shade::shade2(p, k, out) if vector && crate::cpu::has_avx2())
+pub fn shade_groups<const G: usize>(
+    p: [&ShadeLanes; G],
+    k: &ShadeConsts,
+    out: [&mut [u32; LANES]; G],
+    vector: bool,
+) {
+    backend!(shade::shade_groups(p, k, out) if vector && crate::cpu::has_avx2())
 }
 
 /// Fills all eight lanes of `lanes` from the first eight entries of `hits`, `points` and

@@ -349,45 +349,49 @@ pub(crate) unsafe fn shade(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANE
     store(color, k, out);
 }
 
-/// [`shade`] for two groups of eight pixels, `p[0]` into `out[0]` and `p[1]` into `out[1]`,
-/// their steps interleaved: each group's work is one long chain of dependent steps (level of
-/// detail, addresses, loads, filter, normalisation, encoding), and two independent chains side
-/// by side keep the vector units busy while each waits. The same pixels as two calls of
-/// [`shade`] (a group whose blend weights are all zero blends in its second level with weight
-/// 0, which gives the first level's value bit for bit; see [`one_level`]).
+/// [`shade`] for `G` groups of eight pixels, `p[g]` into `out[g]`, their steps interleaved:
+/// each group's work is one long chain of dependent steps (level of detail, addresses, loads,
+/// filter, normalisation, encoding), and independent chains side by side keep the vector
+/// units busy while each waits. The same pixels as `G` calls of [`shade`] (a group whose blend
+/// weights are all zero blends in its second level with weight 0, which gives the first
+/// level's value bit for bit; see [`one_level`]).
 ///
 /// # Safety
 ///
 /// As [`shade`].
 #[target_feature(enable = "avx2")]
-pub(crate) unsafe fn shade2(p: [&ShadeLanes; 2], k: &ShadeConsts, out: [&mut [u32; LANES]; 2]) {
+pub(crate) unsafe fn shade_groups<const G: usize>(
+    p: [&ShadeLanes; G],
+    k: &ShadeConsts,
+    out: [&mut [u32; LANES]; G],
+) {
     let lit = !matches!(k.shading, Shading::Unlit);
     if lit && !k.albedo.same_shape(k.normal) {
-        let [o0, o1] = out;
-        shade(p[0], k, o0);
-        shade(p[1], k, o1);
+        for (q, o) in p.into_iter().zip(out) {
+            shade(q, k, o);
+        }
         return;
     }
     let zero = _mm256_setzero_ps();
-    let (mut u, mut v, mut t) = ([zero; 2], [zero; 2], [zero; 2]);
-    let mut k0 = [_mm256_setzero_si256(); 2];
+    let (mut u, mut v, mut t) = ([zero; G], [zero; G], [zero; G]);
+    let mut k0 = [_mm256_setzero_si256(); G];
     let mut k1 = k0;
-    for g in 0..2 {
+    for g in 0..G {
         let q = p[g];
         (u[g], v[g]) = (sanitize(ld(&q.u)), sanitize(ld(&q.v)));
         let l = lod(&[ld(&q.dudx), ld(&q.dvdx), ld(&q.dudy), ld(&q.dvdy)], k.albedo);
         (k0[g], k1[g], t[g]) = levels(k.albedo, l);
     }
-    let (mut a, mut n) = ([[zero; 3]; 2], [[zero; 3]; 2]);
-    for g in 0..2 {
+    let (mut a, mut n) = ([[zero; 3]; G], [[zero; 3]; G]);
+    for g in 0..G {
         let c = taps(k.albedo, k0[g], u[g], v[g]);
         a[g] = bilinear(k.albedo, &c);
         if lit {
             n[g] = bilinear(k.normal, &c);
         }
     }
-    if !(one_level(t[0]) && one_level(t[1])) {
-        for g in 0..2 {
+    if !t.iter().all(|&t| one_level(t)) {
+        for g in 0..G {
             let c = taps(k.albedo, k1[g], u[g], v[g]);
             a[g] = blend(a[g], bilinear(k.albedo, &c), t[g]);
             if lit {
@@ -395,9 +399,7 @@ pub(crate) unsafe fn shade2(p: [&ShadeLanes; 2], k: &ShadeConsts, out: [&mut [u3
             }
         }
     }
-    let [o0, o1] = out;
-    let outs = [o0, o1];
-    for (g, o) in outs.into_iter().enumerate() {
+    for (g, o) in out.into_iter().enumerate() {
         let albedo = scaled(a[g], LINEAR_STEP);
         let color = if lit { light(albedo, n[g], p[g], k) } else { albedo };
         store(color, k, o);

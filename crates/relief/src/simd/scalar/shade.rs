@@ -160,11 +160,15 @@ pub(crate) fn shade(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANES]) {
     }
 }
 
-/// Shades two groups of eight lanes, `p[0]` into `out[0]` and `p[1]` into `out[1]`.
-pub(crate) fn shade2(p: [&ShadeLanes; 2], k: &ShadeConsts, out: [&mut [u32; LANES]; 2]) {
-    let [o0, o1] = out;
-    shade(p[0], k, o0);
-    shade(p[1], k, o1);
+/// Shades `G` groups of eight lanes, `p[g]` into `out[g]`.
+pub(crate) fn shade_groups<const G: usize>(
+    p: [&ShadeLanes; G],
+    k: &ShadeConsts,
+    out: [&mut [u32; LANES]; G],
+) {
+    for (q, o) in p.into_iter().zip(out) {
+        shade(q, k, o);
+    }
 }
 
 /// Fills the eight lanes of `lanes` from eight pixels' hits, shade points and light factors
