@@ -1,9 +1,9 @@
 //! The vector kernel of parallax mapping on the packed map: eight rays per vector, one
-//! bilinear depth fetch each (the packed map's 64-bit gathers), the offset `uv + dp · depth`.
+//! bilinear depth fetch each (two 32-bit gathers from the map's 16-bit depths alone, each
+//! element a texel and its right neighbour), the offset `uv + dp · depth`.
 //! Each lane performs the scalar twin's operations (`simd::scalar::parallax`) in the same
 //! order, so the hits are bit-identical to it.
 
-use super::gather::gather_cell;
 use super::shade::{finite, transpose_halves};
 use super::LANES;
 use crate::maps::packed::{PackedRelief, DEPTH_STEP};
@@ -50,11 +50,13 @@ pub(crate) unsafe fn trace_row<C: Counter>(
 ) {
     let n = rays.len().min(out.len());
     let (mxk, myk) = map.masks().expect("power-of-two map");
-    let base = map.texels().as_ptr() as *const i32;
+    // SAFETY (of the gathers below): indices are texels of the unpadded grid, so the 32-bit
+    // reads at them and one padded row further stay inside `depths` (one entry longer).
+    let depths = map.depths().as_ptr() as *const i32;
+    let depths_below = map.depths().as_ptr().add(map.stride()) as *const i32;
     let stride = map.stride() as i32;
     let (mask_x, mask_y) = (_mm256_set1_epi32(mxk), _mm256_set1_epi32(myk));
     let stride_v = _mm256_set1_epi32(stride);
-    let lane_order = _mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7);
     let (wf, hf) = (_mm256_set1_ps(map.width() as f32), _mm256_set1_ps(map.height() as f32));
     let (half, lo, hi) = (_mm256_set1_ps(0.5), _mm256_set1_ps(-1.0e7), _mm256_set1_ps(1.0e7));
     let step = _mm256_set1_ps(DEPTH_STEP);
@@ -78,12 +80,20 @@ pub(crate) unsafe fn trace_row<C: Counter>(
         };
         let x = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(uu, wf), half), lo), hi);
         let y = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(vv, hf), half), lo), hi);
-        let (fx, fy, t00, t10, t01, t11) =
-            gather_cell!(base, stride, x, y, mask_x, mask_y, stride_v, lane_order);
-        let d00 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t00));
-        let d10 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t10));
-        let d01 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t01));
-        let d11 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t11));
+        // The cell's texels from the depths alone: one 32-bit gather element holds a texel
+        // and its right neighbour (the padded grid needs no wrap there).
+        let (x0, y0) = (_mm256_floor_ps(x), _mm256_floor_ps(y));
+        let (fx, fy) = (_mm256_sub_ps(x, x0), _mm256_sub_ps(y, y0));
+        let xi = _mm256_and_si256(_mm256_cvttps_epi32(x0), mask_x);
+        let yi = _mm256_and_si256(_mm256_cvttps_epi32(y0), mask_y);
+        let idx = _mm256_add_epi32(_mm256_mullo_epi32(yi, stride_v), xi);
+        let r0 = _mm256_i32gather_epi32::<2>(depths, idx);
+        let r1 = _mm256_i32gather_epi32::<2>(depths_below, idx);
+        let lo = _mm256_set1_epi32(0xffff);
+        let d00 = _mm256_cvtepi32_ps(_mm256_and_si256(r0, lo));
+        let d10 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(r0));
+        let d01 = _mm256_cvtepi32_ps(_mm256_and_si256(r1, lo));
+        let d11 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(r1));
         let top = _mm256_add_ps(d00, _mm256_mul_ps(_mm256_sub_ps(d10, d00), fx));
         let bottom = _mm256_add_ps(d01, _mm256_mul_ps(_mm256_sub_ps(d11, d01), fx));
         let depth = _mm256_mul_ps(_mm256_add_ps(top, _mm256_mul_ps(_mm256_sub_ps(bottom, top), fy)), step);
