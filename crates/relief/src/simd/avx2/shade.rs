@@ -1,7 +1,8 @@
 //! The vector kernel of the fused frame's shading ([`crate::fused::lanes`]): eight pixels
-//! per call in AVX2 lanes, texels fetched by gathers, every arithmetic step in the scalar
-//! twin's order (no fused multiply-add), so that the pixels are bit-identical to the scalar
-//! twin's (`simd::scalar::shade`).
+//! per group in AVX2 lanes (one group per call, or several with their steps interleaved),
+//! each bilinear cell's texels fetched as two 16-byte loads per lane from the texture's padded
+//! copy, every arithmetic step in the scalar twin's order (no fused multiply-add), so that the
+//! pixels are bit-identical to the scalar twin's (`simd::scalar::shade`).
 
 use super::math::log2;
 use crate::fused::lanes::{ShadeConsts, ShadeLanes, LANES};
@@ -186,7 +187,7 @@ unsafe fn one_level(t: V) -> bool {
     _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_EQ_OQ>(t, _mm256_setzero_ps())) == 0xff
 }
 
-/// Trilinear RGB at levels of detail `l`, in the units of [`fetch`].
+/// Trilinear RGB at levels of detail `l`, in the units of the padded copy.
 #[inline]
 #[target_feature(enable = "avx2")]
 unsafe fn trilinear(tex: &Texture8, u: V, v: V, l: V) -> [V; 3] {
