@@ -6,7 +6,7 @@
 
 use super::math::log2;
 use crate::fused::lanes::{ShadeConsts, ShadeLanes, LANES};
-use crate::fused::texture8::{Texture8, LINEAR_STEP};
+use crate::fused::texture8::{Texture8, LINEAR_STEP, MAX_LEVELS};
 use crate::trace::{ReliefHit, Shading};
 use renderlab_core::srgb8::{ENCODE_MAX_BITS, ENCODE_MIN_BITS};
 use renderlab_core::ShadePoint;
@@ -72,7 +72,15 @@ unsafe fn taps(tex: &Texture8, k: I, u: V, v: V) -> Cell {
     let one = _mm256_set1_epi32(1);
     let w = _mm256_max_epi32(_mm256_srlv_epi32(_mm256_set1_epi32(tex.widths[0]), k), one);
     let h = _mm256_max_epi32(_mm256_srlv_epi32(_mm256_set1_epi32(tex.heights[0]), k), one);
-    let off = _mm256_i32gather_epi32::<4>(tex.wide_offsets.as_ptr(), k);
+    // The level's start from the 16-entry table by two in-register lookups (`k` < 16).
+    const _: () = assert!(MAX_LEVELS == 16, "two eight-lane lookups cover the offset table");
+    let table = tex.wide_offsets.as_ptr() as *const I;
+    let (first, second) = (_mm256_loadu_si256(table), _mm256_loadu_si256(table.add(1)));
+    let off = _mm256_blendv_epi8(
+        _mm256_permutevar8x32_epi32(first, k),
+        _mm256_permutevar8x32_epi32(second, k),
+        _mm256_cmpgt_epi32(k, _mm256_set1_epi32(7)),
+    );
     let half = splat(0.5);
     let x = _mm256_sub_ps(_mm256_mul_ps(_mm256_sub_ps(u, _mm256_floor_ps(u)), _mm256_cvtepi32_ps(w)), half);
     let y = _mm256_sub_ps(_mm256_mul_ps(_mm256_sub_ps(v, _mm256_floor_ps(v)), _mm256_cvtepi32_ps(h)), half);
