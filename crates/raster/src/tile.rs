@@ -93,14 +93,17 @@ impl Frame<'_> {
             let t = &self.tris[i as usize];
             let row = (y - y_start) as usize * w;
             fragments += (xe - xs) as u64;
-            for x in xs..xe {
+            let (depth, id) = (
+                &mut depth[row + xs as usize..row + xe as usize],
+                &mut id[row + xs as usize..row + xe as usize],
+            );
+            for ((x, d), j) in (xs..xe).zip(depth.iter_mut()).zip(id.iter_mut()) {
                 let z = t.inv_w(x, y);
-                let k = row + x as usize;
-                // Strictly nearer wins: on a tie the earlier triangle keeps the pixel.
-                if z > depth[k] {
-                    depth[k] = z;
-                    id[k] = i;
-                }
+                // Strictly nearer wins: on a tie the earlier triangle keeps the pixel. Both
+                // stores are unconditional selects, so that the loop runs in vector lanes.
+                let nearer = z > *d;
+                *d = if nearer { z } else { *d };
+                *j = if nearer { i } else { *j };
             }
         });
         fragments
