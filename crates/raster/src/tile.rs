@@ -175,8 +175,12 @@ impl Frame<'_> {
             let mut x = 0;
             while x < w {
                 let i = id_row[x];
-                // The run of pixels showing the same triangle.
-                let end = x + id_row[x..].iter().take_while(|&&j| j == i).count();
+                // The run of pixels showing the same triangle, eight at a time while it lasts.
+                let mut end = x + 1;
+                while end + 8 <= w && id_row[end..end + 8].iter().fold(true, |all, &j| all & (j == i)) {
+                    end += 8;
+                }
+                end += id_row[end..].iter().take_while(|&&j| j == i).count();
                 if i == NO_TRIANGLE {
                     x = end;
                     continue;

@@ -249,7 +249,10 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
         self.raster.band_points(band, &mut raster, |y, xs, points| {
             let r = (y as usize - y0) * w;
             let out_row = &mut out[r..r + w];
-            out_row.fill(self.background);
+            if xs.len() < w {
+                // Some pixels show no surface (a covered pixel is written below).
+                out_row.fill(self.background);
+            }
             trace_shade_points(self.t, self.materials, points, self.vector, &mut worker.trace, counter);
             let hits = std::mem::take(&mut worker.trace.hits);
             let mut shadows = std::mem::take(&mut worker.shadows);
