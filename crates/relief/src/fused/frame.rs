@@ -253,16 +253,30 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
                 // Some pixels show no surface (a covered pixel is written below).
                 out_row.fill(self.background);
             }
-            trace_shade_points(self.t, self.materials, points, self.vector, &mut worker.trace, counter);
+            // A technique that does not displace needs no tracer on the timed vector path: its
+            // hits are formed from the points where they are loaded (the same values).
+            let undisplaced = !T::DISPLACES && self.vector && records.is_none();
+            if !undisplaced {
+                trace_shade_points(self.t, self.materials, points, self.vector, &mut worker.trace, counter);
+            }
             let hits = std::mem::take(&mut worker.trace.hits);
             let mut shadows = std::mem::take(&mut worker.shadows);
-            self.shadows(&hits, points, &mut shadows, counter);
+            if undisplaced {
+                // Such techniques do not self-shadow.
+                shadows.clear();
+                shadows.resize(points.len(), 1.0);
+            } else {
+                self.shadows(&hits, points, &mut shadows, counter);
+            }
             let (mut n, mut cur) = (0, 0);
             let material = |p: &ShadePoint| (p.material as usize).min(last);
-            let count = points.len().min(hits.len()).min(shadows.len()).min(xs.len());
+            let count = points.len().min(if undisplaced { usize::MAX } else { hits.len() });
+            let count = count.min(shadows.len()).min(xs.len());
             let mut i = 0;
             while i < count {
-                let (x, sp, hit, shadow) = (xs[i] as usize, &points[i], &hits[i], shadows[i]);
+                let (x, sp, shadow) = (xs[i] as usize, &points[i], shadows[i]);
+                let hit = if undisplaced { crate::simd::scalar::rays::undisplaced_hit(sp) } else { hits[i] };
+                let hit = &hit;
                 let m = material(sp);
                 // `GROUPS × 8`, or eight, pixels of one material at the start of a lane group,
                 // outside the lab's records: their lanes are filled in vector registers and
@@ -276,7 +290,11 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
                 {
                     for (g, lanes) in worker.groups.iter_mut().enumerate() {
                         let j = i + g * LANES;
-                        crate::simd::load_lanes(lanes, &hits[j..], &points[j..], &shadows[j..]);
+                        if undisplaced {
+                            crate::simd::load_lanes_undisplaced(lanes, &points[j..], &shadows[j..]);
+                        } else {
+                            crate::simd::load_lanes(lanes, &hits[j..], &points[j..], &shadows[j..]);
+                        }
                     }
                     let mut px = [[0u32; LANES]; GROUPS];
                     let groups = std::array::from_fn(|g| &worker.groups[g]);
@@ -293,7 +311,11 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
                     && i + LANES <= count
                     && points[i..i + LANES].iter().all(|p| material(p) == m)
                 {
-                    crate::simd::load_lanes(&mut worker.lanes, &hits[i..], &points[i..], &shadows[i..]);
+                    if undisplaced {
+                        crate::simd::load_lanes_undisplaced(&mut worker.lanes, &points[i..], &shadows[i..]);
+                    } else {
+                        crate::simd::load_lanes(&mut worker.lanes, &hits[i..], &points[i..], &shadows[i..]);
+                    }
                     for (d, &x) in worker.xs.iter_mut().zip(&xs[i..i + LANES]) {
                         *d = x as usize;
                     }

@@ -487,6 +487,7 @@ pub fn trace_frame<T: ReliefTechnique>(input: FrameInput, materials: &[ReliefMat
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fused::lanes::ShadeLanes;
     use proptest::prelude::*;
 
     fn point(u: f32, v: f32, i: u32) -> ShadePoint {
@@ -526,6 +527,15 @@ mod tests {
         for (i, (h, t)) in hits.iter().zip(&twin).enumerate() {
             assert_eq!(bits2(h.uv), bits2(t.uv), "hit of {:?}", points[i].uv);
             assert_eq!((h.depth.to_bits(), h.layers), (t.depth.to_bits(), t.layers));
+        }
+        // The shading lanes of such a technique formed from the points, vector against scalar.
+        let shadows = vec![1.0; n];
+        for start in (0..n.saturating_sub(7)).step_by(8) {
+            let (mut a, mut b) = (ShadeLanes::default(), ShadeLanes::default());
+            crate::simd::load_lanes_undisplaced(&mut a, &points[start..], &shadows[start..]);
+            crate::simd::scalar::shade::load_lanes_undisplaced(&mut b, &points[start..], &shadows[start..]);
+            let lane_bits = |l: &ShadeLanes| [l.u, l.v, l.dudx, l.vz, l.lz].map(|a| a.map(f32::to_bits));
+            assert_eq!(lane_bits(&a), lane_bits(&b), "points {start}..");
         }
     }
 

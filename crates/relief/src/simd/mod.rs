@@ -217,6 +217,17 @@ pub(crate) fn undisplaced_hits(points: &[ShadePoint], hits: &mut [ReliefHit]) {
     backend!(rays::undisplaced_hits(points, hits) if crate::cpu::has_avx2())
 }
 
+/// [`load_lanes`] for a technique that does not displace, the hits formed from the points
+/// (what [`undisplaced_hits`] would give), in vector registers where the CPU has AVX2.
+///
+/// # Panics
+///
+/// If a slice holds fewer than eight entries.
+#[inline]
+pub(crate) fn load_lanes_undisplaced(lanes: &mut ShadeLanes, points: &[ShadePoint], shadows: &[f32]) {
+    backend!(shade::load_lanes_undisplaced(lanes, points, shadows) if crate::cpu::has_avx2())
+}
+
 /// Splits shade points into rays moved into the first tile and the tiles' corners, as
 /// [`crate::march::ray::split_ray`] does for each, eight at a time where the CPU has AVX2.
 ///

@@ -480,3 +480,41 @@ pub(crate) unsafe fn load_lanes(
     st(&mut lanes.lz, b2[3]);
     st(&mut lanes.shadow, _mm256_loadu_ps(shadows.as_ptr()));
 }
+
+/// [`load_lanes`] for a technique that does not displace, without its hits: each lane's UV is
+/// its point's moved into the first tile and back, as `rays::undisplaced_hits` forms the hits
+/// (the same operations), the rest as [`load_lanes`] fills it.
+///
+/// # Safety
+///
+/// The CPU must support AVX2.
+///
+/// # Panics
+///
+/// If a slice holds fewer than eight entries.
+#[target_feature(enable = "avx2")]
+pub(crate) unsafe fn load_lanes_undisplaced(lanes: &mut ShadeLanes, points: &[ShadePoint], shadows: &[f32]) {
+    assert!(points.len() >= LANES && shadows.len() >= LANES, "eight pixels");
+    let pt = points.as_ptr() as *const f32;
+    let stride = std::mem::size_of::<ShadePoint>() / 4;
+    let (b0, b1, b2) = (fields(pt, stride, 0), fields(pt, stride, 1), fields(pt, stride, 2));
+    let (fu, fv) = (_mm256_floor_ps(b0[0]), _mm256_floor_ps(b0[1]));
+    let ok = _mm256_and_ps(finite(fu), finite(fv));
+    let (bu, bv) = (_mm256_and_ps(fu, ok), _mm256_and_ps(fv, ok));
+    let u = _mm256_add_ps(_mm256_sub_ps(b0[0], bu), bu);
+    let v = _mm256_add_ps(_mm256_sub_ps(b0[1], bv), bv);
+    let st = |dst: &mut [f32; LANES], x: V| _mm256_storeu_ps(dst.as_mut_ptr(), x);
+    st(&mut lanes.u, u);
+    st(&mut lanes.v, v);
+    st(&mut lanes.dudx, b0[2]);
+    st(&mut lanes.dvdx, b0[3]);
+    st(&mut lanes.dudy, b1[0]);
+    st(&mut lanes.dvdy, b1[1]);
+    st(&mut lanes.vx, b1[2]);
+    st(&mut lanes.vy, b1[3]);
+    st(&mut lanes.vz, b2[0]);
+    st(&mut lanes.lx, b2[1]);
+    st(&mut lanes.ly, b2[2]);
+    st(&mut lanes.lz, b2[3]);
+    st(&mut lanes.shadow, _mm256_loadu_ps(shadows.as_ptr()));
+}

@@ -19,7 +19,13 @@ pub(crate) fn split_rays(points: &[ShadePoint], rays: &mut [(Vec2, Vec3)], bases
 #[inline]
 pub(crate) fn undisplaced_hits(points: &[ShadePoint], hits: &mut [ReliefHit]) {
     for (h, p) in hits.iter_mut().zip(points) {
-        let ((uv, _), base) = split_ray(p.uv, p.view_ts);
-        *h = ReliefHit { uv: uv + base, depth: 0.0, layers: 0 };
+        *h = undisplaced_hit(p);
     }
+}
+
+/// The hit of point `p` for a technique that does not displace (see [`undisplaced_hits`]).
+#[inline]
+pub(crate) fn undisplaced_hit(p: &ShadePoint) -> ReliefHit {
+    let ((uv, _), base) = split_ray(p.uv, p.view_ts);
+    ReliefHit { uv: uv + base, depth: 0.0, layers: 0 }
 }

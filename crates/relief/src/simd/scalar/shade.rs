@@ -185,6 +185,20 @@ pub(crate) fn load_lanes(lanes: &mut ShadeLanes, hits: &[ReliefHit], points: &[S
     }
 }
 
+/// [`load_lanes`] for a technique that does not displace, each hit formed from its point
+/// ([`super::rays::undisplaced_hit`]).
+///
+/// # Panics
+///
+/// If a slice holds fewer than eight entries.
+#[inline]
+pub(crate) fn load_lanes_undisplaced(lanes: &mut ShadeLanes, points: &[ShadePoint], shadows: &[f32]) {
+    assert!(points.len() >= LANES && shadows.len() >= LANES, "eight pixels");
+    for l in 0..LANES {
+        lanes.set(l, &super::rays::undisplaced_hit(&points[l]), &points[l], shadows[l]);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
