@@ -253,13 +253,13 @@ pub(crate) unsafe fn resolve_x8(
     let view = [_mm256_mul_ps(ex, recip), _mm256_mul_ps(ey, recip), _mm256_mul_ps(ez, recip)];
     let t = &k.to_tangent;
     let vt = [mat_row8(t, 0, &view), mat_row8(t, 1, &view), mat_row8(t, 2, &view)];
-    // Lanes where every value the scalar resolve checks is finite (|x| < ∞ is false for NaN).
-    let abs = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fff_ffff));
-    let inf = _mm256_set1_ps(f32::INFINITY);
-    let mut finite = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
+    // Lanes where every value the scalar resolve checks is finite: `x − x` is 0 for a finite
+    // `x` and NaN otherwise, and a NaN stays in the sum.
+    let mut sum = _mm256_setzero_ps();
     for x in [u, v, dudx, dvdx, dudy, dvdy, px, py, pz, vt[0], vt[1], vt[2], depth] {
-        finite = _mm256_and_ps(finite, _mm256_cmp_ps::<_CMP_LT_OQ>(_mm256_and_ps(x, abs), inf));
+        sum = _mm256_add_ps(sum, _mm256_sub_ps(x, x));
     }
+    let finite = _mm256_cmp_ps::<_CMP_EQ_OQ>(sum, _mm256_setzero_ps());
     let mask = ((valid_lo | valid_hi << 4) & _mm256_movemask_ps(finite)) as u32;
     let light = k.light_ts;
     let (lx, ly, lz) = (_mm256_set1_ps(light.x), _mm256_set1_ps(light.y), _mm256_set1_ps(light.z));

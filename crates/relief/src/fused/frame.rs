@@ -299,8 +299,14 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
                     let mut px = [[0u32; LANES]; GROUPS];
                     let groups = std::array::from_fn(|g| &worker.groups[g]);
                     crate::simd::shade_groups(groups, &self.consts[m], px.each_mut(), true);
-                    for (&x, &p) in xs[i..i + RUN].iter().zip(px.iter().flatten()) {
-                        out_row[x as usize] = p;
+                    let (first, last) = (xs[i] as usize, xs[i + RUN - 1] as usize);
+                    if last - first == RUN - 1 {
+                        // Neighbouring pixels (the usual case): one copy.
+                        out_row[first..=last].copy_from_slice(px.as_flattened());
+                    } else {
+                        for (&x, &p) in xs[i..i + RUN].iter().zip(px.iter().flatten()) {
+                            out_row[x as usize] = p;
+                        }
                     }
                     i += RUN;
                     continue;
