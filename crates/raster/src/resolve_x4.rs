@@ -283,3 +283,57 @@ pub(crate) unsafe fn resolve_x8(
     }
     mask
 }
+
+/// [`resolve_x8`] without the view and light directions (left unspecified in `out`): the same
+/// mask and the same other fields. The mask needs no direction: with a finite position, the
+/// direction to the eye is finite exactly where the distance and its reciprocal are (each
+/// component is the difference times the reciprocal, at most about 1 in size), and so is its
+/// image in the tangent frame.
+///
+/// # Safety
+///
+/// The CPU must support AVX2.
+#[target_feature(enable = "avx2")]
+pub(crate) unsafe fn resolve_uv_x8(
+    s: &TriangleSetup,
+    x0: u32,
+    y: u32,
+    frame: &FrameConstants,
+    out: &mut [ShadePoint; 8],
+) -> u32 {
+    let x = x0 as f64;
+    let half = _mm256_set1_pd(0.5);
+    let px_lo = _mm256_add_pd(_mm256_set_pd(x + 3.0, x + 2.0, x + 1.0, x), half);
+    let px_hi = _mm256_add_pd(_mm256_set_pd(x + 7.0, x + 6.0, x + 5.0, x + 4.0), half);
+    let py = _mm256_set1_pd(y as f64 + 0.5);
+    let (valid_lo, lo) = group_f64(s, px_lo, py, frame);
+    let (valid_hi, hi) = group_f64(s, px_hi, py, frame);
+    let f: [__m256; 12] = std::array::from_fn(|i| _mm256_set_m128(hi[i], lo[i]));
+    let [u, v, dudx, dvdx, dudy, dvdy, px, py, pz, ex, ey, ez] = f;
+    let dot =
+        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(ex, ex), _mm256_mul_ps(ey, ey)), _mm256_mul_ps(ez, ez));
+    let depth = _mm256_sqrt_ps(dot);
+    let recip = _mm256_div_ps(_mm256_set1_ps(1.0), depth);
+    let mut sum = _mm256_setzero_ps();
+    for x in [u, v, dudx, dvdx, dudy, dvdy, px, py, pz, depth, recip] {
+        sum = _mm256_add_ps(sum, _mm256_sub_ps(x, x));
+    }
+    let finite = _mm256_cmp_ps::<_CMP_EQ_OQ>(sum, _mm256_setzero_ps());
+    let mask = ((valid_lo | valid_hi << 4) & _mm256_movemask_ps(finite)) as u32;
+    let zero = _mm256_setzero_ps();
+    let blocks = [transpose_halves(u, v, dudx, dvdx), transpose_halves(dudy, dvdy, zero, zero)];
+    for j in 0..4 {
+        let (p, q) =
+            (&mut out[j] as *mut ShadePoint as *mut f32, &mut out[j + 4] as *mut ShadePoint as *mut f32);
+        // SAFETY: as in `resolve_x4`, `ShadePoint` is `repr(C)` with its first twelve `f32`s in
+        // this order; only the first eight are written.
+        for (b, block) in blocks.iter().enumerate() {
+            _mm_storeu_ps(p.add(4 * b), _mm256_castps256_ps128(block[j]));
+            _mm_storeu_ps(q.add(4 * b), _mm256_extractf128_ps::<1>(block[j]));
+        }
+    }
+    for p in out.iter_mut() {
+        p.material = s.material;
+    }
+    mask
+}

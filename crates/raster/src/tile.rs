@@ -194,8 +194,13 @@ impl Frame<'_> {
                         let dst: &mut [ShadePoint; 8] =
                             (&mut points[n..n + 8]).try_into().expect("eight points");
                         // SAFETY: AVX2 is present (checked above).
-                        let mask =
-                            unsafe { crate::resolve_x4::resolve_x8(setup, &k, x as u32, y, constants, dst) };
+                        let mask = unsafe {
+                            if constants.view {
+                                crate::resolve_x4::resolve_x8(setup, &k, x as u32, y, constants, dst)
+                            } else {
+                                crate::resolve_x4::resolve_uv_x8(setup, x as u32, y, constants, dst)
+                            }
+                        };
                         if mask == 0xff {
                             let x = x as u32;
                             for (l, d) in xs[n..n + 8].iter_mut().enumerate() {

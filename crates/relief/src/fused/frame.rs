@@ -396,6 +396,12 @@ pub fn render_fused(
         type Output = ();
         fn run<T: ReliefTechnique>(self, t: &T) {
             let raster = RowRaster::new(self.scene, self.camera);
+            // Unlit shading of the entry point reads no view or light direction.
+            let raster = if !T::DISPLACES && self.opt.shading == Shading::Unlit {
+                raster.without_view()
+            } else {
+                raster
+            };
             let (w, h) = (raster.width(), raster.height());
             if (self.frame.width, self.frame.height) != (w, h) {
                 *self.frame = FusedFrame::new(w, h);
