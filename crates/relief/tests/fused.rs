@@ -223,6 +223,21 @@ fn records_equal_the_float_renderer_and_the_image_is_within_8_bit_precision() {
                 assert_eq!(rec.fetches, float.fetches, "{name}");
                 let p = psnr(&frame.to_linear(), &float.image, &rec.mask);
                 assert!(p >= 38.0, "{name} at {angle}°: {p:.1} dB");
+                // Every pixel showing no surface is the background's, timed run or recorded.
+                let mut timed = FusedFrame::default();
+                render_fused(&scene, &cam, &mats, t, kernel, true, &mut timed).expect("renders");
+                let background = FusedFrame::new(1, 1);
+                let mut empty = FusedFrame::default();
+                render_fused(&scene, &camera(180.0, w, h), &mats, t, kernel, true, &mut empty)
+                    .expect("renders");
+                let bg = empty.pixels[0];
+                assert_ne!(bg, background.pixels[0], "the scene's background is not black");
+                for f in [&frame, &timed] {
+                    assert!(
+                        f.pixels.iter().zip(&rec.mask).all(|(&p, &m)| m || p == bg),
+                        "{name} at {angle}°"
+                    );
+                }
             }
         }
     }

@@ -249,9 +249,14 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
         self.raster.band_points(band, &mut raster, |y, xs, points| {
             let r = (y as usize - y0) * w;
             let out_row = &mut out[r..r + w];
-            if xs.len() < w {
-                // Some pixels show no surface (a covered pixel is written below).
-                out_row.fill(self.background);
+            // The background where no surface shows (a covered pixel is written below): left
+            // and right of the covered pixels when they are one run, else the whole row.
+            match (xs.first(), xs.last()) {
+                (Some(&a), Some(&b)) if (b - a) as usize + 1 == xs.len() => {
+                    out_row[..a as usize].fill(self.background);
+                    out_row[b as usize + 1..].fill(self.background);
+                }
+                _ => out_row.fill(self.background),
             }
             // A technique that does not displace needs no tracer on the timed vector path: its
             // hits are formed from the points where they are loaded (the same values).
