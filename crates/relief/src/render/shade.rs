@@ -533,7 +533,7 @@ mod tests {
         for start in (0..n.saturating_sub(7)).step_by(8) {
             let (mut a, mut b) = (ShadeLanes::default(), ShadeLanes::default());
             crate::simd::load_lanes_undisplaced(&mut a, &points[start..], &shadows[start..]);
-            crate::simd::scalar::shade::load_lanes_undisplaced(&mut b, &points[start..], &shadows[start..]);
+            crate::simd::scalar::load::load_lanes_undisplaced(&mut b, &points[start..], &shadows[start..]);
             let lane_bits = |l: &ShadeLanes| [l.u, l.v, l.dudx, l.vz, l.lz].map(|a| a.map(f32::to_bits));
             assert_eq!(lane_bits(&a), lane_bits(&b), "points {start}..");
         }

@@ -203,7 +203,7 @@ pub fn shade_groups<const G: usize>(
 /// If a slice holds fewer than eight entries.
 #[inline]
 pub fn load_lanes(lanes: &mut ShadeLanes, hits: &[ReliefHit], points: &[ShadePoint], shadows: &[f32]) {
-    backend!(shade::load_lanes(lanes, hits, points, shadows) if crate::cpu::has_avx2())
+    backend!(load::load_lanes(lanes, hits, points, shadows) if crate::cpu::has_avx2())
 }
 
 /// The hits of `points` for a technique that does not displace (what [`split_rays`], the
@@ -225,7 +225,7 @@ pub(crate) fn undisplaced_hits(points: &[ShadePoint], hits: &mut [ReliefHit]) {
 /// If a slice holds fewer than eight entries.
 #[inline]
 pub(crate) fn load_lanes_undisplaced(lanes: &mut ShadeLanes, points: &[ShadePoint], shadows: &[f32]) {
-    backend!(shade::load_lanes_undisplaced(lanes, points, shadows) if crate::cpu::has_avx2())
+    backend!(load::load_lanes_undisplaced(lanes, points, shadows) if crate::cpu::has_avx2())
 }
 
 /// Splits shade points into rays moved into the first tile and the tiles' corners, as

@@ -4,7 +4,8 @@
 //! Each lane performs the scalar twin's operations (`simd::scalar::parallax`) in the same
 //! order, so the hits are bit-identical to it.
 
-use super::shade::{finite, transpose_halves};
+use super::load::transpose_halves;
+use super::math::finite;
 use super::LANES;
 use crate::maps::packed::{PackedRelief, DEPTH_STEP};
 use crate::march::ray::packed_setup;

@@ -3,7 +3,8 @@
 //! [`crate::march::ray::split_ray`]; for techniques that do not displace, the hits straight
 //! from the points, as the split, the tracer and the move back would give them.
 
-use super::shade::{fields, finite, transpose_halves};
+use super::load::{fields, transpose_halves};
+use super::math::finite;
 use super::LANES;
 use crate::trace::ReliefHit;
 use glam::{Vec2, Vec3};

@@ -13,9 +13,8 @@
 
 use crate::fused::lanes::{ShadeConsts, ShadeLanes, LANES};
 use crate::fused::texture8::{Texture8, LINEAR_STEP};
-use crate::trace::{ReliefHit, Shading};
+use crate::trace::Shading;
 use renderlab_core::srgb8::encode_srgb8;
-use renderlab_core::ShadePoint;
 
 use renderlab_core::fastmath::log2;
 
@@ -168,34 +167,6 @@ pub(crate) fn shade_groups<const G: usize>(
 ) {
     for (q, o) in p.into_iter().zip(out) {
         shade(q, k, o);
-    }
-}
-
-/// Fills the eight lanes of `lanes` from eight pixels' hits, shade points and light factors
-/// (the first eight of each slice), one lane at a time.
-///
-/// # Panics
-///
-/// If a slice holds fewer than eight entries.
-#[inline]
-pub(crate) fn load_lanes(lanes: &mut ShadeLanes, hits: &[ReliefHit], points: &[ShadePoint], shadows: &[f32]) {
-    assert!(hits.len() >= LANES && points.len() >= LANES && shadows.len() >= LANES, "eight pixels");
-    for l in 0..LANES {
-        lanes.set(l, &hits[l], &points[l], shadows[l]);
-    }
-}
-
-/// [`load_lanes`] for a technique that does not displace, each hit formed from its point
-/// ([`super::rays::undisplaced_hit`]).
-///
-/// # Panics
-///
-/// If a slice holds fewer than eight entries.
-#[inline]
-pub(crate) fn load_lanes_undisplaced(lanes: &mut ShadeLanes, points: &[ShadePoint], shadows: &[f32]) {
-    assert!(points.len() >= LANES && shadows.len() >= LANES, "eight pixels");
-    for l in 0..LANES {
-        lanes.set(l, &super::rays::undisplaced_hit(&points[l]), &points[l], shadows[l]);
     }
 }
 
