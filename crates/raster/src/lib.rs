@@ -133,6 +133,7 @@ pub fn rasterize_into(scene: &Scene, camera: &Camera, gbuffer: &mut GBuffer) -> 
     let constants = FrameConstants {
         eye: camera.position.as_dvec3(),
         to_light: scene.light.to_light.normalize_or_zero(),
+        view: true,
     };
     let (pixels, covered) = gbuffer.parts_mut();
     let counts = pixels
@@ -183,8 +184,18 @@ impl RowRaster {
             constants: FrameConstants {
                 eye: camera.position.as_dvec3(),
                 to_light: scene.light.to_light.normalize_or_zero(),
+                view: true,
             },
         }
+    }
+
+    /// This raster for a consumer that reads no view or light direction (unlit shading of an
+    /// undisplaced texture): [`RowRaster::band_points`] may then leave the points'
+    /// `view_ts` and `light_ts` unspecified. Which pixels are covered, and every other field,
+    /// stay exactly as [`rasterize`] gives them.
+    pub fn without_view(mut self) -> Self {
+        self.constants.view = false;
+        self
     }
 
     /// Frame width in pixels.

@@ -13,6 +13,9 @@ pub(crate) struct FrameConstants {
     pub eye: DVec3,
     /// Unit vector toward the light (zero if the scene's is degenerate).
     pub to_light: Vec3,
+    /// Whether the streaming raster's points need their view and light directions (see
+    /// `RowRaster::without_view`).
+    pub view: bool,
 }
 
 /// The surface of `setup` at the centre of pixel `(x, y)`. `None` if the values there are not

@@ -1,9 +1,11 @@
-//! [`resolve_shade`](crate::resolve::resolve_shade) for four neighbouring pixels of one
-//! triangle at once, in AVX2 lanes (f64 where the scalar resolve computes in f64, f32 where
-//! it computes in f32), for triangles whose tangent frame is constant. Every lane performs
-//! the scalar resolve's operations in the same order, without fused multiply-adds, so the
-//! points are bit-identical to it (tested through the streaming raster's equality with the
-//! G-buffer).
+//! [`resolve_shade`](crate::resolve::resolve_shade) for four or eight neighbouring pixels of
+//! one triangle at once, in AVX2 lanes (f64 where the scalar resolve computes in f64, f32
+//! where it computes in f32), for triangles whose tangent frame is constant. Every lane
+//! performs the scalar resolve's operations in the same order, without fused multiply-adds,
+//! so the points are bit-identical to it (tested through the streaming raster's equality with
+//! the G-buffer). The eight-pixel form runs two four-lane f64 groups side by side and the f32
+//! part in eight lanes: the resolve is one long chain of dependent divisions and square
+//! roots, and two independent chains keep the vector units busy while each waits.
 
 use crate::resolve::FrameConstants;
 use crate::setup::{TriangleSetup, INV_W, PLANES, POSITION, UV};
@@ -144,6 +146,193 @@ pub(crate) unsafe fn resolve_x4(
         for (b, block) in blocks.iter().enumerate() {
             _mm_storeu_ps(f.add(4 * b), block[i]);
         }
+        p.material = s.material;
+    }
+    mask
+}
+
+/// The f64 part of the resolve for four pixels at `px` (row centre `py`), rounded to f32 as
+/// the scalar resolve rounds it: the `q > 0` lane mask and `u, v, ∂u/∂x, ∂v/∂x, ∂u/∂y, ∂v/∂y`,
+/// the position and the vector to the eye.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn group_f64(
+    s: &TriangleSetup,
+    px: __m256d,
+    py: __m256d,
+    frame: &FrameConstants,
+) -> (i32, [__m128; 12]) {
+    let q = plane(s, INV_W, px, py);
+    let valid_q = _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_GT_OQ>(q, _mm256_setzero_pd()));
+    let w = _mm256_div_pd(_mm256_set1_pd(1.0), q);
+    let u = _mm256_mul_pd(plane(s, UV, px, py), w);
+    let v = _mm256_mul_pd(plane(s, UV + 1, px, py), w);
+    let (dudx, dvdx) = (derivative(&s.dx, UV, u, w), derivative(&s.dx, UV + 1, v, w));
+    let (dudy, dvdy) = (derivative(&s.dy, UV, u, w), derivative(&s.dy, UV + 1, v, w));
+    let pos = [
+        _mm256_mul_pd(plane(s, POSITION, px, py), w),
+        _mm256_mul_pd(plane(s, POSITION + 1, px, py), w),
+        _mm256_mul_pd(plane(s, POSITION + 2, px, py), w),
+    ];
+    let f = |x: __m256d| _mm256_cvtpd_ps(x);
+    (
+        valid_q,
+        [
+            f(u),
+            f(v),
+            f(dudx),
+            f(dvdx),
+            f(dudy),
+            f(dvdy),
+            f(pos[0]),
+            f(pos[1]),
+            f(pos[2]),
+            f(_mm256_sub_pd(_mm256_set1_pd(frame.eye.x), pos[0])),
+            f(_mm256_sub_pd(_mm256_set1_pd(frame.eye.y), pos[1])),
+            f(_mm256_sub_pd(_mm256_set1_pd(frame.eye.z), pos[2])),
+        ],
+    )
+}
+
+/// Row `c` of `m · v` for eight vectors `v`, summed as [`mat_row`] sums it.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn mat_row8(m: &Mat3, c: usize, v: &[__m256; 3]) -> __m256 {
+    _mm256_add_ps(
+        _mm256_add_ps(
+            _mm256_mul_ps(_mm256_set1_ps(m.x_axis[c]), v[0]),
+            _mm256_mul_ps(_mm256_set1_ps(m.y_axis[c]), v[1]),
+        ),
+        _mm256_mul_ps(_mm256_set1_ps(m.z_axis[c]), v[2]),
+    )
+}
+
+/// Rows `a`, `b`, `c`, `d` to columns within each 128-bit half: element `i` of result `j` is
+/// element `j` of input `i`, lanes 0–3 in the low halves and 4–7 in the high ones.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn transpose_halves(a: __m256, b: __m256, c: __m256, d: __m256) -> [__m256; 4] {
+    let (ab_lo, ab_hi) = (_mm256_unpacklo_ps(a, b), _mm256_unpackhi_ps(a, b));
+    let (cd_lo, cd_hi) = (_mm256_unpacklo_ps(c, d), _mm256_unpackhi_ps(c, d));
+    [
+        _mm256_shuffle_ps::<0x44>(ab_lo, cd_lo),
+        _mm256_shuffle_ps::<0xee>(ab_lo, cd_lo),
+        _mm256_shuffle_ps::<0x44>(ab_hi, cd_hi),
+        _mm256_shuffle_ps::<0xee>(ab_hi, cd_hi),
+    ]
+}
+
+/// [`resolve_x4`] for pixels `x0 .. x0 + 8`: the same points and mask bits (bit `i` for pixel
+/// `x0 + i`).
+///
+/// # Safety
+///
+/// The CPU must support AVX2.
+#[target_feature(enable = "avx2")]
+pub(crate) unsafe fn resolve_x8(
+    s: &TriangleSetup,
+    k: &FlatConstants,
+    x0: u32,
+    y: u32,
+    frame: &FrameConstants,
+    out: &mut [ShadePoint; 8],
+) -> u32 {
+    let x = x0 as f64;
+    let half = _mm256_set1_pd(0.5);
+    let px_lo = _mm256_add_pd(_mm256_set_pd(x + 3.0, x + 2.0, x + 1.0, x), half);
+    let px_hi = _mm256_add_pd(_mm256_set_pd(x + 7.0, x + 6.0, x + 5.0, x + 4.0), half);
+    let py = _mm256_set1_pd(y as f64 + 0.5);
+    let (valid_lo, lo) = group_f64(s, px_lo, py, frame);
+    let (valid_hi, hi) = group_f64(s, px_hi, py, frame);
+    let f: [__m256; 12] = std::array::from_fn(|i| _mm256_set_m128(hi[i], lo[i]));
+    let [u, v, dudx, dvdx, dudy, dvdy, px, py, pz, ex, ey, ez] = f;
+    let dot =
+        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(ex, ex), _mm256_mul_ps(ey, ey)), _mm256_mul_ps(ez, ez));
+    let depth = _mm256_sqrt_ps(dot);
+    let recip = _mm256_div_ps(_mm256_set1_ps(1.0), depth);
+    let view = [_mm256_mul_ps(ex, recip), _mm256_mul_ps(ey, recip), _mm256_mul_ps(ez, recip)];
+    let t = &k.to_tangent;
+    let vt = [mat_row8(t, 0, &view), mat_row8(t, 1, &view), mat_row8(t, 2, &view)];
+    // Lanes where every value the scalar resolve checks is finite: `x − x` is 0 for a finite
+    // `x` and NaN otherwise, and a NaN stays in the sum.
+    let mut sum = _mm256_setzero_ps();
+    for x in [u, v, dudx, dvdx, dudy, dvdy, px, py, pz, vt[0], vt[1], vt[2], depth] {
+        sum = _mm256_add_ps(sum, _mm256_sub_ps(x, x));
+    }
+    let finite = _mm256_cmp_ps::<_CMP_EQ_OQ>(sum, _mm256_setzero_ps());
+    let mask = ((valid_lo | valid_hi << 4) & _mm256_movemask_ps(finite)) as u32;
+    let light = k.light_ts;
+    let (lx, ly, lz) = (_mm256_set1_ps(light.x), _mm256_set1_ps(light.y), _mm256_set1_ps(light.z));
+    let blocks = [
+        transpose_halves(u, v, dudx, dvdx),
+        transpose_halves(dudy, dvdy, vt[0], vt[1]),
+        transpose_halves(vt[2], lx, ly, lz),
+    ];
+    for j in 0..4 {
+        let (p, q) =
+            (&mut out[j] as *mut ShadePoint as *mut f32, &mut out[j + 4] as *mut ShadePoint as *mut f32);
+        // SAFETY: as in `resolve_x4`, `ShadePoint` is `repr(C)` with its first twelve `f32`s in
+        // this order.
+        for (b, block) in blocks.iter().enumerate() {
+            _mm_storeu_ps(p.add(4 * b), _mm256_castps256_ps128(block[j]));
+            _mm_storeu_ps(q.add(4 * b), _mm256_extractf128_ps::<1>(block[j]));
+        }
+    }
+    for p in out.iter_mut() {
+        p.material = s.material;
+    }
+    mask
+}
+
+/// [`resolve_x8`] without the view and light directions (left unspecified in `out`): the same
+/// mask and the same other fields. The mask needs no direction: with a finite position, the
+/// direction to the eye is finite exactly where the distance and its reciprocal are (each
+/// component is the difference times the reciprocal, at most about 1 in size), and so is its
+/// image in the tangent frame.
+///
+/// # Safety
+///
+/// The CPU must support AVX2.
+#[target_feature(enable = "avx2")]
+pub(crate) unsafe fn resolve_uv_x8(
+    s: &TriangleSetup,
+    x0: u32,
+    y: u32,
+    frame: &FrameConstants,
+    out: &mut [ShadePoint; 8],
+) -> u32 {
+    let x = x0 as f64;
+    let half = _mm256_set1_pd(0.5);
+    let px_lo = _mm256_add_pd(_mm256_set_pd(x + 3.0, x + 2.0, x + 1.0, x), half);
+    let px_hi = _mm256_add_pd(_mm256_set_pd(x + 7.0, x + 6.0, x + 5.0, x + 4.0), half);
+    let py = _mm256_set1_pd(y as f64 + 0.5);
+    let (valid_lo, lo) = group_f64(s, px_lo, py, frame);
+    let (valid_hi, hi) = group_f64(s, px_hi, py, frame);
+    let f: [__m256; 12] = std::array::from_fn(|i| _mm256_set_m128(hi[i], lo[i]));
+    let [u, v, dudx, dvdx, dudy, dvdy, px, py, pz, ex, ey, ez] = f;
+    let dot =
+        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(ex, ex), _mm256_mul_ps(ey, ey)), _mm256_mul_ps(ez, ez));
+    let depth = _mm256_sqrt_ps(dot);
+    let recip = _mm256_div_ps(_mm256_set1_ps(1.0), depth);
+    let mut sum = _mm256_setzero_ps();
+    for x in [u, v, dudx, dvdx, dudy, dvdy, px, py, pz, depth, recip] {
+        sum = _mm256_add_ps(sum, _mm256_sub_ps(x, x));
+    }
+    let finite = _mm256_cmp_ps::<_CMP_EQ_OQ>(sum, _mm256_setzero_ps());
+    let mask = ((valid_lo | valid_hi << 4) & _mm256_movemask_ps(finite)) as u32;
+    let zero = _mm256_setzero_ps();
+    let blocks = [transpose_halves(u, v, dudx, dvdx), transpose_halves(dudy, dvdy, zero, zero)];
+    for j in 0..4 {
+        let (p, q) =
+            (&mut out[j] as *mut ShadePoint as *mut f32, &mut out[j + 4] as *mut ShadePoint as *mut f32);
+        // SAFETY: as in `resolve_x4`, `ShadePoint` is `repr(C)` with its first twelve `f32`s in
+        // this order; only the first eight are written.
+        for (b, block) in blocks.iter().enumerate() {
+            _mm_storeu_ps(p.add(4 * b), _mm256_castps256_ps128(block[j]));
+            _mm_storeu_ps(q.add(4 * b), _mm256_extractf128_ps::<1>(block[j]));
+        }
+    }
+    for p in out.iter_mut() {
         p.material = s.material;
     }
     mask

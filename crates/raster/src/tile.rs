@@ -93,14 +93,17 @@ impl Frame<'_> {
             let t = &self.tris[i as usize];
             let row = (y - y_start) as usize * w;
             fragments += (xe - xs) as u64;
-            for x in xs..xe {
+            let (depth, id) = (
+                &mut depth[row + xs as usize..row + xe as usize],
+                &mut id[row + xs as usize..row + xe as usize],
+            );
+            for ((x, d), j) in (xs..xe).zip(depth.iter_mut()).zip(id.iter_mut()) {
                 let z = t.inv_w(x, y);
-                let k = row + x as usize;
-                // Strictly nearer wins: on a tie the earlier triangle keeps the pixel.
-                if z > depth[k] {
-                    depth[k] = z;
-                    id[k] = i;
-                }
+                // Strictly nearer wins: on a tie the earlier triangle keeps the pixel. Both
+                // stores are unconditional selects, so that the loop runs in vector lanes.
+                let nearer = z > *d;
+                *d = if nearer { z } else { *d };
+                *j = if nearer { i } else { *j };
             }
         });
         fragments
@@ -172,8 +175,12 @@ impl Frame<'_> {
             let mut x = 0;
             while x < w {
                 let i = id_row[x];
-                // The run of pixels showing the same triangle.
-                let end = x + id_row[x..].iter().take_while(|&&j| j == i).count();
+                // The run of pixels showing the same triangle, eight at a time while it lasts.
+                let mut end = x + 1;
+                while end + 8 <= w && id_row[end..end + 8].iter().fold(true, |all, &j| all & (j == i)) {
+                    end += 8;
+                }
+                end += id_row[end..].iter().take_while(|&&j| j == i).count();
                 if i == NO_TRIANGLE {
                     x = end;
                     continue;
@@ -182,6 +189,34 @@ impl Frame<'_> {
                 #[cfg(target_arch = "x86_64")]
                 if let (true, Some(tbn)) = (vector, setup.flat_frame) {
                     let k = crate::resolve_x4::FlatConstants::new(tbn, constants);
+                    while x + 8 <= end {
+                        // `n ≤ x`, so the eight lanes fit in the row's buffer.
+                        let dst: &mut [ShadePoint; 8] =
+                            (&mut points[n..n + 8]).try_into().expect("eight points");
+                        // SAFETY: AVX2 is present (checked above).
+                        let mask = unsafe {
+                            if constants.view {
+                                crate::resolve_x4::resolve_x8(setup, &k, x as u32, y, constants, dst)
+                            } else {
+                                crate::resolve_x4::resolve_uv_x8(setup, x as u32, y, constants, dst)
+                            }
+                        };
+                        if mask == 0xff {
+                            let x = x as u32;
+                            for (l, d) in xs[n..n + 8].iter_mut().enumerate() {
+                                *d = x + l as u32;
+                            }
+                            n += 8;
+                        } else {
+                            let first = n;
+                            for l in (0..8).filter(|&l| mask & (1 << l) != 0) {
+                                points[n] = points[first + l];
+                                xs[n] = (x + l) as u32;
+                                n += 1;
+                            }
+                        }
+                        x += 8;
+                    }
                     while x + 4 <= end {
                         // `n ≤ x`, so the four lanes fit in the row's buffer.
                         let dst: &mut [ShadePoint; 4] =

@@ -161,3 +161,30 @@ fn streamed_points_equal_the_gbuffer() {
         assert_eq!(seen, g.covered());
     }
 }
+
+/// Without the view direction, the streamed points cover the same pixels with the same UV,
+/// footprint and material as the G-buffer's.
+#[test]
+fn streamed_points_without_view_keep_the_rest() {
+    for (scene, cam) in [(room(), room_camera(301, 187)), (wall_scene(), wall_camera(80.0, 257, 161))] {
+        let g = renderlab_raster::rasterize(&scene, &cam);
+        let r = renderlab_raster::RowRaster::new(&scene, &cam).without_view();
+        let mut scratch = renderlab_raster::RowScratch::default();
+        let mut seen = 0;
+        for band in 0..r.band_count() {
+            r.band_points(band, &mut scratch, |y, xs, points| {
+                let key = |p: &renderlab_core::ShadePoint| (p.uv, p.duv_dx, p.duv_dy, p.material);
+                let expected: Vec<_> = g
+                    .row(y)
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(x, p)| p.as_ref().map(|p| (x as u32, key(&p.into()))))
+                    .collect();
+                let got: Vec<_> = xs.iter().copied().zip(points.iter().map(key)).collect();
+                assert_eq!(got, expected, "row {y}");
+                seen += xs.len();
+            });
+        }
+        assert_eq!(seen, g.covered());
+    }
+}

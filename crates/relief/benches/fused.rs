@@ -4,7 +4,6 @@
 //! renderer's pass on a G-buffer given in advance.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use renderlab_core::color::srgb8_to_linear_table;
 use renderlab_core::scene::{bricks_wall, BRICKS_WALL_CENTRE};
 use renderlab_core::srgb8::srgb8_encode_table;
 use renderlab_core::{Camera, Scene, SceneObject};
@@ -43,20 +42,14 @@ fn shading(c: &mut Criterion) {
     let mat = ReliefMaterial::new(&m, &ComplexityParams::default(), false);
     let gs = groups();
     let mut g = c.benchmark_group("fused_shade_4096px");
-    for (name, shading, pair) in [
-        ("unlit", Shading::Unlit, None),
-        ("lit", Shading::Lit, None),
-        ("lit_interleaved", Shading::Lit, mat.textures8.pair.as_deref()),
-    ] {
+    for (name, shading) in [("unlit", Shading::Unlit), ("lit", Shading::Lit)] {
         let k = ShadeConsts {
             albedo: &mat.textures8.albedo,
             normal: &mat.textures8.normal,
-            pair,
             shading,
             ambient: 0.2,
             exponent: 32.0,
             strength: 0.2,
-            decode: srgb8_to_linear_table(),
             encode: srgb8_encode_table(),
         };
         g.bench_function(BenchmarkId::new("avx2", name), |b| {

@@ -149,6 +149,11 @@ pub trait ReliefTechnique: Sync {
     /// [`ReliefTechnique::trace_in`] ray by ray instead of [`ReliefTechnique::trace_row`].
     const USES_CONTEXT: bool = false;
 
+    /// Whether the technique may move the hit off the entry point. `false` promises that
+    /// every hit is `ReliefHit { uv, depth: 0, layers: 0 }` for the ray's own `uv`: the fused
+    /// frame then forms the hits of a row without calling the tracer (the same bits).
+    const DISPLACES: bool = true;
+
     /// Traces the view ray entering the top surface at `uv`, with `view_ts` the unit vector
     /// toward the eye in tangent space. Counts every height fetch through `counter`.
     fn trace<C: Counter>(&self, inputs: &ReliefInputs, uv: Vec2, view_ts: Vec3, counter: &mut C)

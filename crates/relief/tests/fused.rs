@@ -5,7 +5,6 @@
 
 use glam::{Vec2, Vec3};
 use proptest::prelude::*;
-use renderlab_core::color::srgb8_to_linear_table;
 use renderlab_core::counter::Tally;
 use renderlab_core::scene::{bricks_wall, BRICKS_WALL_CENTRE};
 use renderlab_core::srgb8::srgb8_encode_table;
@@ -17,7 +16,7 @@ use renderlab_relief::fused::{render_fused, render_fused_records, FusedFrame, Te
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::render::render;
 use renderlab_relief::render::shadow::soft_shadow;
-use renderlab_relief::simd::shade_lanes;
+use renderlab_relief::simd::{shade_groups, shade_lanes};
 use renderlab_relief::ReliefHit;
 use renderlab_relief::{FrameInput, Kernel, KernelChoice, ReliefMaterial, Shading, Technique};
 use renderlab_texture::{Texture, Wrap};
@@ -81,16 +80,16 @@ fn lanes_strategy() -> impl Strategy<Value = ShadeLanes> {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(400))]
 
-    /// The AVX2 kernel and the scalar twin give the same pixels, bit for bit, lit and unlit,
-    /// with a whole and a fractional exponent, on odd-sized textures, with the albedo and
-    /// normal texels fetched apart or interleaved, and with every lane magnified or at the
+    /// The AVX2 kernel (one group of eight pixels, or two shaded together) and the scalar twin
+    /// give the same pixels, bit for bit, lit and unlit, with a whole and a fractional
+    /// exponent, on odd-sized textures, and with every lane of one group magnified or at the
     /// last level (where the vector kernel skips the second level's fetches).
     #[test]
     fn vector_shading_equals_the_scalar_twin(
         p in lanes_strategy(),
+        q in lanes_strategy(),
         lit in any::<bool>(),
         whole in any::<bool>(),
-        interleaved in any::<bool>(),
         magnified in any::<bool>(),
     ) {
         let mut p = p;
@@ -103,16 +102,14 @@ proptest! {
             }
         }
         let tex = odd_textures();
-        prop_assert!(tex.pair.is_some(), "the odd textures have one shape");
+        prop_assert!(tex.albedo.same_shape(&tex.normal), "the odd textures have one shape");
         let k = ShadeConsts {
             albedo: &tex.albedo,
             normal: &tex.normal,
-            pair: if interleaved { tex.pair.as_deref() } else { None },
             shading: if lit { Shading::Lit } else { Shading::Unlit },
             ambient: 0.2,
             exponent: if whole { 32.0 } else { 17.3 },
             strength: 0.2,
-            decode: srgb8_to_linear_table(),
             encode: srgb8_encode_table(),
         };
         let mut scalar = [0u32; LANES];
@@ -121,6 +118,12 @@ proptest! {
         if renderlab_relief::cpu::has_avx2() {
             shade_lanes(&p, &k, &mut vector, true);
             prop_assert_eq!(scalar, vector);
+            // Two groups shaded together: each group's pixels as shaded alone.
+            let mut scalar_q = [0u32; LANES];
+            shade_lanes(&q, &k, &mut scalar_q, false);
+            let (mut a, mut b) = ([0u32; LANES], [0u32; LANES]);
+            shade_groups([&p, &q], &k, [&mut a, &mut b], true);
+            prop_assert_eq!((scalar, scalar_q), (a, b));
         } else {
             eprintln!("skipped: no AVX2 here");
         }
@@ -220,6 +223,21 @@ fn records_equal_the_float_renderer_and_the_image_is_within_8_bit_precision() {
                 assert_eq!(rec.fetches, float.fetches, "{name}");
                 let p = psnr(&frame.to_linear(), &float.image, &rec.mask);
                 assert!(p >= 38.0, "{name} at {angle}°: {p:.1} dB");
+                // Every pixel showing no surface is the background's, timed run or recorded.
+                let mut timed = FusedFrame::default();
+                render_fused(&scene, &cam, &mats, t, kernel, true, &mut timed).expect("renders");
+                let background = FusedFrame::new(1, 1);
+                let mut empty = FusedFrame::default();
+                render_fused(&scene, &camera(180.0, w, h), &mats, t, kernel, true, &mut empty)
+                    .expect("renders");
+                let bg = empty.pixels[0];
+                assert_ne!(bg, background.pixels[0], "the scene's background is not black");
+                for f in [&frame, &timed] {
+                    assert!(
+                        f.pixels.iter().zip(&rec.mask).all(|(&p, &m)| m || p == bg),
+                        "{name} at {angle}°"
+                    );
+                }
             }
         }
     }
@@ -232,7 +250,7 @@ fn fused_frames_are_bit_identical_across_kernels_threads_and_reuse() {
     let mats = [bricks(64)];
     let scene = wall(64);
     let cam = camera(45.0, 123, 77);
-    for name in ["pom:8", "basic", "pom-shadow:16:8", "pom-horizon:16:8", "relief"] {
+    for name in ["pom:8", "basic", "normal", "pom-shadow:16:8", "pom-horizon:16:8", "relief"] {
         let t = Technique::parse(name).expect("technique");
         let kernel = t.kernel(KernelChoice::Auto).expect("kernel");
         let (recorded, _) = render_fused_records(&scene, &cam, &mats, t, kernel, true).expect("renders");

@@ -112,12 +112,17 @@ struct BandRecords<'a> {
     mask: &'a mut [bool],
 }
 
+/// Groups of eight pixels the fast path shades together.
+const GROUPS: usize = 2;
+
 /// One worker's buffers, reused from band to band.
 #[derive(Default)]
 struct Worker {
     raster: RowScratch,
     trace: TraceScratch,
     lanes: ShadeLanes,
+    /// The fast path's groups of eight pixels, shaded [`GROUPS`] at a time.
+    groups: [ShadeLanes; GROUPS],
     xs: [usize; LANES],
     /// The row's light factors.
     shadows: Vec<f32>,
@@ -155,18 +160,16 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
         opt: ShadeOptions,
         vector: bool,
     ) -> Self {
-        let (decode, encode) = (srgb8_to_linear_table(), srgb8_encode_table());
+        let encode = srgb8_encode_table();
         let consts = materials
             .iter()
             .map(|m| ShadeConsts {
                 albedo: &m.textures8.albedo,
                 normal: &m.textures8.normal,
-                pair: m.textures8.pair.as_deref(),
                 shading: opt.shading,
                 ambient: scene.lighting.ambient,
                 exponent: scene.lighting.specular_exponent,
                 strength: scene.lighting.specular_strength,
-                decode,
                 encode,
             })
             .collect();
@@ -246,27 +249,84 @@ impl<'a, T: ReliefTechnique> Pass<'a, T> {
         self.raster.band_points(band, &mut raster, |y, xs, points| {
             let r = (y as usize - y0) * w;
             let out_row = &mut out[r..r + w];
-            out_row.fill(self.background);
-            trace_shade_points(self.t, self.materials, points, self.vector, &mut worker.trace, counter);
+            // The background where no surface shows (a covered pixel is written below): left
+            // and right of the covered pixels when they are one run, else the whole row.
+            match (xs.first(), xs.last()) {
+                (Some(&a), Some(&b)) if (b - a) as usize + 1 == xs.len() => {
+                    out_row[..a as usize].fill(self.background);
+                    out_row[b as usize + 1..].fill(self.background);
+                }
+                _ => out_row.fill(self.background),
+            }
+            // A technique that does not displace needs no tracer on the timed vector path: its
+            // hits are formed from the points where they are loaded (the same values).
+            let undisplaced = !T::DISPLACES && self.vector && records.is_none();
+            if !undisplaced {
+                trace_shade_points(self.t, self.materials, points, self.vector, &mut worker.trace, counter);
+            }
             let hits = std::mem::take(&mut worker.trace.hits);
             let mut shadows = std::mem::take(&mut worker.shadows);
-            self.shadows(&hits, points, &mut shadows, counter);
+            if undisplaced {
+                // Such techniques do not self-shadow.
+                shadows.clear();
+                shadows.resize(points.len(), 1.0);
+            } else {
+                self.shadows(&hits, points, &mut shadows, counter);
+            }
             let (mut n, mut cur) = (0, 0);
             let material = |p: &ShadePoint| (p.material as usize).min(last);
-            let count = points.len().min(hits.len()).min(shadows.len()).min(xs.len());
+            let count = points.len().min(if undisplaced { usize::MAX } else { hits.len() });
+            let count = count.min(shadows.len()).min(xs.len());
             let mut i = 0;
             while i < count {
-                let (x, sp, hit, shadow) = (xs[i] as usize, &points[i], &hits[i], shadows[i]);
+                let (x, sp, shadow) = (xs[i] as usize, &points[i], shadows[i]);
+                let hit = if undisplaced { crate::simd::scalar::rays::undisplaced_hit(sp) } else { hits[i] };
+                let hit = &hit;
                 let m = material(sp);
-                // Eight pixels of one material at the start of a lane group, outside the lab's
-                // records: their lanes are filled in vector registers (the same values).
+                // `GROUPS × 8`, or eight, pixels of one material at the start of a lane group,
+                // outside the lab's records: their lanes are filled in vector registers and
+                // shaded together (the same values, the same pixels).
+                const RUN: usize = GROUPS * LANES;
+                if n == 0
+                    && records.is_none()
+                    && self.vector
+                    && i + RUN <= count
+                    && points[i..i + RUN].iter().all(|p| material(p) == m)
+                {
+                    for (g, lanes) in worker.groups.iter_mut().enumerate() {
+                        let j = i + g * LANES;
+                        if undisplaced {
+                            crate::simd::load_lanes_undisplaced(lanes, &points[j..], &shadows[j..]);
+                        } else {
+                            crate::simd::load_lanes(lanes, &hits[j..], &points[j..], &shadows[j..]);
+                        }
+                    }
+                    let mut px = [[0u32; LANES]; GROUPS];
+                    let groups = std::array::from_fn(|g| &worker.groups[g]);
+                    crate::simd::shade_groups(groups, &self.consts[m], px.each_mut(), true);
+                    let (first, last) = (xs[i] as usize, xs[i + RUN - 1] as usize);
+                    if last - first == RUN - 1 {
+                        // Neighbouring pixels (the usual case): one copy.
+                        out_row[first..=last].copy_from_slice(px.as_flattened());
+                    } else {
+                        for (&x, &p) in xs[i..i + RUN].iter().zip(px.iter().flatten()) {
+                            out_row[x as usize] = p;
+                        }
+                    }
+                    i += RUN;
+                    continue;
+                }
                 if n == 0
                     && records.is_none()
                     && self.vector
                     && i + LANES <= count
                     && points[i..i + LANES].iter().all(|p| material(p) == m)
                 {
-                    crate::simd::load_lanes(&mut worker.lanes, &hits[i..], &points[i..], &shadows[i..]);
+                    if undisplaced {
+                        crate::simd::load_lanes_undisplaced(&mut worker.lanes, &points[i..], &shadows[i..]);
+                    } else {
+                        crate::simd::load_lanes(&mut worker.lanes, &hits[i..], &points[i..], &shadows[i..]);
+                    }
                     for (d, &x) in worker.xs.iter_mut().zip(&xs[i..i + LANES]) {
                         *d = x as usize;
                     }
@@ -341,6 +401,12 @@ pub fn render_fused(
         type Output = ();
         fn run<T: ReliefTechnique>(self, t: &T) {
             let raster = RowRaster::new(self.scene, self.camera);
+            // Unlit shading of the entry point reads no view or light direction.
+            let raster = if !T::DISPLACES && self.opt.shading == Shading::Unlit {
+                raster.without_view()
+            } else {
+                raster
+            };
             let (w, h) = (raster.width(), raster.height());
             if (self.frame.width, self.frame.height) != (w, h) {
                 *self.frame = FusedFrame::new(w, h);

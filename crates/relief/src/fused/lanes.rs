@@ -49,11 +49,6 @@ pub struct ShadeConsts<'a> {
     pub albedo: &'a Texture8,
     /// Tangent-space normals, unorm-encoded.
     pub normal: &'a Texture8,
-    /// The same albedo and normal texels interleaved ([`super::texture8::interleave`]), where
-    /// the two textures have the same shape: the vector kernel then fetches a tap's albedo
-    /// and normal with one 64-bit load instead of two 32-bit ones. The pixels are the same
-    /// either way.
-    pub pair: Option<&'a [u64]>,
     /// Unlit (albedo only) or lit.
     pub shading: Shading,
     /// Ambient factor.
@@ -62,8 +57,6 @@ pub struct ShadeConsts<'a> {
     pub exponent: f32,
     /// Blinn–Phong strength.
     pub strength: f32,
-    /// sRGB code → linear light.
-    pub decode: &'a [f32; 256],
     /// The sRGB encoding table.
     pub encode: &'a [u32; ENCODE_BUCKETS],
 }

@@ -4,12 +4,22 @@
 //! per texel before filtering (an `rgba8unorm-srgb` texture); normals are stored as
 //! `(n + 1) / 2` in unorm (an `rgba8unorm` texture) and filtered as stored.
 //!
+//! Beside the 8-bit codes each texture keeps the values its filter reads, 16 bits per channel
+//! in a `u64` (red in the low 16 bits, then green, blue, and 0): the code itself for unorm,
+//! and for sRGB the texel decoded to linear light once, when the texture is built, not per
+//! fetch (`round(linear · 65535)`; what that rounding gives up, at most 2⁻¹⁷ of linear light
+//! per texel, is below the 8-bit output's step, and is included in the fused frame's measured
+//! precision). That copy is padded: each level has one more column and one more row, copies
+//! of its first column and row, so the four texels of a bilinear cell are two pairs of
+//! neighbours in memory, `(x, y), (x + 1, y)` and the same one padded row further, whatever
+//! the wrap ([`Texture8::wide`]).
+//!
 //! The levels are the float pyramid's own levels, rounded: the 8-bit path differs from the
 //! float one only by that rounding (and the per-texel decode), which the relief lab
 //! measures as the PSNR between the two frames.
 
 use glam::Vec4;
-use renderlab_core::color::linear_to_srgb;
+use renderlab_core::color::{linear_to_srgb, srgb8_to_linear_table};
 use renderlab_texture::Texture;
 
 /// Most levels a [`Texture8`] holds: a 16,384-texel side (renderlab's image limit) has 15.
@@ -24,10 +34,17 @@ pub enum Encoding {
     SignedUnorm,
 }
 
+/// The value of one unit of a [`Texture8::wide`] channel of an sRGB texture: `1 / 65535`.
+pub const LINEAR_STEP: f32 = 1.0 / 65535.0;
+
 /// An 8-bit RGBA texture with its mip pyramid (repeat wrap).
 #[derive(Clone, Debug)]
 pub struct Texture8 {
     texels: Vec<u32>,
+    /// The filter's values, padded ([`Texture8::wide`]).
+    wide: Vec<u64>,
+    /// Start of each level in `wide` (the last real level repeated to [`MAX_LEVELS`]).
+    pub(crate) wide_offsets: [i32; MAX_LEVELS],
     encoding: Encoding,
     levels: usize,
     /// Start of each level in `texels` (the last real level repeated to [`MAX_LEVELS`]).
@@ -63,6 +80,8 @@ impl Texture8 {
         let pack = |c: Vec4| enc(c.x) | enc(c.y) << 8 | enc(c.z) << 16 | 0xff00_0000;
         let mut out = Self {
             texels: Vec::new(),
+            wide: Vec::new(),
+            wide_offsets: [0; MAX_LEVELS],
             encoding,
             levels,
             offsets: [0; MAX_LEVELS],
@@ -86,7 +105,37 @@ impl Texture8 {
             out.widths_f[k] = w as f32;
             out.heights_f[k] = h as f32;
         }
+        let decode = srgb8_to_linear_table();
+        let channel = |t: u32, c: u32| {
+            let code = t >> (8 * c) & 0xff;
+            match encoding {
+                Encoding::Srgb => (decode[code as usize] * 65535.0).round() as u64,
+                Encoding::SignedUnorm => u64::from(code),
+            }
+        };
+        let wide = |t: u32| channel(t, 0) | channel(t, 1) << 16 | channel(t, 2) << 32;
+        for k in 0..MAX_LEVELS {
+            if k < levels {
+                out.wide_offsets[k] = out.wide.len() as i32;
+                let (w, h, o) = (out.widths[k] as usize, out.heights[k] as usize, out.offsets[k] as usize);
+                for y in 0..=h {
+                    let row = &out.texels[o + (y % h) * w..][..w];
+                    out.wide.extend(row.iter().chain(&row[..1]).map(|&t| wide(t)));
+                }
+            } else {
+                out.wide_offsets[k] = out.wide_offsets[levels - 1];
+            }
+        }
         out
+    }
+
+    /// The values the filter reads, 16 bits per channel (red in the low bits, then green,
+    /// blue and 0): for sRGB, each texel decoded to linear light (one unit is
+    /// [`LINEAR_STEP`]); for unorm, the code. Level `k` (`w × h` texels) starts at
+    /// `wide_offsets[k]` and holds `(w + 1) × (h + 1)` entries, row-major: texel `(x, y)` at
+    /// `y · (w + 1) + x`, column `w` repeating column 0 and row `h` repeating row 0.
+    pub fn wide(&self) -> &[u64] {
+        &self.wide
     }
 
     /// Every level's texels, level 0 first.
@@ -124,15 +173,6 @@ impl Texture8 {
     }
 }
 
-/// The texels of `low` and `high` interleaved, `low`'s in the low 32 bits of each entry,
-/// where the two textures have the same shape (levels, sizes and offsets); `None` otherwise.
-/// A tap's two texels are then one 64-bit load, from one cache line.
-pub fn interleave(low: &Texture8, high: &Texture8) -> Option<Vec<u64>> {
-    low.same_shape(high).then(|| {
-        low.texels().iter().zip(high.texels()).map(|(&a, &b)| u64::from(a) | u64::from(b) << 32).collect()
-    })
-}
-
 /// A material's textures in the fused frame's 8-bit formats.
 #[derive(Clone, Debug)]
 pub struct Textures8 {
@@ -140,8 +180,6 @@ pub struct Textures8 {
     pub albedo: Texture8,
     /// Tangent-space normals, unorm-encoded (`rgba8unorm`).
     pub normal: Texture8,
-    /// Both interleaved, where they have the same shape ([`interleave`]).
-    pub pair: Option<Vec<u64>>,
 }
 
 impl Textures8 {
@@ -149,8 +187,7 @@ impl Textures8 {
     pub fn new(albedo: &Texture, normal: &Texture) -> Self {
         let albedo = Texture8::from_texture(albedo, Encoding::Srgb);
         let normal = Texture8::from_texture(normal, Encoding::SignedUnorm);
-        let pair = interleave(&albedo, &normal);
-        Self { albedo, normal, pair }
+        Self { albedo, normal }
     }
 }
 
@@ -180,6 +217,28 @@ mod tests {
         // Codes: linear 0.5 is sRGB 0.7354 → 188; alpha 255.
         assert_eq!(t8.texels()[0] >> 16 & 0xff, 188);
         assert_eq!(t8.texels()[0] >> 24, 255);
+        // The linear copy: code 188 decodes to 0.50289 → 32957 of 65535; code 0 to 0; no alpha.
+        assert_eq!(t8.wide()[0] >> 32, 32957);
+        assert_eq!(t8.wide()[0] & 0xffff, 0);
+        let mut padded = 0;
+        for k in 0..t8.level_count() {
+            let (w, h) = (t8.widths[k], t8.heights[k]);
+            assert_eq!(t8.wide_offsets[k], padded);
+            for y in 0..=h {
+                for x in 0..=w {
+                    let c = t8.texels()[(t8.offsets[k] + (y % h) * w + x % w) as usize];
+                    let l = t8.wide()[(padded + y * (w + 1) + x) as usize];
+                    for ch in 0..3 {
+                        let exact = srgb8_to_linear_table()[(c >> (8 * ch) & 0xff) as usize];
+                        let wide = (l >> (16 * ch) & 0xffff) as f32 * LINEAR_STEP;
+                        assert!((wide - exact).abs() <= 0.5 / 65535.0 + 1e-7, "{wide} vs {exact}");
+                    }
+                }
+            }
+            padded += (w + 1) * (h + 1);
+        }
+        assert_eq!(t8.wide().len(), padded as usize);
+        assert_eq!(t8.wide_offsets[MAX_LEVELS - 1], t8.wide_offsets[last]);
     }
 
     #[test]
@@ -193,5 +252,9 @@ mod tests {
         let t8 = Texture8::from_texture(&Texture::from_rgb(&img, Wrap::Repeat), Encoding::SignedUnorm);
         assert_eq!(t8.texels()[0] & 0xff_ffff, 128 << 8 | 255 << 16);
         assert_eq!(t8.texels()[1] & 0xff_ffff, 0, "NaN stores as 0, not garbage");
+        // Unorm textures are filtered as stored: the wide copy holds the codes.
+        assert_eq!(t8.wide()[0], 128 << 16 | 255 << 32);
+        assert_eq!(t8.wide()[1], 0);
+        assert_eq!(t8.wide()[2], t8.wide()[0], "column 0 repeated");
     }
 }

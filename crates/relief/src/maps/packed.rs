@@ -85,6 +85,9 @@ pub struct PackedRelief {
     /// Whether cone ratios are stored (otherwise every ratio is 0).
     has_cones: bool,
     texels: Vec<u32>,
+    /// The depths alone, 16 bits each, on the same padded grid (and one entry more, so that a
+    /// 32-bit read at the last texel stays inside).
+    depths: Vec<u16>,
 }
 
 /// The cone-map texels (inclusive, unwrapped) whose cells the closed UV range
@@ -123,6 +126,7 @@ impl PackedRelief {
             }
         }
         let masks = (w.is_power_of_two() && h.is_power_of_two()).then(|| (w as i32 - 1, h as i32 - 1));
+        let depths = texels.iter().map(|&t| (t >> 16) as u16).chain([0]).collect();
         Self {
             width: w,
             height: h,
@@ -132,6 +136,7 @@ impl PackedRelief {
             masks,
             has_cones: cone.is_some(),
             texels,
+            depths,
         }
     }
 
@@ -234,6 +239,14 @@ impl PackedRelief {
         &self.texels
     }
 
+    /// The quantised depths alone, indexed as [`PackedRelief::texels`] (the high halves of its
+    /// entries), and one 0 past the end: a fetch that needs no cone ratio reads half the bytes,
+    /// and a texel and its right neighbour are one 32-bit read.
+    #[inline]
+    pub fn depths(&self) -> &[u16] {
+        &self.depths
+    }
+
     /// Bilinear depth at `uv` only.
     #[inline(always)]
     pub fn depth(&self, uv: Vec2) -> f32 {
@@ -298,6 +311,10 @@ mod tests {
                 assert!(r <= cone.ratio_uncounted(uv) + 1e-7, "{uv}: {r}");
             }
             assert!(p.sample(Vec2::new(f32::NAN, f32::INFINITY)).0.is_finite());
+            // The depths alone: the high halves of the texels, and one 0 more.
+            assert_eq!(p.depths().len(), p.texels().len() + 1);
+            assert!(p.texels().iter().zip(p.depths()).all(|(&t, &d)| (t >> 16) as u16 == d));
+            assert_eq!(p.depths().last(), Some(&0));
         }
     }
 }

@@ -316,6 +316,11 @@ pub(crate) fn trace_shade_points<T: ReliefTechnique, C: Counter>(
         let rays = points.iter().map(|p| (p.uv, p.view_ts, p.material));
         return trace_rays(t, materials, n, rays, scratch, counter);
     }
+    if !T::DISPLACES {
+        // What the split, the tracer and `trace_runs` would give, without the tracer.
+        set_len(&mut scratch.hits, n);
+        return crate::simd::undisplaced_hits(points, &mut scratch.hits);
+    }
     let RowScratch { rays, bases, runs, .. } = scratch;
     set_len(rays, n);
     set_len(bases, n);
@@ -482,6 +487,7 @@ pub fn trace_frame<T: ReliefTechnique>(input: FrameInput, materials: &[ReliefMat
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fused::lanes::ShadeLanes;
     use proptest::prelude::*;
 
     fn point(u: f32, v: f32, i: u32) -> ShadePoint {
@@ -512,6 +518,24 @@ mod tests {
             assert_eq!(bits2(rays[i].0), bits2(uv), "ray uv of {:?}", p.uv);
             assert_eq!(bits3(rays[i].1), bits3(view), "view of point {i}");
             assert_eq!(bits2(bases[i]), bits2(base), "base of {:?}", p.uv);
+        }
+        // The hits of a technique that does not displace, vector against scalar.
+        let mut hits = vec![ReliefHit::default(); n];
+        crate::simd::undisplaced_hits(points, &mut hits);
+        let mut twin = vec![ReliefHit::default(); n];
+        crate::simd::scalar::rays::undisplaced_hits(points, &mut twin);
+        for (i, (h, t)) in hits.iter().zip(&twin).enumerate() {
+            assert_eq!(bits2(h.uv), bits2(t.uv), "hit of {:?}", points[i].uv);
+            assert_eq!((h.depth.to_bits(), h.layers), (t.depth.to_bits(), t.layers));
+        }
+        // The shading lanes of such a technique formed from the points, vector against scalar.
+        let shadows = vec![1.0; n];
+        for start in (0..n.saturating_sub(7)).step_by(8) {
+            let (mut a, mut b) = (ShadeLanes::default(), ShadeLanes::default());
+            crate::simd::load_lanes_undisplaced(&mut a, &points[start..], &shadows[start..]);
+            crate::simd::scalar::load::load_lanes_undisplaced(&mut b, &points[start..], &shadows[start..]);
+            let lane_bits = |l: &ShadeLanes| [l.u, l.v, l.dudx, l.vz, l.lz].map(|a| a.map(f32::to_bits));
+            assert_eq!(lane_bits(&a), lane_bits(&b), "points {start}..");
         }
     }
 

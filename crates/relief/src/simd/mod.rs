@@ -182,6 +182,19 @@ pub fn shade_lanes(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANES], vect
     backend!(shade::shade(p, k, out) if vector && crate::cpu::has_avx2())
 }
 
+/// Shades `G` groups of eight pixels with the fused frame's shading kernel (`p[g]` into
+/// `out[g]`; the same pixels as `G` calls of [`shade_lanes`]), their steps interleaved in
+/// vector lanes where `vector` and the CPU allow it.
+#[inline]
+pub fn shade_groups<const G: usize>(
+    p: [&ShadeLanes; G],
+    k: &ShadeConsts,
+    out: [&mut [u32; LANES]; G],
+    vector: bool,
+) {
+    backend!(shade::shade_groups(p, k, out) if vector && crate::cpu::has_avx2())
+}
+
 /// Fills all eight lanes of `lanes` from the first eight entries of `hits`, `points` and
 /// `shadows` (eight pixels of one material), in vector registers where the CPU has AVX2.
 ///
@@ -190,7 +203,29 @@ pub fn shade_lanes(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANES], vect
 /// If a slice holds fewer than eight entries.
 #[inline]
 pub fn load_lanes(lanes: &mut ShadeLanes, hits: &[ReliefHit], points: &[ShadePoint], shadows: &[f32]) {
-    backend!(shade::load_lanes(lanes, hits, points, shadows) if crate::cpu::has_avx2())
+    backend!(load::load_lanes(lanes, hits, points, shadows) if crate::cpu::has_avx2())
+}
+
+/// The hits of `points` for a technique that does not displace (what [`split_rays`], the
+/// tracer and the move back give), eight at a time where the CPU has AVX2.
+///
+/// # Panics
+///
+/// If `hits` is shorter than `points` (on the vector kernel).
+#[inline]
+pub(crate) fn undisplaced_hits(points: &[ShadePoint], hits: &mut [ReliefHit]) {
+    backend!(rays::undisplaced_hits(points, hits) if crate::cpu::has_avx2())
+}
+
+/// [`load_lanes`] for a technique that does not displace, the hits formed from the points
+/// (what [`undisplaced_hits`] would give), in vector registers where the CPU has AVX2.
+///
+/// # Panics
+///
+/// If a slice holds fewer than eight entries.
+#[inline]
+pub(crate) fn load_lanes_undisplaced(lanes: &mut ShadeLanes, points: &[ShadePoint], shadows: &[f32]) {
+    backend!(load::load_lanes_undisplaced(lanes, points, shadows) if crate::cpu::has_avx2())
 }
 
 /// Splits shade points into rays moved into the first tile and the tiles' corners, as

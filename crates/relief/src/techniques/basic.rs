@@ -15,6 +15,8 @@ pub struct Basic;
 pub struct Undisplaced;
 
 impl ReliefTechnique for Undisplaced {
+    const DISPLACES: bool = false;
+
     #[inline]
     fn trace<C: Counter>(&self, _: &ReliefInputs, uv: Vec2, _: Vec3, _: &mut C) -> ReliefHit {
         ReliefHit { uv, depth: 0.0, layers: 0 }

@@ -1,5 +1,6 @@
 //! The vector twins of [`renderlab_core::fastmath`]'s `log2`, `exp2` and `pow_unit`: the same
-//! operations in the same order on eight lanes, so the results are bit-identical.
+//! operations in the same order on eight lanes, so the results are bit-identical; and the
+//! lanes' finiteness test the kernels share ([`finite`]).
 
 use renderlab_core::fastmath::EXP2_C;
 use std::arch::x86_64::*;
@@ -59,4 +60,11 @@ pub(crate) unsafe fn exp2(y: V) -> V {
 pub(crate) unsafe fn pow_unit(x: V, e: f32) -> V {
     let ok = _mm256_cmp_ps::<_CMP_GE_OQ>(x, _mm256_set1_ps(f32::MIN_POSITIVE));
     _mm256_and_ps(exp2(_mm256_mul_ps(_mm256_set1_ps(e), log2(x))), ok)
+}
+
+/// `x - x == 0`: the lanes holding finite values.
+#[inline]
+#[target_feature(enable = "avx2")]
+pub(crate) unsafe fn finite(x: V) -> V {
+    _mm256_cmp_ps::<_CMP_EQ_OQ>(_mm256_sub_ps(x, x), _mm256_setzero_ps())
 }

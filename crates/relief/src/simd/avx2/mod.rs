@@ -12,6 +12,7 @@ pub(crate) mod cone;
 pub(crate) mod cone_newton;
 pub(crate) mod gather;
 pub(crate) mod lanes;
+pub(crate) mod load;
 pub(crate) mod math;
 pub(crate) mod parallax;
 pub(crate) mod pom;

@@ -1,16 +1,40 @@
 //! The vector kernel of parallax mapping on the packed map: eight rays per vector, one
-//! bilinear depth fetch each (the packed map's 64-bit gathers), the offset `uv + dp · depth`.
+//! bilinear depth fetch each (two 32-bit gathers from the map's 16-bit depths alone, each
+//! element a texel and its right neighbour), the offset `uv + dp · depth`.
 //! Each lane performs the scalar twin's operations (`simd::scalar::parallax`) in the same
 //! order, so the hits are bit-identical to it.
 
-use super::gather::gather_cell;
+use super::load::transpose_halves;
+use super::math::finite;
 use super::LANES;
 use crate::maps::packed::{PackedRelief, DEPTH_STEP};
 use crate::march::ray::packed_setup;
-use crate::trace::{ReliefHit, ReliefInputs};
+use crate::trace::{ReliefHit, ReliefInputs, MIN_VIEW_Z};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
 use std::arch::x86_64::*;
+
+/// [`packed_setup`] for the eight rays at `rays` (`(u, v, view x, y, z)` each): the entry
+/// `(u, v)` and the offset per unit depth `(du, dv)`, each lane's operations the scalar's.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn setup8(inp: &ReliefInputs, rays: *const (Vec2, Vec3)) -> (__m256, __m256, __m256, __m256) {
+    const RAY: i32 = (std::mem::size_of::<(Vec2, Vec3)>() / 4) as i32;
+    let base = rays as *const f32;
+    let idx = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32(RAY));
+    let field = |f: i32| _mm256_i32gather_ps::<4>(base, _mm256_add_epi32(idx, _mm256_set1_epi32(f)));
+    let (u, v, x, y, z) = (field(0), field(1), field(2), field(3), field(4));
+    // uv_per_depth: (−x / max(z, MIN_VIEW_Z)) · scale (`max` keeps the bound for a NaN z).
+    let z = _mm256_max_ps(z, _mm256_set1_ps(MIN_VIEW_Z));
+    let neg = _mm256_set1_ps(-0.0);
+    let hs = _mm256_set1_ps(inp.height_scale);
+    let du = _mm256_mul_ps(_mm256_div_ps(_mm256_xor_ps(x, neg), z), hs);
+    let dv = _mm256_mul_ps(_mm256_div_ps(_mm256_xor_ps(y, neg), z), hs);
+    // Non-finite pairs become zero, both components together.
+    let dp_ok = _mm256_and_ps(finite(du), finite(dv));
+    let uv_ok = _mm256_and_ps(finite(u), finite(v));
+    (_mm256_and_ps(u, uv_ok), _mm256_and_ps(v, uv_ok), _mm256_and_ps(du, dp_ok), _mm256_and_ps(dv, dp_ok))
+}
 
 /// Traces `rays` into `out` (same length).
 ///
@@ -27,11 +51,13 @@ pub(crate) unsafe fn trace_row<C: Counter>(
 ) {
     let n = rays.len().min(out.len());
     let (mxk, myk) = map.masks().expect("power-of-two map");
-    let base = map.texels().as_ptr() as *const i32;
+    // SAFETY (of the gathers below): indices are texels of the unpadded grid, so the 32-bit
+    // reads at them and one padded row further stay inside `depths` (one entry longer).
+    let depths = map.depths().as_ptr() as *const i32;
+    let depths_below = map.depths().as_ptr().add(map.stride()) as *const i32;
     let stride = map.stride() as i32;
     let (mask_x, mask_y) = (_mm256_set1_epi32(mxk), _mm256_set1_epi32(myk));
     let stride_v = _mm256_set1_epi32(stride);
-    let lane_order = _mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7);
     let (wf, hf) = (_mm256_set1_ps(map.width() as f32), _mm256_set1_ps(map.height() as f32));
     let (half, lo, hi) = (_mm256_set1_ps(0.5), _mm256_set1_ps(-1.0e7), _mm256_set1_ps(1.0e7));
     let step = _mm256_set1_ps(DEPTH_STEP);
@@ -39,34 +65,59 @@ pub(crate) unsafe fn trace_row<C: Counter>(
     let mut start = 0;
     while start < n {
         let m = (n - start).min(LANES);
-        let (mut u, mut v, mut du, mut dv) =
-            ([0.0f32; LANES], [0.0f32; LANES], [0.0f32; LANES], [0.0f32; LANES]);
-        for l in 0..LANES {
-            // Lanes past the row's end repeat its last ray (computed, not written).
-            let (uv, view) = rays[start + l.min(m - 1)];
-            let (uv0, dp) = packed_setup(inp, uv, view);
-            (u[l], v[l], du[l], dv[l]) = (uv0.x, uv0.y, dp.x, dp.y);
-        }
-        let (uu, vv) = (_mm256_loadu_ps(u.as_ptr()), _mm256_loadu_ps(v.as_ptr()));
+        let (uu, vv, du, dv) = if m == LANES {
+            setup8(inp, rays.as_ptr().add(start))
+        } else {
+            let (mut u, mut v, mut du, mut dv) =
+                ([0.0f32; LANES], [0.0f32; LANES], [0.0f32; LANES], [0.0f32; LANES]);
+            for l in 0..LANES {
+                // Lanes past the row's end repeat its last ray (computed, not written).
+                let (uv, view) = rays[start + l.min(m - 1)];
+                let (uv0, dp) = packed_setup(inp, uv, view);
+                (u[l], v[l], du[l], dv[l]) = (uv0.x, uv0.y, dp.x, dp.y);
+            }
+            let ld = |a: &[f32; LANES]| _mm256_loadu_ps(a.as_ptr());
+            (ld(&u), ld(&v), ld(&du), ld(&dv))
+        };
         let x = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(uu, wf), half), lo), hi);
         let y = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(vv, hf), half), lo), hi);
-        let (fx, fy, t00, t10, t01, t11) =
-            gather_cell!(base, stride, x, y, mask_x, mask_y, stride_v, lane_order);
-        let d00 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t00));
-        let d10 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t10));
-        let d01 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t01));
-        let d11 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t11));
+        // The cell's texels from the depths alone: one 32-bit gather element holds a texel
+        // and its right neighbour (the padded grid needs no wrap there).
+        let (x0, y0) = (_mm256_floor_ps(x), _mm256_floor_ps(y));
+        let (fx, fy) = (_mm256_sub_ps(x, x0), _mm256_sub_ps(y, y0));
+        let xi = _mm256_and_si256(_mm256_cvttps_epi32(x0), mask_x);
+        let yi = _mm256_and_si256(_mm256_cvttps_epi32(y0), mask_y);
+        let idx = _mm256_add_epi32(_mm256_mullo_epi32(yi, stride_v), xi);
+        let r0 = _mm256_i32gather_epi32::<2>(depths, idx);
+        let r1 = _mm256_i32gather_epi32::<2>(depths_below, idx);
+        let lo = _mm256_set1_epi32(0xffff);
+        let d00 = _mm256_cvtepi32_ps(_mm256_and_si256(r0, lo));
+        let d10 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(r0));
+        let d01 = _mm256_cvtepi32_ps(_mm256_and_si256(r1, lo));
+        let d11 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(r1));
         let top = _mm256_add_ps(d00, _mm256_mul_ps(_mm256_sub_ps(d10, d00), fx));
         let bottom = _mm256_add_ps(d01, _mm256_mul_ps(_mm256_sub_ps(d11, d01), fx));
         let depth = _mm256_mul_ps(_mm256_add_ps(top, _mm256_mul_ps(_mm256_sub_ps(bottom, top), fy)), step);
-        let hu = _mm256_add_ps(uu, _mm256_mul_ps(_mm256_loadu_ps(du.as_ptr()), depth));
-        let hv = _mm256_add_ps(vv, _mm256_mul_ps(_mm256_loadu_ps(dv.as_ptr()), depth));
-        let (mut ou, mut ov, mut od) = ([0.0f32; LANES], [0.0f32; LANES], [0.0f32; LANES]);
-        _mm256_storeu_ps(ou.as_mut_ptr(), hu);
-        _mm256_storeu_ps(ov.as_mut_ptr(), hv);
-        _mm256_storeu_ps(od.as_mut_ptr(), depth);
-        for l in 0..m {
-            out[start + l] = ReliefHit { uv: Vec2::new(ou[l], ov[l]), depth: od[l], layers: 1 };
+        let hu = _mm256_add_ps(uu, _mm256_mul_ps(du, depth));
+        let hv = _mm256_add_ps(vv, _mm256_mul_ps(dv, depth));
+        if m == LANES {
+            // Hit j's (u, v, depth, layers 1) in the low half of block j, hit j + 4's in the
+            // high half (`ReliefHit` is four 32-bit fields, `repr(C)`).
+            let one = _mm256_castsi256_ps(_mm256_set1_epi32(1));
+            let blocks = transpose_halves(hu, hv, depth, one);
+            let o = out.as_mut_ptr().add(start) as *mut f32;
+            for (j, b) in blocks.iter().enumerate() {
+                _mm_storeu_ps(o.add(4 * j), _mm256_castps256_ps128(*b));
+                _mm_storeu_ps(o.add(4 * (j + 4)), _mm256_extractf128_ps::<1>(*b));
+            }
+        } else {
+            let (mut ou, mut ov, mut od) = ([0.0f32; LANES], [0.0f32; LANES], [0.0f32; LANES]);
+            _mm256_storeu_ps(ou.as_mut_ptr(), hu);
+            _mm256_storeu_ps(ov.as_mut_ptr(), hv);
+            _mm256_storeu_ps(od.as_mut_ptr(), depth);
+            for l in 0..m {
+                out[start + l] = ReliefHit { uv: Vec2::new(ou[l], ov[l]), depth: od[l], layers: 1 };
+            }
         }
         start += m;
     }

@@ -1,14 +1,15 @@
 //! The vector kernel of the fused frame's shading ([`crate::fused::lanes`]): eight pixels
-//! per call in AVX2 lanes, texels fetched by gathers, every arithmetic step in the scalar
-//! twin's order (no fused multiply-add), so that the pixels are bit-identical to the scalar
-//! twin's (`simd::scalar::shade`).
+//! per group in AVX2 lanes (one group per call, or several with their steps interleaved),
+//! each bilinear cell's texels fetched as two 16-byte loads per lane from the texture's padded
+//! copy, every arithmetic step in the scalar twin's order (no fused multiply-add), so that the
+//! pixels are bit-identical to the scalar twin's (`simd::scalar::shade`).
 
-use super::math::log2;
+use super::load::transpose_halves;
+use super::math::{finite, log2};
 use crate::fused::lanes::{ShadeConsts, ShadeLanes, LANES};
-use crate::fused::texture8::{Encoding, Texture8};
-use crate::trace::{ReliefHit, Shading};
+use crate::fused::texture8::{Texture8, LINEAR_STEP, MAX_LEVELS};
+use crate::trace::Shading;
 use renderlab_core::srgb8::{ENCODE_MAX_BITS, ENCODE_MIN_BITS};
-use renderlab_core::ShadePoint;
 use std::arch::x86_64::*;
 
 type V = __m256;
@@ -35,24 +36,6 @@ unsafe fn ld(a: &[f32; LANES]) -> V {
     _mm256_load_ps(a.as_ptr())
 }
 
-/// Channel at bit `shift` of the texels `p` as the filter sees it.
-#[inline]
-#[target_feature(enable = "avx2")]
-unsafe fn channel(p: I, shift: i32, enc: Encoding, decode: &[f32; 256]) -> V {
-    let code = _mm256_and_si256(_mm256_srlv_epi32(p, _mm256_set1_epi32(shift)), _mm256_set1_epi32(0xff));
-    match enc {
-        Encoding::Srgb => _mm256_i32gather_ps::<4>(decode.as_ptr(), code),
-        Encoding::SignedUnorm => _mm256_cvtepi32_ps(code),
-    }
-}
-
-/// `x - x == 0`: the lanes holding finite values.
-#[inline]
-#[target_feature(enable = "avx2")]
-pub(super) unsafe fn finite(x: V) -> V {
-    _mm256_cmp_ps::<_CMP_EQ_OQ>(_mm256_sub_ps(x, x), _mm256_setzero_ps())
-}
-
 /// Level of detail in `tex` of the footprints `d` (∂u/∂x, ∂v/∂x, ∂u/∂y, ∂v/∂y).
 #[inline]
 #[target_feature(enable = "avx2")]
@@ -69,101 +52,105 @@ unsafe fn lod(d: &[V; 4], tex: &Texture8) -> V {
     _mm256_blendv_ps(top, l, ok)
 }
 
-/// The bilinear taps of `(u, v)` in level `k` (per lane) of a texture whose level 0 is
-/// `w0 × h0` texels and whose levels start at `offsets`: the four texel indices and the
-/// weights. A level's side is `max(side₀ >> k, 1)`, as the pyramid halves it.
+/// A bilinear cell per lane: the index in [`Texture8::wide`] of its top-left texel, the
+/// padded row length (the bottom-left texel is that far on), and the weights.
+type Cell = (I, I, V, V);
+
+/// The bilinear cells of `(u, v)` in level `k` (per lane) of a texture whose level 0 is
+/// `w0 × h0` texels: the scalar twin's `taps`, on the padded copy, where the right and bottom
+/// neighbours need no wrap. A level's side is `max(side₀ >> k, 1)`, as the pyramid halves it.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn taps(tex: &Texture8, k: I, u: V, v: V) -> ([I; 4], V, V) {
+unsafe fn taps(tex: &Texture8, k: I, u: V, v: V) -> Cell {
     let one = _mm256_set1_epi32(1);
     let w = _mm256_max_epi32(_mm256_srlv_epi32(_mm256_set1_epi32(tex.widths[0]), k), one);
     let h = _mm256_max_epi32(_mm256_srlv_epi32(_mm256_set1_epi32(tex.heights[0]), k), one);
-    let off = _mm256_i32gather_epi32::<4>(tex.offsets.as_ptr(), k);
+    // The level's start from the 16-entry table by two in-register lookups (`k` < 16).
+    const _: () = assert!(MAX_LEVELS == 16, "two eight-lane lookups cover the offset table");
+    let table = tex.wide_offsets.as_ptr() as *const I;
+    let (first, second) = (_mm256_loadu_si256(table), _mm256_loadu_si256(table.add(1)));
+    let off = _mm256_blendv_epi8(
+        _mm256_permutevar8x32_epi32(first, k),
+        _mm256_permutevar8x32_epi32(second, k),
+        _mm256_cmpgt_epi32(k, _mm256_set1_epi32(7)),
+    );
     let half = splat(0.5);
     let x = _mm256_sub_ps(_mm256_mul_ps(_mm256_sub_ps(u, _mm256_floor_ps(u)), _mm256_cvtepi32_ps(w)), half);
     let y = _mm256_sub_ps(_mm256_mul_ps(_mm256_sub_ps(v, _mm256_floor_ps(v)), _mm256_cvtepi32_ps(h)), half);
     let (xf, yf) = (_mm256_floor_ps(x), _mm256_floor_ps(y));
     let (xi, yi) = (_mm256_cvttps_epi32(xf), _mm256_cvttps_epi32(yf));
     let zero = _mm256_setzero_si256();
-    let (wm1, hm1) = (_mm256_sub_epi32(w, one), _mm256_sub_epi32(h, one));
-    let x0 = _mm256_blendv_epi8(xi, wm1, _mm256_cmpgt_epi32(zero, xi));
-    let y0 = _mm256_blendv_epi8(yi, hm1, _mm256_cmpgt_epi32(zero, yi));
-    let (x1, y1) = (_mm256_add_epi32(xi, one), _mm256_add_epi32(yi, one));
-    let x1 = _mm256_andnot_si256(_mm256_cmpgt_epi32(x1, wm1), x1);
-    let y1 = _mm256_andnot_si256(_mm256_cmpgt_epi32(y1, hm1), y1);
-    let (r0, r1) =
-        (_mm256_add_epi32(off, _mm256_mullo_epi32(y0, w)), _mm256_add_epi32(off, _mm256_mullo_epi32(y1, w)));
-    let idx = [
-        _mm256_add_epi32(r0, x0),
-        _mm256_add_epi32(r0, x1),
-        _mm256_add_epi32(r1, x0),
-        _mm256_add_epi32(r1, x1),
+    let x0 = _mm256_blendv_epi8(xi, _mm256_sub_epi32(w, one), _mm256_cmpgt_epi32(zero, xi));
+    let y0 = _mm256_blendv_epi8(yi, _mm256_sub_epi32(h, one), _mm256_cmpgt_epi32(zero, yi));
+    let stride = _mm256_add_epi32(w, one);
+    let idx = _mm256_add_epi32(_mm256_add_epi32(off, _mm256_mullo_epi32(y0, stride)), x0);
+    (idx, stride, _mm256_sub_ps(x, xf), _mm256_sub_ps(y, yf))
+}
+
+/// Entries `i` and `i + 1` of `wide` for lane `a` (low half) and lane `b` (high half).
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn pair_of_lanes(wide: *const u64, ix: &[i32; LANES], a: usize, b: usize) -> I {
+    // SAFETY (caller): each index is a texel of a level's unpadded grid, so the entry after
+    // it (the padded column at worst) is inside `wide`.
+    let lo = _mm_loadu_si128(wide.add(ix[a] as usize) as *const __m128i);
+    let hi = _mm_loadu_si128(wide.add(ix[b] as usize) as *const __m128i);
+    _mm256_inserti128_si256::<1>(_mm256_castsi128_si256(lo), hi)
+}
+
+/// The channels of the left and right texels of the eight lanes' rows starting at `idx`: one
+/// 16-byte load per lane (the two neighbours), then the lanes transposed into channels.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn row(wide: *const u64, idx: I) -> ([V; 3], [V; 3]) {
+    let mut ix = [0i32; LANES];
+    _mm256_storeu_si256(ix.as_mut_ptr() as *mut I, idx);
+    // Element j of `p[i]` (16-bit) is channel j % 4 of the left (j < 4) or right texel, of
+    // lane i in the low half and of lane i + 4 in the high half.
+    let p = [
+        pair_of_lanes(wide, &ix, 0, 4),
+        pair_of_lanes(wide, &ix, 1, 5),
+        pair_of_lanes(wide, &ix, 2, 6),
+        pair_of_lanes(wide, &ix, 3, 7),
     ];
-    (idx, _mm256_sub_ps(x, xf), _mm256_sub_ps(y, yf))
+    // No closures here: a closure is compiled without this function's target features.
+    let z = _mm256_setzero_si256();
+    let l = transpose_halves(
+        _mm256_castsi256_ps(_mm256_unpacklo_epi16(p[0], z)),
+        _mm256_castsi256_ps(_mm256_unpacklo_epi16(p[1], z)),
+        _mm256_castsi256_ps(_mm256_unpacklo_epi16(p[2], z)),
+        _mm256_castsi256_ps(_mm256_unpacklo_epi16(p[3], z)),
+    );
+    let r = transpose_halves(
+        _mm256_castsi256_ps(_mm256_unpackhi_epi16(p[0], z)),
+        _mm256_castsi256_ps(_mm256_unpackhi_epi16(p[1], z)),
+        _mm256_castsi256_ps(_mm256_unpackhi_epi16(p[2], z)),
+        _mm256_castsi256_ps(_mm256_unpackhi_epi16(p[3], z)),
+    );
+    ([to_float(l[0]), to_float(l[1]), to_float(l[2])], [to_float(r[0]), to_float(r[1]), to_float(r[2])])
 }
 
-/// Bilinear RGB from `tex` at the taps `(idx, fx, fy)`.
+/// The 32-bit integers in `x`'s lanes as floats.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn bilinear(tex: &Texture8, taps: &([I; 4], V, V), decode: &[f32; 256]) -> [V; 3] {
-    let (idx, ..) = taps;
-    let base = tex.texels().as_ptr() as *const i32;
-    let px = [
-        _mm256_i32gather_epi32::<4>(base, idx[0]),
-        _mm256_i32gather_epi32::<4>(base, idx[1]),
-        _mm256_i32gather_epi32::<4>(base, idx[2]),
-        _mm256_i32gather_epi32::<4>(base, idx[3]),
-    ];
-    filter(px, tex.encoding(), taps, decode)
+unsafe fn to_float(x: V) -> V {
+    _mm256_cvtepi32_ps(_mm256_castps_si256(x))
 }
 
-/// The texels at `idx` of two textures interleaved in `pair` (the first's texel in the low
-/// half of each 64-bit entry): two 4-lane 64-bit gathers, then the halves sorted apart.
+/// Bilinear RGB from `tex` at the cells `(idx, stride, fx, fy)`, in the units of
+/// [`Texture8::wide`].
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn gather_pair(pair: &[u64], idx: I) -> (I, I) {
-    let base = pair.as_ptr() as *const i64;
-    let lo = _mm256_castsi256_ps(_mm256_i32gather_epi64::<8>(base, _mm256_castsi256_si128(idx)));
-    let hi = _mm256_castsi256_ps(_mm256_i32gather_epi64::<8>(base, _mm256_extracti128_si256::<1>(idx)));
-    // lo = [a0 b0 a1 b1 | a2 b2 a3 b3], hi = [a4 b4 a5 b5 | a6 b6 a7 b7] (32-bit elements).
-    let a = _mm256_castps_si256(_mm256_shuffle_ps::<0b10_00_10_00>(lo, hi)); // [a0 a1 a4 a5 | a2 a3 a6 a7]
-    let b = _mm256_castps_si256(_mm256_shuffle_ps::<0b11_01_11_01>(lo, hi));
-    (_mm256_permute4x64_epi64::<0b11_01_10_00>(a), _mm256_permute4x64_epi64::<0b11_01_10_00>(b))
-}
-
-/// Bilinear RGB of the albedo and the normal map, interleaved in `pair`, at the taps.
-#[inline]
-#[target_feature(enable = "avx2")]
-unsafe fn bilinear_pair(
-    k: &ShadeConsts,
-    pair: &[u64],
-    taps: &([I; 4], V, V),
-    decode: &[f32; 256],
-) -> ([V; 3], [V; 3]) {
-    let (idx, ..) = taps;
-    let t = [
-        gather_pair(pair, idx[0]),
-        gather_pair(pair, idx[1]),
-        gather_pair(pair, idx[2]),
-        gather_pair(pair, idx[3]),
-    ];
-    let a = filter(t.map(|p| p.0), k.albedo.encoding(), taps, decode);
-    let b = filter(t.map(|p| p.1), k.normal.encoding(), taps, decode);
-    (a, b)
-}
-
-/// Bilinear RGB of the four taps' texels `px` with the weights of `(idx, fx, fy)`.
-#[inline]
-#[target_feature(enable = "avx2")]
-unsafe fn filter(px: [I; 4], enc: Encoding, (_, fx, fy): &([I; 4], V, V), decode: &[f32; 256]) -> [V; 3] {
+unsafe fn bilinear(tex: &Texture8, &(idx, stride, fx, fy): &Cell) -> [V; 3] {
+    let wide = tex.wide().as_ptr();
+    let (t00, t10) = row(wide, idx);
+    let (t01, t11) = row(wide, _mm256_add_epi32(idx, stride));
     let mut out = [_mm256_setzero_ps(); 3];
     for (c, o) in out.iter_mut().enumerate() {
-        let s = 8 * c as i32;
-        let (a, b) = (channel(px[0], s, enc, decode), channel(px[1], s, enc, decode));
-        let (cc, d) = (channel(px[2], s, enc, decode), channel(px[3], s, enc, decode));
-        let top = _mm256_add_ps(a, _mm256_mul_ps(_mm256_sub_ps(b, a), *fx));
-        let bottom = _mm256_add_ps(cc, _mm256_mul_ps(_mm256_sub_ps(d, cc), *fx));
-        *o = _mm256_add_ps(top, _mm256_mul_ps(_mm256_sub_ps(bottom, top), *fy));
+        let (a, b, cc, d) = (t00[c], t10[c], t01[c], t11[c]);
+        let top = _mm256_add_ps(a, _mm256_mul_ps(_mm256_sub_ps(b, a), fx));
+        let bottom = _mm256_add_ps(cc, _mm256_mul_ps(_mm256_sub_ps(d, cc), fx));
+        *o = _mm256_add_ps(top, _mm256_mul_ps(_mm256_sub_ps(bottom, top), fy));
     }
     out
 }
@@ -201,15 +188,16 @@ unsafe fn one_level(t: V) -> bool {
     _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_EQ_OQ>(t, _mm256_setzero_ps())) == 0xff
 }
 
+/// Trilinear RGB at levels of detail `l`, in the units of the padded copy.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn trilinear(tex: &Texture8, u: V, v: V, l: V, decode: &[f32; 256]) -> [V; 3] {
+unsafe fn trilinear(tex: &Texture8, u: V, v: V, l: V) -> [V; 3] {
     let (k0, k1, t) = levels(tex, l);
-    let s0 = bilinear(tex, &taps(tex, k0, u, v), decode);
+    let s0 = bilinear(tex, &taps(tex, k0, u, v));
     if one_level(t) {
         return s0;
     }
-    let s1 = bilinear(tex, &taps(tex, k1, u, v), decode);
+    let s1 = bilinear(tex, &taps(tex, k1, u, v));
     blend(s0, s1, t)
 }
 
@@ -217,35 +205,23 @@ unsafe fn trilinear(tex: &Texture8, u: V, v: V, l: V, decode: &[f32; 256]) -> [V
 /// level of detail and the taps are computed once.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn trilinear_pair(
-    a: &Texture8,
-    b: &Texture8,
-    u: V,
-    v: V,
-    l: V,
-    decode: &[f32; 256],
-) -> ([V; 3], [V; 3]) {
+unsafe fn trilinear_pair(a: &Texture8, b: &Texture8, u: V, v: V, l: V) -> ([V; 3], [V; 3]) {
     let (k0, k1, t) = levels(a, l);
     let t0 = taps(a, k0, u, v);
-    let (a0, b0) = (bilinear(a, &t0, decode), bilinear(b, &t0, decode));
+    let (a0, b0) = (bilinear(a, &t0), bilinear(b, &t0));
     if one_level(t) {
         return (a0, b0);
     }
     let t1 = taps(a, k1, u, v);
-    (blend(a0, bilinear(a, &t1, decode), t), blend(b0, bilinear(b, &t1, decode), t))
+    (blend(a0, bilinear(a, &t1), t), blend(b0, bilinear(b, &t1), t))
 }
 
-/// [`trilinear_pair`] from the interleaved texels `pair` of `k`'s albedo and normal map.
+/// `c · s` for each channel.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn trilinear_interleaved(k: &ShadeConsts, pair: &[u64], u: V, v: V, l: V) -> ([V; 3], [V; 3]) {
-    let (k0, k1, t) = levels(k.albedo, l);
-    let (a0, b0) = bilinear_pair(k, pair, &taps(k.albedo, k0, u, v), k.decode);
-    if one_level(t) {
-        return (a0, b0);
-    }
-    let (a1, b1) = bilinear_pair(k, pair, &taps(k.albedo, k1, u, v), k.decode);
-    (blend(a0, a1, t), blend(b0, b1, t))
+unsafe fn scaled(c: [V; 3], s: f32) -> [V; 3] {
+    let s = splat(s);
+    [_mm256_mul_ps(c[0], s), _mm256_mul_ps(c[1], s), _mm256_mul_ps(c[2], s)]
 }
 
 #[inline]
@@ -286,6 +262,70 @@ unsafe fn encode(x: V, table: &[u32]) -> I {
     _mm256_srli_epi32::<16>(_mm256_add_epi32(bias, _mm256_mullo_epi32(slope, t)))
 }
 
+/// The thesis's light on eight pixels of `p`: `albedo` (linear) lit with the filtered normal
+/// map's values `nu` (codes).
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn light(albedo: [V; 3], nu: [V; 3], p: &ShadeLanes, k: &ShadeConsts) -> [V; 3] {
+    let zero = _mm256_setzero_ps();
+    let mut n = nu;
+    for c in &mut n {
+        *c = _mm256_sub_ps(_mm256_mul_ps(*c, splat(2.0 / 255.0)), splat(1.0));
+    }
+    let n = normalized(n, [zero, zero, splat(1.0)]);
+    let l = [ld(&p.lx), ld(&p.ly), ld(&p.lz)];
+    let diff = _mm256_max_ps(dot(&n, &l), zero);
+    let h = [_mm256_add_ps(l[0], ld(&p.vx)), _mm256_add_ps(l[1], ld(&p.vy)), _mm256_add_ps(l[2], ld(&p.vz))];
+    let h = normalized(h, [zero; 3]);
+    let nh = _mm256_max_ps(dot(&n, &h), zero);
+    let powed = match k.whole_exponent() {
+        Some(mut e) => {
+            let (mut result, mut base) = (splat(1.0), nh);
+            while e > 0 {
+                if e & 1 == 1 {
+                    result = _mm256_mul_ps(result, base);
+                }
+                base = _mm256_mul_ps(base, base);
+                e >>= 1;
+            }
+            result
+        }
+        None => {
+            let mut lanes = [0.0f32; LANES];
+            _mm256_storeu_ps(lanes.as_mut_ptr(), nh);
+            for x in &mut lanes {
+                *x = x.powf(k.exponent);
+            }
+            _mm256_loadu_ps(lanes.as_ptr())
+        }
+    };
+    let spec = _mm256_mul_ps(powed, splat(k.strength));
+    let facing = _mm256_and_ps(_mm256_cmp_ps::<_CMP_GT_OQ>(l[2], zero), ld(&p.shadow));
+    let ambient = splat(k.ambient);
+    let mut lit = albedo;
+    for c in &mut lit {
+        *c = _mm256_add_ps(
+            _mm256_mul_ps(*c, ambient),
+            _mm256_mul_ps(_mm256_add_ps(_mm256_mul_ps(*c, diff), spec), facing),
+        );
+    }
+    lit
+}
+
+/// Encodes `color` into `out` (RGBA8, alpha 255).
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn store(color: [V; 3], k: &ShadeConsts, out: &mut [u32; LANES]) {
+    let r = encode(color[0], k.encode);
+    let g = encode(color[1], k.encode);
+    let b = encode(color[2], k.encode);
+    let rgba = _mm256_or_si256(
+        _mm256_or_si256(r, _mm256_slli_epi32::<8>(g)),
+        _mm256_or_si256(_mm256_slli_epi32::<16>(b), _mm256_set1_epi32(0xff00_0000u32 as i32)),
+    );
+    _mm256_storeu_si256(out.as_mut_ptr() as *mut I, rgba);
+}
+
 /// Shades the eight lanes of `p` into `out` (RGBA8, alpha 255).
 ///
 /// # Safety
@@ -298,139 +338,72 @@ pub(crate) unsafe fn shade(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANE
     let d = [ld(&p.dudx), ld(&p.dvdx), ld(&p.dudy), ld(&p.dvdy)];
     let la = lod(&d, k.albedo);
     let color = match k.shading {
-        Shading::Unlit => trilinear(k.albedo, u, v, la, k.decode),
+        Shading::Unlit => scaled(trilinear(k.albedo, u, v, la), LINEAR_STEP),
         Shading::Lit | Shading::LitShadowed => {
-            let zero = _mm256_setzero_ps();
-            let (albedo, nu) = if let Some(pair) = k.pair {
-                trilinear_interleaved(k, pair, u, v, la)
-            } else if k.albedo.same_shape(k.normal) {
-                trilinear_pair(k.albedo, k.normal, u, v, la, k.decode)
+            let (albedo, nu) = if k.albedo.same_shape(k.normal) {
+                trilinear_pair(k.albedo, k.normal, u, v, la)
             } else {
-                (
-                    trilinear(k.albedo, u, v, la, k.decode),
-                    trilinear(k.normal, u, v, lod(&d, k.normal), k.decode),
-                )
+                (trilinear(k.albedo, u, v, la), trilinear(k.normal, u, v, lod(&d, k.normal)))
             };
-            let mut n = nu;
-            for c in &mut n {
-                *c = _mm256_sub_ps(_mm256_mul_ps(*c, splat(2.0 / 255.0)), splat(1.0));
-            }
-            let n = normalized(n, [zero, zero, splat(1.0)]);
-            let l = [ld(&p.lx), ld(&p.ly), ld(&p.lz)];
-            let diff = _mm256_max_ps(dot(&n, &l), zero);
-            let h = [
-                _mm256_add_ps(l[0], ld(&p.vx)),
-                _mm256_add_ps(l[1], ld(&p.vy)),
-                _mm256_add_ps(l[2], ld(&p.vz)),
-            ];
-            let h = normalized(h, [zero; 3]);
-            let nh = _mm256_max_ps(dot(&n, &h), zero);
-            let powed = match k.whole_exponent() {
-                Some(mut e) => {
-                    let (mut result, mut base) = (splat(1.0), nh);
-                    while e > 0 {
-                        if e & 1 == 1 {
-                            result = _mm256_mul_ps(result, base);
-                        }
-                        base = _mm256_mul_ps(base, base);
-                        e >>= 1;
-                    }
-                    result
-                }
-                None => {
-                    let mut lanes = [0.0f32; LANES];
-                    _mm256_storeu_ps(lanes.as_mut_ptr(), nh);
-                    for x in &mut lanes {
-                        *x = x.powf(k.exponent);
-                    }
-                    _mm256_loadu_ps(lanes.as_ptr())
-                }
-            };
-            let spec = _mm256_mul_ps(powed, splat(k.strength));
-            let facing = _mm256_and_ps(_mm256_cmp_ps::<_CMP_GT_OQ>(l[2], zero), ld(&p.shadow));
-            let ambient = splat(k.ambient);
-            let mut lit = albedo;
-            for c in &mut lit {
-                *c = _mm256_add_ps(
-                    _mm256_mul_ps(*c, ambient),
-                    _mm256_mul_ps(_mm256_add_ps(_mm256_mul_ps(*c, diff), spec), facing),
-                );
-            }
-            lit
+            light(scaled(albedo, LINEAR_STEP), nu, p, k)
         }
     };
-    let r = encode(color[0], k.encode);
-    let g = encode(color[1], k.encode);
-    let b = encode(color[2], k.encode);
-    let rgba = _mm256_or_si256(
-        _mm256_or_si256(r, _mm256_slli_epi32::<8>(g)),
-        _mm256_or_si256(_mm256_slli_epi32::<16>(b), _mm256_set1_epi32(0xff00_0000u32 as i32)),
-    );
-    _mm256_storeu_si256(out.as_mut_ptr() as *mut I, rgba);
+    store(color, k, out);
 }
 
-/// Rows `a`, `b`, `c`, `d` to columns within each 128-bit half: element `i` of result `j` is
-/// element `j` of input `i` (the halves transposed apart).
-#[inline]
-#[target_feature(enable = "avx2")]
-unsafe fn transpose_halves(a: V, b: V, c: V, d: V) -> [V; 4] {
-    let (ab_lo, ab_hi) = (_mm256_unpacklo_ps(a, b), _mm256_unpackhi_ps(a, b));
-    let (cd_lo, cd_hi) = (_mm256_unpacklo_ps(c, d), _mm256_unpackhi_ps(c, d));
-    [
-        _mm256_shuffle_ps::<0x44>(ab_lo, cd_lo),
-        _mm256_shuffle_ps::<0xee>(ab_lo, cd_lo),
-        _mm256_shuffle_ps::<0x44>(ab_hi, cd_hi),
-        _mm256_shuffle_ps::<0xee>(ab_hi, cd_hi),
-    ]
-}
-
-/// Fields `4b .. 4b + 4` of eight records of `stride` floats from `base`, one vector per field
-/// in record order: each record's 16-byte block is loaded once and the blocks transposed.
-#[inline]
-#[target_feature(enable = "avx2")]
-pub(super) unsafe fn fields(base: *const f32, stride: usize, b: usize) -> [V; 4] {
-    let block = |i: usize| _mm_loadu_ps(base.add(stride * i + 4 * b));
-    let pair = |i: usize| _mm256_insertf128_ps::<1>(_mm256_castps128_ps256(block(i)), block(i + 4));
-    transpose_halves(pair(0), pair(1), pair(2), pair(3))
-}
-
-/// Fills the eight lanes of `lanes` from eight pixels' hits, shade points and light factors
-/// (the first eight of each slice), as eight calls of the scalar `ShadeLanes::set` would.
+/// [`shade`] for `G` groups of eight pixels, `p[g]` into `out[g]`, their steps interleaved:
+/// each group's work is one long chain of dependent steps (level of detail, addresses, loads,
+/// filter, normalisation, encoding), and independent chains side by side keep the vector
+/// units busy while each waits. The same pixels as `G` calls of [`shade`] (a group whose blend
+/// weights are all zero blends in its second level with weight 0, which gives the first
+/// level's value bit for bit; see [`one_level`]).
 ///
 /// # Safety
 ///
-/// The CPU must support AVX2.
-///
-/// # Panics
-///
-/// If a slice holds fewer than eight entries.
+/// As [`shade`].
 #[target_feature(enable = "avx2")]
-pub(crate) unsafe fn load_lanes(
-    lanes: &mut ShadeLanes,
-    hits: &[ReliefHit],
-    points: &[ShadePoint],
-    shadows: &[f32],
+pub(crate) unsafe fn shade_groups<const G: usize>(
+    p: [&ShadeLanes; G],
+    k: &ShadeConsts,
+    out: [&mut [u32; LANES]; G],
 ) {
-    assert!(hits.len() >= LANES && points.len() >= LANES && shadows.len() >= LANES, "eight pixels");
-    // Both types are `repr(C)` runs of 32-bit fields (checked at compile time where they are
-    // declared): a hit is (u, v, depth, layers); a point is (u, v, ∂u/∂x, ∂v/∂x | ∂u/∂y, ∂v/∂y,
-    // view x, view y | view z, light x, light y, light z | material).
-    let h = fields(hits.as_ptr() as *const f32, 4, 0);
-    let pt = points.as_ptr() as *const f32;
-    let stride = std::mem::size_of::<ShadePoint>() / 4;
-    let (b0, b1, b2) = (fields(pt, stride, 0), fields(pt, stride, 1), fields(pt, stride, 2));
-    let st = |dst: &mut [f32; LANES], x: V| _mm256_storeu_ps(dst.as_mut_ptr(), x);
-    st(&mut lanes.u, h[0]);
-    st(&mut lanes.v, h[1]);
-    st(&mut lanes.dudx, b0[2]);
-    st(&mut lanes.dvdx, b0[3]);
-    st(&mut lanes.dudy, b1[0]);
-    st(&mut lanes.dvdy, b1[1]);
-    st(&mut lanes.vx, b1[2]);
-    st(&mut lanes.vy, b1[3]);
-    st(&mut lanes.vz, b2[0]);
-    st(&mut lanes.lx, b2[1]);
-    st(&mut lanes.ly, b2[2]);
-    st(&mut lanes.lz, b2[3]);
-    st(&mut lanes.shadow, _mm256_loadu_ps(shadows.as_ptr()));
+    let lit = !matches!(k.shading, Shading::Unlit);
+    if lit && !k.albedo.same_shape(k.normal) {
+        for (q, o) in p.into_iter().zip(out) {
+            shade(q, k, o);
+        }
+        return;
+    }
+    let zero = _mm256_setzero_ps();
+    let (mut u, mut v, mut t) = ([zero; G], [zero; G], [zero; G]);
+    let mut k0 = [_mm256_setzero_si256(); G];
+    let mut k1 = k0;
+    for g in 0..G {
+        let q = p[g];
+        (u[g], v[g]) = (sanitize(ld(&q.u)), sanitize(ld(&q.v)));
+        let l = lod(&[ld(&q.dudx), ld(&q.dvdx), ld(&q.dudy), ld(&q.dvdy)], k.albedo);
+        (k0[g], k1[g], t[g]) = levels(k.albedo, l);
+    }
+    let (mut a, mut n) = ([[zero; 3]; G], [[zero; 3]; G]);
+    for g in 0..G {
+        let c = taps(k.albedo, k0[g], u[g], v[g]);
+        a[g] = bilinear(k.albedo, &c);
+        if lit {
+            n[g] = bilinear(k.normal, &c);
+        }
+    }
+    if !t.iter().all(|&t| one_level(t)) {
+        for g in 0..G {
+            let c = taps(k.albedo, k1[g], u[g], v[g]);
+            a[g] = blend(a[g], bilinear(k.albedo, &c), t[g]);
+            if lit {
+                n[g] = blend(n[g], bilinear(k.normal, &c), t[g]);
+            }
+        }
+    }
+    for (g, o) in out.into_iter().enumerate() {
+        let albedo = scaled(a[g], LINEAR_STEP);
+        let color = if lit { light(albedo, n[g], p[g], k) } else { albedo };
+        store(color, k, o);
+    }
 }

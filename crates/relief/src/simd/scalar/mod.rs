@@ -7,6 +7,7 @@ pub(crate) mod adaptive;
 pub(crate) mod bisect;
 pub(crate) mod cone;
 pub(crate) mod cone_newton;
+pub(crate) mod load;
 pub(crate) mod parallax;
 pub(crate) mod pom;
 pub(crate) mod rays;

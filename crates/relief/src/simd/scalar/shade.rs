@@ -3,17 +3,18 @@
 //!
 //! 1. Level of detail as [`renderlab_texture::filter::lod`] defines it, with `log2` by a
 //!    short series ([`log2`], within 2⁻²⁰ of the true value) that a vector unit can run.
-//! 2. Trilinear albedo from the sRGB texture, decoding each texel by table before filtering,
-//!    as a GPU samples an `rgba8unorm-srgb` texture.
+//! 2. Trilinear albedo from the sRGB texture's texels decoded to linear light before
+//!    filtering, as a GPU samples an `rgba8unorm-srgb` texture (the decoded values are the
+//!    texture's 16-bit copy, [`Texture8::wide`], filtered in its units and scaled by
+//!    [`LINEAR_STEP`] at the end).
 //! 3. For lit techniques, the trilinear normal from the unorm normal map, normalised, and
 //!    the thesis's ambient + Lambert + Blinn–Phong light (`renderlab_relief::render::shade::light`).
 //! 4. sRGB encoding by table ([`renderlab_core::srgb8::encode_srgb8`]) into one RGBA8 `u32`.
 
 use crate::fused::lanes::{ShadeConsts, ShadeLanes, LANES};
-use crate::fused::texture8::{Encoding, Texture8};
-use crate::trace::{ReliefHit, Shading};
+use crate::fused::texture8::{Texture8, LINEAR_STEP};
+use crate::trace::Shading;
 use renderlab_core::srgb8::encode_srgb8;
-use renderlab_core::ShadePoint;
 
 use renderlab_core::fastmath::log2;
 
@@ -43,7 +44,8 @@ pub(crate) fn lod(d: [f32; 4], w: f32, h: f32, levels: usize) -> f32 {
     (0.5 * log2(rho2)).max(0.0).min(top)
 }
 
-/// The bilinear texel addresses and weights of `(u, v)` in level `k` (repeat wrap).
+/// The bilinear texel addresses in [`Texture8::wide`] and weights of `(u, v)` in level `k`
+/// (repeat wrap).
 #[inline]
 fn taps(tex: &Texture8, k: usize, u: f32, v: f32) -> ([usize; 4], f32, f32) {
     let (w, h) = (tex.widths[k], tex.heights[k]);
@@ -55,46 +57,42 @@ fn taps(tex: &Texture8, k: usize, u: f32, v: f32) -> ([usize; 4], f32, f32) {
     let y0 = if yi < 0 { h - 1 } else { yi };
     let x1 = if xi + 1 >= w { 0 } else { xi + 1 };
     let y1 = if yi + 1 >= h { 0 } else { yi + 1 };
-    let o = tex.offsets[k];
-    let at = |x: i32, y: i32| (o + y * w + x) as usize;
+    let o = tex.wide_offsets[k];
+    let at = |x: i32, y: i32| (o + y * (w + 1) + x) as usize;
     ([at(x0, y0), at(x1, y0), at(x0, y1), at(x1, y1)], x - xf, y - yf)
 }
 
-/// Channel `c` of `texel` as the filter sees it (linear light for sRGB, the code for unorm).
+/// The three channels of entry `i` of [`Texture8::wide`] as the filter reads them (for sRGB,
+/// linear light in units of [`LINEAR_STEP`]; for unorm, the codes).
 #[inline]
-fn channel(texel: u32, c: u32, enc: Encoding, decode: &[f32; 256]) -> f32 {
-    let code = (texel >> (8 * c)) & 0xff;
-    match enc {
-        Encoding::Srgb => decode[code as usize],
-        Encoding::SignedUnorm => code as f32,
-    }
+fn channels(tex: &Texture8, i: usize) -> [f32; 3] {
+    let t = tex.wide()[i];
+    std::array::from_fn(|c| (t >> (16 * c) & 0xffff) as f32)
 }
 
-/// Bilinear RGB of level `k`.
+/// Bilinear RGB of level `k`, in the units of [`channels`].
 #[inline]
-fn bilinear(tex: &Texture8, k: usize, u: f32, v: f32, decode: &[f32; 256]) -> [f32; 3] {
+fn bilinear(tex: &Texture8, k: usize, u: f32, v: f32) -> [f32; 3] {
     let (idx, fx, fy) = taps(tex, k, u, v);
-    let t = tex.texels();
-    let px = idx.map(|i| t[i]);
-    let enc = tex.encoding();
+    let px = idx.map(|i| channels(tex, i));
     std::array::from_fn(|c| {
-        let [a, b, cc, d] = px.map(|p| channel(p, c as u32, enc, decode));
+        let [a, b, cc, d] = px.map(|p| p[c]);
         let top = a + (b - a) * fx;
         let bottom = cc + (d - cc) * fx;
         top + (bottom - top) * fy
     })
 }
 
-/// Trilinear RGB at level of detail `l`: the two levels around it (the upper one clamped to
-/// the last), blended.
+/// Trilinear RGB at level of detail `l`, in the units of [`channels`]: the two levels around
+/// it (the upper one clamped to the last), blended.
 #[inline]
-fn trilinear(tex: &Texture8, u: f32, v: f32, l: f32, decode: &[f32; 256]) -> [f32; 3] {
+fn trilinear(tex: &Texture8, u: f32, v: f32, l: f32) -> [f32; 3] {
     let lf = l.floor();
     let t = l - lf;
     let k0 = lf as i32 as usize;
     let k1 = (k0 + 1).min(tex.level_count() - 1);
-    let s0 = bilinear(tex, k0, u, v, decode);
-    let s1 = bilinear(tex, k1, u, v, decode);
+    let s0 = bilinear(tex, k0, u, v);
+    let s1 = bilinear(tex, k1, u, v);
     std::array::from_fn(|c| s0[c] + (s1[c] - s0[c]) * t)
 }
 
@@ -128,13 +126,13 @@ pub(crate) fn shade_lane(p: &ShadeLanes, i: usize, k: &ShadeConsts) -> u32 {
     let d = [p.dudx[i], p.dvdx[i], p.dudy[i], p.dvdy[i]];
     let a = k.albedo;
     let la = lod(d, a.widths_f[0], a.heights_f[0], a.level_count());
-    let albedo = trilinear(a, u, v, la, k.decode);
+    let albedo = trilinear(a, u, v, la).map(|c| c * LINEAR_STEP);
     let color = match k.shading {
         Shading::Unlit => albedo,
         Shading::Lit | Shading::LitShadowed => {
             let nt = k.normal;
             let ln = lod(d, nt.widths_f[0], nt.heights_f[0], nt.level_count());
-            let n = trilinear(nt, u, v, ln, k.decode).map(|c| c * (2.0 / 255.0) - 1.0);
+            let n = trilinear(nt, u, v, ln).map(|c| c * (2.0 / 255.0) - 1.0);
             let n = normalized(n).unwrap_or([0.0, 0.0, 1.0]);
             let l = [p.lx[i], p.ly[i], p.lz[i]];
             let diff = (n[0] * l[0] + n[1] * l[1] + n[2] * l[2]).max(0.0);
@@ -161,17 +159,14 @@ pub(crate) fn shade(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANES]) {
     }
 }
 
-/// Fills the eight lanes of `lanes` from eight pixels' hits, shade points and light factors
-/// (the first eight of each slice), one lane at a time.
-///
-/// # Panics
-///
-/// If a slice holds fewer than eight entries.
-#[inline]
-pub(crate) fn load_lanes(lanes: &mut ShadeLanes, hits: &[ReliefHit], points: &[ShadePoint], shadows: &[f32]) {
-    assert!(hits.len() >= LANES && points.len() >= LANES && shadows.len() >= LANES, "eight pixels");
-    for l in 0..LANES {
-        lanes.set(l, &hits[l], &points[l], shadows[l]);
+/// Shades `G` groups of eight lanes, `p[g]` into `out[g]`.
+pub(crate) fn shade_groups<const G: usize>(
+    p: [&ShadeLanes; G],
+    k: &ShadeConsts,
+    out: [&mut [u32; LANES]; G],
+) {
+    for (q, o) in p.into_iter().zip(out) {
+        shade(q, k, o);
     }
 }
 

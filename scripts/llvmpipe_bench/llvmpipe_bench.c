@@ -1,0 +1,401 @@
+/*
+ * llvmpipe_bench: draws the relief benchmark's frame (written by renderlab-relief's `llvmpipe`
+ * example) with hand-written GLSL on whatever OpenGL driver EGL's surfaceless platform gives
+ * (Mesa's llvmpipe on a machine without a GPU), one draw per frame into an sRGB framebuffer
+ * object, and answers timing and read-back commands on stdin, so that the example can
+ * interleave its own frames with these. Run by hand, not by CI; nothing in the Cargo
+ * workspace links OpenGL.
+ *
+ * Build and run (Debian: libegl-dev, libgl-dev; Mesa's libegl-mesa0 and libgl1-mesa-dri):
+ *
+ *     cc -O2 -o out/llvmpipe_bench scripts/llvmpipe_bench/llvmpipe_bench.c -lEGL -lOpenGL
+ *     LP_NUM_THREADS=2 cargo run --release -p renderlab-relief --example llvmpipe -- out/llvmpipe_bench
+ *
+ * Input (argv[1], little-endian): "RLLPIPE1"; u32 width, height; f32 background r,g,b
+ * (linear); f32 to_light x,y,z (unit, world); f32 ambient, specular exponent, specular
+ * strength, height scale (UV per unit depth); u32 vertices, then 12 f32 per vertex
+ * (position 3, normal 3, uv 2, tangent 4 with handedness in w); u32 indices, then u32 each;
+ * u32 views, then per view 16 f32 (world → clip, column-major, depth in [0, 1]) and the eye
+ * x,y,z; two textures (albedo: sRGB-encoded, normal: unorm-encoded), each u32 levels, then
+ * per level u32 width, height and width·height u32 RGBA8 texels (red in the low byte, row 0
+ * at v = 0); the depth map: u32 width, height, width·height u16 (depth · 65535).
+ *
+ * Commands on stdin, one a line; each answered with one line on stdout:
+ *
+ *     time TECH VIEW N     → "ms T1 T2 … TN": N frames, each clear + draw + glFinish, wall ms
+ *     dump TECH VIEW PATH  → "ok": one frame's RGBA8 pixels, row 0 at the top, to PATH
+ *     quit
+ *
+ * TECH is 0 basic (albedo only), 1 normal (lit by the normal map), 2 parallax (one offset
+ * step from the depth at the entry point), 3 POM-32 (32 layers, the last two interpolated).
+ * The maths is the fused CPU frame's: the exact UV Jacobian from the perspective-correct
+ * interpolants, the level of detail ½·log2(max(|J_x|², |J_y|²)) in texels clamped to the
+ * levels, trilinear filtering by the sampler (the texture's own mip chain, repeat wrap), sRGB
+ * albedo decoded per texel, the normal filtered as stored, the ambient + Lambert +
+ * Blinn–Phong light in tangent space, and sRGB encoding by the framebuffer.
+ */
+#define GL_GLEXT_PROTOTYPES 1
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define TECHS 4
+
+static void die(const char *msg) {
+    fprintf(stderr, "llvmpipe_bench: %s\n", msg);
+    exit(1);
+}
+
+/* A cursor over the input file. */
+typedef struct {
+    const uint8_t *p, *end;
+} Reader;
+
+static void take(Reader *r, void *dst, size_t n) {
+    if ((size_t)(r->end - r->p) < n) die("input truncated");
+    memcpy(dst, r->p, n);
+    r->p += n;
+}
+static uint32_t u32(Reader *r) {
+    uint32_t v;
+    take(r, &v, 4);
+    return v;
+}
+static float f32(Reader *r) {
+    float v;
+    take(r, &v, 4);
+    return v;
+}
+
+typedef struct {
+    float view_proj[16];
+    float eye[3];
+} View;
+
+/* Uploads a texture with its levels as given; returns its name. */
+static GLuint read_texture(Reader *r, GLenum internal, int *levels_out, int *w0, int *h0) {
+    uint32_t levels = u32(r);
+    if (levels == 0 || levels > 16) die("bad level count");
+    GLuint tex;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    for (uint32_t k = 0; k < levels; k++) {
+        uint32_t w = u32(r), h = u32(r);
+        if (k == 0) {
+            *w0 = (int)w;
+            *h0 = (int)h;
+            glTexStorage2D(GL_TEXTURE_2D, (GLsizei)levels, internal, (GLsizei)w, (GLsizei)h);
+        }
+        size_t n = (size_t)w * h * 4;
+        if ((size_t)(r->end - r->p) < n) die("texture truncated");
+        glTexSubImage2D(GL_TEXTURE_2D, (GLint)k, 0, 0, (GLsizei)w, (GLsizei)h, GL_RGBA, GL_UNSIGNED_BYTE, r->p);
+        r->p += n;
+    }
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, (GLint)levels - 1);
+    *levels_out = (int)levels;
+    return tex;
+}
+
+static const char *VERTEX =
+    "layout(location = 0) in vec3 position;\n"
+    "layout(location = 1) in vec3 normal;\n"
+    "layout(location = 2) in vec2 uv;\n"
+    "layout(location = 3) in vec4 tangent;\n"
+    "uniform mat4 view_proj;\n"
+    "out vec2 v_uv;\n"
+    "out vec3 v_world;\n"
+    "out vec3 v_t;\n"
+    "out vec3 v_b;\n"
+    "out vec3 v_n;\n"
+    "void main() {\n"
+    "    gl_Position = view_proj * vec4(position, 1.0);\n"
+    "    v_uv = uv;\n"
+    "    v_world = position;\n"
+    /* The tangent frame as the CPU builds it: N, T by Gram-Schmidt, B = N x T . sign. */
+    "    vec3 n = normalize(normal);\n"
+    "    vec3 t = tangent.xyz - n * dot(n, tangent.xyz);\n"
+    "    t = dot(t, t) > 0.0 ? normalize(t) : vec3(1.0, 0.0, 0.0);\n"
+    "    v_t = t;\n"
+    "    v_b = cross(n, t) * (tangent.w < 0.0 ? -1.0 : 1.0);\n"
+    "    v_n = n;\n"
+    "}\n";
+
+static const char *FRAGMENT =
+    "in vec2 v_uv;\n"
+    "in vec3 v_world;\n"
+    "in vec3 v_t;\n"
+    "in vec3 v_b;\n"
+    "in vec3 v_n;\n"
+    "uniform vec3 eye;\n"
+    "uniform vec3 to_light;\n"
+    "layout(binding = 0) uniform sampler2D albedo_map;\n"
+    "layout(binding = 1) uniform sampler2D normal_map;\n"
+    "layout(binding = 2) uniform sampler2D depth_map;\n"
+    "out vec4 color;\n"
+    "float lod(vec2 dx, vec2 dy) {\n"
+    "    vec2 a = dx * TEX_SIZE, b = dy * TEX_SIZE;\n"
+    "    float r = max(max(dot(a, a), dot(b, b)), 1e-30);\n"
+    "    return clamp(0.5 * log2(r), 0.0, TEX_LEVELS - 1.0);\n"
+    "}\n"
+    "vec2 uv_per_depth(vec3 v) { return -v.xy / max(v.z, 1e-3) * HEIGHT_SCALE; }\n"
+    "float depth_at(vec2 uv) { return textureLod(depth_map, uv, 0.0).r; }\n"
+    "void main() {\n"
+    /* The exact UV Jacobian: uv.q is affine in screen space (q = 1/w). */
+    "    float q = gl_FragCoord.w;\n"
+    "    vec2 h = v_uv * q;\n"
+    "    vec2 dx = (dFdxFine(h) - v_uv * dFdxFine(q)) / q;\n"
+    "    vec2 dy = (dFdyFine(h) - v_uv * dFdyFine(q)) / q;\n"
+    "    float l = lod(dx, dy);\n"
+    "    vec2 uv = v_uv;\n"
+    "#if TECH >= 1\n"
+    "    vec3 view = normalize(eye - v_world);\n"
+    "    vec3 vts = vec3(dot(v_t, view), dot(v_b, view), dot(v_n, view));\n"
+    "    vec3 lts = vec3(dot(v_t, to_light), dot(v_b, to_light), dot(v_n, to_light));\n"
+    "#endif\n"
+    "#if TECH == 2\n"
+    "    uv += uv_per_depth(vts) * depth_at(uv);\n"
+    "#elif TECH == 3\n"
+    "    vec2 step = uv_per_depth(vts) * (1.0 / LAYERS);\n"
+    "    vec2 uv0 = uv;\n"
+    "    float map = depth_at(uv);\n"
+    "    vec2 prev_uv = uv;\n"
+    "    float prev_map = map;\n"
+    "    int i = 0;\n"
+    "    while (float(i) * (1.0 / LAYERS) < map && i < int(LAYERS)) {\n"
+    "        prev_uv = uv;\n"
+    "        prev_map = map;\n"
+    "        i += 1;\n"
+    "        uv = uv0 + step * float(i);\n"
+    "        map = depth_at(uv);\n"
+    "    }\n"
+    "    float layer = float(i) * (1.0 / LAYERS);\n"
+    "    float prev_layer = i == 0 ? 0.0 : layer - 1.0 / LAYERS;\n"
+    "    float after = map - layer, before = prev_map - prev_layer, denom = after - before;\n"
+    "    float w = abs(denom) > 1e-12 ? clamp(after / denom, 0.0, 1.0) : 0.0;\n"
+    "    uv = prev_uv * w + uv * (1.0 - w);\n"
+    "#endif\n"
+    "    vec3 albedo = textureLod(albedo_map, uv, l).rgb;\n"
+    "#if TECH == 0\n"
+    "    color = vec4(albedo, 1.0);\n"
+    "#else\n"
+    "    vec3 raw = textureLod(normal_map, uv, l).xyz * 2.0 - 1.0;\n"
+    "    vec3 n = dot(raw, raw) > 1e-30 ? normalize(raw) : vec3(0.0, 0.0, 1.0);\n"
+    "    float diff = max(dot(n, lts), 0.0);\n"
+    "    vec3 hv = lts + vts;\n"
+    "    vec3 hh = dot(hv, hv) > 0.0 ? normalize(hv) : vec3(0.0);\n"
+    "    float nh = max(dot(n, hh), 0.0);\n"
+    /* x^EXPONENT by squaring, as the CPU raises a whole exponent. */
+    "    float acc = 1.0, base = nh;\n"
+    "    for (int e = EXPONENT; e > 0; e >>= 1) {\n"
+    "        if ((e & 1) == 1) acc *= base;\n"
+    "        base *= base;\n"
+    "    }\n"
+    "    float facing = lts.z > 0.0 ? 1.0 : 0.0;\n"
+    "    color = vec4(albedo * AMBIENT + (albedo * diff + vec3(acc * STRENGTH)) * facing, 1.0);\n"
+    "#endif\n"
+    "}\n";
+
+static GLuint compile(GLenum kind, const char *prelude, const char *src) {
+    GLuint s = glCreateShader(kind);
+    const char *parts[2] = {prelude, src};
+    glShaderSource(s, 2, parts, NULL);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[4096];
+        glGetShaderInfoLog(s, sizeof log, NULL, log);
+        fprintf(stderr, "%s\n", log);
+        die("shader did not compile");
+    }
+    return s;
+}
+
+static double now_ms(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+int main(int argc, char **argv) {
+    if (argc != 2) die("usage: llvmpipe_bench INPUT < commands");
+    FILE *f = fopen(argv[1], "rb");
+    if (!f) die("cannot open the input");
+    fseek(f, 0, SEEK_END);
+    long size = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    uint8_t *data = malloc((size_t)size);
+    if (!data || fread(data, 1, (size_t)size, f) != (size_t)size) die("cannot read the input");
+    fclose(f);
+    Reader r = {data, data + size};
+    char magic[8];
+    take(&r, magic, 8);
+    if (memcmp(magic, "RLLPIPE1", 8) != 0) die("not an RLLPIPE1 file");
+    uint32_t width = u32(&r), height = u32(&r);
+    float bg[3], to_light[3], ambient, exponent, strength, height_scale;
+    for (int i = 0; i < 3; i++) bg[i] = f32(&r);
+    for (int i = 0; i < 3; i++) to_light[i] = f32(&r);
+    ambient = f32(&r);
+    exponent = f32(&r);
+    strength = f32(&r);
+    height_scale = f32(&r);
+    uint32_t nv = u32(&r);
+    float *vertices = malloc(nv * 12 * sizeof(float));
+    take(&r, vertices, nv * 12 * sizeof(float));
+    uint32_t ni = u32(&r);
+    uint32_t *indices = malloc(ni * sizeof(uint32_t));
+    take(&r, indices, ni * sizeof(uint32_t));
+    uint32_t nviews = u32(&r);
+    View *views = malloc(nviews * sizeof(View));
+    for (uint32_t i = 0; i < nviews; i++) {
+        for (int k = 0; k < 16; k++) views[i].view_proj[k] = f32(&r);
+        for (int k = 0; k < 3; k++) views[i].eye[k] = f32(&r);
+    }
+
+    /* EGL on the surfaceless platform, a desktop OpenGL 4.5 core context, no window. */
+    PFNEGLGETPLATFORMDISPLAYEXTPROC get_display =
+        (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
+    if (!get_display) die("no eglGetPlatformDisplayEXT");
+    EGLDisplay dpy = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
+    EGLint major, minor;
+    if (!eglInitialize(dpy, &major, &minor)) die("eglInitialize failed");
+    if (!eglBindAPI(EGL_OPENGL_API)) die("no desktop OpenGL");
+    const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                  EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    EGLContext ctx = eglCreateContext(dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, ctx_attribs);
+    if (ctx == EGL_NO_CONTEXT) die("no OpenGL 4.5 core context");
+    if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) die("eglMakeCurrent failed");
+    fprintf(stderr, "llvmpipe_bench: %s; %s\n", (const char *)glGetString(GL_RENDERER),
+            (const char *)glGetString(GL_VERSION));
+
+    int albedo_levels, normal_levels, aw, ah, nw, nh;
+    glActiveTexture(GL_TEXTURE0);
+    read_texture(&r, GL_SRGB8_ALPHA8, &albedo_levels, &aw, &ah);
+    glActiveTexture(GL_TEXTURE1);
+    read_texture(&r, GL_RGBA8, &normal_levels, &nw, &nh);
+    if (albedo_levels != normal_levels || aw != nw || ah != nh) die("albedo and normal of different shapes");
+    uint32_t dw = u32(&r), dh = u32(&r);
+    glActiveTexture(GL_TEXTURE2);
+    GLuint depth;
+    glGenTextures(1, &depth);
+    glBindTexture(GL_TEXTURE_2D, depth);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_R16, (GLsizei)dw, (GLsizei)dh);
+    if ((size_t)(r.end - r.p) < (size_t)dw * dh * 2) die("depth map truncated");
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, (GLsizei)dw, (GLsizei)dh, GL_RED, GL_UNSIGNED_SHORT, r.p);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+
+    /* The mesh. */
+    GLuint vao, vbo, ibo;
+    glGenVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+    glGenBuffers(1, &vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glBufferData(GL_ARRAY_BUFFER, nv * 12 * sizeof(float), vertices, GL_STATIC_DRAW);
+    glGenBuffers(1, &ibo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, ni * sizeof(uint32_t), indices, GL_STATIC_DRAW);
+    const int offsets[4] = {0, 3, 6, 8}, sizes[4] = {3, 3, 2, 4};
+    for (int a = 0; a < 4; a++) {
+        glEnableVertexAttribArray((GLuint)a);
+        glVertexAttribPointer((GLuint)a, sizes[a], GL_FLOAT, GL_FALSE, 12 * sizeof(float),
+                              (const void *)(offsets[a] * sizeof(float)));
+    }
+
+    /* One program per technique, its constants compiled in. */
+    GLuint programs[TECHS];
+    for (int t = 0; t < TECHS; t++) {
+        char prelude[512];
+        snprintf(prelude, sizeof prelude,
+                 "#version 450 core\n#define TECH %d\n#define TEX_SIZE vec2(%d.0, %d.0)\n"
+                 "#define TEX_LEVELS %d.0\n#define HEIGHT_SCALE %.9g\n#define LAYERS 32.0\n"
+                 "#define EXPONENT %d\n#define AMBIENT %.9g\n#define STRENGTH %.9g\n",
+                 t, aw, ah, albedo_levels, height_scale, (int)exponent, ambient, strength);
+        GLuint p = glCreateProgram();
+        glAttachShader(p, compile(GL_VERTEX_SHADER, prelude, VERTEX));
+        glAttachShader(p, compile(GL_FRAGMENT_SHADER, prelude, FRAGMENT));
+        glLinkProgram(p);
+        GLint ok = 0;
+        glGetProgramiv(p, GL_LINK_STATUS, &ok);
+        if (!ok) die("program did not link");
+        programs[t] = p;
+    }
+    if ((float)(int)exponent != exponent) die("the specular exponent must be a whole number");
+
+    /* The sRGB render target (linear shader output, encoded on write). */
+    GLuint fbo, rb;
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glGenRenderbuffers(1, &rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, rb);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_SRGB8_ALPHA8, (GLsizei)width, (GLsizei)height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) die("incomplete framebuffer");
+    glEnable(GL_FRAMEBUFFER_SRGB);
+    glViewport(0, 0, (GLsizei)width, (GLsizei)height);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glClearColor(bg[0], bg[1], bg[2], 1.0f);
+    /* Our frame puts row 0 at the top; GL's window y points up: `dump` writes the rows read
+       back from the last to the first. */
+
+    uint8_t *pixels = malloc((size_t)width * height * 4);
+    char line[1024];
+    while (fgets(line, sizeof line, stdin)) {
+        char cmd[16], path[900];
+        int tech = 0, view = 0, n = 0;
+        if (sscanf(line, "%15s", cmd) != 1) continue;
+        if (strcmp(cmd, "quit") == 0) break;
+        int is_time = strcmp(cmd, "time") == 0;
+        if (is_time ? sscanf(line, "%*s %d %d %d", &tech, &view, &n) != 3
+                    : sscanf(line, "%*s %d %d %899s", &tech, &view, path) != 3)
+            die("bad command");
+        if (tech < 0 || tech >= TECHS || view < 0 || (uint32_t)view >= nviews) die("bad technique or view");
+        GLuint p = programs[tech];
+        glUseProgram(p);
+        glUniformMatrix4fv(glGetUniformLocation(p, "view_proj"), 1, GL_FALSE, views[view].view_proj);
+        glUniform3fv(glGetUniformLocation(p, "eye"), 1, views[view].eye);
+        glUniform3fv(glGetUniformLocation(p, "to_light"), 1, to_light);
+        if (is_time) {
+            printf("ms");
+            for (int i = 0; i < n; i++) {
+                double t0 = now_ms();
+                glClear(GL_COLOR_BUFFER_BIT);
+                glDrawElements(GL_TRIANGLES, (GLsizei)ni, GL_UNSIGNED_INT, 0);
+                glFinish();
+                printf(" %.4f", now_ms() - t0);
+            }
+            printf("\n");
+        } else {
+            glClear(GL_COLOR_BUFFER_BIT);
+            glDrawElements(GL_TRIANGLES, (GLsizei)ni, GL_UNSIGNED_INT, 0);
+            glFinish();
+            glPixelStorei(GL_PACK_ALIGNMENT, 4);
+            glReadPixels(0, 0, (GLsizei)width, (GLsizei)height, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
+            FILE *o = fopen(path, "wb");
+            if (!o) die("cannot write the dump");
+            for (uint32_t y = 0; y < height; y++)
+                fwrite(pixels + (size_t)(height - 1 - y) * width * 4, 1, (size_t)width * 4, o);
+            fclose(o);
+            printf("ok\n");
+        }
+        fflush(stdout);
+    }
+    eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(dpy, ctx);
+    eglTerminate(dpy);
+    return 0;
+}
