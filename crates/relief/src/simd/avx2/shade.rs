@@ -159,6 +159,34 @@ unsafe fn bilinear<const SRGB: bool>(tex: &Texture8, &(idx, stride, fx, fy): &Ce
     out
 }
 
+/// How many pixel rows below its own a group prefetches texels for ([`prefetch_below`]).
+const AHEAD: f32 = 3.0;
+
+/// Asks the cache for the texels that the pixels [`AHEAD`] rows below the group's first and
+/// last lanes will read from the first level, `(u, v) + AHEAD · ∂(u, v)/∂y` (the frame
+/// shades a band's rows top to bottom): where the view is oblique a row's cells lie in other
+/// texture rows than the row above read, and their first loads would otherwise wait on
+/// memory. A hint only: no value changes.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn prefetch_below(k: &ShadeConsts, lit: bool, p: &ShadeLanes, level: I, u: V, v: V) {
+    let ahead = splat(AHEAD);
+    let pu = sanitize(_mm256_add_ps(u, _mm256_mul_ps(ld(&p.dudy), ahead)));
+    let pv = sanitize(_mm256_add_ps(v, _mm256_mul_ps(ld(&p.dvdy), ahead)));
+    let (idx, ..) = taps(k.albedo, level, pu, pv);
+    let (first, last) = (_mm256_cvtsi256_si32(idx) as usize, _mm256_extract_epi32::<7>(idx) as usize);
+    // `wrapping_add`: the addresses are only hints (they are inside the copies, as every
+    // cell's are, but a prefetch needs no such promise).
+    let a = k.albedo.wide().as_ptr();
+    _mm_prefetch::<_MM_HINT_T0>(a.wrapping_add(first) as *const i8);
+    _mm_prefetch::<_MM_HINT_T0>(a.wrapping_add(last) as *const i8);
+    if lit {
+        let n = k.normal.wide().as_ptr();
+        _mm_prefetch::<_MM_HINT_T0>(n.wrapping_add(first) as *const i8);
+        _mm_prefetch::<_MM_HINT_T0>(n.wrapping_add(last) as *const i8);
+    }
+}
+
 /// The two levels around `l` (the upper clamped to the last) and the blend weight.
 #[inline]
 #[target_feature(enable = "avx2")]
@@ -355,7 +383,8 @@ pub(crate) unsafe fn shade(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANE
     store(color, k, out);
 }
 
-/// [`shade`] for `G` groups of eight pixels, `p[g]` into `out[g]`, their steps interleaved:
+/// [`shade`] for `G` groups of eight pixels, `p[g]` into `out[g]`, their steps interleaved
+/// (and each minified group's texels a few rows below prefetched, [`prefetch_below`]):
 /// each group's work is one long chain of dependent steps (level of detail, addresses, loads,
 /// filter, normalisation, encoding), and independent chains side by side keep the vector
 /// units busy while each waits. The same pixels as `G` calls of [`shade`] (a group whose blend
@@ -387,6 +416,12 @@ pub(crate) unsafe fn shade_groups<const G: usize>(
         (u[g], v[g]) = (sanitize(ld(&q.u)), sanitize(ld(&q.v)));
         let l = lod(&[ld(&q.dudx), ld(&q.dvdx), ld(&q.dudy), ld(&q.dvdy)], k.albedo);
         (k0[g], k1[g], t[g]) = levels(k.albedo, l);
+    }
+    for g in 0..G {
+        // Minified groups only: a magnified view reads few texels per row, already cached.
+        if !one_level(t[g]) {
+            prefetch_below(k, lit, p[g], k0[g], u[g], v[g]);
+        }
     }
     let (mut a, mut n) = ([[zero; 3]; G], [[zero; 3]; G]);
     for g in 0..G {
