@@ -250,7 +250,7 @@ fn fused_frames_are_bit_identical_across_kernels_threads_and_reuse() {
     let mats = [bricks(64)];
     let scene = wall(64);
     let cam = camera(45.0, 123, 77);
-    for name in ["pom:8", "basic", "normal", "pom-shadow:16:8", "pom-horizon:16:8", "relief"] {
+    for name in ["pom:8", "basic", "normal", "parallax", "pom-shadow:16:8", "pom-horizon:16:8", "relief"] {
         let t = Technique::parse(name).expect("technique");
         let kernel = t.kernel(KernelChoice::Auto).expect("kernel");
         let (recorded, _) = render_fused_records(&scene, &cam, &mats, t, kernel, true).expect("renders");

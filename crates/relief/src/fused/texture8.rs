@@ -4,15 +4,17 @@
 //! per texel before filtering (an `rgba8unorm-srgb` texture); normals are stored as
 //! `(n + 1) / 2` in unorm (an `rgba8unorm` texture) and filtered as stored.
 //!
-//! Beside the 8-bit codes each texture keeps the values its filter reads, 16 bits per channel
-//! in a `u64` (red in the low 16 bits, then green, blue, and 0): the code itself for unorm,
-//! and for sRGB the texel decoded to linear light once, when the texture is built, not per
-//! fetch (`round(linear · 65535)`; what that rounding gives up, at most 2⁻¹⁷ of linear light
-//! per texel, is below the 8-bit output's step, and is included in the fused frame's measured
-//! precision). That copy is padded: each level has one more column and one more row, copies
-//! of its first column and row, so the four texels of a bilinear cell are two pairs of
-//! neighbours in memory, `(x, y), (x + 1, y)` and the same one padded row further, whatever
-//! the wrap ([`Texture8::wide`]).
+//! Beside the 8-bit codes each texture keeps the values its filter reads, three 10-bit fields
+//! in a `u32` (red in the low 10 bits, then green, blue, and 2 zero bits): the code itself for
+//! unorm, and for sRGB the square root of the texel's linear light, `s = round(√linear ·
+//! 1023)`, computed once when the texture is built (the filter reads `s²`, linear light in
+//! units of [`LINEAR_STEP`] = 1/1023², exact in `f32`; the square root spends the bits where
+//! sRGB does, in the darks: no code moves by more than a sixth of an 8-bit step, and what
+//! that gives up is included in the fused frame's measured precision). Four bytes per texel
+//! is what a GPU reads from an `rgba8` texture. That copy is padded: each level has one more
+//! column and one more row, copies of its first column and row, so the four texels of a
+//! bilinear cell are two pairs of neighbours in memory, `(x, y), (x + 1, y)` and the same one
+//! padded row further, whatever the wrap ([`Texture8::wide`]).
 //!
 //! The levels are the float pyramid's own levels, rounded: the 8-bit path differs from the
 //! float one only by that rounding (and the per-texel decode), which the relief lab
@@ -34,15 +36,22 @@ pub enum Encoding {
     SignedUnorm,
 }
 
-/// The value of one unit of a [`Texture8::wide`] channel of an sRGB texture: `1 / 65535`.
-pub const LINEAR_STEP: f32 = 1.0 / 65535.0;
+/// Bits per channel of a [`Texture8::wide`] entry.
+pub const WIDE_BITS: u32 = 10;
+
+/// The largest value of a [`Texture8::wide`] channel (its mask).
+pub const WIDE_MAX: u32 = (1 << WIDE_BITS) - 1;
+
+/// The linear light of one unit of a squared [`Texture8::wide`] channel of an sRGB texture:
+/// `1 / 1023²`.
+pub const LINEAR_STEP: f32 = 1.0 / (WIDE_MAX * WIDE_MAX) as f32;
 
 /// An 8-bit RGBA texture with its mip pyramid (repeat wrap).
 #[derive(Clone, Debug)]
 pub struct Texture8 {
     texels: Vec<u32>,
     /// The filter's values, padded ([`Texture8::wide`]).
-    wide: Vec<u64>,
+    wide: Vec<u32>,
     /// Start of each level in `wide` (the last real level repeated to [`MAX_LEVELS`]).
     pub(crate) wide_offsets: [i32; MAX_LEVELS],
     encoding: Encoding,
@@ -109,11 +118,11 @@ impl Texture8 {
         let channel = |t: u32, c: u32| {
             let code = t >> (8 * c) & 0xff;
             match encoding {
-                Encoding::Srgb => (decode[code as usize] * 65535.0).round() as u64,
-                Encoding::SignedUnorm => u64::from(code),
+                Encoding::Srgb => (decode[code as usize].sqrt() * WIDE_MAX as f32).round() as u32,
+                Encoding::SignedUnorm => code,
             }
         };
-        let wide = |t: u32| channel(t, 0) | channel(t, 1) << 16 | channel(t, 2) << 32;
+        let wide = |t: u32| channel(t, 0) | channel(t, 1) << WIDE_BITS | channel(t, 2) << (2 * WIDE_BITS);
         for k in 0..MAX_LEVELS {
             if k < levels {
                 out.wide_offsets[k] = out.wide.len() as i32;
@@ -129,12 +138,12 @@ impl Texture8 {
         out
     }
 
-    /// The values the filter reads, 16 bits per channel (red in the low bits, then green,
-    /// blue and 0): for sRGB, each texel decoded to linear light (one unit is
-    /// [`LINEAR_STEP`]); for unorm, the code. Level `k` (`w × h` texels) starts at
+    /// The values the filter reads, [`WIDE_BITS`] bits per channel (red in the low bits, then
+    /// green, blue and 0): for sRGB, the square root of each texel's linear light (the square
+    /// of a channel counts units of [`LINEAR_STEP`]); for unorm, the code. Level `k` (`w × h` texels) starts at
     /// `wide_offsets[k]` and holds `(w + 1) × (h + 1)` entries, row-major: texel `(x, y)` at
     /// `y · (w + 1) + x`, column `w` repeating column 0 and row `h` repeating row 0.
-    pub fn wide(&self) -> &[u64] {
+    pub fn wide(&self) -> &[u32] {
         &self.wide
     }
 
@@ -217,9 +226,10 @@ mod tests {
         // Codes: linear 0.5 is sRGB 0.7354 → 188; alpha 255.
         assert_eq!(t8.texels()[0] >> 16 & 0xff, 188);
         assert_eq!(t8.texels()[0] >> 24, 255);
-        // The linear copy: code 188 decodes to 0.50289 → 32957 of 65535; code 0 to 0; no alpha.
-        assert_eq!(t8.wide()[0] >> 32, 32957);
-        assert_eq!(t8.wide()[0] & 0xffff, 0);
+        // The linear copy: code 188 decodes to 0.50289, whose root 0.70915 is 725 of 1023;
+        // code 0 to 0; no alpha.
+        assert_eq!(t8.wide()[0] >> 20, 725);
+        assert_eq!(t8.wide()[0] & WIDE_MAX, 0);
         let mut padded = 0;
         for k in 0..t8.level_count() {
             let (w, h) = (t8.widths[k], t8.heights[k]);
@@ -230,8 +240,14 @@ mod tests {
                     let l = t8.wide()[(padded + y * (w + 1) + x) as usize];
                     for ch in 0..3 {
                         let exact = srgb8_to_linear_table()[(c >> (8 * ch) & 0xff) as usize];
-                        let wide = (l >> (16 * ch) & 0xffff) as f32 * LINEAR_STEP;
-                        assert!((wide - exact).abs() <= 0.5 / 65535.0 + 1e-7, "{wide} vs {exact}");
+                        let s = (l >> (WIDE_BITS * ch) & WIDE_MAX) as f32;
+                        // The root rounded to the nearest unit: within half a unit.
+                        assert!((s - exact.sqrt() * 1023.0).abs() <= 0.5 + 1e-3, "{s} vs {exact}");
+                        // Its square counts units of LINEAR_STEP, within a sixth of an 8-bit
+                        // step once sRGB-encoded (the format's stated bound).
+                        let back = renderlab_core::color::linear_to_srgb(s * s * LINEAR_STEP) * 255.0;
+                        let code = (c >> (8 * ch) & 0xff) as f32;
+                        assert!((back - code).abs() <= 1.0 / 6.0, "code {code} back as {back}");
                     }
                 }
             }
@@ -253,7 +269,7 @@ mod tests {
         assert_eq!(t8.texels()[0] & 0xff_ffff, 128 << 8 | 255 << 16);
         assert_eq!(t8.texels()[1] & 0xff_ffff, 0, "NaN stores as 0, not garbage");
         // Unorm textures are filtered as stored: the wide copy holds the codes.
-        assert_eq!(t8.wide()[0], 128 << 16 | 255 << 32);
+        assert_eq!(t8.wide()[0], 128 << WIDE_BITS | 255 << (2 * WIDE_BITS));
         assert_eq!(t8.wide()[1], 0);
         assert_eq!(t8.wide()[2], t8.wide()[0], "column 0 repeated");
     }

@@ -1,10 +1,11 @@
 //! The vector kernel of parallax mapping on the packed map: eight rays per vector, one
 //! bilinear depth fetch each (two 32-bit gathers from the map's 16-bit depths alone, each
-//! element a texel and its right neighbour), the offset `uv + dp · depth`.
+//! element a texel and its right neighbour), the offset `uv + dp · depth`. The rays are read
+//! as eight 16-byte blocks transposed, twice, not gathered.
 //! Each lane performs the scalar twin's operations (`simd::scalar::parallax`) in the same
 //! order, so the hits are bit-identical to it.
 
-use super::load::transpose_halves;
+use super::load::{fields, transpose_halves};
 use super::math::finite;
 use super::LANES;
 use crate::maps::packed::{PackedRelief, DEPTH_STEP};
@@ -14,16 +15,22 @@ use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
 use std::arch::x86_64::*;
 
-/// [`packed_setup`] for the eight rays at `rays` (`(u, v, view x, y, z)` each): the entry
-/// `(u, v)` and the offset per unit depth `(du, dv)`, each lane's operations the scalar's.
+/// [`packed_setup`] for the eight rays at `rays` (`(u, v, view x, y, z)` each, five floats in
+/// that order, checked at compile time): the entry `(u, v)` and the offset per unit depth
+/// `(du, dv)`, each lane's operations the scalar's.
 #[inline]
 #[target_feature(enable = "avx2")]
 unsafe fn setup8(inp: &ReliefInputs, rays: *const (Vec2, Vec3)) -> (__m256, __m256, __m256, __m256) {
-    const RAY: i32 = (std::mem::size_of::<(Vec2, Vec3)>() / 4) as i32;
+    const RAY: usize = std::mem::size_of::<(Vec2, Vec3)>() / 4;
+    const _: () = assert!(
+        RAY == 5 && std::mem::offset_of!((Vec2, Vec3), 1) == 8,
+        "a ray is its UV's two floats, then its view's three"
+    );
     let base = rays as *const f32;
-    let idx = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32(RAY));
-    let field = |f: i32| _mm256_i32gather_ps::<4>(base, _mm256_add_epi32(idx, _mm256_set1_epi32(f)));
-    let (u, v, x, y, z) = (field(0), field(1), field(2), field(3), field(4));
+    // Eight rays' 16-byte blocks transposed, no gathers: fields 0..4 (u, v, x, y) of each ray,
+    // then fields 1..5 (v, x, y, z), whose last block ends at the eighth ray's end.
+    let [u, v, x, y] = fields(base, RAY, 0);
+    let z = fields(base.add(1), RAY, 0)[3];
     // uv_per_depth: (−x / max(z, MIN_VIEW_Z)) · scale (`max` keeps the bound for a NaN z).
     let z = _mm256_max_ps(z, _mm256_set1_ps(MIN_VIEW_Z));
     let neg = _mm256_set1_ps(-0.0);

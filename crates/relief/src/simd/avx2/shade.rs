@@ -1,13 +1,12 @@
 //! The vector kernel of the fused frame's shading ([`crate::fused::lanes`]): eight pixels
 //! per group in AVX2 lanes (one group per call, or several with their steps interleaved),
-//! each bilinear cell's texels fetched as two 16-byte loads per lane from the texture's padded
+//! each bilinear cell's texels fetched as two 8-byte loads per lane from the texture's padded
 //! copy, every arithmetic step in the scalar twin's order (no fused multiply-add), so that the
 //! pixels are bit-identical to the scalar twin's (`simd::scalar::shade`).
 
-use super::load::transpose_halves;
 use super::math::{finite, log2};
 use crate::fused::lanes::{ShadeConsts, ShadeLanes, LANES};
-use crate::fused::texture8::{Texture8, LINEAR_STEP, MAX_LEVELS};
+use crate::fused::texture8::{Texture8, LINEAR_STEP, MAX_LEVELS, WIDE_BITS, WIDE_MAX};
 use crate::trace::Shading;
 use renderlab_core::srgb8::{ENCODE_MAX_BITS, ENCODE_MIN_BITS};
 use std::arch::x86_64::*;
@@ -87,64 +86,69 @@ unsafe fn taps(tex: &Texture8, k: I, u: V, v: V) -> Cell {
     (idx, stride, _mm256_sub_ps(x, xf), _mm256_sub_ps(y, yf))
 }
 
-/// Entries `i` and `i + 1` of `wide` for lane `a` (low half) and lane `b` (high half).
+/// Entries `i` and `i + 1` of `wide` (one 8-byte load) for lanes `a` and `b` in that order.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn pair_of_lanes(wide: *const u64, ix: &[i32; LANES], a: usize, b: usize) -> I {
+unsafe fn pair_of_lanes(wide: *const u32, ix: &[i32; LANES], a: usize, b: usize) -> __m128i {
     // SAFETY (caller): each index is a texel of a level's unpadded grid, so the entry after
     // it (the padded column at worst) is inside `wide`.
-    let lo = _mm_loadu_si128(wide.add(ix[a] as usize) as *const __m128i);
-    let hi = _mm_loadu_si128(wide.add(ix[b] as usize) as *const __m128i);
-    _mm256_inserti128_si256::<1>(_mm256_castsi128_si256(lo), hi)
+    let lo = _mm_castsi128_pd(_mm_loadl_epi64(wide.add(ix[a] as usize) as *const __m128i));
+    _mm_castpd_si128(_mm_loadh_pd(lo, wide.add(ix[b] as usize) as *const f64))
 }
 
 /// The channels of the left and right texels of the eight lanes' rows starting at `idx`: one
-/// 16-byte load per lane (the two neighbours), then the lanes transposed into channels.
+/// 8-byte load per lane (the two neighbours), the lanes' left and right entries split apart,
+/// then each entry's three fields, as the filter reads them (squared for an sRGB texture,
+/// `SRGB`).
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn row(wide: *const u64, idx: I) -> ([V; 3], [V; 3]) {
+unsafe fn row<const SRGB: bool>(wide: *const u32, idx: I) -> ([V; 3], [V; 3]) {
     let mut ix = [0i32; LANES];
     _mm256_storeu_si256(ix.as_mut_ptr() as *mut I, idx);
-    // Element j of `p[i]` (16-bit) is channel j % 4 of the left (j < 4) or right texel, of
-    // lane i in the low half and of lane i + 4 in the high half.
-    let p = [
-        pair_of_lanes(wide, &ix, 0, 4),
-        pair_of_lanes(wide, &ix, 1, 5),
-        pair_of_lanes(wide, &ix, 2, 6),
-        pair_of_lanes(wide, &ix, 3, 7),
-    ];
+    // Element 2j of `q[0]` is lane j's left entry, element 2j + 1 its right one, for lanes
+    // 0, 1 | 4, 5; `q[1]` the same for lanes 2, 3 | 6, 7.
     // No closures here: a closure is compiled without this function's target features.
-    let z = _mm256_setzero_si256();
-    let l = transpose_halves(
-        _mm256_castsi256_ps(_mm256_unpacklo_epi16(p[0], z)),
-        _mm256_castsi256_ps(_mm256_unpacklo_epi16(p[1], z)),
-        _mm256_castsi256_ps(_mm256_unpacklo_epi16(p[2], z)),
-        _mm256_castsi256_ps(_mm256_unpacklo_epi16(p[3], z)),
+    let q0 = _mm256_inserti128_si256::<1>(
+        _mm256_castsi128_si256(pair_of_lanes(wide, &ix, 0, 1)),
+        pair_of_lanes(wide, &ix, 4, 5),
     );
-    let r = transpose_halves(
-        _mm256_castsi256_ps(_mm256_unpackhi_epi16(p[0], z)),
-        _mm256_castsi256_ps(_mm256_unpackhi_epi16(p[1], z)),
-        _mm256_castsi256_ps(_mm256_unpackhi_epi16(p[2], z)),
-        _mm256_castsi256_ps(_mm256_unpackhi_epi16(p[3], z)),
+    let q1 = _mm256_inserti128_si256::<1>(
+        _mm256_castsi128_si256(pair_of_lanes(wide, &ix, 2, 3)),
+        pair_of_lanes(wide, &ix, 6, 7),
     );
-    ([to_float(l[0]), to_float(l[1]), to_float(l[2])], [to_float(r[0]), to_float(r[1]), to_float(r[2])])
+    let (q0, q1) = (_mm256_castsi256_ps(q0), _mm256_castsi256_ps(q1));
+    let l = _mm256_castps_si256(_mm256_shuffle_ps::<0b10_00_10_00>(q0, q1));
+    let r = _mm256_castps_si256(_mm256_shuffle_ps::<0b11_01_11_01>(q0, q1));
+    (fields::<SRGB>(l), fields::<SRGB>(r))
 }
 
-/// The 32-bit integers in `x`'s lanes as floats.
+/// The three [`WIDE_BITS`]-bit fields of each lane's entry as floats, squared for `SRGB`.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn to_float(x: V) -> V {
-    _mm256_cvtepi32_ps(_mm256_castps_si256(x))
+unsafe fn fields<const SRGB: bool>(t: I) -> [V; 3] {
+    let mask = _mm256_set1_epi32(WIDE_MAX as i32);
+    const _: () = assert!(WIDE_BITS == 10, "the shifts below");
+    let c = [
+        _mm256_and_si256(t, mask),
+        _mm256_and_si256(_mm256_srli_epi32::<10>(t), mask),
+        _mm256_and_si256(_mm256_srli_epi32::<20>(t), mask),
+    ];
+    let mut out = [_mm256_setzero_ps(); 3];
+    for (o, c) in out.iter_mut().zip(c) {
+        let f = _mm256_cvtepi32_ps(c);
+        *o = if SRGB { _mm256_mul_ps(f, f) } else { f };
+    }
+    out
 }
 
 /// Bilinear RGB from `tex` at the cells `(idx, stride, fx, fy)`, in the units of
 /// [`Texture8::wide`].
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn bilinear(tex: &Texture8, &(idx, stride, fx, fy): &Cell) -> [V; 3] {
+unsafe fn bilinear<const SRGB: bool>(tex: &Texture8, &(idx, stride, fx, fy): &Cell) -> [V; 3] {
     let wide = tex.wide().as_ptr();
-    let (t00, t10) = row(wide, idx);
-    let (t01, t11) = row(wide, _mm256_add_epi32(idx, stride));
+    let (t00, t10) = row::<SRGB>(wide, idx);
+    let (t01, t11) = row::<SRGB>(wide, _mm256_add_epi32(idx, stride));
     let mut out = [_mm256_setzero_ps(); 3];
     for (c, o) in out.iter_mut().enumerate() {
         let (a, b, cc, d) = (t00[c], t10[c], t01[c], t11[c]);
@@ -153,6 +157,34 @@ unsafe fn bilinear(tex: &Texture8, &(idx, stride, fx, fy): &Cell) -> [V; 3] {
         *o = _mm256_add_ps(top, _mm256_mul_ps(_mm256_sub_ps(bottom, top), fy));
     }
     out
+}
+
+/// How many pixel rows below its own a group prefetches texels for ([`prefetch_below`]).
+const AHEAD: f32 = 3.0;
+
+/// Asks the cache for the texels that the pixels [`AHEAD`] rows below the group's first and
+/// last lanes will read from the first level, `(u, v) + AHEAD · ∂(u, v)/∂y` (the frame
+/// shades a band's rows top to bottom): where the view is oblique a row's cells lie in other
+/// texture rows than the row above read, and their first loads would otherwise wait on
+/// memory. A hint only: no value changes.
+#[inline]
+#[target_feature(enable = "avx2")]
+unsafe fn prefetch_below(k: &ShadeConsts, lit: bool, p: &ShadeLanes, level: I, u: V, v: V) {
+    let ahead = splat(AHEAD);
+    let pu = sanitize(_mm256_add_ps(u, _mm256_mul_ps(ld(&p.dudy), ahead)));
+    let pv = sanitize(_mm256_add_ps(v, _mm256_mul_ps(ld(&p.dvdy), ahead)));
+    let (idx, ..) = taps(k.albedo, level, pu, pv);
+    let (first, last) = (_mm256_cvtsi256_si32(idx) as usize, _mm256_extract_epi32::<7>(idx) as usize);
+    // `wrapping_add`: the addresses are only hints (they are inside the copies, as every
+    // cell's are, but a prefetch needs no such promise).
+    let a = k.albedo.wide().as_ptr();
+    _mm_prefetch::<_MM_HINT_T0>(a.wrapping_add(first) as *const i8);
+    _mm_prefetch::<_MM_HINT_T0>(a.wrapping_add(last) as *const i8);
+    if lit {
+        let n = k.normal.wide().as_ptr();
+        _mm_prefetch::<_MM_HINT_T0>(n.wrapping_add(first) as *const i8);
+        _mm_prefetch::<_MM_HINT_T0>(n.wrapping_add(last) as *const i8);
+    }
 }
 
 /// The two levels around `l` (the upper clamped to the last) and the blend weight.
@@ -191,13 +223,13 @@ unsafe fn one_level(t: V) -> bool {
 /// Trilinear RGB at levels of detail `l`, in the units of the padded copy.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn trilinear(tex: &Texture8, u: V, v: V, l: V) -> [V; 3] {
+unsafe fn trilinear<const SRGB: bool>(tex: &Texture8, u: V, v: V, l: V) -> [V; 3] {
     let (k0, k1, t) = levels(tex, l);
-    let s0 = bilinear(tex, &taps(tex, k0, u, v));
+    let s0 = bilinear::<SRGB>(tex, &taps(tex, k0, u, v));
     if one_level(t) {
         return s0;
     }
-    let s1 = bilinear(tex, &taps(tex, k1, u, v));
+    let s1 = bilinear::<SRGB>(tex, &taps(tex, k1, u, v));
     blend(s0, s1, t)
 }
 
@@ -208,12 +240,12 @@ unsafe fn trilinear(tex: &Texture8, u: V, v: V, l: V) -> [V; 3] {
 unsafe fn trilinear_pair(a: &Texture8, b: &Texture8, u: V, v: V, l: V) -> ([V; 3], [V; 3]) {
     let (k0, k1, t) = levels(a, l);
     let t0 = taps(a, k0, u, v);
-    let (a0, b0) = (bilinear(a, &t0), bilinear(b, &t0));
+    let (a0, b0) = (bilinear::<true>(a, &t0), bilinear::<false>(b, &t0));
     if one_level(t) {
         return (a0, b0);
     }
     let t1 = taps(a, k1, u, v);
-    (blend(a0, bilinear(a, &t1), t), blend(b0, bilinear(b, &t1), t))
+    (blend(a0, bilinear::<true>(a, &t1), t), blend(b0, bilinear::<false>(b, &t1), t))
 }
 
 /// `c · s` for each channel.
@@ -338,12 +370,12 @@ pub(crate) unsafe fn shade(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANE
     let d = [ld(&p.dudx), ld(&p.dvdx), ld(&p.dudy), ld(&p.dvdy)];
     let la = lod(&d, k.albedo);
     let color = match k.shading {
-        Shading::Unlit => scaled(trilinear(k.albedo, u, v, la), LINEAR_STEP),
+        Shading::Unlit => scaled(trilinear::<true>(k.albedo, u, v, la), LINEAR_STEP),
         Shading::Lit | Shading::LitShadowed => {
             let (albedo, nu) = if k.albedo.same_shape(k.normal) {
                 trilinear_pair(k.albedo, k.normal, u, v, la)
             } else {
-                (trilinear(k.albedo, u, v, la), trilinear(k.normal, u, v, lod(&d, k.normal)))
+                (trilinear::<true>(k.albedo, u, v, la), trilinear::<false>(k.normal, u, v, lod(&d, k.normal)))
             };
             light(scaled(albedo, LINEAR_STEP), nu, p, k)
         }
@@ -351,7 +383,8 @@ pub(crate) unsafe fn shade(p: &ShadeLanes, k: &ShadeConsts, out: &mut [u32; LANE
     store(color, k, out);
 }
 
-/// [`shade`] for `G` groups of eight pixels, `p[g]` into `out[g]`, their steps interleaved:
+/// [`shade`] for `G` groups of eight pixels, `p[g]` into `out[g]`, their steps interleaved
+/// (and each minified group's texels a few rows below prefetched, [`prefetch_below`]):
 /// each group's work is one long chain of dependent steps (level of detail, addresses, loads,
 /// filter, normalisation, encoding), and independent chains side by side keep the vector
 /// units busy while each waits. The same pixels as `G` calls of [`shade`] (a group whose blend
@@ -384,20 +417,26 @@ pub(crate) unsafe fn shade_groups<const G: usize>(
         let l = lod(&[ld(&q.dudx), ld(&q.dvdx), ld(&q.dudy), ld(&q.dvdy)], k.albedo);
         (k0[g], k1[g], t[g]) = levels(k.albedo, l);
     }
+    for g in 0..G {
+        // Minified groups only: a magnified view reads few texels per row, already cached.
+        if !one_level(t[g]) {
+            prefetch_below(k, lit, p[g], k0[g], u[g], v[g]);
+        }
+    }
     let (mut a, mut n) = ([[zero; 3]; G], [[zero; 3]; G]);
     for g in 0..G {
         let c = taps(k.albedo, k0[g], u[g], v[g]);
-        a[g] = bilinear(k.albedo, &c);
+        a[g] = bilinear::<true>(k.albedo, &c);
         if lit {
-            n[g] = bilinear(k.normal, &c);
+            n[g] = bilinear::<false>(k.normal, &c);
         }
     }
     if !t.iter().all(|&t| one_level(t)) {
         for g in 0..G {
             let c = taps(k.albedo, k1[g], u[g], v[g]);
-            a[g] = blend(a[g], bilinear(k.albedo, &c), t[g]);
+            a[g] = blend(a[g], bilinear::<true>(k.albedo, &c), t[g]);
             if lit {
-                n[g] = blend(n[g], bilinear(k.normal, &c), t[g]);
+                n[g] = blend(n[g], bilinear::<false>(k.normal, &c), t[g]);
             }
         }
     }

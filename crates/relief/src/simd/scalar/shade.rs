@@ -5,14 +5,14 @@
 //!    short series ([`log2`], within 2⁻²⁰ of the true value) that a vector unit can run.
 //! 2. Trilinear albedo from the sRGB texture's texels decoded to linear light before
 //!    filtering, as a GPU samples an `rgba8unorm-srgb` texture (the decoded values are the
-//!    texture's 16-bit copy, [`Texture8::wide`], filtered in its units and scaled by
-//!    [`LINEAR_STEP`] at the end).
+//!    squares of the texture's 10-bit root copy, [`Texture8::wide`], filtered in their units
+//!    and scaled by [`LINEAR_STEP`] at the end).
 //! 3. For lit techniques, the trilinear normal from the unorm normal map, normalised, and
 //!    the thesis's ambient + Lambert + Blinn–Phong light (`renderlab_relief::render::shade::light`).
 //! 4. sRGB encoding by table ([`renderlab_core::srgb8::encode_srgb8`]) into one RGBA8 `u32`.
 
 use crate::fused::lanes::{ShadeConsts, ShadeLanes, LANES};
-use crate::fused::texture8::{Texture8, LINEAR_STEP};
+use crate::fused::texture8::{Texture8, LINEAR_STEP, WIDE_BITS, WIDE_MAX};
 use crate::trace::Shading;
 use renderlab_core::srgb8::encode_srgb8;
 
@@ -62,19 +62,27 @@ fn taps(tex: &Texture8, k: usize, u: f32, v: f32) -> ([usize; 4], f32, f32) {
     ([at(x0, y0), at(x1, y0), at(x0, y1), at(x1, y1)], x - xf, y - yf)
 }
 
-/// The three channels of entry `i` of [`Texture8::wide`] as the filter reads them (for sRGB,
-/// linear light in units of [`LINEAR_STEP`]; for unorm, the codes).
+/// The three channels of entry `i` of [`Texture8::wide`] as the filter reads them: for the
+/// sRGB albedo (`srgb`), the stored roots squared, linear light in units of [`LINEAR_STEP`];
+/// for the unorm normal map, the codes.
 #[inline]
-fn channels(tex: &Texture8, i: usize) -> [f32; 3] {
+fn channels(tex: &Texture8, i: usize, srgb: bool) -> [f32; 3] {
     let t = tex.wide()[i];
-    std::array::from_fn(|c| (t >> (16 * c) & 0xffff) as f32)
+    std::array::from_fn(|c| {
+        let s = (t >> (WIDE_BITS * c as u32) & WIDE_MAX) as f32;
+        if srgb {
+            s * s
+        } else {
+            s
+        }
+    })
 }
 
 /// Bilinear RGB of level `k`, in the units of [`channels`].
 #[inline]
-fn bilinear(tex: &Texture8, k: usize, u: f32, v: f32) -> [f32; 3] {
+fn bilinear(tex: &Texture8, k: usize, u: f32, v: f32, srgb: bool) -> [f32; 3] {
     let (idx, fx, fy) = taps(tex, k, u, v);
-    let px = idx.map(|i| channels(tex, i));
+    let px = idx.map(|i| channels(tex, i, srgb));
     std::array::from_fn(|c| {
         let [a, b, cc, d] = px.map(|p| p[c]);
         let top = a + (b - a) * fx;
@@ -86,13 +94,13 @@ fn bilinear(tex: &Texture8, k: usize, u: f32, v: f32) -> [f32; 3] {
 /// Trilinear RGB at level of detail `l`, in the units of [`channels`]: the two levels around
 /// it (the upper one clamped to the last), blended.
 #[inline]
-fn trilinear(tex: &Texture8, u: f32, v: f32, l: f32) -> [f32; 3] {
+fn trilinear(tex: &Texture8, u: f32, v: f32, l: f32, srgb: bool) -> [f32; 3] {
     let lf = l.floor();
     let t = l - lf;
     let k0 = lf as i32 as usize;
     let k1 = (k0 + 1).min(tex.level_count() - 1);
-    let s0 = bilinear(tex, k0, u, v);
-    let s1 = bilinear(tex, k1, u, v);
+    let s0 = bilinear(tex, k0, u, v, srgb);
+    let s1 = bilinear(tex, k1, u, v, srgb);
     std::array::from_fn(|c| s0[c] + (s1[c] - s0[c]) * t)
 }
 
@@ -126,13 +134,13 @@ pub(crate) fn shade_lane(p: &ShadeLanes, i: usize, k: &ShadeConsts) -> u32 {
     let d = [p.dudx[i], p.dvdx[i], p.dudy[i], p.dvdy[i]];
     let a = k.albedo;
     let la = lod(d, a.widths_f[0], a.heights_f[0], a.level_count());
-    let albedo = trilinear(a, u, v, la).map(|c| c * LINEAR_STEP);
+    let albedo = trilinear(a, u, v, la, true).map(|c| c * LINEAR_STEP);
     let color = match k.shading {
         Shading::Unlit => albedo,
         Shading::Lit | Shading::LitShadowed => {
             let nt = k.normal;
             let ln = lod(d, nt.widths_f[0], nt.heights_f[0], nt.level_count());
-            let n = trilinear(nt, u, v, ln).map(|c| c * (2.0 / 255.0) - 1.0);
+            let n = trilinear(nt, u, v, ln, false).map(|c| c * (2.0 / 255.0) - 1.0);
             let n = normalized(n).unwrap_or([0.0, 0.0, 1.0]);
             let l = [p.lx[i], p.ly[i], p.lz[i]];
             let diff = (n[0] * l[0] + n[1] * l[1] + n[2] * l[2]).max(0.0);
