@@ -47,20 +47,23 @@ impl Prepared {
     #[inline]
     #[target_feature(enable = "avx2,fma")]
     pub(super) unsafe fn one(q: &RayQuery) -> Prepared {
-        let k = q.tri.k;
+        let [kx, ky, kz] = q.tri.k;
         // The origin permuted to (kx, ky, kz) in registers (indexing the array by `k` would
         // store and reload it).
         let o = _mm_setr_ps(q.tri.org[0], q.tri.org[1], q.tri.org[2], 0.0);
-        let o = _mm_permutevar_ps(o, _mm_setr_epi32(k[0] as i32, k[1] as i32, k[2] as i32, 3));
+        let o = _mm_permutevar_ps(o, _mm_setr_epi32(kx as i32, ky as i32, kz as i32, 3));
+        // (No closures: a closure here is compiled without the target features and called.)
+        let [n0, n1, n2] = q.near;
+        let [f0, f1, f2] = q.far;
         Prepared {
             org: q.org,
             inv: q.inv,
             t_min: q.t_min,
-            octant: (0..3).map(|a| ((q.near[a] - 2 * a) as u32) << a).sum(),
-            near: q.near.map(|r| r as u32),
-            far: q.far.map(|r| r as u32),
+            octant: (n0 as u32 & 1) | (n1 as u32 & 1) << 1 | (n2 as u32 & 1) << 2,
+            near: [n0 as u32, n1 as u32, n2 as u32],
+            far: [f0 as u32, f1 as u32, f2 as u32],
             pad1: [0; 2],
-            k: k.map(|a| a as u32),
+            k: [kx as u32, ky as u32, kz as u32],
             tri_org: [
                 _mm_cvtss_f32(o),
                 _mm_cvtss_f32(_mm_shuffle_ps::<0x55>(o, o)),
