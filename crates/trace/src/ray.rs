@@ -43,6 +43,7 @@ impl Ray {
     /// transform). The direction is not renormalised, so distances along it are the same in
     /// both spaces. The BVH and the brute-force reference both go through this function, so
     /// they see bit-identical object-space rays.
+    #[inline]
     pub fn transformed(&self, m: &Affine3A) -> Ray {
         Ray {
             origin: m.transform_point3(self.origin),
