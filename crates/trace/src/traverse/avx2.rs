@@ -67,16 +67,25 @@ impl Backend for Avx2 {
         // packet, all of them).
         let lead = p.get_unchecked(active.trailing_zeros() as usize).assume_init_ref();
         let shared = planes(lead, node);
-        let mut a = active;
+        // Rays of another octant wait for a second pass, so that the first keeps the shared
+        // rows in registers.
+        let (mut a, mut others) = (active, 0u32);
         while a != 0 {
             let r = a.trailing_zeros() as usize;
             a &= a - 1;
             let q = p.get_unchecked(r).assume_init_ref();
-            let (near, hit) = if q.octant == lead.octant {
-                slabs_of(q, &shared, *t_max.get_unchecked(r))
-            } else {
-                slabs(q, node, *t_max.get_unchecked(r))
-            };
+            if q.octant != lead.octant {
+                others |= 1 << r;
+                continue;
+            }
+            let (near, hit) = slabs_of(q, &shared, *t_max.get_unchecked(r));
+            *rows.get_unchecked_mut(r / 8) |= (_mm256_movemask_ps(hit) as u32 as u64) << (8 * (r % 8));
+            least = _mm256_min_ps(_mm256_blendv_ps(inf, near, hit), least);
+        }
+        while others != 0 {
+            let r = others.trailing_zeros() as usize;
+            others &= others - 1;
+            let (near, hit) = slabs(p.get_unchecked(r).assume_init_ref(), node, *t_max.get_unchecked(r));
             *rows.get_unchecked_mut(r / 8) |= (_mm256_movemask_ps(hit) as u32 as u64) << (8 * (r % 8));
             least = _mm256_min_ps(_mm256_blendv_ps(inf, near, hit), least);
         }
