@@ -7,7 +7,11 @@ use glam::{Affine3A, Vec3};
 /// `dir` need not be unit length: distances are in units of `dir`. A query treats a ray whose
 /// origin or direction is not finite, whose direction is zero, or whose interval is empty or NaN
 /// as hitting nothing; a negative `t_min` counts as 0.
+///
+/// Eight `f32` in this order (`repr(C)`), so that a packet's setup can read eight rays as an
+/// 8 × 8 matrix.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C)]
 pub struct Ray {
     /// Where the ray starts.
     pub origin: Vec3,
@@ -39,6 +43,7 @@ impl Ray {
     /// transform). The direction is not renormalised, so distances along it are the same in
     /// both spaces. The BVH and the brute-force reference both go through this function, so
     /// they see bit-identical object-space rays.
+    #[inline]
     pub fn transformed(&self, m: &Affine3A) -> Ray {
         Ray {
             origin: m.transform_point3(self.origin),

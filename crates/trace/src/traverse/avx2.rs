@@ -1,6 +1,8 @@
 //! The AVX2 kernel: a wide node's eight slab tests in one 256-bit register per plane, a leaf's
-//! four watertight triangle tests in one 128-bit register per quantity; a packet's node test
-//! runs the node test for each of its rays and keeps the masks and least distances in registers. Each lane performs
+//! four watertight triangle tests in one 128-bit register per quantity (its ray form and
+//! setup are in [`crate::traverse::avx2_ray`]); a packet's node test
+//! runs the node test for each of its rays (the node's rows loaded once for all rays whose
+//! directions share their signs) and keeps the masks and least distances in registers. Each lane performs
 //! exactly the scalar kernel's operations (fused multiply-adds where the scalar test calls
 //! `mul_add`, separate operations elsewhere, `maxps`/`minps` operand order as the scalar
 //! `max_ps`/`min_ps`), so both kernels produce the same bits. The kernel needs AVX2 and FMA.
@@ -8,6 +10,8 @@
 #![cfg(target_arch = "x86_64")]
 
 use crate::node::{TriBlock, WideNode, WIDTH};
+use crate::ray::Ray;
+use crate::traverse::avx2_ray::Prepared;
 use crate::traverse::backend::{Backend, BlockHits, PacketNode, RayQuery, FUSED_SLABS, IZE, PACKET};
 use crate::triangle::{edge_functions_f64, EXACT_EDGES, FUSED};
 use std::arch::x86_64::*;
@@ -21,48 +25,19 @@ const EAGER: bool = cfg!(feature = "measure-eager-division");
 #[derive(Clone, Copy, Debug)]
 pub struct Avx2;
 
-/// A ray as the kernel reads it: scalars, broadcast into registers where used (a broadcast
-/// from memory costs what a vector load does), so that a packet's rays take little space.
-#[derive(Clone, Copy, Debug)]
-pub struct Prepared {
-    org: [f32; 3],
-    inv: [f32; 3],
-    org_inv: [f32; 3],
-    near: [u32; 3],
-    far: [u32; 3],
-    t_min: f32,
-    k: [u32; 3],
-    /// The origin's coordinates along `kx`, `ky`, `kz`.
-    tri_org: [f32; 3],
-    shear: [f32; 3],
-}
-
 impl Backend for Avx2 {
     type Prepared = Prepared;
 
     #[inline]
     #[target_feature(enable = "avx2,fma")]
     unsafe fn prepare(q: &RayQuery) -> Prepared {
-        let k = q.tri.k;
-        // The origin permuted to (kx, ky, kz) in registers (indexing the array by `k` would
-        // store and reload it).
-        let o = _mm_setr_ps(q.tri.org[0], q.tri.org[1], q.tri.org[2], 0.0);
-        let o = _mm_permutevar_ps(o, _mm_setr_epi32(k[0] as i32, k[1] as i32, k[2] as i32, 3));
-        Prepared {
-            org: q.org,
-            inv: q.inv,
-            org_inv: q.org_inv,
-            near: q.near.map(|r| r as u32),
-            far: q.far.map(|r| r as u32),
-            t_min: q.t_min,
-            k: k.map(|a| a as u32),
-            tri_org: [
-                _mm_cvtss_f32(o),
-                _mm_cvtss_f32(_mm_shuffle_ps::<0x55>(o, o)),
-                _mm_cvtss_f32(_mm_shuffle_ps::<0xaa>(o, o)),
-            ],
-            shear: q.tri.shear,
-        }
+        Prepared::one(q)
+    }
+
+    #[inline]
+    #[target_feature(enable = "avx2,fma")]
+    unsafe fn prepare8(rays: &[Ray; 8], out: &mut [MaybeUninit<Prepared>; 8], t_max: &mut [f32; 8]) -> u32 {
+        Prepared::eight(rays, out, t_max)
     }
 
     #[inline]
@@ -85,10 +60,31 @@ impl Backend for Avx2 {
         let inf = _mm256_set1_ps(f32::INFINITY);
         let mut least = inf;
         let mut rows = [0u64; PACKET / 8];
-        let mut a = active;
+        if active == 0 {
+            return PacketNode::from_rows(&rows, [f32::INFINITY; WIDTH]);
+        }
+        // The rows the first ray reads, loaded once for every ray of its octant (in a coherent
+        // packet, all of them).
+        let lead = p.get_unchecked(active.trailing_zeros() as usize).assume_init_ref();
+        let shared = planes(lead, node);
+        // Rays of another octant wait for a second pass, so that the first keeps the shared
+        // rows in registers.
+        let (mut a, mut others) = (active, 0u32);
         while a != 0 {
             let r = a.trailing_zeros() as usize;
             a &= a - 1;
+            let q = p.get_unchecked(r).assume_init_ref();
+            if q.octant != lead.octant {
+                others |= 1 << r;
+                continue;
+            }
+            let (near, hit) = slabs_of(q, &shared, *t_max.get_unchecked(r));
+            *rows.get_unchecked_mut(r / 8) |= (_mm256_movemask_ps(hit) as u32 as u64) << (8 * (r % 8));
+            least = _mm256_min_ps(_mm256_blendv_ps(inf, near, hit), least);
+        }
+        while others != 0 {
+            let r = others.trailing_zeros() as usize;
+            others &= others - 1;
             let (near, hit) = slabs(p.get_unchecked(r).assume_init_ref(), node, *t_max.get_unchecked(r));
             *rows.get_unchecked_mut(r / 8) |= (_mm256_movemask_ps(hit) as u32 as u64) << (8 * (r % 8));
             least = _mm256_min_ps(_mm256_blendv_ps(inf, near, hit), least);
@@ -166,37 +162,52 @@ impl Backend for Avx2 {
 #[inline]
 #[target_feature(enable = "avx2,fma")]
 unsafe fn slabs(p: &Prepared, node: &WideNode, t_max: f32) -> (__m256, __m256) {
-    let b = &node.bounds;
+    slabs_of(p, &planes(p, node), t_max)
+}
+
+/// The node's rows that ray `p` reads, in the order near x, y, z, far x, y, z (the same for
+/// every ray of one octant, [`Prepared::octant`]).
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn planes(p: &Prepared, node: &WideNode) -> [__m256; 6] {
     // Rows are 32-byte aligned ([`WideNode`] is `align(32)`, rows are 32 bytes); the row
-    // indices are 0..6 by construction of [`RayQuery`]. (Macros rather than closures keep
-    // every intrinsic inside this function's target features.)
+    // indices are 0..6 by construction of [`RayQuery`].
+    let row = |r: u32| node.bounds.get_unchecked(r as usize).as_ptr();
+    let [n0, n1, n2, f0, f1, f2] =
+        [row(p.near[0]), row(p.near[1]), row(p.near[2]), row(p.far[0]), row(p.far[1]), row(p.far[2])];
+    [
+        _mm256_load_ps(n0),
+        _mm256_load_ps(n1),
+        _mm256_load_ps(n2),
+        _mm256_load_ps(f0),
+        _mm256_load_ps(f1),
+        _mm256_load_ps(f2),
+    ]
+}
+
+/// [`slabs`] with the ray's rows of the node already loaded ([`planes`]).
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn slabs_of(p: &Prepared, planes: &[__m256; 6], t_max: f32) -> (__m256, __m256) {
+    // (Macros rather than closures keep every intrinsic inside this function's target
+    // features.)
     macro_rules! slab {
-        ($a:expr, $r:expr) => {
+        ($a:expr, $plane:expr) => {
             if FUSED_SLABS {
-                _mm256_fmsub_ps(
-                    _mm256_load_ps(b.get_unchecked($r as usize).as_ptr()),
-                    _mm256_set1_ps(p.inv[$a]),
-                    _mm256_set1_ps(p.org_inv[$a]),
-                )
+                _mm256_fmsub_ps($plane, _mm256_set1_ps(p.inv[$a]), _mm256_set1_ps(p.org_inv[$a]))
             } else {
-                _mm256_mul_ps(
-                    _mm256_sub_ps(
-                        _mm256_load_ps(b.get_unchecked($r as usize).as_ptr()),
-                        _mm256_set1_ps(p.org[$a]),
-                    ),
-                    _mm256_set1_ps(p.inv[$a]),
-                )
+                _mm256_mul_ps(_mm256_sub_ps($plane, _mm256_set1_ps(p.org[$a])), _mm256_set1_ps(p.inv[$a]))
             }
         };
     }
     let near = _mm256_max_ps(
-        slab!(0, p.near[0]),
-        _mm256_max_ps(slab!(1, p.near[1]), _mm256_max_ps(slab!(2, p.near[2]), _mm256_set1_ps(p.t_min))),
+        slab!(0, planes[0]),
+        _mm256_max_ps(slab!(1, planes[1]), _mm256_max_ps(slab!(2, planes[2]), _mm256_set1_ps(p.t_min))),
     );
     let far = _mm256_mul_ps(
         _mm256_min_ps(
-            slab!(0, p.far[0]),
-            _mm256_min_ps(slab!(1, p.far[1]), _mm256_min_ps(slab!(2, p.far[2]), _mm256_set1_ps(t_max))),
+            slab!(0, planes[3]),
+            _mm256_min_ps(slab!(1, planes[4]), _mm256_min_ps(slab!(2, planes[5]), _mm256_set1_ps(t_max))),
         ),
         _mm256_set1_ps(IZE),
     );

@@ -144,6 +144,31 @@ pub trait Backend {
     /// The CPU has the kernel's features.
     unsafe fn prepare(q: &RayQuery) -> Self::Prepared;
 
+    /// The kernel forms of eight rays (a packet's setup): lane `i` of `out` and `t_max[i]` (the
+    /// ray's interval end) are written for each ray `i` that [`RayQuery::new`] accepts, and
+    /// the result has bit `i` set; the other lanes get `t_max` −∞ and nothing that is read.
+    /// Kernels may override it with a faster form of the same results.
+    ///
+    /// # Safety
+    /// The CPU has the kernel's features.
+    #[inline(always)]
+    unsafe fn prepare8(
+        rays: &[Ray; 8],
+        out: &mut [MaybeUninit<Self::Prepared>; 8],
+        t_max: &mut [f32; 8],
+    ) -> u32 {
+        let mut valid = 0;
+        for (i, ray) in rays.iter().enumerate() {
+            t_max[i] = f32::NEG_INFINITY;
+            if let Some(q) = RayQuery::new(ray) {
+                out[i].write(Self::prepare(&q));
+                t_max[i] = q.t_max;
+                valid |= 1 << i;
+            }
+        }
+        valid
+    }
+
     /// Bit `i` of the mask is set when the ray enters child `i` before `t_max`; `dist[i]` is
     /// the distance at which it does (at least `t_min`).
     ///

@@ -1,7 +1,8 @@
 //! The packet walk: up to [`PACKET`] rays share one traversal of a hierarchy, written once for
 //! both levels (`PacketLeaves` says what a leaf is: [`crate::traverse::packet_leaves`]).
 //!
-//! Every ray keeps its own interval, best hit and kernel form. At a node, each ray still
+//! Every ray keeps its own interval, best hit and kernel form (made eight rays at a time,
+//! [`Backend::prepare8`], also for the rays that enter an instance together). At a node, each ray still
 //! active runs the kernel's own single-ray node test ([`Backend::node`], so every box decision
 //! is bit for bit the one the single-ray walk makes); a child is visited when any ray enters
 //! it, and only by the rays that do. A stack entry carries the child, the rays that entered
@@ -77,11 +78,31 @@ impl<B: Backend> Packet<B> {
     /// The CPU has `B`'s features.
     #[inline(always)]
     pub(crate) unsafe fn load(&mut self, rays: &[Ray]) {
-        for (r, ray) in rays.iter().enumerate().take(PACKET) {
+        let rays = &rays[..rays.len().min(PACKET)];
+        let mut groups = rays.chunks_exact(8);
+        for (h, group) in groups.by_ref().enumerate() {
+            // `h < PACKET / 8`.
+            self.set8(h, &*(group.as_ptr() as *const [Ray; 8]));
+        }
+        let base = rays.len() - groups.remainder().len();
+        for (r, ray) in groups.remainder().iter().enumerate() {
             if let Some(q) = RayQuery::new(ray) {
-                self.set(r, &q);
+                self.set(base + r, &q);
             }
         }
+    }
+
+    /// Puts `rays` in lanes `8·h .. 8·h + 8` (those that can hit something; the others stay
+    /// out of `valid`), set up together by the kernel.
+    ///
+    /// # Safety
+    /// The CPU has `B`'s features; `h < PACKET / 8`.
+    #[inline(always)]
+    pub(crate) unsafe fn set8(&mut self, h: usize, rays: &[Ray; 8]) {
+        debug_assert!(h < PACKET / 8);
+        let out = &mut *(self.prepared.as_mut_ptr().add(8 * h) as *mut [MaybeUninit<B::Prepared>; 8]);
+        let t_max = &mut *(self.t_max.as_mut_ptr().add(8 * h) as *mut [f32; 8]);
+        self.valid |= B::prepare8(rays, out, t_max) << (8 * h);
     }
 
     /// Ray `r`'s kernel form.

@@ -16,6 +16,7 @@ use crate::traverse::backend::{prefetch, Backend, RayQuery, PACKET};
 use crate::traverse::leaves::{no_hit, Instances, Triangles};
 use crate::traverse::packet::{self, Packet, PacketLeaves};
 use crate::traverse::walk::{self, Leaves};
+use glam::Vec3;
 use std::marker::PhantomData;
 
 /// A bottom level's leaves for a packet, reporting hits with `instance`.
@@ -103,6 +104,10 @@ impl<B: Backend> PacketLeaves<B> for Blocks<'_> {
     }
 }
 
+/// Rays of one group of eight entering an instance above which the group is set up together
+/// ([`Packet::set8`]) rather than one by one.
+const GROUP: u32 = 2;
+
 /// A top level's leaves for a packet: the instances, entered with the world rays `rays`.
 struct Placed<'a> {
     tlas: &'a Tlas,
@@ -117,18 +122,34 @@ impl Placed<'_> {
         &self,
         p: &Packet<B>,
         instance: u32,
-        mut active: u32,
+        active: u32,
         object: &mut Packet<B>,
     ) -> &Blas {
         debug_assert!((instance as usize) < self.tlas.placed.len());
         let placed = self.tlas.placed.get_unchecked(instance as usize);
-        while active != 0 {
-            let r = active.trailing_zeros() as usize;
-            active &= active - 1;
+        let carried = |r: usize| {
             let mut ray = self.rays.get_unchecked(r).transformed(&placed.world_to_object);
             ray.t_max = p.t_max[r];
-            if let Some(q) = RayQuery::new(&ray) {
-                object.set(r, &q);
+            ray
+        };
+        for h in 0..PACKET / 8 {
+            let mut group = (active >> (8 * h)) & 0xff;
+            if group.count_ones() > GROUP {
+                // Set up together; the idle lanes hold a ray with no direction, which is left out.
+                let mut rays = [Ray::new(Vec3::ZERO, Vec3::ZERO); 8];
+                while group != 0 {
+                    let i = group.trailing_zeros() as usize;
+                    group &= group - 1;
+                    rays[i] = carried(8 * h + i);
+                }
+                object.set8(h, &rays);
+            }
+            while group != 0 {
+                let r = 8 * h + group.trailing_zeros() as usize;
+                group &= group - 1;
+                if let Some(q) = RayQuery::new(&carried(r)) {
+                    object.set(r, &q);
+                }
             }
         }
         self.tlas.meshes.get_unchecked(placed.mesh as usize)

@@ -1,0 +1,318 @@
+//! The AVX2 kernel's form of a ray, made from one ray's [`RayQuery`] or from eight rays at
+//! once in vector registers.
+//!
+//! The eight-ray setup computes, lane by lane, exactly what [`RayQuery::new`] and
+//! [`crate::triangle::TriRay::new`] compute for one ray (the same divisions, comparisons and
+//! choices, as selects), so both give the same bits. It reads the eight rays as an 8 × 8
+//! matrix of floats (a [`Ray`] is eight `f32`), transposes it so that each register holds one
+//! quantity of all eight rays, and transposes the results back into eight [`Prepared`] rays of
+//! four rows of eight. A packet's setup is then a few vector operations per ray instead of
+//! six scalar divisions and a chain of scalar branches.
+
+#![cfg(target_arch = "x86_64")]
+
+use crate::ray::Ray;
+use crate::traverse::backend::RayQuery;
+use std::arch::x86_64::*;
+use std::mem::MaybeUninit;
+
+/// A ray as the kernel reads it: scalars, broadcast into registers where used (a broadcast
+/// from memory costs what a vector load does), so that a packet's rays take little space.
+/// Four rows of eight 32-bit words (the padding is zero), the shape the eight-ray setup writes.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(32))]
+pub struct Prepared {
+    pub(super) org: [f32; 3],
+    pub(super) inv: [f32; 3],
+    pub(super) t_min: f32,
+    /// The direction's sign bits (bit `a`: `inv[a]` negative), which fix the rows the slab
+    /// test reads.
+    pub(super) octant: u32,
+    pub(super) near: [u32; 3],
+    pub(super) far: [u32; 3],
+    pad1: [u32; 2],
+    pub(super) k: [u32; 3],
+    /// The origin's coordinates along `kx`, `ky`, `kz`.
+    pub(super) tri_org: [f32; 3],
+    pad2: [f32; 2],
+    pub(super) shear: [f32; 3],
+    pub(super) org_inv: [f32; 3],
+    pad3: [f32; 2],
+}
+
+const _: () = assert!(std::mem::size_of::<Prepared>() == 128 && std::mem::size_of::<Ray>() == 32);
+
+impl Prepared {
+    /// The kernel form of one ray.
+    #[inline]
+    #[target_feature(enable = "avx2,fma")]
+    pub(super) unsafe fn one(q: &RayQuery) -> Prepared {
+        let [kx, ky, kz] = q.tri.k;
+        // The origin permuted to (kx, ky, kz) in registers (indexing the array by `k` would
+        // store and reload it).
+        let o = _mm_setr_ps(q.tri.org[0], q.tri.org[1], q.tri.org[2], 0.0);
+        let o = _mm_permutevar_ps(o, _mm_setr_epi32(kx as i32, ky as i32, kz as i32, 3));
+        // (No closures: a closure here is compiled without the target features and called.)
+        let [n0, n1, n2] = q.near;
+        let [f0, f1, f2] = q.far;
+        Prepared {
+            org: q.org,
+            inv: q.inv,
+            t_min: q.t_min,
+            octant: (n0 as u32 & 1) | (n1 as u32 & 1) << 1 | (n2 as u32 & 1) << 2,
+            near: [n0 as u32, n1 as u32, n2 as u32],
+            far: [f0 as u32, f1 as u32, f2 as u32],
+            pad1: [0; 2],
+            k: [kx as u32, ky as u32, kz as u32],
+            tri_org: [
+                _mm_cvtss_f32(o),
+                _mm_cvtss_f32(_mm_shuffle_ps::<0x55>(o, o)),
+                _mm_cvtss_f32(_mm_shuffle_ps::<0xaa>(o, o)),
+            ],
+            pad2: [0.0; 2],
+            shear: q.tri.shear,
+            org_inv: q.org_inv,
+            pad3: [0.0; 2],
+        }
+    }
+
+    /// The kernel forms of eight rays: lane `i` of `out` and `t_max[i]` (the ray's interval
+    /// end) are written for every ray `i` that [`RayQuery::new`] accepts, whose bits the
+    /// result has; the other lanes get `t_max` −∞ and a form that is never read.
+    #[inline]
+    #[target_feature(enable = "avx2,fma")]
+    pub(super) unsafe fn eight(
+        rays: &[Ray; 8],
+        out: &mut [MaybeUninit<Prepared>; 8],
+        t_max: &mut [f32; 8],
+    ) -> u32 {
+        let src = rays.as_ptr() as *const f32;
+        let mut rows = [_mm256_setzero_ps(); 8];
+        for (i, r) in rows.iter_mut().enumerate() {
+            *r = _mm256_loadu_ps(src.add(8 * i));
+        }
+        let [ox, oy, oz, dx, dy, dz, t0, t1] = transpose(rows);
+        let zero = _mm256_setzero_ps();
+        // `t_min > 0 ? t_min : 0`; the ray is kept as `RayQuery::new` keeps it.
+        let t_min = _mm256_blendv_ps(zero, t0, _mm256_cmp_ps::<_CMP_GT_OQ>(t0, zero));
+        let nonzero = _mm256_or_ps(
+            _mm256_cmp_ps::<_CMP_NEQ_OQ>(dx, zero),
+            _mm256_or_ps(_mm256_cmp_ps::<_CMP_NEQ_OQ>(dy, zero), _mm256_cmp_ps::<_CMP_NEQ_OQ>(dz, zero)),
+        );
+        let mut valid =
+            _mm256_and_ps(_mm256_cmp_ps::<_CMP_ORD_Q>(t0, t0), _mm256_cmp_ps::<_CMP_LE_OQ>(t_min, t1));
+        for x in [ox, oy, oz, dx, dy, dz] {
+            valid = _mm256_and_ps(valid, finite(x));
+        }
+        valid = _mm256_and_ps(valid, nonzero);
+        let one = _mm256_set1_ps(1.0);
+        let inv = [_mm256_div_ps(one, dx), _mm256_div_ps(one, dy), _mm256_div_ps(one, dz)];
+        let ((near_x, far_x), (near_y, far_y), (near_z, far_z)) =
+            (planes::<0>(inv[0]), planes::<2>(inv[1]), planes::<4>(inv[2]));
+        // The sheared frame: `kz` the axis of the largest |dir| (the first of equals, as
+        // `TriRay::new`), `kx`, `ky` the next two cyclically, swapped when `dir[kz] < 0`.
+        let (ax, ay, az) = (abs(dx), abs(dy), abs(dz));
+        let is_x = _mm256_and_ps(_mm256_cmp_ps::<_CMP_GT_OQ>(ax, ay), _mm256_cmp_ps::<_CMP_GT_OQ>(ax, az));
+        let is_y = _mm256_cmp_ps::<_CMP_GT_OQ>(ay, az);
+        let (a0, a1, a2) = (axis(0), axis(1), axis(2));
+        let kz = pick(is_x, is_y, a0, a1, a2);
+        let (kx, ky) = (pick(is_x, is_y, a1, a2, a0), pick(is_x, is_y, a2, a0, a1));
+        let d_kz = pick(is_x, is_y, dx, dy, dz);
+        let (d_kx, d_ky) = (pick(is_x, is_y, dy, dz, dx), pick(is_x, is_y, dz, dx, dy));
+        let o_kz = pick(is_x, is_y, ox, oy, oz);
+        let (o_kx, o_ky) = (pick(is_x, is_y, oy, oz, ox), pick(is_x, is_y, oz, ox, oy));
+        let flip = _mm256_cmp_ps::<_CMP_LT_OQ>(d_kz, zero);
+        let (kx, ky) = swap(flip, kx, ky);
+        let (d_kx, d_ky) = swap(flip, d_kx, d_ky);
+        let (o_kx, o_ky) = swap(flip, o_kx, o_ky);
+        // `1 / dir[kz]` is the same division as `inv[kz]`.
+        let shear =
+            [_mm256_div_ps(d_kx, d_kz), _mm256_div_ps(d_ky, d_kz), pick(is_x, is_y, inv[0], inv[1], inv[2])];
+        let org_inv = [_mm256_mul_ps(ox, inv[0]), _mm256_mul_ps(oy, inv[1]), _mm256_mul_ps(oz, inv[2])];
+        let groups = [
+            transpose([ox, oy, oz, inv[0], inv[1], inv[2], t_min, octant(inv)]),
+            transpose([near_x, near_y, near_z, far_x, far_y, far_z, zero, zero]),
+            transpose([kx, ky, kz, o_kx, o_ky, o_kz, zero, zero]),
+            transpose([shear[0], shear[1], shear[2], org_inv[0], org_inv[1], org_inv[2], zero, zero]),
+        ];
+        for (lane, dst) in out.iter_mut().enumerate() {
+            // `Prepared` is four aligned rows of eight words.
+            let dst = dst.as_mut_ptr() as *mut __m256;
+            for (row, g) in groups.iter().enumerate() {
+                _mm256_store_ps(dst.add(row) as *mut f32, g[lane]);
+            }
+        }
+        _mm256_storeu_ps(t_max.as_mut_ptr(), _mm256_blendv_ps(_mm256_set1_ps(f32::NEG_INFINITY), t1, valid));
+        _mm256_movemask_ps(valid) as u32
+    }
+}
+
+/// `|x|` per lane.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn abs(x: __m256) -> __m256 {
+    _mm256_andnot_ps(_mm256_set1_ps(-0.0), x)
+}
+
+/// The lanes where `x` is finite (`|x| < ∞`, as `f32::is_finite`).
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn finite(x: __m256) -> __m256 {
+    _mm256_cmp_ps::<_CMP_LT_OQ>(abs(x), _mm256_set1_ps(f32::INFINITY))
+}
+
+/// The rows of the near and far planes of the axis whose minima are row `MIN`, by the sign of
+/// `inv` as [`RayQuery::new`] chooses them, as integers in float registers.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn planes<const MIN: i32>(inv: __m256) -> (__m256, __m256) {
+    let neg = _mm256_srli_epi32::<31>(_mm256_castps_si256(inv));
+    let near = _mm256_add_epi32(_mm256_set1_epi32(MIN), neg);
+    let far = _mm256_sub_epi32(_mm256_set1_epi32(MIN + 1), neg);
+    (_mm256_castsi256_ps(near), _mm256_castsi256_ps(far))
+}
+
+/// [`Prepared::octant`] per lane, as an integer in a float register.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn octant(inv: [__m256; 3]) -> __m256 {
+    let x = _mm256_srli_epi32::<31>(_mm256_castps_si256(inv[0]));
+    let y = _mm256_slli_epi32::<1>(_mm256_srli_epi32::<31>(_mm256_castps_si256(inv[1])));
+    let z = _mm256_slli_epi32::<2>(_mm256_srli_epi32::<31>(_mm256_castps_si256(inv[2])));
+    let bits = _mm256_or_si256(x, _mm256_or_si256(y, z));
+    _mm256_castsi256_ps(bits)
+}
+
+/// The axis number `a` in every lane, as an integer in a float register.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn axis(a: i32) -> __m256 {
+    _mm256_castsi256_ps(_mm256_set1_epi32(a))
+}
+
+/// Per lane `is_x ? x : (is_y ? y : z)`.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn pick(is_x: __m256, is_y: __m256, x: __m256, y: __m256, z: __m256) -> __m256 {
+    _mm256_blendv_ps(_mm256_blendv_ps(z, y, is_y), x, is_x)
+}
+
+/// Per lane `flip ? (b, a) : (a, b)`.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn swap(flip: __m256, a: __m256, b: __m256) -> (__m256, __m256) {
+    (_mm256_blendv_ps(a, b, flip), _mm256_blendv_ps(b, a, flip))
+}
+
+/// Transposes an 8 × 8 matrix of floats held one row to a register.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn transpose(r: [__m256; 8]) -> [__m256; 8] {
+    let t = [
+        _mm256_unpacklo_ps(r[0], r[1]),
+        _mm256_unpackhi_ps(r[0], r[1]),
+        _mm256_unpacklo_ps(r[2], r[3]),
+        _mm256_unpackhi_ps(r[2], r[3]),
+        _mm256_unpacklo_ps(r[4], r[5]),
+        _mm256_unpackhi_ps(r[4], r[5]),
+        _mm256_unpacklo_ps(r[6], r[7]),
+        _mm256_unpackhi_ps(r[6], r[7]),
+    ];
+    let s = [
+        _mm256_shuffle_ps::<0x44>(t[0], t[2]),
+        _mm256_shuffle_ps::<0xee>(t[0], t[2]),
+        _mm256_shuffle_ps::<0x44>(t[1], t[3]),
+        _mm256_shuffle_ps::<0xee>(t[1], t[3]),
+        _mm256_shuffle_ps::<0x44>(t[4], t[6]),
+        _mm256_shuffle_ps::<0xee>(t[4], t[6]),
+        _mm256_shuffle_ps::<0x44>(t[5], t[7]),
+        _mm256_shuffle_ps::<0xee>(t[5], t[7]),
+    ];
+    [
+        _mm256_permute2f128_ps::<0x20>(s[0], s[4]),
+        _mm256_permute2f128_ps::<0x20>(s[1], s[5]),
+        _mm256_permute2f128_ps::<0x20>(s[2], s[6]),
+        _mm256_permute2f128_ps::<0x20>(s[3], s[7]),
+        _mm256_permute2f128_ps::<0x31>(s[0], s[4]),
+        _mm256_permute2f128_ps::<0x31>(s[1], s[5]),
+        _mm256_permute2f128_ps::<0x31>(s[2], s[6]),
+        _mm256_permute2f128_ps::<0x31>(s[3], s[7]),
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    /// Rays at the edges of what `RayQuery::new` and `TriRay::new` decide: zero and negative
+    /// zero components, ties between the largest components, each sign of `dir[kz]`, non-finite
+    /// values, negative, NaN and empty intervals.
+    fn rays() -> Vec<Ray> {
+        let mut rays = Vec::new();
+        let comps = [0.0, -0.0, 1.0, -1.0, 0.5, -2.0, 1e-30, f32::INFINITY, f32::NAN];
+        for &x in &comps {
+            for &y in &comps {
+                for &z in &comps {
+                    rays.push(Ray::new(Vec3::new(0.25, -3.0, 7.5), Vec3::new(x, y, z)));
+                }
+            }
+        }
+        let d = Vec3::new(0.3, -0.7, 0.2);
+        for (t_min, t_max) in [
+            (-1.0, 2.0),
+            (f32::NAN, 1.0),
+            (1.0, f32::NAN),
+            (3.0, 2.0),
+            (2.0, 2.0),
+            (-0.0, 0.0),
+            (0.5, f32::INFINITY),
+        ] {
+            rays.push(Ray::segment(Vec3::new(1.0, 2.0, 3.0), d, t_min, t_max));
+        }
+        for o in [
+            Vec3::new(f32::NAN, 0.0, 0.0),
+            Vec3::new(0.0, f32::NEG_INFINITY, 0.0),
+            Vec3::new(-1e30, 4.0, 1e-30),
+        ] {
+            rays.push(Ray::new(o, d));
+        }
+        while rays.len() % 8 != 0 {
+            rays.push(Ray::new(Vec3::ONE, Vec3::new(-1.0, -1.0, -1.0)));
+        }
+        rays
+    }
+
+    fn words(p: &Prepared) -> [u32; 32] {
+        // SAFETY: `Prepared` is 32 plain 32-bit words.
+        unsafe { std::mem::transmute(*p) }
+    }
+
+    #[test]
+    fn eight_rays_set_up_together_are_one_ray_set_up_alone_bit_for_bit() {
+        if !(is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma")) {
+            return;
+        }
+        let rays = rays();
+        for group in rays.chunks_exact(8) {
+            let group: &[Ray; 8] = group.try_into().unwrap();
+            let mut out = [const { MaybeUninit::uninit() }; 8];
+            let mut t_max = [0.0; 8];
+            // SAFETY: the CPU has AVX2 and FMA (checked above).
+            let valid = unsafe { Prepared::eight(group, &mut out, &mut t_max) };
+            for (i, ray) in group.iter().enumerate() {
+                let q = RayQuery::new(ray);
+                assert_eq!(valid >> i & 1 == 1, q.is_some(), "{ray:?}");
+                match q {
+                    Some(q) => {
+                        // SAFETY: as above; lane `i` is valid, so written.
+                        let (one, eight) = unsafe { (Prepared::one(&q), out[i].assume_init()) };
+                        assert_eq!(words(&one), words(&eight), "{ray:?}");
+                        assert_eq!(t_max[i].to_bits(), q.t_max.to_bits());
+                    }
+                    None => assert_eq!(t_max[i], f32::NEG_INFINITY),
+                }
+            }
+        }
+    }
+}
