@@ -222,6 +222,38 @@ unsafe fn transpose_halves(a: __m256, b: __m256, c: __m256, d: __m256) -> [__m25
     ]
 }
 
+/// The eight pixels `x0 .. x0 + 8` of row `y` in lanes, as [`resolve_x8`] and
+/// [`resolve_uv_x8`] start: the coverage bits of the two four-pixel groups, the twelve
+/// interpolated values (UV, its derivatives, position, eye vector) and the eye distance with
+/// its reciprocal.
+///
+/// # Safety
+///
+/// The CPU must support AVX2.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn lanes8(
+    s: &TriangleSetup,
+    x0: u32,
+    y: u32,
+    frame: &FrameConstants,
+) -> (u32, [__m256; 12], __m256, __m256) {
+    let x = x0 as f64;
+    let half = _mm256_set1_pd(0.5);
+    let px_lo = _mm256_add_pd(_mm256_set_pd(x + 3.0, x + 2.0, x + 1.0, x), half);
+    let px_hi = _mm256_add_pd(_mm256_set_pd(x + 7.0, x + 6.0, x + 5.0, x + 4.0), half);
+    let py = _mm256_set1_pd(y as f64 + 0.5);
+    let (valid_lo, lo) = group_f64(s, px_lo, py, frame);
+    let (valid_hi, hi) = group_f64(s, px_hi, py, frame);
+    let f: [__m256; 12] = std::array::from_fn(|i| _mm256_set_m128(hi[i], lo[i]));
+    let [.., ex, ey, ez] = f;
+    let dot =
+        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(ex, ex), _mm256_mul_ps(ey, ey)), _mm256_mul_ps(ez, ez));
+    let depth = _mm256_sqrt_ps(dot);
+    let recip = _mm256_div_ps(_mm256_set1_ps(1.0), depth);
+    ((valid_lo | valid_hi << 4) as u32, f, depth, recip)
+}
+
 /// [`resolve_x4`] for pixels `x0 .. x0 + 8`: the same points and mask bits (bit `i` for pixel
 /// `x0 + i`).
 ///
@@ -237,19 +269,8 @@ pub(crate) unsafe fn resolve_x8(
     frame: &FrameConstants,
     out: &mut [ShadePoint; 8],
 ) -> u32 {
-    let x = x0 as f64;
-    let half = _mm256_set1_pd(0.5);
-    let px_lo = _mm256_add_pd(_mm256_set_pd(x + 3.0, x + 2.0, x + 1.0, x), half);
-    let px_hi = _mm256_add_pd(_mm256_set_pd(x + 7.0, x + 6.0, x + 5.0, x + 4.0), half);
-    let py = _mm256_set1_pd(y as f64 + 0.5);
-    let (valid_lo, lo) = group_f64(s, px_lo, py, frame);
-    let (valid_hi, hi) = group_f64(s, px_hi, py, frame);
-    let f: [__m256; 12] = std::array::from_fn(|i| _mm256_set_m128(hi[i], lo[i]));
+    let (valid, f, depth, recip) = lanes8(s, x0, y, frame);
     let [u, v, dudx, dvdx, dudy, dvdy, px, py, pz, ex, ey, ez] = f;
-    let dot =
-        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(ex, ex), _mm256_mul_ps(ey, ey)), _mm256_mul_ps(ez, ez));
-    let depth = _mm256_sqrt_ps(dot);
-    let recip = _mm256_div_ps(_mm256_set1_ps(1.0), depth);
     let view = [_mm256_mul_ps(ex, recip), _mm256_mul_ps(ey, recip), _mm256_mul_ps(ez, recip)];
     let t = &k.to_tangent;
     let vt = [mat_row8(t, 0, &view), mat_row8(t, 1, &view), mat_row8(t, 2, &view)];
@@ -260,7 +281,7 @@ pub(crate) unsafe fn resolve_x8(
         sum = _mm256_add_ps(sum, _mm256_sub_ps(x, x));
     }
     let finite = _mm256_cmp_ps::<_CMP_EQ_OQ>(sum, _mm256_setzero_ps());
-    let mask = ((valid_lo | valid_hi << 4) & _mm256_movemask_ps(finite)) as u32;
+    let mask = valid & _mm256_movemask_ps(finite) as u32;
     let light = k.light_ts;
     let (lx, ly, lz) = (_mm256_set1_ps(light.x), _mm256_set1_ps(light.y), _mm256_set1_ps(light.z));
     let blocks = [
@@ -301,25 +322,14 @@ pub(crate) unsafe fn resolve_uv_x8(
     frame: &FrameConstants,
     out: &mut [ShadePoint; 8],
 ) -> u32 {
-    let x = x0 as f64;
-    let half = _mm256_set1_pd(0.5);
-    let px_lo = _mm256_add_pd(_mm256_set_pd(x + 3.0, x + 2.0, x + 1.0, x), half);
-    let px_hi = _mm256_add_pd(_mm256_set_pd(x + 7.0, x + 6.0, x + 5.0, x + 4.0), half);
-    let py = _mm256_set1_pd(y as f64 + 0.5);
-    let (valid_lo, lo) = group_f64(s, px_lo, py, frame);
-    let (valid_hi, hi) = group_f64(s, px_hi, py, frame);
-    let f: [__m256; 12] = std::array::from_fn(|i| _mm256_set_m128(hi[i], lo[i]));
-    let [u, v, dudx, dvdx, dudy, dvdy, px, py, pz, ex, ey, ez] = f;
-    let dot =
-        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(ex, ex), _mm256_mul_ps(ey, ey)), _mm256_mul_ps(ez, ez));
-    let depth = _mm256_sqrt_ps(dot);
-    let recip = _mm256_div_ps(_mm256_set1_ps(1.0), depth);
+    let (valid, f, depth, recip) = lanes8(s, x0, y, frame);
+    let [u, v, dudx, dvdx, dudy, dvdy, px, py, pz, ..] = f;
     let mut sum = _mm256_setzero_ps();
     for x in [u, v, dudx, dvdx, dudy, dvdy, px, py, pz, depth, recip] {
         sum = _mm256_add_ps(sum, _mm256_sub_ps(x, x));
     }
     let finite = _mm256_cmp_ps::<_CMP_EQ_OQ>(sum, _mm256_setzero_ps());
-    let mask = ((valid_lo | valid_hi << 4) & _mm256_movemask_ps(finite)) as u32;
+    let mask = valid & _mm256_movemask_ps(finite) as u32;
     let zero = _mm256_setzero_ps();
     let blocks = [transpose_halves(u, v, dudx, dvdx), transpose_halves(dudy, dvdy, zero, zero)];
     for j in 0..4 {
