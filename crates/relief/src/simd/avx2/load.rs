@@ -60,20 +60,7 @@ pub(crate) unsafe fn load_lanes(
     let pt = points.as_ptr() as *const f32;
     let stride = std::mem::size_of::<ShadePoint>() / 4;
     let (b0, b1, b2) = (fields(pt, stride, 0), fields(pt, stride, 1), fields(pt, stride, 2));
-    let st = |dst: &mut [f32; LANES], x: V| _mm256_storeu_ps(dst.as_mut_ptr(), x);
-    st(&mut lanes.u, h[0]);
-    st(&mut lanes.v, h[1]);
-    st(&mut lanes.dudx, b0[2]);
-    st(&mut lanes.dvdx, b0[3]);
-    st(&mut lanes.dudy, b1[0]);
-    st(&mut lanes.dvdy, b1[1]);
-    st(&mut lanes.vx, b1[2]);
-    st(&mut lanes.vy, b1[3]);
-    st(&mut lanes.vz, b2[0]);
-    st(&mut lanes.lx, b2[1]);
-    st(&mut lanes.ly, b2[2]);
-    st(&mut lanes.lz, b2[3]);
-    st(&mut lanes.shadow, _mm256_loadu_ps(shadows.as_ptr()));
+    store_lanes(lanes, h[0], h[1], [b0, b1, b2], shadows);
 }
 
 /// [`load_lanes`] for a technique that does not displace, without its hits: each lane's UV is
@@ -98,6 +85,18 @@ pub(crate) unsafe fn load_lanes_undisplaced(lanes: &mut ShadeLanes, points: &[Sh
     let (bu, bv) = (_mm256_and_ps(fu, ok), _mm256_and_ps(fv, ok));
     let u = _mm256_add_ps(_mm256_sub_ps(b0[0], bu), bu);
     let v = _mm256_add_ps(_mm256_sub_ps(b0[1], bv), bv);
+    store_lanes(lanes, u, v, [b0, b1, b2], shadows);
+}
+
+/// Stores the lanes' UV, the points' other fields (their first three four-field blocks, as
+/// [`fields`] reads them) and the eight shadow factors into `lanes`.
+///
+/// # Safety
+///
+/// The CPU must support AVX2; `shadows` holds at least eight values.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn store_lanes(lanes: &mut ShadeLanes, u: V, v: V, [b0, b1, b2]: [[V; 4]; 3], shadows: &[f32]) {
     let st = |dst: &mut [f32; LANES], x: V| _mm256_storeu_ps(dst.as_mut_ptr(), x);
     st(&mut lanes.u, u);
     st(&mut lanes.v, v);
