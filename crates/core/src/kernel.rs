@@ -97,6 +97,33 @@ pub fn has_avx512() -> bool {
     }
 }
 
+/// AVX2 building blocks that the vector kernels of several crates share (the raster's
+/// eight-pixel resolve, the relief kernels' lane loads).
+#[cfg(target_arch = "x86_64")]
+pub mod avx2 {
+    use std::arch::x86_64::*;
+
+    /// Rows `a`, `b`, `c`, `d` to columns within each 128-bit half: element `i` of result `j`
+    /// is element `j` of input `i`, lanes 0–3 in the low halves and 4–7 in the high ones (the
+    /// halves transposed apart).
+    ///
+    /// # Safety
+    ///
+    /// The CPU must support AVX2.
+    #[inline]
+    #[target_feature(enable = "avx2")]
+    pub unsafe fn transpose_halves(a: __m256, b: __m256, c: __m256, d: __m256) -> [__m256; 4] {
+        let (ab_lo, ab_hi) = (_mm256_unpacklo_ps(a, b), _mm256_unpackhi_ps(a, b));
+        let (cd_lo, cd_hi) = (_mm256_unpacklo_ps(c, d), _mm256_unpackhi_ps(c, d));
+        [
+            _mm256_shuffle_ps::<0x44>(ab_lo, cd_lo),
+            _mm256_shuffle_ps::<0xee>(ab_lo, cd_lo),
+            _mm256_shuffle_ps::<0x44>(ab_hi, cd_hi),
+            _mm256_shuffle_ps::<0xee>(ab_hi, cd_hi),
+        ]
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

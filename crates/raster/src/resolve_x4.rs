@@ -10,6 +10,7 @@
 use crate::resolve::FrameConstants;
 use crate::setup::{TriangleSetup, INV_W, PLANES, POSITION, UV};
 use glam::{Mat3, Vec3};
+use renderlab_core::kernel::avx2::transpose_halves;
 use renderlab_core::ShadePoint;
 use std::arch::x86_64::*;
 
@@ -207,19 +208,46 @@ unsafe fn mat_row8(m: &Mat3, c: usize, v: &[__m256; 3]) -> __m256 {
     )
 }
 
-/// Rows `a`, `b`, `c`, `d` to columns within each 128-bit half: element `i` of result `j` is
-/// element `j` of input `i`, lanes 0–3 in the low halves and 4–7 in the high ones.
-#[inline]
+/// The lanes where every one of `values` is finite, as mask bits (bit `i` for lane `i`):
+/// `x − x` is 0 for a finite `x` and NaN otherwise, and a NaN stays in the sum.
+///
+/// # Safety
+///
+/// The CPU must support AVX2.
 #[target_feature(enable = "avx2")]
-unsafe fn transpose_halves(a: __m256, b: __m256, c: __m256, d: __m256) -> [__m256; 4] {
-    let (ab_lo, ab_hi) = (_mm256_unpacklo_ps(a, b), _mm256_unpackhi_ps(a, b));
-    let (cd_lo, cd_hi) = (_mm256_unpacklo_ps(c, d), _mm256_unpackhi_ps(c, d));
-    [
-        _mm256_shuffle_ps::<0x44>(ab_lo, cd_lo),
-        _mm256_shuffle_ps::<0xee>(ab_lo, cd_lo),
-        _mm256_shuffle_ps::<0x44>(ab_hi, cd_hi),
-        _mm256_shuffle_ps::<0xee>(ab_hi, cd_hi),
-    ]
+#[inline]
+unsafe fn finite_bits(values: &[__m256]) -> u32 {
+    let mut sum = _mm256_setzero_ps();
+    for &x in values {
+        sum = _mm256_add_ps(sum, _mm256_sub_ps(x, x));
+    }
+    _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_EQ_OQ>(sum, _mm256_setzero_ps())) as u32
+}
+
+/// Writes the eight points' first `4·blocks.len()` floats from `blocks` (each four fields
+/// transposed by [`transpose_halves`]: points 0–3 in the low halves, 4–7 in the high ones) and
+/// sets their material; the fields past them are left as they are.
+///
+/// # Safety
+///
+/// The CPU must support AVX2; `blocks` holds at most three blocks (the twelve leading `f32`s).
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn store_points(out: &mut [ShadePoint; 8], blocks: &[[__m256; 4]], material: u32) {
+    debug_assert!(blocks.len() <= 3);
+    for j in 0..4 {
+        let (p, q) =
+            (&mut out[j] as *mut ShadePoint as *mut f32, &mut out[j + 4] as *mut ShadePoint as *mut f32);
+        // SAFETY: as in `resolve_x4`, `ShadePoint` is `repr(C)` with its first twelve `f32`s in
+        // this order, and at most twelve are written.
+        for (b, block) in blocks.iter().enumerate() {
+            _mm_storeu_ps(p.add(4 * b), _mm256_castps256_ps128(block[j]));
+            _mm_storeu_ps(q.add(4 * b), _mm256_extractf128_ps::<1>(block[j]));
+        }
+    }
+    for p in out.iter_mut() {
+        p.material = material;
+    }
 }
 
 /// The eight pixels `x0 .. x0 + 8` of row `y` in lanes, as [`resolve_x8`] and
@@ -274,14 +302,8 @@ pub(crate) unsafe fn resolve_x8(
     let view = [_mm256_mul_ps(ex, recip), _mm256_mul_ps(ey, recip), _mm256_mul_ps(ez, recip)];
     let t = &k.to_tangent;
     let vt = [mat_row8(t, 0, &view), mat_row8(t, 1, &view), mat_row8(t, 2, &view)];
-    // Lanes where every value the scalar resolve checks is finite: `x − x` is 0 for a finite
-    // `x` and NaN otherwise, and a NaN stays in the sum.
-    let mut sum = _mm256_setzero_ps();
-    for x in [u, v, dudx, dvdx, dudy, dvdy, px, py, pz, vt[0], vt[1], vt[2], depth] {
-        sum = _mm256_add_ps(sum, _mm256_sub_ps(x, x));
-    }
-    let finite = _mm256_cmp_ps::<_CMP_EQ_OQ>(sum, _mm256_setzero_ps());
-    let mask = valid & _mm256_movemask_ps(finite) as u32;
+    // Lanes where every value the scalar resolve checks is finite.
+    let mask = valid & finite_bits(&[u, v, dudx, dvdx, dudy, dvdy, px, py, pz, vt[0], vt[1], vt[2], depth]);
     let light = k.light_ts;
     let (lx, ly, lz) = (_mm256_set1_ps(light.x), _mm256_set1_ps(light.y), _mm256_set1_ps(light.z));
     let blocks = [
@@ -289,19 +311,7 @@ pub(crate) unsafe fn resolve_x8(
         transpose_halves(dudy, dvdy, vt[0], vt[1]),
         transpose_halves(vt[2], lx, ly, lz),
     ];
-    for j in 0..4 {
-        let (p, q) =
-            (&mut out[j] as *mut ShadePoint as *mut f32, &mut out[j + 4] as *mut ShadePoint as *mut f32);
-        // SAFETY: as in `resolve_x4`, `ShadePoint` is `repr(C)` with its first twelve `f32`s in
-        // this order.
-        for (b, block) in blocks.iter().enumerate() {
-            _mm_storeu_ps(p.add(4 * b), _mm256_castps256_ps128(block[j]));
-            _mm_storeu_ps(q.add(4 * b), _mm256_extractf128_ps::<1>(block[j]));
-        }
-    }
-    for p in out.iter_mut() {
-        p.material = s.material;
-    }
+    store_points(out, &blocks, s.material);
     mask
 }
 
@@ -324,26 +334,9 @@ pub(crate) unsafe fn resolve_uv_x8(
 ) -> u32 {
     let (valid, f, depth, recip) = lanes8(s, x0, y, frame);
     let [u, v, dudx, dvdx, dudy, dvdy, px, py, pz, ..] = f;
-    let mut sum = _mm256_setzero_ps();
-    for x in [u, v, dudx, dvdx, dudy, dvdy, px, py, pz, depth, recip] {
-        sum = _mm256_add_ps(sum, _mm256_sub_ps(x, x));
-    }
-    let finite = _mm256_cmp_ps::<_CMP_EQ_OQ>(sum, _mm256_setzero_ps());
-    let mask = valid & _mm256_movemask_ps(finite) as u32;
+    let mask = valid & finite_bits(&[u, v, dudx, dvdx, dudy, dvdy, px, py, pz, depth, recip]);
     let zero = _mm256_setzero_ps();
     let blocks = [transpose_halves(u, v, dudx, dvdx), transpose_halves(dudy, dvdy, zero, zero)];
-    for j in 0..4 {
-        let (p, q) =
-            (&mut out[j] as *mut ShadePoint as *mut f32, &mut out[j + 4] as *mut ShadePoint as *mut f32);
-        // SAFETY: as in `resolve_x4`, `ShadePoint` is `repr(C)` with its first twelve `f32`s in
-        // this order; only the first eight are written.
-        for (b, block) in blocks.iter().enumerate() {
-            _mm_storeu_ps(p.add(4 * b), _mm256_castps256_ps128(block[j]));
-            _mm_storeu_ps(q.add(4 * b), _mm256_extractf128_ps::<1>(block[j]));
-        }
-    }
-    for p in out.iter_mut() {
-        p.material = s.material;
-    }
+    store_points(out, &blocks, s.material);
     mask
 }

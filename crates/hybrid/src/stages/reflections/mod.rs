@@ -210,11 +210,9 @@ pub fn run(
             let v = -g.view_dir(i);
             let dir = reflected_dir(sp, v, &mut rng);
             batch.push(closest_ray(sp.offset_origin(dir), dir, f32::INFINITY), dir);
-            Some(rng)
+            Some((sp, v, rng))
         },
-        |i, out, mut rng, dirs, hits| {
-            let Some(sp) = &g.opaque[i] else { return 0 };
-            let v = -g.view_dir(i);
+        |_, out, (sp, v, mut rng), dirs, hits| {
             let mut rays = 1;
             let first = (dirs[0], hits[0]);
             let gathered = gather(scene, accel, sp, v, first, max_bounces, max_roughness, &mut rng, &mut rays);

@@ -5,25 +5,11 @@
 use super::math::finite;
 use crate::fused::lanes::{ShadeLanes, LANES};
 use crate::trace::ReliefHit;
+use renderlab_core::kernel::avx2::transpose_halves;
 use renderlab_core::ShadePoint;
 use std::arch::x86_64::*;
 
 type V = __m256;
-
-/// Rows `a`, `b`, `c`, `d` to columns within each 128-bit half: element `i` of result `j` is
-/// element `j` of input `i` (the halves transposed apart).
-#[inline]
-#[target_feature(enable = "avx2")]
-pub(super) unsafe fn transpose_halves(a: V, b: V, c: V, d: V) -> [V; 4] {
-    let (ab_lo, ab_hi) = (_mm256_unpacklo_ps(a, b), _mm256_unpackhi_ps(a, b));
-    let (cd_lo, cd_hi) = (_mm256_unpacklo_ps(c, d), _mm256_unpackhi_ps(c, d));
-    [
-        _mm256_shuffle_ps::<0x44>(ab_lo, cd_lo),
-        _mm256_shuffle_ps::<0xee>(ab_lo, cd_lo),
-        _mm256_shuffle_ps::<0x44>(ab_hi, cd_hi),
-        _mm256_shuffle_ps::<0xee>(ab_hi, cd_hi),
-    ]
-}
 
 /// Fields `4b .. 4b + 4` of eight records of `stride` floats from `base`, one vector per field
 /// in record order: each record's 16-byte block is loaded once and the blocks transposed.

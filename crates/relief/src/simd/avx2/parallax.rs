@@ -5,7 +5,7 @@
 //! Each lane performs the scalar twin's operations (`simd::scalar::parallax`) in the same
 //! order, so the hits are bit-identical to it.
 
-use super::load::{fields, transpose_halves};
+use super::load::fields;
 use super::math::finite;
 use super::LANES;
 use crate::maps::packed::{PackedRelief, DEPTH_STEP};
@@ -13,6 +13,7 @@ use crate::march::ray::packed_setup;
 use crate::trace::{ReliefHit, ReliefInputs, MIN_VIEW_Z};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
+use renderlab_core::kernel::avx2::transpose_halves;
 use std::arch::x86_64::*;
 
 /// [`packed_setup`] for the eight rays at `rays` (`(u, v, view x, y, z)` each, five floats in

@@ -3,11 +3,12 @@
 //! [`crate::march::ray::split_ray`]; for techniques that do not displace, the hits straight
 //! from the points, as the split, the tracer and the move back would give them.
 
-use super::load::{fields, transpose_halves};
+use super::load::fields;
 use super::math::finite;
 use super::LANES;
 use crate::trace::ReliefHit;
 use glam::{Vec2, Vec3};
+use renderlab_core::kernel::avx2::transpose_halves;
 use renderlab_core::ShadePoint;
 use std::arch::x86_64::*;
 
