@@ -35,6 +35,11 @@
  * consecutive rays, rtcIntersect1M/rtcOccluded1M). Packets and streams use the coherent
  * context flag when the set says its rays are coherent (except occlusion in an instanced
  * scene). Builds use Embree's default quality (medium) and all cores.
+ *
+ * For profiling one workload (under valgrind's cachegrind, say), two environment variables:
+ * EMBREE_BENCH_ONLY=SET:MODE traces only that set in that mode on the default scene (the robust
+ * scene is still built) and writes no hits file, and EMBREE_BENCH_CONFIG is passed to rtcNewDevice ("verbose=3" prints
+ * Embree's statistics of each hierarchy: node and leaf counts and their SAH costs).
  */
 
 #define _POSIX_C_SOURCE 199309L
@@ -301,7 +306,18 @@ int main(int argc, char **argv) {
     }
     fclose(f);
 
-    RTCDevice device = rtcNewDevice(NULL);
+    /* EMBREE_BENCH_ONLY=SET:MODE: one set in one mode on the default scene. */
+    const char *only = getenv("EMBREE_BENCH_ONLY");
+    char only_set[32] = "", only_mode[8] = "";
+    if (only) {
+        const char *colon = strchr(only, ':');
+        if (!colon || colon == only || (size_t)(colon - only) >= sizeof only_set || strlen(colon + 1) == 0 ||
+            strlen(colon + 1) >= sizeof only_mode)
+            die("EMBREE_BENCH_ONLY must be SET:MODE (MODE one of 1, 8, 16, 1M)");
+        memcpy(only_set, only, (size_t)(colon - only));
+        strcpy(only_mode, colon + 1);
+    }
+    RTCDevice device = rtcNewDevice(getenv("EMBREE_BENCH_CONFIG"));
     if (!device) die("Embree found no device");
     printf("embree %d.%d.%d, %u triangles, %u instances, %d passes per mode\n", RTC_VERSION_MAJOR,
            RTC_VERSION_MINOR, RTC_VERSION_PATCH, nt, ninst, reps);
@@ -324,6 +340,7 @@ int main(int argc, char **argv) {
             float *t = alloc((size_t)set->n * 4);
             uint8_t *occ = alloc(set->n);
             for (int m = 0; m < 4; m++) {
+                if (only && (sc != 0 || strcmp(only_set, set->name) || strcmp(only_mode, mode_names[m]))) continue;
                 double cpu[MAX_REPS], wall[MAX_REPS];
                 passes[m](scene, set, prim, t, occ); /* warm-up */
                 for (int r = 0; r < reps; r++) {
@@ -355,6 +372,7 @@ int main(int argc, char **argv) {
     }
     rtcReleaseDevice(device);
 
+    if (only) return 0; /* a partial run writes no hits */
     FILE *o = fopen(argv[2], "wb");
     if (!o) die("cannot write the hits file");
     for (uint32_t s = 0; s < nsets; s++) {
