@@ -10,7 +10,7 @@ use crate::hit::{Hit, HitFilter};
 use crate::node::TriBlock;
 use crate::ray::Ray;
 use crate::tlas::Tlas;
-use crate::traverse::backend::{Backend, RayQuery};
+use crate::traverse::backend::{prefetch, Backend, RayQuery};
 use crate::traverse::walk::{self, Leaves};
 use std::marker::PhantomData;
 
@@ -72,6 +72,12 @@ impl<B: Backend, F: HitFilter> Leaves for Triangles<'_, B, F> {
             }
         }
         false
+    }
+
+    #[inline(always)]
+    fn fetch(&self, leaf: u32) {
+        // SAFETY: leaf payloads come from the same build as `blocks`.
+        prefetch(unsafe { self.blocks.get_unchecked(leaf as usize) });
     }
 }
 

@@ -4,8 +4,10 @@
 //! directly, two are ordered by entry distance (the farther pushed), more are pushed and sorted
 //! so the nearest is on top, and the nearest is entered. A leaf may shorten the ray (`t_max`);
 //! popped entries farther than the shortened ray are dropped. Any hit: the same without
-//! ordering, stopping at the first accepted hit. Every node pushed is prefetched, so that its
-//! lines are on their way while the walk descends the nearer child.
+//! ordering, stopping at the first accepted hit. Where a node has two or more hit children,
+//! each of them (a node, or a leaf's data) is prefetched as soon as it is known, before the
+//! closest walk compares distances: the child entered next is then on its way even when the
+//! comparison's branch is mispredicted, and the pushed ones while the walk descends.
 //!
 //! The stack is a fixed array: each level of a path leaves at most seven entries, and the
 //! builder bounds paths to [`MAX_DEPTH`] levels.
@@ -32,6 +34,12 @@ pub trait Leaves {
     /// # Safety
     /// The CPU has the walk's kernel features.
     unsafe fn any(&mut self, leaf: u32, t_max: f32) -> bool;
+
+    /// Starts loading the leaf with payload `leaf`, which the walk may visit next.
+    #[inline(always)]
+    fn fetch(&self, leaf: u32) {
+        let _ = leaf;
+    }
 }
 
 #[derive(Clone, Copy)]
@@ -40,12 +48,14 @@ struct Entry {
     dist: f32,
 }
 
-/// Starts loading `child` when it is a node (its box rows and references), so that a walk
-/// that comes back to it later need not wait.
+/// Starts loading `child`: a node's box rows and references, or what the leaves say a leaf
+/// needs, so that the walk need not wait when it gets there.
 #[inline(always)]
-unsafe fn fetch(nodes: &[WideNode], child: u32) {
+unsafe fn fetch<L: Leaves>(nodes: &[WideNode], leaves: &L, child: u32) {
     if child & LEAF_BIT == 0 {
         prefetch(nodes.get_unchecked(child as usize));
+    } else {
+        leaves.fetch(child & !LEAF_BIT);
     }
 }
 
@@ -82,9 +92,13 @@ pub unsafe fn closest<B: Backend, L: Leaves>(
                 }
                 let i1 = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
+                // Both are requested before the order is known, so that a mispredicted
+                // comparison does not delay the loads of the child entered.
+                let (c0, c1) = (node.children[i0], node.children[i1]);
+                fetch(nodes, leaves, c0);
+                fetch(nodes, leaves, c1);
                 if mask == 0 {
                     let (near, far) = if dist[i1] < dist[i0] { (i1, i0) } else { (i0, i1) };
-                    fetch(nodes, node.children[far]);
                     debug_assert!(sp < STACK);
                     stack.get_unchecked_mut(sp).write(Entry { node: node.children[far], dist: dist[far] });
                     sp += 1;
@@ -95,14 +109,13 @@ pub unsafe fn closest<B: Backend, L: Leaves>(
                 // at equal distances, the lowest slot).
                 let base = sp;
                 for i in [i0, i1] {
-                    fetch(nodes, node.children[i]);
                     stack.get_unchecked_mut(sp).write(Entry { node: node.children[i], dist: dist[i] });
                     sp += 1;
                 }
                 while mask != 0 {
                     let i = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
-                    fetch(nodes, node.children[i]);
+                    fetch(nodes, leaves, node.children[i]);
                     stack.get_unchecked_mut(sp).write(Entry { node: node.children[i], dist: dist[i] });
                     sp += 1;
                 }
@@ -167,7 +180,7 @@ pub unsafe fn any<B: Backend, L: Leaves>(
                 while mask != 0 {
                     let i = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
-                    fetch(nodes, node.children[i]);
+                    fetch(nodes, leaves, node.children[i]);
                     debug_assert!(sp < STACK);
                     stack.get_unchecked_mut(sp).write(node.children[i]);
                     sp += 1;
