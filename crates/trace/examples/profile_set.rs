@@ -8,16 +8,17 @@
 //! cargo run --release -p renderlab-trace --example profile_set -- out/embree/terrain.bin bounce single 10
 //! ```
 //!
-//! Arguments: a scene file (`out/embree/MESH.bin`, a single mesh; instanced scenes are not
-//! read), a ray set in it (`primary`, `bounce`, `shadow`), a query (`single` or `packet`) and a
-//! number of passes. It builds our hierarchy over the mesh and prints its size, its SAH cost in
-//! Embree's own statistic (so that it reads beside Embree's `verbose=3` output: per node, its
-//! box's half area; per leaf, its box's half area times its blocks; all over the root's half
-//! area), then the rate of the passes (wall clock, one thread).
+//! Arguments: a scene file (`out/embree/MESH.bin`: one mesh, or with `instances` placed copies
+//! of it), a ray set in it (`primary`, `bounce`, `shadow`), a query (`single` or `packet`) and
+//! a number of passes. It builds our hierarchy over the mesh (and for an instanced scene our
+//! `Tlas` over the copies) and prints the mesh hierarchy's size and its SAH cost in Embree's
+//! own statistic (so that it reads beside Embree's `verbose=3` output: per node, its box's half
+//! area; per leaf, its box's half area times its blocks; all over the root's half area), then
+//! the rate of the passes (wall clock, one thread).
 
-use glam::Vec3;
+use glam::{Affine3A, Vec3, Vec3A};
 use renderlab_trace::node::{WideNode, EMPTY, LEAF_BIT, WIDTH};
-use renderlab_trace::{Blas, Ray, PACKET};
+use renderlab_trace::{Blas, Instance, Ray, Tlas, PACKET};
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -61,17 +62,18 @@ impl Reader<'_> {
     }
 }
 
-/// A scene file's mesh (positions, indices) and ray sets.
-type Scene = (Vec<Vec3>, Vec<[u32; 3]>, Vec<Set>);
+/// A scene file's mesh (positions, indices), the placements of its copies (none for a
+/// single-mesh scene) and its ray sets.
+type Scene = (Vec<Vec3>, Vec<[u32; 3]>, Vec<Affine3A>, Vec<Set>);
 
 /// The mesh and the ray sets of a scene file.
 fn read_scene(bytes: &[u8]) -> Result<Scene, String> {
     let mut r = Reader { bytes, at: 0 };
-    match r.take(8)? {
-        b"RLTRACE1" => {}
-        b"RLTRACE2" => return Err("an instanced scene; give a single-mesh scene file".into()),
+    let instanced = match r.take(8)? {
+        b"RLTRACE1" => false,
+        b"RLTRACE2" => true,
         _ => return Err("not a scene file written by the `embree` example".into()),
-    }
+    };
     let nv = r.count(12)?;
     let nt = r.count(12)?;
     let mut pos = Vec::with_capacity(nv);
@@ -81,6 +83,15 @@ fn read_scene(bytes: &[u8]) -> Result<Scene, String> {
     let mut idx = Vec::with_capacity(nt);
     for _ in 0..nt {
         idx.push([r.word()?, r.word()?, r.word()?]);
+    }
+    let mut placements = Vec::new();
+    if instanced {
+        for _ in 0..r.count(48)? {
+            let cols: Vec<Vec3A> = (0..4)
+                .map(|_| Ok(Vec3A::new(r.float()?, r.float()?, r.float()?)))
+                .collect::<Result<_, String>>()?;
+            placements.push(Affine3A::from_cols(cols[0], cols[1], cols[2], cols[3]));
+        }
     }
     let mut sets = Vec::new();
     for _ in 0..r.count(24)? {
@@ -94,7 +105,7 @@ fn read_scene(bytes: &[u8]) -> Result<Scene, String> {
         }
         sets.push(Set { name, occlusion: flags & 1 != 0, rays });
     }
-    Ok((pos, idx, sets))
+    Ok((pos, idx, placements, sets))
 }
 
 /// The hierarchy's SAH cost as Embree's statistics count it: (nodes, leaves).
@@ -118,6 +129,54 @@ fn sah(blas: &Blas) -> (f64, f64) {
     (cost.0 / root, cost.1 / root)
 }
 
+/// What both levels answer: the queries the passes time.
+trait Queries {
+    fn closest(&self, r: &Ray) -> bool;
+    fn any(&self, r: &Ray) -> bool;
+    fn closest_packet(&self, rays: &[Ray]) -> usize;
+    fn any_packet(&self, rays: &[Ray]) -> usize;
+}
+
+impl Queries for Blas {
+    fn closest(&self, r: &Ray) -> bool {
+        self.closest_hit(r).is_some()
+    }
+    fn any(&self, r: &Ray) -> bool {
+        self.any_hit(r)
+    }
+    fn closest_packet(&self, rays: &[Ray]) -> usize {
+        Blas::closest_packet(self, rays).iter().flatten().count()
+    }
+    fn any_packet(&self, rays: &[Ray]) -> usize {
+        Blas::any_packet(self, rays).iter().filter(|&&o| o).count()
+    }
+}
+
+impl Queries for Tlas {
+    fn closest(&self, r: &Ray) -> bool {
+        self.closest_hit(r).is_some()
+    }
+    fn any(&self, r: &Ray) -> bool {
+        self.any_hit(r)
+    }
+    fn closest_packet(&self, rays: &[Ray]) -> usize {
+        Tlas::closest_packet(self, rays).iter().flatten().count()
+    }
+    fn any_packet(&self, rays: &[Ray]) -> usize {
+        Tlas::any_packet(self, rays).iter().filter(|&&o| o).count()
+    }
+}
+
+/// One pass over `rays`; the number of hits.
+fn trace(q: &impl Queries, rays: &[Ray], occlusion: bool, query: &str) -> usize {
+    match (occlusion, query) {
+        (false, "single") => rays.iter().filter(|r| q.closest(r)).count(),
+        (true, "single") => rays.iter().filter(|r| q.any(r)).count(),
+        (false, _) => rays.chunks(PACKET).map(|c| q.closest_packet(c)).sum(),
+        (true, _) => rays.chunks(PACKET).map(|c| q.any_packet(c)).sum(),
+    }
+}
+
 fn run(args: &[String]) -> Result<(), String> {
     let [file, set, query, passes] = args else {
         return Err("usage: profile_set SCENE.bin SET single|packet PASSES".into());
@@ -127,7 +186,7 @@ fn run(args: &[String]) -> Result<(), String> {
         return Err(format!("the query must be `single` or `packet`, not `{query}`"));
     }
     let bytes = std::fs::read(file).map_err(|e| format!("cannot read {file}: {e}"))?;
-    let (pos, idx, sets) = read_scene(&bytes).map_err(|e| format!("{file}: {e}"))?;
+    let (pos, idx, placements, sets) = read_scene(&bytes).map_err(|e| format!("{file}: {e}"))?;
     let names: Vec<&str> = sets.iter().map(|s| s.name.as_str()).collect();
     let set =
         sets.iter().find(|s| s.name == *set).ok_or(format!("no set `{set}` (the file has {names:?})"))?;
@@ -145,16 +204,16 @@ fn run(args: &[String]) -> Result<(), String> {
         leaves
     );
     let rays = &set.rays;
-    let start = Instant::now();
-    let mut found = 0usize;
-    for _ in 0..passes {
-        found += match (set.occlusion, query.as_str()) {
-            (false, "single") => rays.iter().filter(|r| blas.closest_hit(r).is_some()).count(),
-            (true, "single") => rays.iter().filter(|r| blas.any_hit(r)).count(),
-            (false, _) => rays.chunks(PACKET).map(|c| blas.closest_packet(c).iter().flatten().count()).sum(),
-            (true, _) => rays.chunks(PACKET).map(|c| blas.any_packet(c).iter().filter(|&&o| o).count()).sum(),
-        };
-    }
+    let (start, found) = if placements.is_empty() {
+        let start = Instant::now();
+        (start, (0..passes).map(|_| trace(&blas, rays, set.occlusion, query)).sum::<usize>())
+    } else {
+        let instances: Vec<Instance> = placements.iter().map(|&m| Instance::new(0, m)).collect();
+        let tlas = Tlas::build(vec![blas], &instances).map_err(|e| format!("{file}: {e}"))?;
+        println!("{} instances of it", instances.len());
+        let start = Instant::now();
+        (start, (0..passes).map(|_| trace(&tlas, rays, set.occlusion, query)).sum::<usize>())
+    };
     let secs = start.elapsed().as_secs_f64();
     let n = rays.len() * passes;
     println!(
