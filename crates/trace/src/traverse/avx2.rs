@@ -96,6 +96,18 @@ impl Backend for Avx2 {
 
     #[inline]
     #[target_feature(enable = "avx2,fma")]
+    unsafe fn reaching(t_max: &[f32; PACKET], rays: u32, dist: f32) -> u32 {
+        let (d, ize) = (_mm256_set1_ps(dist), _mm256_set1_ps(IZE));
+        let mut keep = 0u32;
+        for h in 0..PACKET / 8 {
+            let t = _mm256_mul_ps(_mm256_loadu_ps(t_max.as_ptr().add(8 * h)), ize);
+            keep |= (_mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(d, t)) as u32) << (8 * h);
+        }
+        rays & keep
+    }
+
+    #[inline]
+    #[target_feature(enable = "avx2,fma")]
     unsafe fn block(p: &Prepared, block: &TriBlock, t_max: f32) -> BlockHits {
         let [kx, ky, kz] = p.k.map(|a| a as usize);
         let [sx, sy, sz] = p.shear.map(|x| _mm_set1_ps(x));

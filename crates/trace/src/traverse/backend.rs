@@ -182,6 +182,21 @@ pub trait Backend {
     /// The CPU has the kernel's features.
     unsafe fn block(p: &Self::Prepared, block: &TriBlock, t_max: f32) -> BlockHits;
 
+    /// The rays of `rays` whose interval still reaches distance `dist`: ray `r` when
+    /// `dist <= t_max[r] · IZE` (the single-ray walk's test of a popped entry). Kernels may
+    /// override it with a faster form of the same results.
+    ///
+    /// # Safety
+    /// The CPU has the kernel's features.
+    #[inline(always)]
+    unsafe fn reaching(t_max: &[f32; PACKET], rays: u32, dist: f32) -> u32 {
+        let mut keep = 0;
+        for (i, t) in t_max.iter().enumerate() {
+            keep |= ((dist <= *t * IZE) as u32) << i;
+        }
+        rays & keep
+    }
+
     /// A packet's test of a wide node: each ray `r` of `active` runs [`Backend::node`] with
     /// its own `t_max[r]`; which rays enter each child, and the least distance at which they
     /// do. Kernels may override it with a faster form of the same results. Only the lanes of

@@ -122,13 +122,24 @@ impl<B: Backend> Packet<B> {
     }
 
     /// The rays of `rays` whose interval still reaches distance `dist`.
+    ///
+    /// # Safety
+    /// The CPU has `B`'s features.
     #[inline(always)]
-    fn reaching(&self, rays: u32, dist: f32) -> u32 {
-        let mut keep = 0;
-        for (i, t) in self.t_max.iter().enumerate() {
-            keep |= ((dist <= *t * IZE) as u32) << i;
+    unsafe fn reaching(&self, rays: u32, dist: f32) -> u32 {
+        if rays.count_ones() <= 4 {
+            // Few rays (a thinned-out packet): test just those.
+            let (mut keep, mut r) = (rays, rays);
+            while r != 0 {
+                let i = r.trailing_zeros() as usize;
+                r &= r - 1;
+                // `i < PACKET`: bits of a mask of the packet's lanes.
+                let reaches = dist <= *self.t_max.get_unchecked(i) * IZE;
+                keep &= !((!reaches as u32) << i);
+            }
+            return keep;
         }
-        rays & keep
+        B::reaching(&self.t_max, rays, dist)
     }
 }
 
