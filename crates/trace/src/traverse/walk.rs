@@ -4,10 +4,11 @@
 //! directly, two are ordered by entry distance (the farther pushed), more are pushed and sorted
 //! so the nearest is on top, and the nearest is entered. A leaf may shorten the ray (`t_max`);
 //! popped entries farther than the shortened ray are dropped. Any hit: the same without
-//! ordering, stopping at the first accepted hit. Where a node has two or more hit children,
-//! each of them (a node, or a leaf's data) is prefetched as soon as it is known, before the
-//! closest walk compares distances: the child entered next is then on its way even when the
-//! comparison's branch is mispredicted, and the pushed ones while the walk descends.
+//! ordering, stopping at the first accepted hit. Every hit child (a node, or a leaf's data) is
+//! prefetched as soon as it is known: a lone one so that its reference line (read after its
+//! box test) comes with its box rows; where there are two or more, before the closest walk
+//! compares distances, so that the child entered next is on its way even when the comparison's
+//! branch is mispredicted, and the pushed ones while the walk descends.
 //!
 //! The stack is a fixed array: each level of a path leaves at most seven entries, and the
 //! builder bounds paths to [`MAX_DEPTH`] levels.
@@ -88,6 +89,9 @@ pub unsafe fn closest<B: Backend, L: Leaves>(
                 mask &= mask - 1;
                 if mask == 0 {
                     cur = node.children[i0];
+                    // All of the child's lines at once: the test reads its box rows, then its
+                    // references (another line), which would otherwise wait for the test.
+                    fetch(nodes, leaves, cur);
                     continue 'walk;
                 }
                 let i1 = mask.trailing_zeros() as usize;
@@ -186,6 +190,7 @@ pub unsafe fn any<B: Backend, L: Leaves>(
                     sp += 1;
                 }
                 cur = node.children[first];
+                fetch(nodes, leaves, cur);
                 continue;
             }
         } else if leaves.any(cur & !LEAF_BIT, t_max) {
