@@ -144,6 +144,17 @@ pub trait Backend {
     /// The CPU has the kernel's features.
     unsafe fn prepare(q: &RayQuery) -> Self::Prepared;
 
+    /// The kernel form of `ray` and its interval end, or `None` when [`RayQuery::new`]
+    /// rejects it (the ray can hit nothing). Kernels may override it with a faster form of
+    /// the same results.
+    ///
+    /// # Safety
+    /// The CPU has the kernel's features.
+    #[inline(always)]
+    unsafe fn prepare_ray(ray: &Ray) -> Option<(Self::Prepared, f32)> {
+        RayQuery::new(ray).map(|q| (Self::prepare(&q), q.t_max))
+    }
+
     /// The kernel forms of eight rays (a packet's setup): lane `i` of `out` and `t_max[i]` (the
     /// ray's interval end) are written for each ray `i` that [`RayQuery::new`] accepts, and
     /// the result has bit `i` set; the other lanes get `t_max` −∞ and nothing that is read.

@@ -10,7 +10,7 @@ use crate::hit::{Hit, HitFilter};
 use crate::node::TriBlock;
 use crate::ray::Ray;
 use crate::tlas::Tlas;
-use crate::traverse::backend::{prefetch, Backend, RayQuery};
+use crate::traverse::backend::{prefetch, Backend};
 use crate::traverse::walk::{self, Leaves};
 use std::marker::PhantomData;
 
@@ -93,21 +93,20 @@ pub(crate) struct Instances<'a, B: Backend, F> {
 impl<'a, B: Backend, F: HitFilter> Instances<'a, B, F> {
     /// The instance's mesh and the ray in its space over `[t_min, t_max]`.
     #[inline(always)]
-    unsafe fn enter(&self, instance: u32, t_max: f32) -> Option<(&'a Blas, RayQuery)> {
+    unsafe fn enter(&self, instance: u32, t_max: f32) -> Option<(&'a Blas, B::Prepared)> {
         debug_assert!((instance as usize) < self.tlas.placed.len());
         let placed = self.tlas.placed.get_unchecked(instance as usize);
         let mut ray = self.ray.transformed(&placed.world_to_object);
         ray.t_max = t_max;
-        let q = RayQuery::new(&ray)?;
-        Some((self.tlas.meshes.get_unchecked(placed.mesh as usize), q))
+        let (p, _) = B::prepare_ray(&ray)?;
+        Some((self.tlas.meshes.get_unchecked(placed.mesh as usize), p))
     }
 }
 
 impl<B: Backend, F: HitFilter> Leaves for Instances<'_, B, F> {
     #[inline(always)]
     unsafe fn closest(&mut self, instance: u32, t_max: &mut f32) {
-        let Some((blas, q)) = self.enter(instance, *t_max) else { return };
-        let p = B::prepare(&q);
+        let Some((blas, p)) = self.enter(instance, *t_max) else { return };
         let mut tris = Triangles::<B, F> {
             blocks: &blas.blocks,
             prepared: &p,
@@ -120,8 +119,7 @@ impl<B: Backend, F: HitFilter> Leaves for Instances<'_, B, F> {
 
     #[inline(always)]
     unsafe fn any(&mut self, instance: u32, t_max: f32) -> bool {
-        let Some((blas, q)) = self.enter(instance, t_max) else { return false };
-        let p = B::prepare(&q);
+        let Some((blas, p)) = self.enter(instance, t_max) else { return false };
         let mut tris = Triangles::<B, F> {
             blocks: &blas.blocks,
             prepared: &p,
@@ -139,10 +137,9 @@ impl<B: Backend, F: HitFilter> Leaves for Instances<'_, B, F> {
 /// The CPU has `B`'s features.
 #[inline(always)]
 pub unsafe fn blas_closest<B: Backend, F: HitFilter>(blas: &Blas, ray: &Ray, filter: &mut F) -> Option<Hit> {
-    let q = RayQuery::new(ray)?;
-    let p = B::prepare(&q);
-    let mut best = no_hit(q.t_max);
-    let mut t_max = q.t_max;
+    let (p, t_max0) = B::prepare_ray(ray)?;
+    let mut best = no_hit(t_max0);
+    let mut t_max = t_max0;
     let mut tris = Triangles::<B, F> {
         blocks: &blas.blocks,
         prepared: &p,
@@ -160,9 +157,8 @@ pub unsafe fn blas_closest<B: Backend, F: HitFilter>(blas: &Blas, ray: &Ray, fil
 /// The CPU has `B`'s features.
 #[inline(always)]
 pub unsafe fn blas_any<B: Backend, F: HitFilter>(blas: &Blas, ray: &Ray, filter: &mut F) -> Option<Hit> {
-    let q = RayQuery::new(ray)?;
-    let p = B::prepare(&q);
-    let mut best = no_hit(q.t_max);
+    let (p, t_max) = B::prepare_ray(ray)?;
+    let mut best = no_hit(t_max);
     let mut tris = Triangles::<B, F> {
         blocks: &blas.blocks,
         prepared: &p,
@@ -170,7 +166,7 @@ pub unsafe fn blas_any<B: Backend, F: HitFilter>(blas: &Blas, ray: &Ray, filter:
         best: &mut best,
         filter,
     };
-    walk::any::<B, _>(&blas.nodes, blas.root, &p, &mut tris, q.t_max).then_some(best)
+    walk::any::<B, _>(&blas.nodes, blas.root, &p, &mut tris, t_max).then_some(best)
 }
 
 /// The closest accepted hit of `ray` among all instances.
@@ -179,10 +175,9 @@ pub unsafe fn blas_any<B: Backend, F: HitFilter>(blas: &Blas, ray: &Ray, filter:
 /// The CPU has `B`'s features.
 #[inline(always)]
 pub unsafe fn tlas_closest<B: Backend, F: HitFilter>(tlas: &Tlas, ray: &Ray, filter: &mut F) -> Option<Hit> {
-    let q = RayQuery::new(ray)?;
-    let p = B::prepare(&q);
-    let mut best = no_hit(q.t_max);
-    let mut t_max = q.t_max;
+    let (p, t_max0) = B::prepare_ray(ray)?;
+    let mut best = no_hit(t_max0);
+    let mut t_max = t_max0;
     let mut insts = Instances::<B, F> { tlas, ray, best: &mut best, filter, backend: PhantomData };
     walk::closest::<B, _>(&tlas.nodes, tlas.root, &p, &mut insts, &mut t_max);
     (best.primitive != u32::MAX).then_some(best)
@@ -194,9 +189,8 @@ pub unsafe fn tlas_closest<B: Backend, F: HitFilter>(tlas: &Tlas, ray: &Ray, fil
 /// The CPU has `B`'s features.
 #[inline(always)]
 pub unsafe fn tlas_any<B: Backend, F: HitFilter>(tlas: &Tlas, ray: &Ray, filter: &mut F) -> Option<Hit> {
-    let q = RayQuery::new(ray)?;
-    let p = B::prepare(&q);
-    let mut best = no_hit(q.t_max);
+    let (p, t_max) = B::prepare_ray(ray)?;
+    let mut best = no_hit(t_max);
     let mut insts = Instances::<B, F> { tlas, ray, best: &mut best, filter, backend: PhantomData };
-    walk::any::<B, _>(&tlas.nodes, tlas.root, &p, &mut insts, q.t_max).then_some(best)
+    walk::any::<B, _>(&tlas.nodes, tlas.root, &p, &mut insts, t_max).then_some(best)
 }

@@ -25,7 +25,7 @@
 use crate::hit::Hit;
 use crate::node::{WideNode, EMPTY, LEAF_BIT};
 use crate::ray::Ray;
-use crate::traverse::backend::{Backend, PacketNode, RayQuery, IZE, PACKET};
+use crate::traverse::backend::{Backend, PacketNode, IZE, PACKET};
 use crate::traverse::walk::STACK;
 use std::mem::MaybeUninit;
 
@@ -41,7 +41,8 @@ struct Entry {
 
 /// A packet's rays in kernel form, with their intervals.
 pub(crate) struct Packet<B: Backend> {
-    /// The lanes of `valid` written by [`Packet::set`]; the others never read.
+    /// The lanes of `valid` written by [`Packet::set_ray`] or [`Packet::set8`]; the others never
+    /// read.
     prepared: [MaybeUninit<B::Prepared>; PACKET],
     /// Each ray's interval end, lowered by its hits (−∞ once it takes no further part).
     pub(crate) t_max: [f32; PACKET],
@@ -50,7 +51,7 @@ pub(crate) struct Packet<B: Backend> {
 }
 
 impl<B: Backend> Packet<B> {
-    /// A packet of no rays, to be filled in place by [`Packet::set`] (it is several
+    /// A packet of no rays, to be filled in place by [`Packet::set_ray`] (it is several
     /// kilobytes, left uninitialised until then).
     #[inline(always)]
     pub(crate) fn empty() -> Packet<B> {
@@ -61,15 +62,17 @@ impl<B: Backend> Packet<B> {
         }
     }
 
-    /// Puts the ray of `q` in lane `r`.
+    /// Puts `ray` in lane `r` when it can hit something (else the lane stays empty).
     ///
     /// # Safety
     /// The CPU has `B`'s features.
     #[inline(always)]
-    pub(crate) unsafe fn set(&mut self, r: usize, q: &RayQuery) {
-        self.valid |= 1 << r;
-        self.t_max[r] = q.t_max;
-        self.prepared[r].write(B::prepare(q));
+    pub(crate) unsafe fn set_ray(&mut self, r: usize, ray: &Ray) {
+        if let Some((p, t_max)) = B::prepare_ray(ray) {
+            self.valid |= 1 << r;
+            self.t_max[r] = t_max;
+            self.prepared[r].write(p);
+        }
     }
 
     /// The packet of `rays` (at most [`PACKET`]; invalid rays leave their lane empty).
@@ -86,9 +89,7 @@ impl<B: Backend> Packet<B> {
         }
         let base = rays.len() - groups.remainder().len();
         for (r, ray) in groups.remainder().iter().enumerate() {
-            if let Some(q) = RayQuery::new(ray) {
-                self.set(base + r, &q);
-            }
+            self.set_ray(base + r, ray);
         }
     }
 

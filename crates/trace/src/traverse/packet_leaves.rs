@@ -12,7 +12,7 @@ use crate::hit::{Hit, Opaque};
 use crate::node::{WideNode, LEAF_BIT};
 use crate::ray::Ray;
 use crate::tlas::Tlas;
-use crate::traverse::backend::{prefetch, Backend, RayQuery, PACKET};
+use crate::traverse::backend::{prefetch, Backend, PACKET};
 use crate::traverse::leaves::{no_hit, Instances, Triangles};
 use crate::traverse::packet::{self, Packet, PacketLeaves};
 use crate::traverse::walk::{self, Leaves};
@@ -147,9 +147,7 @@ impl Placed<'_> {
             while group != 0 {
                 let r = 8 * h + group.trailing_zeros() as usize;
                 group &= group - 1;
-                if let Some(q) = RayQuery::new(&carried(r)) {
-                    object.set(r, &q);
-                }
+                object.set_ray(r, &carried(r));
             }
         }
         self.tlas.meshes.get_unchecked(placed.mesh as usize)
