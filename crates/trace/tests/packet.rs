@@ -273,3 +273,41 @@ fn packet_node_tests_agree_between_kernels() {
         }
     }
 }
+
+/// A value a ray's interval end or an entry's distance can take, edge cases included.
+fn interval_value() -> impl Strategy<Value = f32> {
+    prop_oneof![
+        4 => -1.0f32..100.0,
+        1 => Just(0.0f32),
+        1 => Just(-0.0f32),
+        1 => Just(f32::INFINITY),
+        1 => Just(f32::NEG_INFINITY),
+        1 => Just(f32::NAN),
+        1 => Just(1.0f32),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+
+    /// The AVX2 kernel's pop test (which rays still reach an entry's distance) gives the scalar
+    /// kernel's answer for every mask of rays, NaN, infinite and signed-zero values included.
+    #[test]
+    #[cfg(target_arch = "x86_64")]
+    fn pop_tests_agree_between_kernels(
+        t_max in prop::array::uniform32(interval_value()),
+        dist in interval_value(),
+        rays in any::<u32>(),
+    ) {
+        use renderlab_trace::traverse::avx2::Avx2;
+        use renderlab_trace::traverse::backend::Backend;
+        use renderlab_trace::traverse::scalar::Scalar;
+        if renderlab_trace::kernel::available(renderlab_trace::Kernel::Simd) {
+            let rays = rays & (u32::MAX >> (32 - PACKET));
+            // SAFETY: the CPU has AVX2 and FMA (checked above).
+            let (s, a) = unsafe { (Scalar::reaching(&t_max, rays, dist), Avx2::reaching(&t_max, rays, dist)) };
+            prop_assert_eq!(s, a);
+            prop_assert_eq!(s & !rays, 0, "only rays of the entry");
+        }
+    }
+}
