@@ -19,6 +19,7 @@
 use glam::{Affine3A, Vec3, Vec3A};
 use renderlab_trace::node::{WideNode, EMPTY, LEAF_BIT, WIDTH};
 use renderlab_trace::{Blas, Instance, Ray, Tlas, PACKET};
+use std::io::Write;
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -192,7 +193,11 @@ fn run(args: &[String]) -> Result<(), String> {
         sets.iter().find(|s| s.name == *set).ok_or(format!("no set `{set}` (the file has {names:?})"))?;
     let blas = Blas::build(&pos, &idx).map_err(|e| format!("{file}: {e}"))?;
     let (nodes, leaves) = sah(&blas);
-    println!(
+    let mut out = std::io::stdout().lock();
+    // A closed pipe (`| head`) ends the run quietly: `write` rather than `println!`.
+    let write_err = |e: std::io::Error| format!("cannot write the output: {e}");
+    writeln!(
+        out,
         "{} triangles: {} nodes, {} blocks, depth {}, {:.1} MB; SAH (Embree's statistic) {:.3} = nodes {:.3} + leaves {:.3}",
         blas.hittable_count(),
         blas.node_count(),
@@ -202,7 +207,8 @@ fn run(args: &[String]) -> Result<(), String> {
         nodes + leaves,
         nodes,
         leaves
-    );
+    )
+    .map_err(write_err)?;
     let rays = &set.rays;
     let (start, found) = if placements.is_empty() {
         let start = Instant::now();
@@ -210,18 +216,19 @@ fn run(args: &[String]) -> Result<(), String> {
     } else {
         let instances: Vec<Instance> = placements.iter().map(|&m| Instance::new(0, m)).collect();
         let tlas = Tlas::build(vec![blas], &instances).map_err(|e| format!("{file}: {e}"))?;
-        println!("{} instances of it", instances.len());
+        writeln!(out, "{} instances of it", instances.len()).map_err(write_err)?;
         let start = Instant::now();
         (start, (0..passes).map(|_| trace(&tlas, rays, set.occlusion, query)).sum::<usize>())
     };
     let secs = start.elapsed().as_secs_f64();
     let n = rays.len() * passes;
-    println!(
+    writeln!(
+        out,
         "{} {query}: {n} rays in {passes} passes, {found} hits, {:.2} M rays/s (wall clock)",
         set.name,
         n as f64 / secs / 1e6
-    );
-    Ok(())
+    )
+    .map_err(write_err)
 }
 
 fn main() -> ExitCode {
