@@ -95,23 +95,8 @@ pub(crate) unsafe fn resolve_x4(
     let x = x0 as f64;
     let px = _mm256_add_pd(_mm256_set_pd(x + 3.0, x + 2.0, x + 1.0, x), _mm256_set1_pd(0.5));
     let py = _mm256_set1_pd(y as f64 + 0.5);
-    let q = plane(s, INV_W, px, py);
-    let valid_q = _mm256_cmp_pd::<_CMP_GT_OQ>(q, _mm256_setzero_pd());
-    let w = _mm256_div_pd(_mm256_set1_pd(1.0), q);
-    let u = _mm256_mul_pd(plane(s, UV, px, py), w);
-    let v = _mm256_mul_pd(plane(s, UV + 1, px, py), w);
-    let (dudx, dvdx) = (derivative(&s.dx, UV, u, w), derivative(&s.dx, UV + 1, v, w));
-    let (dudy, dvdy) = (derivative(&s.dy, UV, u, w), derivative(&s.dy, UV + 1, v, w));
-    let pos = [
-        _mm256_mul_pd(plane(s, POSITION, px, py), w),
-        _mm256_mul_pd(plane(s, POSITION + 1, px, py), w),
-        _mm256_mul_pd(plane(s, POSITION + 2, px, py), w),
-    ];
-    let to_eye = [
-        _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_set1_pd(frame.eye.x), pos[0])),
-        _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_set1_pd(frame.eye.y), pos[1])),
-        _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_set1_pd(frame.eye.z), pos[2])),
-    ];
+    let (valid_q, [u, v, dudx, dvdx, dudy, dvdy, p0, p1, p2, e0, e1, e2]) = group_f64(s, px, py, frame);
+    let (pos, to_eye) = ([p0, p1, p2], [e0, e1, e2]);
     let dot = _mm_add_ps(
         _mm_add_ps(_mm_mul_ps(to_eye[0], to_eye[0]), _mm_mul_ps(to_eye[1], to_eye[1])),
         _mm_mul_ps(to_eye[2], to_eye[2]),
@@ -121,10 +106,6 @@ pub(crate) unsafe fn resolve_x4(
     let view = [_mm_mul_ps(to_eye[0], recip), _mm_mul_ps(to_eye[1], recip), _mm_mul_ps(to_eye[2], recip)];
     let t = &k.to_tangent;
     let vt = [mat_row(t, 0, &view), mat_row(t, 1, &view), mat_row(t, 2, &view)];
-    let (u, v) = (_mm256_cvtpd_ps(u), _mm256_cvtpd_ps(v));
-    let (dudx, dvdx) = (_mm256_cvtpd_ps(dudx), _mm256_cvtpd_ps(dvdx));
-    let (dudy, dvdy) = (_mm256_cvtpd_ps(dudy), _mm256_cvtpd_ps(dvdy));
-    let pos = [_mm256_cvtpd_ps(pos[0]), _mm256_cvtpd_ps(pos[1]), _mm256_cvtpd_ps(pos[2])];
     // Lanes where every value the scalar resolve checks is finite (|x| < ∞ is false for NaN).
     let abs = _mm_castsi128_ps(_mm_set1_epi32(0x7fff_ffff));
     let inf = _mm_set1_ps(f32::INFINITY);
@@ -133,7 +114,7 @@ pub(crate) unsafe fn resolve_x4(
         .fold(_mm_castsi128_ps(_mm_set1_epi32(-1)), |all, x| {
             _mm_and_ps(all, _mm_cmplt_ps(_mm_and_ps(x, abs), inf))
         });
-    let mask = (_mm256_movemask_pd(valid_q) & _mm_movemask_ps(finite)) as u32;
+    let mask = (valid_q & _mm_movemask_ps(finite)) as u32;
     // Four fields at a time, transposed from lanes to points: each point's thirteen fields
     // are stored as three 16-byte blocks and the material.
     let light = k.light_ts;
