@@ -29,7 +29,7 @@
 mod common;
 
 use common::{
-    load_average, mesh, secondary_rays_to, thread_cpu, tiled_morton, view_rays, HEIGHT, MESHES, WIDTH,
+    load_average, mesh, secondary_rays_to, thread_cpu, tiled_morton, view_rays, Accel, HEIGHT, MESHES, WIDTH,
 };
 use glam::Affine3A;
 use glam::Vec3;
@@ -154,51 +154,6 @@ fn rate(reps: usize, n: usize, mut trace: impl FnMut() -> usize) -> f64 {
         .collect();
     rates.sort_by(f64::total_cmp);
     rates[reps / 2]
-}
-
-/// What we trace: one mesh's hierarchy, or a two-level scene of instances of one mesh of
-/// `triangles` triangles, whose hits are numbered as in the flattened mesh
-/// (instance · triangles + triangle) to compare with Embree's.
-enum Accel {
-    Mesh(Blas),
-    Scene(Tlas, u32),
-}
-
-impl Accel {
-    fn number(&self, hit: Option<Hit>) -> Option<Hit> {
-        match self {
-            Accel::Mesh(_) => hit,
-            Accel::Scene(_, n) => hit.map(|h| Hit { primitive: h.instance * n + h.primitive, ..h }),
-        }
-    }
-
-    fn closest_hit(&self, r: &Ray) -> Option<Hit> {
-        match self {
-            Accel::Mesh(b) => b.closest_hit(r),
-            Accel::Scene(t, _) => self.number(t.closest_hit(r)),
-        }
-    }
-
-    fn any_hit(&self, r: &Ray) -> bool {
-        match self {
-            Accel::Mesh(b) => b.any_hit(r),
-            Accel::Scene(t, _) => t.any_hit(r),
-        }
-    }
-
-    fn closest_packet(&self, rays: &[Ray]) -> [Option<Hit>; PACKET] {
-        match self {
-            Accel::Mesh(b) => b.closest_packet(rays),
-            Accel::Scene(t, _) => t.closest_packet(rays).map(|h| self.number(h)),
-        }
-    }
-
-    fn any_packet(&self, rays: &[Ray]) -> [bool; PACKET] {
-        match self {
-            Accel::Mesh(b) => b.any_packet(rays),
-            Accel::Scene(t, _) => t.any_packet(rays),
-        }
-    }
 }
 
 fn closest_single(blas: &Accel, rays: &[Ray]) -> Vec<Option<Hit>> {

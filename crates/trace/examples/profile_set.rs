@@ -14,8 +14,13 @@
 //! `Tlas` over the copies) and prints the mesh hierarchy's size and its SAH cost in Embree's
 //! own statistic (so that it reads beside Embree's `verbose=3` output: per node, its box's half
 //! area; per leaf, its box's half area times its blocks; all over the root's half area), then
-//! the rate of the passes (wall clock, one thread).
+//! the rate of the passes (wall clock, one thread). It traces through the `embree` example's own
+//! [`Accel`], so the two time the same queries.
 
+#[path = "../benches/common/mod.rs"]
+mod common;
+
+use common::Accel;
 use glam::{Affine3A, Vec3, Vec3A};
 use renderlab_trace::node::{WideNode, EMPTY, LEAF_BIT, WIDTH};
 use renderlab_trace::{Blas, Instance, Ray, Tlas, PACKET};
@@ -130,51 +135,13 @@ fn sah(blas: &Blas) -> (f64, f64) {
     (cost.0 / root, cost.1 / root)
 }
 
-/// What both levels answer: the queries the passes time.
-trait Queries {
-    fn closest(&self, r: &Ray) -> bool;
-    fn any(&self, r: &Ray) -> bool;
-    fn closest_packet(&self, rays: &[Ray]) -> usize;
-    fn any_packet(&self, rays: &[Ray]) -> usize;
-}
-
-impl Queries for Blas {
-    fn closest(&self, r: &Ray) -> bool {
-        self.closest_hit(r).is_some()
-    }
-    fn any(&self, r: &Ray) -> bool {
-        self.any_hit(r)
-    }
-    fn closest_packet(&self, rays: &[Ray]) -> usize {
-        Blas::closest_packet(self, rays).iter().flatten().count()
-    }
-    fn any_packet(&self, rays: &[Ray]) -> usize {
-        Blas::any_packet(self, rays).iter().filter(|&&o| o).count()
-    }
-}
-
-impl Queries for Tlas {
-    fn closest(&self, r: &Ray) -> bool {
-        self.closest_hit(r).is_some()
-    }
-    fn any(&self, r: &Ray) -> bool {
-        self.any_hit(r)
-    }
-    fn closest_packet(&self, rays: &[Ray]) -> usize {
-        Tlas::closest_packet(self, rays).iter().flatten().count()
-    }
-    fn any_packet(&self, rays: &[Ray]) -> usize {
-        Tlas::any_packet(self, rays).iter().filter(|&&o| o).count()
-    }
-}
-
 /// One pass over `rays`; the number of hits.
-fn trace(q: &impl Queries, rays: &[Ray], occlusion: bool, query: &str) -> usize {
+fn trace(q: &Accel, rays: &[Ray], occlusion: bool, query: &str) -> usize {
     match (occlusion, query) {
-        (false, "single") => rays.iter().filter(|r| q.closest(r)).count(),
-        (true, "single") => rays.iter().filter(|r| q.any(r)).count(),
-        (false, _) => rays.chunks(PACKET).map(|c| q.closest_packet(c)).sum(),
-        (true, _) => rays.chunks(PACKET).map(|c| q.any_packet(c)).sum(),
+        (false, "single") => rays.iter().filter(|r| q.closest_hit(r).is_some()).count(),
+        (true, "single") => rays.iter().filter(|r| q.any_hit(r)).count(),
+        (false, _) => rays.chunks(PACKET).map(|c| q.closest_packet(c).iter().flatten().count()).sum(),
+        (true, _) => rays.chunks(PACKET).map(|c| q.any_packet(c).iter().filter(|&&o| o).count()).sum(),
     }
 }
 
@@ -210,16 +177,16 @@ fn run(args: &[String]) -> Result<(), String> {
     )
     .map_err(write_err)?;
     let rays = &set.rays;
-    let (start, found) = if placements.is_empty() {
-        let start = Instant::now();
-        (start, (0..passes).map(|_| trace(&blas, rays, set.occlusion, query)).sum::<usize>())
+    let accel = if placements.is_empty() {
+        Accel::Mesh(blas)
     } else {
         let instances: Vec<Instance> = placements.iter().map(|&m| Instance::new(0, m)).collect();
         let tlas = Tlas::build(vec![blas], &instances).map_err(|e| format!("{file}: {e}"))?;
         writeln!(out, "{} instances of it", instances.len()).map_err(write_err)?;
-        let start = Instant::now();
-        (start, (0..passes).map(|_| trace(&tlas, rays, set.occlusion, query)).sum::<usize>())
+        Accel::Scene(tlas, idx.len() as u32)
     };
+    let start = Instant::now();
+    let found: usize = (0..passes).map(|_| trace(&accel, rays, set.occlusion, query)).sum();
     let secs = start.elapsed().as_secs_f64();
     let n = rays.len() * passes;
     writeln!(
