@@ -1,5 +1,6 @@
-//! The shared AVX2 fetch of the packed map: the bilinear cell of eight lanes in four 64-bit
-//! gathers.
+//! The shared AVX2 fetches of the packed map for eight lanes: the whole bilinear cell (depth
+//! and cone ratio) in four 64-bit gathers, or the depth alone from the 16-bit depth plane in
+//! two 32-bit gathers.
 
 /// The four packed texels around texel coordinates `(x, y)` for eight lanes at once (AVX2), as
 /// the scalar `PackedRelief` fetch reads them: returns `(fx, fy, t00, t10, t01, t11)`, the
@@ -62,11 +63,43 @@ macro_rules! packed_sample {
 }
 pub(crate) use packed_sample;
 
+/// The packed map's bilinear depth at texel coordinates `(x, y)` for eight lanes from its
+/// 16-bit depth plane ([`PackedRelief::depths`](crate::maps::packed::PackedRelief::depths)),
+/// computed as `PackedRelief::sample_texel` computes the depth (bit-identical): one 32-bit gather
+/// element holds a texel and its right neighbour (the padded grid needs no wrap there), so a
+/// cell takes two gathers of eight lanes where [`gather_cell`] takes four of four, and the
+/// plane is half the packed texels' size. `depths` and `below` point at the plane and one
+/// padded row further on, as `*const i32`; the rest are [`gather_cell`]'s. A macro for the
+/// reason that one is.
+macro_rules! plane_depth {
+    ($depths:expr, $below:expr, $x:expr, $y:expr, $mask_x:expr, $mask_y:expr, $stride_v:expr) => {{
+        let x0 = _mm256_floor_ps($x);
+        let y0 = _mm256_floor_ps($y);
+        let (fx, fy) = (_mm256_sub_ps($x, x0), _mm256_sub_ps($y, y0));
+        let xi = _mm256_and_si256(_mm256_cvttps_epi32(x0), $mask_x);
+        let yi = _mm256_and_si256(_mm256_cvttps_epi32(y0), $mask_y);
+        let idx = _mm256_add_epi32(_mm256_mullo_epi32(yi, $stride_v), xi);
+        let r0 = _mm256_i32gather_epi32::<2>($depths, idx);
+        let r1 = _mm256_i32gather_epi32::<2>($below, idx);
+        let low = _mm256_set1_epi32(0xffff);
+        let d00 = _mm256_cvtepi32_ps(_mm256_and_si256(r0, low));
+        let d10 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(r0));
+        let d01 = _mm256_cvtepi32_ps(_mm256_and_si256(r1, low));
+        let d11 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(r1));
+        let top = _mm256_add_ps(d00, _mm256_mul_ps(_mm256_sub_ps(d10, d00), fx));
+        let bottom = _mm256_add_ps(d01, _mm256_mul_ps(_mm256_sub_ps(d11, d01), fx));
+        let depth_step = _mm256_set1_ps(crate::maps::packed::DEPTH_STEP);
+        _mm256_mul_ps(_mm256_add_ps(top, _mm256_mul_ps(_mm256_sub_ps(bottom, top), fy)), depth_step)
+    }};
+}
+pub(crate) use plane_depth;
+
 /// The constants of the packed map's eight-lane bilinear depth fetch ([`packed_depth`]).
 #[derive(Clone, Copy)]
 pub(crate) struct DepthConsts {
-    pub base: *const i32,
-    pub stride: i32,
+    /// The 16-bit depth plane, and one padded row further on.
+    pub depths: *const i32,
+    pub below: *const i32,
     pub wf: std::arch::x86_64::__m256,
     pub hf: std::arch::x86_64::__m256,
     pub half: std::arch::x86_64::__m256,
@@ -75,7 +108,6 @@ pub(crate) struct DepthConsts {
     pub mask_x: std::arch::x86_64::__m256i,
     pub mask_y: std::arch::x86_64::__m256i,
     pub stride_v: std::arch::x86_64::__m256i,
-    pub lane_order: std::arch::x86_64::__m256i,
 }
 
 impl DepthConsts {
@@ -87,10 +119,11 @@ impl DepthConsts {
     pub(crate) unsafe fn new(map: &crate::maps::packed::PackedRelief) -> Self {
         use std::arch::x86_64::*;
         let (mxk, myk) = map.masks().expect("power-of-two map");
-        let stride = map.stride() as i32;
+        // The gathers read texels of the unpadded grid: a 32-bit read there, and one padded row
+        // further on, stays inside the plane (one entry longer than the grid).
         DepthConsts {
-            base: map.texels().as_ptr() as *const i32,
-            stride,
+            depths: map.depths().as_ptr() as *const i32,
+            below: map.depths().as_ptr().add(map.stride()) as *const i32,
             wf: _mm256_set1_ps(map.width() as f32),
             hf: _mm256_set1_ps(map.height() as f32),
             half: _mm256_set1_ps(0.5),
@@ -98,21 +131,20 @@ impl DepthConsts {
             hi: _mm256_set1_ps(1.0e7),
             mask_x: _mm256_set1_epi32(mxk),
             mask_y: _mm256_set1_epi32(myk),
-            stride_v: _mm256_set1_epi32(stride),
-            lane_order: _mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7),
+            stride_v: _mm256_set1_epi32(map.stride() as i32),
         }
     }
 }
 
 /// The packed map's bilinear depth at UV `(u, v)` for eight lanes, computed as
-/// `PackedRelief::depth` computes it (bit-identical); `k` is a [`DepthConsts`]. A macro for the
-/// reason [`gather_cell`] is one.
+/// `PackedRelief::depth` computes it (bit-identical), from the depth plane
+/// ([`plane_depth`]); `k` is a [`DepthConsts`]. A macro for the reason [`gather_cell`] is one.
 macro_rules! packed_depth {
     ($k:expr, $u:expr, $v:expr) => {{
         let k: &DepthConsts = &$k;
         let x = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps($u, k.wf), k.half), k.lo), k.hi);
         let y = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps($v, k.hf), k.half), k.lo), k.hi);
-        packed_sample!(k.base, k.stride, x, y, k.mask_x, k.mask_y, k.stride_v, k.lane_order).0
+        plane_depth!(k.depths, k.below, x, y, k.mask_x, k.mask_y, k.stride_v)
     }};
 }
 pub(crate) use packed_depth;

@@ -5,10 +5,11 @@
 //! Each lane performs the scalar twin's operations (`simd::scalar::parallax`) in the same
 //! order, so the hits are bit-identical to it.
 
+use super::gather::plane_depth;
 use super::load::fields;
 use super::math::finite;
 use super::LANES;
-use crate::maps::packed::{PackedRelief, DEPTH_STEP};
+use crate::maps::packed::PackedRelief;
 use crate::march::ray::packed_setup;
 use crate::trace::{ReliefHit, ReliefInputs, MIN_VIEW_Z};
 use glam::{Vec2, Vec3};
@@ -68,7 +69,6 @@ pub(crate) unsafe fn trace_row<C: Counter>(
     let stride_v = _mm256_set1_epi32(stride);
     let (wf, hf) = (_mm256_set1_ps(map.width() as f32), _mm256_set1_ps(map.height() as f32));
     let (half, lo, hi) = (_mm256_set1_ps(0.5), _mm256_set1_ps(-1.0e7), _mm256_set1_ps(1.0e7));
-    let step = _mm256_set1_ps(DEPTH_STEP);
     counter.count(n as u32);
     let mut start = 0;
     while start < n {
@@ -89,23 +89,7 @@ pub(crate) unsafe fn trace_row<C: Counter>(
         };
         let x = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(uu, wf), half), lo), hi);
         let y = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(vv, hf), half), lo), hi);
-        // The cell's texels from the depths alone: one 32-bit gather element holds a texel
-        // and its right neighbour (the padded grid needs no wrap there).
-        let (x0, y0) = (_mm256_floor_ps(x), _mm256_floor_ps(y));
-        let (fx, fy) = (_mm256_sub_ps(x, x0), _mm256_sub_ps(y, y0));
-        let xi = _mm256_and_si256(_mm256_cvttps_epi32(x0), mask_x);
-        let yi = _mm256_and_si256(_mm256_cvttps_epi32(y0), mask_y);
-        let idx = _mm256_add_epi32(_mm256_mullo_epi32(yi, stride_v), xi);
-        let r0 = _mm256_i32gather_epi32::<2>(depths, idx);
-        let r1 = _mm256_i32gather_epi32::<2>(depths_below, idx);
-        let lo = _mm256_set1_epi32(0xffff);
-        let d00 = _mm256_cvtepi32_ps(_mm256_and_si256(r0, lo));
-        let d10 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(r0));
-        let d01 = _mm256_cvtepi32_ps(_mm256_and_si256(r1, lo));
-        let d11 = _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(r1));
-        let top = _mm256_add_ps(d00, _mm256_mul_ps(_mm256_sub_ps(d10, d00), fx));
-        let bottom = _mm256_add_ps(d01, _mm256_mul_ps(_mm256_sub_ps(d11, d01), fx));
-        let depth = _mm256_mul_ps(_mm256_add_ps(top, _mm256_mul_ps(_mm256_sub_ps(bottom, top), fy)), step);
+        let depth = plane_depth!(depths, depths_below, x, y, mask_x, mask_y, stride_v);
         let hu = _mm256_add_ps(uu, _mm256_mul_ps(du, depth));
         let hv = _mm256_add_ps(vv, _mm256_mul_ps(dv, depth));
         if m == LANES {

@@ -4,7 +4,7 @@
 //! once. Each lane performs the scalar twin's operations in the same order, so the results
 //! are bit-identical to it.
 
-use super::gather::{gather_cell, packed_sample};
+use super::gather::{packed_depth, plane_depth, DepthConsts};
 use super::{LANES, RANKS};
 use crate::maps::packed::PackedRelief;
 use crate::march::pom_lanes::{finish, LayerRule};
@@ -87,18 +87,7 @@ macro_rules! kernel {
             rule.layer_counts(inp, &rays[..n], &mut cn[..n]);
             setup_columns(inp.height_scale, &rays[..n], [cu, cv, csu, csv, cld], cn);
             let [cu, cv, csu, csv, cld, cn] = &cols;
-            let (mxk, myk) = map.masks().expect("power-of-two map");
-            let base = map.texels().as_ptr() as *const i32;
-            let stride = map.stride() as i32;
-            let wf = _mm256_set1_ps(map.width() as f32);
-            let hf = _mm256_set1_ps(map.height() as f32);
-            let half = _mm256_set1_ps(0.5);
-            let lo = _mm256_set1_ps(-1.0e7);
-            let hi = _mm256_set1_ps(1.0e7);
-            let mask_x = _mm256_set1_epi32(mxk);
-            let mask_y = _mm256_set1_epi32(myk);
-            let stride_v = _mm256_set1_epi32(stride);
-            let lane_order = _mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7);
+            let k = DepthConsts::new(map);
             let zero_i = _mm256_setzero_si256();
             let one_i = _mm256_set1_epi32(1);
             let bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
@@ -158,10 +147,8 @@ macro_rules! kernel {
                     let first = _mm256_castsi256_ps(_mm256_cmpeq_epi32(g.i, zero_i));
                     let u = _mm256_blendv_ps(_mm256_add_ps(g.u0, _mm256_mul_ps(g.su, fi)), g.u0, first);
                     let v = _mm256_blendv_ps(_mm256_add_ps(g.v0, _mm256_mul_ps(g.sv, fi)), g.v0, first);
-                    // PackedRelief::depth.
-                    let x = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(u, wf), half), lo), hi);
-                    let y = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(v, hf), half), lo), hi);
-                    let (m, ..) = packed_sample!(base, stride, x, y, mask_x, mask_y, stride_v, lane_order);
+                    // PackedRelief::depth, from the depth plane.
+                    let m = packed_depth!(k, u, v);
                     // Layer 0 has no layer above: its own value.
                     let prev = _mm256_blendv_ps(g.prev, m, first);
                     let go_on = _mm256_and_ps(
