@@ -27,7 +27,9 @@
  *     quit
  *
  * TECH is 0 basic (albedo only), 1 normal (lit by the normal map), 2 parallax (one offset
- * step from the depth at the entry point), 3 POM-32 (32 layers, the last two interpolated).
+ * step from the depth at the entry point), 3 POM-32 (32 layers, the last two interpolated),
+ * 4 steep parallax (32 layers, the first layer below the surface), 5 relief mapping (16
+ * layers, then 6 bisection steps between the last layer above and the first below).
  * The maths is the fused CPU frame's: the exact UV Jacobian from the perspective-correct
  * interpolants, the level of detail ½·log2(max(|J_x|², |J_y|²)) in texels clamped to the
  * levels, trilinear filtering by the sampler (the texture's own mip chain, repeat wrap), sRGB
@@ -45,7 +47,7 @@
 #include <string.h>
 #include <time.h>
 
-#define TECHS 4
+#define TECHS 6
 
 static void die(const char *msg) {
     fprintf(stderr, "llvmpipe_bench: %s\n", msg);
@@ -164,7 +166,7 @@ static const char *FRAGMENT =
     "#endif\n"
     "#if TECH == 2\n"
     "    uv += uv_per_depth(vts) * depth_at(uv);\n"
-    "#elif TECH == 3\n"
+    "#elif TECH >= 3\n"
     "    vec2 step = uv_per_depth(vts) * (1.0 / LAYERS);\n"
     "    vec2 uv0 = uv;\n"
     "    float map = depth_at(uv);\n"
@@ -180,9 +182,22 @@ static const char *FRAGMENT =
     "    }\n"
     "    float layer = float(i) * (1.0 / LAYERS);\n"
     "    float prev_layer = i == 0 ? 0.0 : layer - 1.0 / LAYERS;\n"
+    "#if TECH == 3\n"
     "    float after = map - layer, before = prev_map - prev_layer, denom = after - before;\n"
     "    float w = abs(denom) > 1e-12 ? clamp(after / denom, 0.0, 1.0) : 0.0;\n"
     "    uv = prev_uv * w + uv * (1.0 - w);\n"
+    "#elif TECH == 5\n"
+    /* Bisection between the layers, along the whole ray (no search when layer 0 is below). */
+    "    if (i > 0) {\n"
+    "        vec2 dp = uv_per_depth(vts);\n"
+    "        float a = prev_layer, b = layer;\n"
+    "        for (int k = 0; k < BINARY; k++) {\n"
+    "            float mid = 0.5 * (a + b);\n"
+    "            if (mid >= depth_at(uv0 + dp * mid)) b = mid; else a = mid;\n"
+    "        }\n"
+    "        uv = uv0 + dp * (0.5 * (a + b));\n"
+    "    }\n"
+    "#endif\n"
     "#endif\n"
     "    vec3 albedo = textureLod(albedo_map, uv, l).rgb;\n"
     "#if TECH == 0\n"
@@ -321,9 +336,10 @@ int main(int argc, char **argv) {
         char prelude[512];
         snprintf(prelude, sizeof prelude,
                  "#version 450 core\n#define TECH %d\n#define TEX_SIZE vec2(%d.0, %d.0)\n"
-                 "#define TEX_LEVELS %d.0\n#define HEIGHT_SCALE %.9g\n#define LAYERS 32.0\n"
-                 "#define EXPONENT %d\n#define AMBIENT %.9g\n#define STRENGTH %.9g\n",
-                 t, aw, ah, albedo_levels, height_scale, (int)exponent, ambient, strength);
+                 "#define TEX_LEVELS %d.0\n#define HEIGHT_SCALE %.9g\n#define LAYERS %d.0\n"
+                 "#define BINARY 6\n#define EXPONENT %d\n#define AMBIENT %.9g\n#define STRENGTH %.9g\n",
+                 t, aw, ah, albedo_levels, height_scale, t == 5 ? 16 : 32, (int)exponent, ambient,
+                 strength);
         GLuint p = glCreateProgram();
         glAttachShader(p, compile(GL_VERTEX_SHADER, prelude, VERTEX));
         glAttachShader(p, compile(GL_FRAGMENT_SHADER, prelude, FRAGMENT));

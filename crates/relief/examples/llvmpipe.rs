@@ -19,7 +19,8 @@
 //! technique's frame is drawn by us and then by llvmpipe, alternating: ours by wall time
 //! around `render_fused`, llvmpipe's by wall time around clear + draw + `glFinish`. It
 //! prints the medians and our time over llvmpipe's, with `lscpu`'s model and the load.
-//! Techniques (default all): basic, normal, parallax, pom:32 (the GL program's four).
+//! Techniques (default all): basic, normal, parallax, pom:32, steep:32, relief:16:6 (the GL
+//! program's six).
 
 use renderlab_core::color::linear_to_srgb;
 use renderlab_core::scene::{bricks_wall, BRICKS_WALL_CENTRE};
@@ -36,7 +37,7 @@ use std::time::Instant;
 /// The benchmark's views, in degrees from the wall's normal.
 const ANGLES: [f32; 4] = [0.0, 45.0, 60.0, 80.0];
 /// The GL program's techniques, in its numbering.
-const TECHS: [&str; 4] = ["basic", "normal", "parallax", "pom:32"];
+const TECHS: [&str; 6] = ["basic", "normal", "parallax", "pom:32", "steep:32", "relief:16:6"];
 
 fn put_u32(out: &mut Vec<u8>, v: u32) {
     out.extend_from_slice(&v.to_le_bytes());
@@ -185,7 +186,12 @@ fn main() {
     let techs: Vec<usize> = if args.len() > 2 {
         args[2..]
             .iter()
-            .map(|a| TECHS.iter().position(|t| t == a).expect("basic, normal, parallax or pom:32"))
+            .map(|a| {
+                TECHS
+                    .iter()
+                    .position(|t| t == a)
+                    .expect("basic, normal, parallax, pom:32, steep:32 or relief:16:6")
+            })
             .collect()
     } else {
         (0..TECHS.len()).collect()
