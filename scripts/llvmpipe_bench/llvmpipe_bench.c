@@ -11,14 +11,15 @@
  *     cc -O2 -o out/llvmpipe_bench scripts/llvmpipe_bench/llvmpipe_bench.c -lEGL -lOpenGL
  *     LP_NUM_THREADS=2 cargo run --release -p renderlab-relief --example llvmpipe -- out/llvmpipe_bench
  *
- * Input (argv[1], little-endian): "RLLPIPE1"; u32 width, height; f32 background r,g,b
+ * Input (argv[1], little-endian): "RLLPIPE2"; u32 width, height; f32 background r,g,b
  * (linear); f32 to_light x,y,z (unit, world); f32 ambient, specular exponent, specular
  * strength, height scale (UV per unit depth); u32 vertices, then 12 f32 per vertex
  * (position 3, normal 3, uv 2, tangent 4 with handedness in w); u32 indices, then u32 each;
  * u32 views, then per view 16 f32 (world → clip, column-major, depth in [0, 1]) and the eye
  * x,y,z; two textures (albedo: sRGB-encoded, normal: unorm-encoded), each u32 levels, then
  * per level u32 width, height and width·height u32 RGBA8 texels (red in the low byte, row 0
- * at v = 0); the depth map: u32 width, height, width·height u16 (depth · 65535).
+ * at v = 0); the depth map: u32 width, height, width·height u16 (depth · 65535); the
+ * complexity map: u32 width, height (powers of two), width·height f32.
  *
  * Commands on stdin, one a line; each answered with one line on stdout:
  *
@@ -29,7 +30,9 @@
  * TECH is 0 basic (albedo only), 1 normal (lit by the normal map), 2 parallax (one offset
  * step from the depth at the entry point), 3 POM-32 (32 layers, the last two interpolated),
  * 4 steep parallax (32 layers, the first layer below the surface), 5 relief mapping (16
- * layers, then 6 bisection steps between the last layer above and the first below).
+ * layers, then 6 bisection steps between the last layer above and the first below), 6 the
+ * thesis's adaptive POM (layers from the view angle and the complexity map, 4 to 32, then
+ * POM's march and interpolation).
  * The maths is the fused CPU frame's: the exact UV Jacobian from the perspective-correct
  * interpolants, the level of detail ½·log2(max(|J_x|², |J_y|²)) in texels clamped to the
  * levels, trilinear filtering by the sampler (the texture's own mip chain, repeat wrap), sRGB
@@ -47,7 +50,7 @@
 #include <string.h>
 #include <time.h>
 
-#define TECHS 6
+#define TECHS 7
 
 static void die(const char *msg) {
     fprintf(stderr, "llvmpipe_bench: %s\n", msg);
@@ -143,6 +146,7 @@ static const char *FRAGMENT =
     "layout(binding = 0) uniform sampler2D albedo_map;\n"
     "layout(binding = 1) uniform sampler2D normal_map;\n"
     "layout(binding = 2) uniform sampler2D depth_map;\n"
+    "layout(binding = 3) uniform sampler2D complexity_map;\n"
     "out vec4 color;\n"
     "float lod(vec2 dx, vec2 dy) {\n"
     "    vec2 a = dx * TEX_SIZE, b = dy * TEX_SIZE;\n"
@@ -167,22 +171,33 @@ static const char *FRAGMENT =
     "#if TECH == 2\n"
     "    uv += uv_per_depth(vts) * depth_at(uv);\n"
     "#elif TECH >= 3\n"
-    "    vec2 step = uv_per_depth(vts) * (1.0 / LAYERS);\n"
+    "#if TECH == 6\n"
+    /* The thesis's layer count: the complexity texel at the entry (nearest, wrapped), the view
+     * angle's factor (1 - |v.z|)^0.8, int(mix(mix(MIN, MAX/2, f), mix(MIN, MAX, f), c)). */
+    "    vec2 cs = vec2(textureSize(complexity_map, 0));\n"
+    "    float c = clamp(textureLod(complexity_map, (floor(uv * cs) + 0.5) / cs, 0.0).r, 0.0, 1.0);\n"
+    "    float f = pow(max(1.0 - abs(normalize(vts).z), 0.0), 0.8);\n"
+    "    float lo = 4.0 + (16.0 - 4.0) * f, hi = 4.0 + (32.0 - 4.0) * f;\n"
+    "    float layers = float(max(int(lo + (hi - lo) * c), 1));\n"
+    "#else\n"
+    "    float layers = LAYERS;\n"
+    "#endif\n"
+    "    vec2 step = uv_per_depth(vts) * (1.0 / layers);\n"
     "    vec2 uv0 = uv;\n"
     "    float map = depth_at(uv);\n"
     "    vec2 prev_uv = uv;\n"
     "    float prev_map = map;\n"
     "    int i = 0;\n"
-    "    while (float(i) * (1.0 / LAYERS) < map && i < int(LAYERS)) {\n"
+    "    while (float(i) * (1.0 / layers) < map && i < int(layers)) {\n"
     "        prev_uv = uv;\n"
     "        prev_map = map;\n"
     "        i += 1;\n"
     "        uv = uv0 + step * float(i);\n"
     "        map = depth_at(uv);\n"
     "    }\n"
-    "    float layer = float(i) * (1.0 / LAYERS);\n"
-    "    float prev_layer = i == 0 ? 0.0 : layer - 1.0 / LAYERS;\n"
-    "#if TECH == 3\n"
+    "    float layer = float(i) * (1.0 / layers);\n"
+    "    float prev_layer = i == 0 ? 0.0 : layer - 1.0 / layers;\n"
+    "#if TECH == 3 || TECH == 6\n"
     "    float after = map - layer, before = prev_map - prev_layer, denom = after - before;\n"
     "    float w = abs(denom) > 1e-12 ? clamp(after / denom, 0.0, 1.0) : 0.0;\n"
     "    uv = prev_uv * w + uv * (1.0 - w);\n"
@@ -255,7 +270,7 @@ int main(int argc, char **argv) {
     Reader r = {data, data + size};
     char magic[8];
     take(&r, magic, 8);
-    if (memcmp(magic, "RLLPIPE1", 8) != 0) die("not an RLLPIPE1 file");
+    if (memcmp(magic, "RLLPIPE2", 8) != 0) die("not an RLLPIPE2 file");
     uint32_t width = u32(&r), height = u32(&r);
     float bg[3], to_light[3], ambient, exponent, strength, height_scale;
     for (int i = 0; i < 3; i++) bg[i] = f32(&r);
@@ -308,8 +323,24 @@ int main(int argc, char **argv) {
     if ((size_t)(r.end - r.p) < (size_t)dw * dh * 2) die("depth map truncated");
     glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, (GLsizei)dw, (GLsizei)dh, GL_RED, GL_UNSIGNED_SHORT, r.p);
+    r.p += (size_t)dw * dh * 2;
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+
+    uint32_t cw = u32(&r), ch = u32(&r);
+    glActiveTexture(GL_TEXTURE3);
+    GLuint complexity;
+    glGenTextures(1, &complexity);
+    glBindTexture(GL_TEXTURE_2D, complexity);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, (GLsizei)cw, (GLsizei)ch);
+    if ((size_t)(r.end - r.p) < (size_t)cw * ch * 4) die("complexity map truncated");
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, (GLsizei)cw, (GLsizei)ch, GL_RED, GL_FLOAT, r.p);
+    r.p += (size_t)cw * ch * 4;
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
 

@@ -11,7 +11,7 @@
 //! away at 0°, 45°, 60° and 80°), writes its inputs to `out/llvmpipe/frame.bin` exactly as the
 //! fused frame reads them (the mesh, each view's matrix and eye, the light and material
 //! constants, the 8-bit sRGB albedo and unorm normal map with their mip chains, the packed
-//! map's 16-bit depths), and starts the GL program on it with `LP_NUM_THREADS` threads
+//! map's 16-bit depths, the complexity map), and starts the GL program on it with `LP_NUM_THREADS` threads
 //! (default 2; our frame gets a pool of as many). Per view it reads back one llvmpipe frame
 //! per technique and prints the PSNR between it and ours, and between ours and the float
 //! renderer's frame of the same technique (the precision the 8-bit formats give up; both as
@@ -19,8 +19,8 @@
 //! technique's frame is drawn by us and then by llvmpipe, alternating: ours by wall time
 //! around `render_fused`, llvmpipe's by wall time around clear + draw + `glFinish`. It
 //! prints the medians and our time over llvmpipe's, with `lscpu`'s model and the load.
-//! Techniques (default all): basic, normal, parallax, pom:32, steep:32, relief:16:6 (the GL
-//! program's six).
+//! Techniques (default all): basic, normal, parallax, pom:32, steep:32, relief:16:6, adaptive
+//! (the thesis's adaptive POM, 4 to 32 layers; the GL program's seven).
 
 use renderlab_core::color::linear_to_srgb;
 use renderlab_core::scene::{bricks_wall, BRICKS_WALL_CENTRE};
@@ -37,7 +37,7 @@ use std::time::Instant;
 /// The benchmark's views, in degrees from the wall's normal.
 const ANGLES: [f32; 4] = [0.0, 45.0, 60.0, 80.0];
 /// The GL program's techniques, in its numbering.
-const TECHS: [&str; 6] = ["basic", "normal", "parallax", "pom:32", "steep:32", "relief:16:6"];
+const TECHS: [&str; 7] = ["basic", "normal", "parallax", "pom:32", "steep:32", "relief:16:6", "adaptive"];
 
 fn put_u32(out: &mut Vec<u8>, v: u32) {
     out.extend_from_slice(&v.to_le_bytes());
@@ -67,7 +67,7 @@ fn put_texture(out: &mut Vec<u8>, t: &Texture8) {
 
 /// The GL program's input file (its layout is documented in `llvmpipe_bench.c`).
 fn frame_file(scene: &Scene, mat: &ReliefMaterial, cams: &[Camera]) -> Vec<u8> {
-    let mut out = b"RLLPIPE1".to_vec();
+    let mut out = b"RLLPIPE2".to_vec();
     put_u32(&mut out, cams[0].width);
     put_u32(&mut out, cams[0].height);
     for c in scene.background.to_array() {
@@ -112,6 +112,12 @@ fn frame_file(scene: &Scene, mat: &ReliefMaterial, cams: &[Camera]) -> Vec<u8> {
         for x in 0..p.width() {
             out.extend_from_slice(&p.texel(x, y).0.to_le_bytes());
         }
+    }
+    let c = &mat.complexity;
+    put_u32(&mut out, c.width());
+    put_u32(&mut out, c.height());
+    for &v in c.pixels() {
+        put_f32(&mut out, v);
     }
     out
 }
