@@ -1,6 +1,7 @@
 //! The [`ReliefTechnique`] interface every tracer implements, the inputs it reads and the hit
 //! it returns. The catalogue of user-facing techniques built on it is [`crate::techniques`].
 
+use crate::maps::complexity::ComplexityCodes;
 use crate::maps::cone::ConeMap;
 use crate::maps::height::HeightField;
 use crate::maps::packed::PackedRelief;
@@ -88,6 +89,9 @@ pub struct ReliefInputs<'a> {
     pub height_scale: f32,
     /// The thesis's complexity map, sampled nearest at the undisplaced UV.
     pub complexity: &'a Image<f32>,
+    /// The same map as one byte per texel, where it has at most 256 distinct values: what
+    /// the vector kernels read (the same values).
+    pub complexity_codes: Option<&'a ComplexityCodes>,
     /// Cone ratios for cone-step mapping, when built.
     pub cone: Option<&'a ConeMap>,
     /// The packed depth field (with the cone ratios when a cone map was built), for the

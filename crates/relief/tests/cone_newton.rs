@@ -458,21 +458,24 @@ fn vector_adaptive_layer_counts_equal_the_scalar_ones() {
         .collect();
     all.extend(rays(0));
     // An odd-sized field (the complexity read one ray at a time) and a power-of-two one (read
-    // by gathers).
+    // by gathers, from the byte map and, without it, from the floats).
     for fx in [fixture(48, 40, 24), fixture(64, 64, 64)] {
-        let inp = fx.inputs();
-        for rule in
-            [AdaptivePom { min: 4, max: 32 }, AdaptivePom { min: 1, max: 50 }, AdaptivePom { min: 0, max: 0 }]
-        {
-            let mut got = vec![0.0f32; all.len()];
-            if !renderlab_relief::cpu::has_avx2() {
-                eprintln!("skipped: no AVX2 here");
-                return;
-            }
-            renderlab_relief::simd::adaptive_layer_counts(rule.min, rule.max, &inp, &all, &mut got);
-            for (&(uv, v), &g) in all.iter().zip(&got) {
-                let expect = rule.layers(v, inp.complexity_at(uv));
-                assert_eq!(g, expect as f32, "{rule:?} at {uv} toward {v}");
+        for inp in [fx.inputs(), renderlab_relief::ReliefInputs { complexity_codes: None, ..fx.inputs() }] {
+            for rule in [
+                AdaptivePom { min: 4, max: 32 },
+                AdaptivePom { min: 1, max: 50 },
+                AdaptivePom { min: 0, max: 0 },
+            ] {
+                let mut got = vec![0.0f32; all.len()];
+                if !renderlab_relief::cpu::has_avx2() {
+                    eprintln!("skipped: no AVX2 here");
+                    return;
+                }
+                renderlab_relief::simd::adaptive_layer_counts(rule.min, rule.max, &inp, &all, &mut got);
+                for (&(uv, v), &g) in all.iter().zip(&got) {
+                    let expect = rule.layers(v, inp.complexity_at(uv));
+                    assert_eq!(g, expect as f32, "{rule:?} at {uv} toward {v}");
+                }
             }
         }
     }

@@ -4,7 +4,7 @@
 //! once per material the first time a tracer needs it.
 
 use renderlab_core::Image;
-use renderlab_relief::maps::complexity::{complexity_map, ComplexityParams};
+use renderlab_relief::maps::complexity::{complexity_map, ComplexityCodes, ComplexityParams};
 use renderlab_relief::maps::cone::{ConeKind, ConeMap};
 use renderlab_relief::maps::packed::PackedRelief;
 use renderlab_relief::maps::pyramid::DepthPyramid;
@@ -18,7 +18,7 @@ struct MaterialMaps {
     depth: Arc<Image<f32>>,
     scale: f32,
     field: OnceLock<HeightField>,
-    complexity: OnceLock<Image<f32>>,
+    complexity: OnceLock<(Image<f32>, Option<ComplexityCodes>)>,
     cone: OnceLock<ConeMap>,
     packed: OnceLock<PackedRelief>,
     packed_cones: OnceLock<PackedRelief>,
@@ -70,9 +70,11 @@ impl ReliefMaps {
     pub fn inputs(&self, material: u32, needs: &[Map]) -> Option<ReliefInputs<'_>> {
         let m = self.materials.get(material as usize)?.as_ref()?;
         let height = m.field.get_or_init(|| HeightField::from_depth(&m.depth));
-        let complexity = m
-            .complexity
-            .get_or_init(|| complexity_map(&m.depth.map(|d| 1.0 - d), &ComplexityParams::default()));
+        let (complexity, codes) = m.complexity.get_or_init(|| {
+            let c = complexity_map(&m.depth.map(|d| 1.0 - d), &ComplexityParams::default());
+            let codes = ComplexityCodes::new(&c);
+            (c, codes)
+        });
         let cone = needs
             .contains(&Map::Cone)
             .then(|| m.cone.get_or_init(|| ConeMap::build(height, ConeKind::Relaxed, CONE_MAP_SIZE)));
@@ -82,6 +84,14 @@ impl ReliefMaps {
         });
         let pyramid =
             needs.contains(&Map::Pyramid).then(|| m.pyramid.get_or_init(|| DepthPyramid::build(height)));
-        Some(ReliefInputs { height, height_scale: m.scale, complexity, cone, packed, pyramid })
+        Some(ReliefInputs {
+            height,
+            height_scale: m.scale,
+            complexity,
+            complexity_codes: codes.as_ref(),
+            cone,
+            packed,
+            pyramid,
+        })
     }
 }

@@ -301,9 +301,107 @@ pub fn to_u8_levels(map: &Image<f32>) -> Image<u8> {
     })
 }
 
+/// A complexity map stored as one byte per texel, an index into the table of its distinct
+/// values: the same values, bit for bit, in a quarter of the memory. The quantised maps the
+/// thesis's script makes hold at most `N` (24 by default) distinct values, so they always fit;
+/// the vector kernels read it where a map of `f32` would miss the caches far more often
+/// (adaptive POM's layer counts look a texel up for every pixel).
+#[derive(Clone, Debug)]
+pub struct ComplexityCodes {
+    width: u32,
+    height: u32,
+    /// One code per texel, row-major, and three bytes of padding so that a 32-bit read at
+    /// any texel stays inside.
+    codes: Vec<u8>,
+    /// Each code's value; unused codes hold 0.
+    values: Box<[f32; 256]>,
+}
+
+impl ComplexityCodes {
+    /// The codes of `map`, or `None` when it holds more than 256 distinct values (by bit
+    /// pattern, so that NaNs and signed zeros come back as they were).
+    pub fn new(map: &Image<f32>) -> Option<Self> {
+        // The distinct bit patterns, sorted; runs of one value (flat regions) skip the search.
+        let mut distinct: Vec<u32> = Vec::new();
+        let mut last = None;
+        for &v in map.pixels() {
+            let bits = v.to_bits();
+            if last == Some(bits) {
+                continue;
+            }
+            last = Some(bits);
+            if let Err(at) = distinct.binary_search(&bits) {
+                if distinct.len() == 256 {
+                    return None;
+                }
+                distinct.insert(at, bits);
+            }
+        }
+        let code = |v: f32| distinct.binary_search(&v.to_bits()).expect("a value seen above") as u8;
+        let mut codes: Vec<u8> = map.pixels().iter().map(|&v| code(v)).collect();
+        codes.extend([0; 3]);
+        let mut values = Box::new([0.0f32; 256]);
+        for (v, &bits) in values.iter_mut().zip(&distinct) {
+            *v = f32::from_bits(bits);
+        }
+        Some(ComplexityCodes { width: map.width(), height: map.height(), codes, values })
+    }
+
+    /// Width in texels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in texels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The codes, row-major, with three bytes of padding after the last texel.
+    pub fn codes(&self) -> &[u8] {
+        &self.codes
+    }
+
+    /// The value of each code.
+    pub fn values(&self) -> &[f32; 256] {
+        &self.values
+    }
+
+    /// The value of texel `(x, y)` (`x < width`, `y < height`).
+    pub fn get(&self, x: u32, y: u32) -> f32 {
+        self.values[self.codes[(y * self.width + x) as usize] as usize]
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every texel's code gives back its value bit for bit (NaN and −0 included); a map of
+    /// more than 256 distinct values has no codes.
+    #[test]
+    fn codes_give_back_every_value() {
+        let mut img = Image::new(37, 5, 0.0f32);
+        for (i, p) in img.pixels_mut().iter_mut().enumerate() {
+            *p = quantize((i % 29) as f32 / 28.0, 24);
+        }
+        img.pixels_mut()[3] = f32::NAN;
+        img.pixels_mut()[4] = -0.0;
+        let c = ComplexityCodes::new(&img).expect("few values");
+        assert_eq!(c.codes().len(), 37 * 5 + 3);
+        for y in 0..5 {
+            for x in 0..37 {
+                assert_eq!(c.get(x, y).to_bits(), img.get(x, y).to_bits(), "({x}, {y})");
+            }
+        }
+        let many = Image::from_fn(32, 9, |x, y| (y * 32 + x) as f32);
+        assert!(ComplexityCodes::new(&many).is_none());
+        let map = complexity_map(
+            &Image::from_fn(64, 64, |x, y| ((x * 7 + y * 3) % 13) as f32 / 13.0),
+            &ComplexityParams::default(),
+        );
+        assert!(ComplexityCodes::new(&map).is_some(), "the thesis's quantised maps always fit");
+    }
 
     #[test]
     fn reflect101_matches_opencv_border_interpolate() {

@@ -2,7 +2,7 @@
 //! complexity map and (on request) the cone map.
 
 use crate::fused::texture8::Textures8;
-use crate::maps::complexity::{complexity_map, ComplexityParams};
+use crate::maps::complexity::{complexity_map, ComplexityCodes, ComplexityParams};
 use crate::maps::cone::{ConeKind, ConeMap};
 use crate::maps::height::HeightField;
 use crate::maps::packed::PackedRelief;
@@ -29,6 +29,8 @@ pub struct ReliefMaterial {
     pub height_scale: f32,
     /// The thesis's Sobel complexity map of the height map.
     pub complexity: Image<f32>,
+    /// The complexity map as one byte per texel (when it has at most 256 distinct values).
+    pub complexity_codes: Option<ComplexityCodes>,
     /// Relaxed cone map, if built.
     pub cone: Option<ConeMap>,
     /// The depth field packed with the cone ratios (ratios 0 without a cone map).
@@ -55,12 +57,14 @@ impl ReliefMaterial {
         let pyramid = DepthPyramid::build(&height);
         let albedo = Texture::from_rgb(&m.albedo, Wrap::Repeat);
         let normal = Texture::from_rgb(&m.normal, Wrap::Repeat);
+        let complexity = complexity_map(&m.height, params);
         Self {
             name: m.name.clone(),
             textures8: Textures8::new(&albedo, &normal),
             albedo,
             normal,
-            complexity: complexity_map(&m.height, params),
+            complexity_codes: ComplexityCodes::new(&complexity),
+            complexity,
             height,
             height_scale: m.height_scale,
             cone,
@@ -75,6 +79,7 @@ impl ReliefMaterial {
             height: &self.height,
             height_scale: self.height_scale,
             complexity: &self.complexity,
+            complexity_codes: self.complexity_codes.as_ref(),
             cone: self.cone.as_ref(),
             packed: Some(&self.packed),
             pyramid: Some(&self.pyramid),

@@ -6,7 +6,7 @@
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::NoCount;
 use renderlab_core::Image;
-use renderlab_relief::maps::complexity::{complexity_map, ComplexityParams};
+use renderlab_relief::maps::complexity::{complexity_map, ComplexityCodes, ComplexityParams};
 use renderlab_relief::maps::cone::{ConeKind, ConeMap};
 use renderlab_relief::maps::packed::PackedRelief;
 use renderlab_relief::maps::pyramid::DepthPyramid;
@@ -35,6 +35,7 @@ pub fn heights(w: u32, h: u32) -> Image<f32> {
 pub struct Fixture {
     pub field: HeightField,
     pub complexity: Image<f32>,
+    pub codes: Option<ComplexityCodes>,
     pub cone: ConeMap,
     pub packed: Option<PackedRelief>,
     pub pyramid: DepthPyramid,
@@ -48,13 +49,8 @@ impl Fixture {
         let cone = ConeMap::build(&field, ConeKind::Relaxed, cone_size);
         let packed = packed.then(|| PackedRelief::build(&field, Some(&cone)));
         let pyramid = DepthPyramid::build(&field);
-        Fixture {
-            complexity: complexity_map(&img, &ComplexityParams::default()),
-            field,
-            cone,
-            packed,
-            pyramid,
-        }
+        let complexity = complexity_map(&img, &ComplexityParams::default());
+        Fixture { codes: ComplexityCodes::new(&complexity), complexity, field, cone, packed, pyramid }
     }
 
     /// The technique inputs over this fixture.
@@ -63,6 +59,7 @@ impl Fixture {
             height: &self.field,
             height_scale: SCALE,
             complexity: &self.complexity,
+            complexity_codes: self.codes.as_ref(),
             cone: Some(&self.cone),
             packed: self.packed.as_ref(),
             pyramid: Some(&self.pyramid),

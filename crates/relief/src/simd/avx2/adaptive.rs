@@ -1,7 +1,8 @@
 //! Adaptive POM's layer counts for eight rays at a time: the view-angle factor (normalise,
-//! [`super::math::pow_unit`]) and the two mixes in AVX2 lanes, the complexity lookup and the
-//! final truncation per ray, each step in `AdaptivePom::layers`'s order, so the counts are
-//! the scalar function's.
+//! [`super::math::pow_unit`]) and the two mixes in AVX2 lanes, the complexity lookup (from
+//! the byte map, [`crate::maps::complexity::ComplexityCodes`], where the inputs have it) and
+//! the final truncation per ray, each step in `AdaptivePom::layers`'s order, so the counts
+//! are the scalar function's.
 
 use super::math::pow_unit;
 use super::LANES;
@@ -29,6 +30,8 @@ pub(crate) unsafe fn layer_counts(
     let masks = (w.is_power_of_two() && h.is_power_of_two() && map.pixels().len() < 1 << 30)
         .then(|| (_mm256_set1_epi32(w as i32 - 1), _mm256_set1_epi32(h as i32 - 1)));
     let (wf, hf, small) = (ps(w as f32), ps(h as f32), ps(1.0e9));
+    // The same map in bytes, read instead where it matches (a quarter of the memory).
+    let codes = inp.complexity_codes.filter(|k| (k.width(), k.height()) == (w, h));
     for (chunk, outs) in rays.chunks(LANES).zip(out.chunks_mut(LANES)) {
         let mut comp = [[0.0f32; LANES]; 5];
         for (l, &(uv, v)) in chunk.iter().enumerate() {
@@ -50,7 +53,16 @@ pub(crate) unsafe fn layer_counts(
                 let xi = _mm256_and_si256(_mm256_cvttps_epi32(tx), mx);
                 let yi = _mm256_and_si256(_mm256_cvttps_epi32(ty), my);
                 let idx = _mm256_add_epi32(_mm256_mullo_epi32(yi, _mm256_set1_epi32(w as i32)), xi);
-                let c = _mm256_i32gather_ps::<4>(map.pixels().as_ptr(), idx);
+                let c = match codes {
+                    // The byte map: a 32-bit read at each texel's byte (the map is padded for
+                    // it), its low byte the code, then the code's value.
+                    Some(k) => {
+                        let raw = _mm256_i32gather_epi32::<1>(k.codes().as_ptr() as *const i32, idx);
+                        let code = _mm256_and_si256(raw, _mm256_set1_epi32(0xff));
+                        _mm256_i32gather_ps::<4>(k.values().as_ptr(), code)
+                    }
+                    None => _mm256_i32gather_ps::<4>(map.pixels().as_ptr(), idx),
+                };
                 // `clamp(0, 1)`, which keeps NaN.
                 let clamped = _mm256_min_ps(_mm256_max_ps(c, zero), one);
                 _mm256_blendv_ps(clamped, c, _mm256_cmp_ps::<_CMP_UNORD_Q>(c, c))
