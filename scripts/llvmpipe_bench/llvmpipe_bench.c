@@ -83,6 +83,29 @@ typedef struct {
     float eye[3];
 } View;
 
+/* Uploads a one-channel map (u32 width, height, then its texels of `bytes` each) to texture
+ * unit `unit` with `filter` and repeat wrap. */
+static void read_map(Reader *r, GLenum unit, GLenum internal, GLenum type, size_t bytes, GLint filter,
+                     const char *what) {
+    uint32_t w = u32(r), h = u32(r);
+    glActiveTexture(unit);
+    GLuint tex;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexStorage2D(GL_TEXTURE_2D, 1, internal, (GLsizei)w, (GLsizei)h);
+    if ((size_t)(r->end - r->p) / bytes < (size_t)w * h) {
+        fprintf(stderr, "llvmpipe_bench: %s truncated\n", what);
+        exit(1);
+    }
+    glPixelStorei(GL_UNPACK_ALIGNMENT, (GLint)bytes);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, (GLsizei)w, (GLsizei)h, GL_RED, type, r->p);
+    r->p += (size_t)w * h * bytes;
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+}
+
 /* Uploads a texture with its levels as given; returns its name. */
 static GLuint read_texture(Reader *r, GLenum internal, int *levels_out, int *w0, int *h0) {
     uint32_t levels = u32(r);
@@ -314,35 +337,8 @@ int main(int argc, char **argv) {
     glActiveTexture(GL_TEXTURE1);
     read_texture(&r, GL_RGBA8, &normal_levels, &nw, &nh);
     if (albedo_levels != normal_levels || aw != nw || ah != nh) die("albedo and normal of different shapes");
-    uint32_t dw = u32(&r), dh = u32(&r);
-    glActiveTexture(GL_TEXTURE2);
-    GLuint depth;
-    glGenTextures(1, &depth);
-    glBindTexture(GL_TEXTURE_2D, depth);
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_R16, (GLsizei)dw, (GLsizei)dh);
-    if ((size_t)(r.end - r.p) < (size_t)dw * dh * 2) die("depth map truncated");
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, (GLsizei)dw, (GLsizei)dh, GL_RED, GL_UNSIGNED_SHORT, r.p);
-    r.p += (size_t)dw * dh * 2;
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-
-    uint32_t cw = u32(&r), ch = u32(&r);
-    glActiveTexture(GL_TEXTURE3);
-    GLuint complexity;
-    glGenTextures(1, &complexity);
-    glBindTexture(GL_TEXTURE_2D, complexity);
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, (GLsizei)cw, (GLsizei)ch);
-    if ((size_t)(r.end - r.p) < (size_t)cw * ch * 4) die("complexity map truncated");
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, (GLsizei)cw, (GLsizei)ch, GL_RED, GL_FLOAT, r.p);
-    r.p += (size_t)cw * ch * 4;
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    read_map(&r, GL_TEXTURE2, GL_R16, GL_UNSIGNED_SHORT, 2, GL_LINEAR, "depth map");
+    read_map(&r, GL_TEXTURE3, GL_R32F, GL_FLOAT, 4, GL_NEAREST, "complexity map");
 
     /* The mesh. */
     GLuint vao, vbo, ibo;

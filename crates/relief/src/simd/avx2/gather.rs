@@ -2,6 +2,22 @@
 //! and cone ratio) in four 64-bit gathers, or the depth alone from the 16-bit depth plane in
 //! two 32-bit gathers.
 
+/// The bilinear cell of texel coordinates `(x, y)` for eight lanes: the fractions within it and
+/// the padded-grid index of its first texel (`⌊y⌋ & mask_y` rows of `stride` plus
+/// `⌊x⌋ & mask_x`), as the scalar `PackedRelief` locates it. Shared by [`gather_cell`] and
+/// [`plane_depth`]; a macro for the reason they are.
+macro_rules! cell_index {
+    ($x:expr, $y:expr, $mask_x:expr, $mask_y:expr, $stride_v:expr) => {{
+        let x0 = _mm256_floor_ps($x);
+        let y0 = _mm256_floor_ps($y);
+        let (fx, fy) = (_mm256_sub_ps($x, x0), _mm256_sub_ps($y, y0));
+        let xi = _mm256_and_si256(_mm256_cvttps_epi32(x0), $mask_x);
+        let yi = _mm256_and_si256(_mm256_cvttps_epi32(y0), $mask_y);
+        (fx, fy, _mm256_add_epi32(_mm256_mullo_epi32(yi, $stride_v), xi))
+    }};
+}
+pub(crate) use cell_index;
+
 /// The four packed texels around texel coordinates `(x, y)` for eight lanes at once (AVX2), as
 /// the scalar `PackedRelief` fetch reads them: returns `(fx, fy, t00, t10, t01, t11)`, the
 /// fractions and the texels `(x, y)`, `(x + 1, y)`, `(x, y + 1)`, `(x + 1, y + 1)`. `mask_x` and
@@ -12,12 +28,7 @@
 /// context with `std::arch::x86_64::*` in scope.
 macro_rules! gather_cell {
     ($base:expr, $stride:expr, $x:expr, $y:expr, $mask_x:expr, $mask_y:expr, $stride_v:expr, $lane_order:expr) => {{
-        let x0 = _mm256_floor_ps($x);
-        let y0 = _mm256_floor_ps($y);
-        let (fx, fy) = (_mm256_sub_ps($x, x0), _mm256_sub_ps($y, y0));
-        let xi = _mm256_and_si256(_mm256_cvttps_epi32(x0), $mask_x);
-        let yi = _mm256_and_si256(_mm256_cvttps_epi32(y0), $mask_y);
-        let idx = _mm256_add_epi32(_mm256_mullo_epi32(yi, $stride_v), xi);
+        let (fx, fy, idx) = $crate::simd::avx2::gather::cell_index!($x, $y, $mask_x, $mask_y, $stride_v);
         // Texels (x, y) and (x + 1, y) are adjacent: one 64-bit gather element fetches both.
         // Lanes (0, 1, 4, 5) go to the first gather and (2, 3, 6, 7) to the second, so that the
         // shuffles below put them back in order.
@@ -73,12 +84,7 @@ pub(crate) use packed_sample;
 /// reason that one is.
 macro_rules! plane_depth {
     ($depths:expr, $below:expr, $x:expr, $y:expr, $mask_x:expr, $mask_y:expr, $stride_v:expr) => {{
-        let x0 = _mm256_floor_ps($x);
-        let y0 = _mm256_floor_ps($y);
-        let (fx, fy) = (_mm256_sub_ps($x, x0), _mm256_sub_ps($y, y0));
-        let xi = _mm256_and_si256(_mm256_cvttps_epi32(x0), $mask_x);
-        let yi = _mm256_and_si256(_mm256_cvttps_epi32(y0), $mask_y);
-        let idx = _mm256_add_epi32(_mm256_mullo_epi32(yi, $stride_v), xi);
+        let (fx, fy, idx) = $crate::simd::avx2::gather::cell_index!($x, $y, $mask_x, $mask_y, $stride_v);
         let r0 = _mm256_i32gather_epi32::<2>($depths, idx);
         let r1 = _mm256_i32gather_epi32::<2>($below, idx);
         let low = _mm256_set1_epi32(0xffff);
