@@ -307,7 +307,7 @@ impl ReliefTechnique for Leap {
         self.march(inp.height, pyramid, inp.height_scale, uv, v, counter)
     }
 
-    /// [`PACKET`] rays stepped together, each with [`Leap::march`]'s operations (the same
+    /// Eight rays (`PACKET`) stepped together, each with [`Leap::march`]'s operations (the same
     /// hits, bit for bit): every ray's fetch, then every ray's move, so that the fetches
     /// overlap.
     fn trace_row<C: Counter>(
