@@ -2,7 +2,7 @@
 //! converted to linear light on load (sRGB-encoded formats) and encoded to sRGB on save;
 //! data images (height, normal maps) are read as raw values scaled to [0, 1].
 //!
-//! Bad input never crashes: every failure is a [`CoreError`] that names the file. Dimensions
+//! Bad input never crashes: every failure is a [`CoreError`](crate::CoreError) that names the file. Dimensions
 //! are checked from the file header before any pixel memory is reserved (so a 12-byte header
 //! claiming 100000×100000 pixels is refused, not allocated), and the third-party decoders run
 //! under [`std::panic::catch_unwind`], so a panic inside one becomes a decode error.

@@ -12,7 +12,7 @@
 //! renders and times frames; `material`, `mesh`, `upload`, `readback` and [`timing`] are its
 //! parts. [`filter`] renders the texture lab's scenes through the GPU's filters: the
 //! hardware's nearest, bilinear, trilinear and anisotropic samplers, and EWA, whose WGSL sits
-//! beside its CPU twin in `renderlab-texture` ([`Ewa::WGSL`](renderlab_texture::Ewa::WGSL)).
+//! beside its CPU twin in `renderlab-texture` (its [`Entry::WGSL`](renderlab_texture::filter::Entry::WGSL)).
 //!
 //! Agreement with the CPU: the GPU frame is the CPU frame computed again: the same mesh and
 //! camera (rasterized by the GPU's fixed-function rasterizer), the UV and its exact screen

@@ -3,7 +3,7 @@
 //! maps, direct lighting, ambient and SSAO, the lit image and SSR, composition with the
 //! sorted forward translucent pass, and tone mapping. Each stage is one timestamped pass or
 //! group of passes, so that [`GpuStageTimings`] reports GPU milliseconds per stage like the
-//! CPU's [`StageTimings`].
+//! CPU's [`StageTimings`](renderlab_hybrid::deferred::StageTimings).
 //!
 //! The frame's buffers stay on the device ([`GpuDeferred::targets`]) for later compute
 //! passes; [`GpuDeferred::render`] also reads everything back for comparison with the CPU.

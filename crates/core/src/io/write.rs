@@ -136,7 +136,7 @@ pub fn save_gray(path: impl AsRef<Path>, img: &Image<f32>, sixteen_bit: bool) ->
 
 /// Saves a linear-light image as 32-bit float OpenEXR (R, G, B; lossless RLE), the format
 /// for HDR output and for data that must round-trip exactly. Writes EXR whatever the
-/// extension; [`load_color`] and friends read it back only from a `.exr` path.
+/// extension; [`load_color`](crate::io::load_color) and friends read it back only from a `.exr` path.
 pub fn save_exr(path: impl AsRef<Path>, img: &Image<Vec3>) -> Result<()> {
     use exr::prelude::{Encoding, Layer, LayerAttributes, SpecificChannels, Vec2, WritableImage};
     let path = path.as_ref();

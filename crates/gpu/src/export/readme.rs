@@ -5,7 +5,7 @@
 //! Shaders whose inputs and outputs are the same (every relief technique shares the relief
 //! frame) share one set of tables, so that the README stays readable; each shader's own
 //! section then says which resources each of its entry points actually uses. Modules with
-//! compute entry points get a section on dispatching them ([`readme_compute`]).
+//! compute entry points get a section on dispatching them (`readme_compute.rs`).
 
 use super::backends::OutputFile;
 use super::backends::{binding_layout, BindingRow};

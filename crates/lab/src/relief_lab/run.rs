@@ -69,7 +69,7 @@ impl View {
 /// 1. **CPU**: every CPU method timed in turn, repetition after repetition, so that a passing
 ///    disturbance does not fall on one method alone; then each one's trace alone.
 /// 2. **GPU** (with a GPU backend, [`ReliefBenchConfig::backend`]): every technique on every
-///    pipeline of the run timed with nothing else running ([`super::gpu_phase`]): steady
+///    pipeline of the run timed with nothing else running (`gpu_phase.rs`): steady
 ///    batches warmed up until successive rounds agree, then whole frames with read-back in
 ///    turn, whose median the paired CPU method's median is divided by for `cpu_over_gpu`
 ///    (`both`).
