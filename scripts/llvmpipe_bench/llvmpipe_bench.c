@@ -11,7 +11,7 @@
  *     cc -O2 -o out/llvmpipe_bench scripts/llvmpipe_bench/llvmpipe_bench.c -lEGL -lOpenGL
  *     LP_NUM_THREADS=2 cargo run --release -p renderlab-relief --example llvmpipe -- out/llvmpipe_bench
  *
- * Input (argv[1], little-endian): "RLLPIPE2"; u32 width, height; f32 background r,g,b
+ * Input (argv[1], little-endian): "RLLPIPE3"; u32 width, height; f32 background r,g,b
  * (linear); f32 to_light x,y,z (unit, world); f32 ambient, specular exponent, specular
  * strength, height scale (UV per unit depth); u32 vertices, then 12 f32 per vertex
  * (position 3, normal 3, uv 2, tangent 4 with handedness in w); u32 indices, then u32 each;
@@ -19,7 +19,10 @@
  * x,y,z; two textures (albedo: sRGB-encoded, normal: unorm-encoded), each u32 levels, then
  * per level u32 width, height and width·height u32 RGBA8 texels (red in the low byte, row 0
  * at v = 0); the depth map: u32 width, height, width·height u16 (depth · 65535); the
- * complexity map: u32 width, height (powers of two), width·height f32.
+ * complexity map: u32 width, height (powers of two), width·height f32; the packed map on its
+ * padded grid: u32 width + 1, height + 1, then u32 texels (16-bit depth code high, cone ratio
+ * code low); f32 constants: depth step, ratio step, and cone-newton's least step, least slope,
+ * largest tolerance and Newton reach.
  *
  * Commands on stdin, one a line; each answered with one line on stdout:
  *
@@ -32,7 +35,8 @@
  * 4 steep parallax (32 layers, the first layer below the surface), 5 relief mapping (16
  * layers, then 6 bisection steps between the last layer above and the first below), 6 the
  * thesis's adaptive POM (layers from the view angle and the complexity map, 4 to 32, then
- * POM's march and interpolation).
+ * POM's march and interpolation), 7 cone-newton (at most 64 relaxed cone steps and 3 Illinois
+ * steps, stopping within 0.25 texels by Newton's estimate: the WGSL twin's operations).
  * The maths is the fused CPU frame's: the exact UV Jacobian from the perspective-correct
  * interpolants, the level of detail ½·log2(max(|J_x|², |J_y|²)) in texels clamped to the
  * levels, trilinear filtering by the sampler (the texture's own mip chain, repeat wrap), sRGB
@@ -50,7 +54,7 @@
 #include <string.h>
 #include <time.h>
 
-#define TECHS 7
+#define TECHS 8
 
 static void die(const char *msg) {
     fprintf(stderr, "llvmpipe_bench: %s\n", msg);
@@ -98,7 +102,8 @@ static void read_map(Reader *r, GLenum unit, GLenum internal, GLenum type, size_
         exit(1);
     }
     glPixelStorei(GL_UNPACK_ALIGNMENT, (GLint)bytes);
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, (GLsizei)w, (GLsizei)h, GL_RED, type, r->p);
+    GLenum format = internal == GL_R32UI ? GL_RED_INTEGER : GL_RED;
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, (GLsizei)w, (GLsizei)h, format, type, r->p);
     r->p += (size_t)w * h * bytes;
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
@@ -170,6 +175,7 @@ static const char *FRAGMENT =
     "layout(binding = 1) uniform sampler2D normal_map;\n"
     "layout(binding = 2) uniform sampler2D depth_map;\n"
     "layout(binding = 3) uniform sampler2D complexity_map;\n"
+    "layout(binding = 4) uniform usampler2D packed_map;\n"
     "out vec4 color;\n"
     "float lod(vec2 dx, vec2 dy) {\n"
     "    vec2 a = dx * TEX_SIZE, b = dy * TEX_SIZE;\n"
@@ -178,6 +184,82 @@ static const char *FRAGMENT =
     "}\n"
     "vec2 uv_per_depth(vec3 v) { return -v.xy / max(v.z, 1e-3) * HEIGHT_SCALE; }\n"
     "float depth_at(vec2 uv) { return textureLod(depth_map, uv, 0.0).r; }\n"
+    "#if TECH == 7\n"
+    /* The packed map's bilinear depth, cone ratio and depth gradient at texel coordinates
+     * (x, y), as the CPU's packed fetch (power-of-two sides: wrap by masking). */
+    "struct Packed { float depth; float ratio; float ddx; float ddy; };\n"
+    "Packed packed_at(float x, float y) {\n"
+    "    float x0 = floor(x), y0 = floor(y);\n"
+    "    float fx = x - x0, fy = y - y0;\n"
+    "    ivec2 n = textureSize(packed_map, 0) - ivec2(1);\n"
+    "    int xw = int(x0) & (n.x - 1), yw = int(y0) & (n.y - 1);\n"
+    "    uint t00 = texelFetch(packed_map, ivec2(xw, yw), 0).r;\n"
+    "    uint t10 = texelFetch(packed_map, ivec2(xw + 1, yw), 0).r;\n"
+    "    uint t01 = texelFetch(packed_map, ivec2(xw, yw + 1), 0).r;\n"
+    "    uint t11 = texelFetch(packed_map, ivec2(xw + 1, yw + 1), 0).r;\n"
+    "    float d00 = float(t00 >> 16u), d10 = float(t10 >> 16u);\n"
+    "    float d01 = float(t01 >> 16u), d11 = float(t11 >> 16u);\n"
+    "    float dx0 = d10 - d00, dx1 = d11 - d01;\n"
+    "    float top = d00 + dx0 * fx, bottom = d01 + dx1 * fx;\n"
+    "    float dy = bottom - top;\n"
+    "    return Packed((top + dy * fy) * DEPTH_STEP, float(t00 & 0xffffu) * RATIO_STEP,\n"
+    "                  (dx0 + (dx1 - dx0) * fy) * DEPTH_STEP, dy * DEPTH_STEP);\n"
+    "}\n"
+    "float cn_min(float a, float b) { return a < b ? a : b; }\n"
+    "float cn_max(float a, float b) { return a > b ? a : b; }\n"
+    "float cn_interp(float a, float fa, float b, float fb) {\n"
+    "    float den = fb - fa;\n"
+    "    return den > 1e-12 ? cn_min(cn_max((a * fb - b * fa) / den, a), b) : 0.5 * (a + b);\n"
+    "}\n"
+    /* The depth along the ray (0 at the entry, 1 at the bottom) where it meets the surface. */
+    "float cone_newton(vec2 uv0, vec3 v) {\n"
+    "    const int steps = 64, secant = 3;\n"
+    "    const float tol = 0.25;\n"
+    "    vec2 dp = uv_per_depth(v);\n"
+    "    vec2 size = vec2(textureSize(packed_map, 0) - ivec2(1));\n"
+    "    float s = sqrt(dot(dp, dp));\n"
+    "    float eps = clamp(tol / max(s * max(size.x, size.y), 1e-3), 1e-6, CN_MAX_EPS);\n"
+    "    float px = uv0.x * size.x - 0.5, py = uv0.y * size.y - 0.5;\n"
+    "    float tu = dp.x * size.x, tv = dp.y * size.y;\n"
+    "    float t = 0.0, a = 0.0, fa = -1.0, b = 1.0, fb = 0.0;\n"
+    "    int k = 0, phase = 0;\n"
+    "    for (int iter = 0; iter <= steps + secant + 1; iter++) {\n"
+    "        float c = phase != 0 ? cn_interp(a, fa, b, fb) : t;\n"
+    "        Packed smp = packed_at(px + tu * c, py + tv * c);\n"
+    "        float f = c - smp.depth;\n"
+    "        float fp = 1.0 - (smp.ddx * tu + smp.ddy * tv);\n"
+    "        float gap = -f;\n"
+    "        float rcp = 1.0 / fp;\n"
+    "        if (phase == 0) {\n"
+    "            if (f >= 0.0) {\n"
+    "                if (c <= 0.0) return 0.0;\n"
+    "                if (f <= eps * cn_max(fp, CN_MIN_SLOPE))\n"
+    "                    return fp >= CN_MIN_SLOPE ? cn_min(cn_max(c - f * rcp, a), c) : c;\n"
+    "                b = c; fb = f; k = 0; phase = 1;\n"
+    "            } else if (fp >= CN_MIN_SLOPE && gap <= eps * fp) {\n"
+    "                return cn_min(c + gap * rcp, 1.0);\n"
+    "            } else if (k + 1 >= steps) {\n"
+    "                return cn_min(c + gap * (fp > 1.0 ? rcp : 1.0), 1.0);\n"
+    "            } else {\n"
+    "                a = c; fa = f;\n"
+    "                float cone = s > 0.0 ? smp.ratio * gap / (s + smp.ratio) : gap;\n"
+    "                float step = cone;\n"
+    "                if (fp >= CN_MIN_SLOPE && gap <= eps * fp * CN_JUMP) step = cn_max(cone, gap * rcp);\n"
+    "                t = cn_min(c + cn_max(step, CN_MIN_STEP), 1.0);\n"
+    "                k += 1;\n"
+    "            }\n"
+    "        } else {\n"
+    "            if (abs(f) <= eps * cn_max(fp, CN_MIN_SLOPE))\n"
+    "                return fp >= CN_MIN_SLOPE ? cn_min(cn_max(c - f * rcp, a), b) : c;\n"
+    "            if (f >= 0.0) { b = c; fb = f; if (phase == 3) fa *= 0.5; phase = 3; }\n"
+    "            else { a = c; fa = f; if (phase == 2) fb *= 0.5; phase = 2; }\n"
+    "            k += 1;\n"
+    "            if (k >= secant) return cn_interp(a, fa, b, fb);\n"
+    "        }\n"
+    "    }\n"
+    "    return 1.0;\n"
+    "}\n"
+    "#endif\n"
     "void main() {\n"
     /* The exact UV Jacobian: uv.q is affine in screen space (q = 1/w). */
     "    float q = gl_FragCoord.w;\n"
@@ -193,6 +275,8 @@ static const char *FRAGMENT =
     "#endif\n"
     "#if TECH == 2\n"
     "    uv += uv_per_depth(vts) * depth_at(uv);\n"
+    "#elif TECH == 7\n"
+    "    uv += uv_per_depth(vts) * cone_newton(uv, vts);\n"
     "#elif TECH >= 3\n"
     "#if TECH == 6\n"
     /* The thesis's layer count: the complexity texel at the entry (nearest, wrapped), the view
@@ -293,7 +377,7 @@ int main(int argc, char **argv) {
     Reader r = {data, data + size};
     char magic[8];
     take(&r, magic, 8);
-    if (memcmp(magic, "RLLPIPE2", 8) != 0) die("not an RLLPIPE2 file");
+    if (memcmp(magic, "RLLPIPE3", 8) != 0) die("not an RLLPIPE3 file");
     uint32_t width = u32(&r), height = u32(&r);
     float bg[3], to_light[3], ambient, exponent, strength, height_scale;
     for (int i = 0; i < 3; i++) bg[i] = f32(&r);
@@ -339,6 +423,9 @@ int main(int argc, char **argv) {
     if (albedo_levels != normal_levels || aw != nw || ah != nh) die("albedo and normal of different shapes");
     read_map(&r, GL_TEXTURE2, GL_R16, GL_UNSIGNED_SHORT, 2, GL_LINEAR, "depth map");
     read_map(&r, GL_TEXTURE3, GL_R32F, GL_FLOAT, 4, GL_NEAREST, "complexity map");
+    read_map(&r, GL_TEXTURE4, GL_R32UI, GL_UNSIGNED_INT, 4, GL_NEAREST, "packed map");
+    float consts[6];
+    for (int i = 0; i < 6; i++) consts[i] = f32(&r);
 
     /* The mesh. */
     GLuint vao, vbo, ibo;
@@ -360,13 +447,16 @@ int main(int argc, char **argv) {
     /* One program per technique, its constants compiled in. */
     GLuint programs[TECHS];
     for (int t = 0; t < TECHS; t++) {
-        char prelude[512];
+        char prelude[1024];
         snprintf(prelude, sizeof prelude,
                  "#version 450 core\n#define TECH %d\n#define TEX_SIZE vec2(%d.0, %d.0)\n"
                  "#define TEX_LEVELS %d.0\n#define HEIGHT_SCALE %.9g\n#define LAYERS %d.0\n"
-                 "#define BINARY 6\n#define EXPONENT %d\n#define AMBIENT %.9g\n#define STRENGTH %.9g\n",
+                 "#define BINARY 6\n#define EXPONENT %d\n#define AMBIENT %.9g\n#define STRENGTH %.9g\n"
+                 "#define DEPTH_STEP float(%.9g)\n#define RATIO_STEP float(%.9g)\n"
+                 "#define CN_MIN_STEP float(%.9g)\n#define CN_MIN_SLOPE float(%.9g)\n"
+                 "#define CN_MAX_EPS float(%.9g)\n#define CN_JUMP float(%.9g)\n",
                  t, aw, ah, albedo_levels, height_scale, t == 5 ? 16 : 32, (int)exponent, ambient,
-                 strength);
+                 strength, consts[0], consts[1], consts[2], consts[3], consts[4], consts[5]);
         GLuint p = glCreateProgram();
         glAttachShader(p, compile(GL_VERTEX_SHADER, prelude, VERTEX));
         glAttachShader(p, compile(GL_FRAGMENT_SHADER, prelude, FRAGMENT));

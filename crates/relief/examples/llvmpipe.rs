@@ -11,7 +11,7 @@
 //! away at 0°, 45°, 60° and 80°), writes its inputs to `out/llvmpipe/frame.bin` exactly as the
 //! fused frame reads them (the mesh, each view's matrix and eye, the light and material
 //! constants, the 8-bit sRGB albedo and unorm normal map with their mip chains, the packed
-//! map's 16-bit depths, the complexity map), and starts the GL program on it with `LP_NUM_THREADS` threads
+//! map's 16-bit depths, the complexity map, the packed map with its cone ratios), and starts the GL program on it with `LP_NUM_THREADS` threads
 //! (default 2; our frame gets a pool of as many). Per view it reads back one llvmpipe frame
 //! per technique and prints the PSNR between it and ours, and between ours and the float
 //! renderer's frame of the same technique (the precision the 8-bit formats give up; both as
@@ -20,7 +20,7 @@
 //! around `render_fused`, llvmpipe's by wall time around clear + draw + `glFinish`. It
 //! prints the medians and our time over llvmpipe's, with `lscpu`'s model and the load.
 //! Techniques (default all): basic, normal, parallax, pom:32, steep:32, relief:16:6, adaptive
-//! (the thesis's adaptive POM, 4 to 32 layers; the GL program's seven).
+//! (the thesis's adaptive POM, 4 to 32 layers), cone-newton:64:3:25 (the GL program's eight).
 
 use renderlab_core::color::linear_to_srgb;
 use renderlab_core::scene::{bricks_wall, BRICKS_WALL_CENTRE};
@@ -28,6 +28,8 @@ use renderlab_core::stats::median;
 use renderlab_core::{Camera, Scene, SceneObject};
 use renderlab_relief::fused::{render_fused, FusedFrame, Texture8};
 use renderlab_relief::maps::complexity::ComplexityParams;
+use renderlab_relief::maps::packed::{DEPTH_STEP, RATIO_STEP};
+use renderlab_relief::march::cone_newton;
 use renderlab_relief::{FrameInput, KernelChoice, ReliefMaterial, Technique};
 use std::io::{BufRead, BufReader, Write};
 use std::path::Path;
@@ -37,7 +39,8 @@ use std::time::Instant;
 /// The benchmark's views, in degrees from the wall's normal.
 const ANGLES: [f32; 4] = [0.0, 45.0, 60.0, 80.0];
 /// The GL program's techniques, in its numbering.
-const TECHS: [&str; 7] = ["basic", "normal", "parallax", "pom:32", "steep:32", "relief:16:6", "adaptive"];
+const TECHS: [&str; 8] =
+    ["basic", "normal", "parallax", "pom:32", "steep:32", "relief:16:6", "adaptive", "cone-newton:64:3:25"];
 
 fn put_u32(out: &mut Vec<u8>, v: u32) {
     out.extend_from_slice(&v.to_le_bytes());
@@ -67,7 +70,7 @@ fn put_texture(out: &mut Vec<u8>, t: &Texture8) {
 
 /// The GL program's input file (its layout is documented in `llvmpipe_bench.c`).
 fn frame_file(scene: &Scene, mat: &ReliefMaterial, cams: &[Camera]) -> Vec<u8> {
-    let mut out = b"RLLPIPE2".to_vec();
+    let mut out = b"RLLPIPE3".to_vec();
     put_u32(&mut out, cams[0].width);
     put_u32(&mut out, cams[0].height);
     for c in scene.background.to_array() {
@@ -117,6 +120,23 @@ fn frame_file(scene: &Scene, mat: &ReliefMaterial, cams: &[Camera]) -> Vec<u8> {
     put_u32(&mut out, c.width());
     put_u32(&mut out, c.height());
     for &v in c.pixels() {
+        put_f32(&mut out, v);
+    }
+    // The packed map on its padded grid (depth and cone ratio codes), and the constants the
+    // cone-newton march reads.
+    put_u32(&mut out, p.stride() as u32);
+    put_u32(&mut out, p.height() + 1);
+    for &t in p.texels() {
+        put_u32(&mut out, t);
+    }
+    for v in [
+        DEPTH_STEP,
+        RATIO_STEP,
+        cone_newton::MIN_STEP,
+        cone_newton::MIN_SLOPE,
+        cone_newton::MAX_EPS,
+        cone_newton::JUMP,
+    ] {
         put_f32(&mut out, v);
     }
     out
@@ -193,10 +213,9 @@ fn main() {
         args[2..]
             .iter()
             .map(|a| {
-                TECHS
-                    .iter()
-                    .position(|t| t == a)
-                    .expect("basic, normal, parallax, pom:32, steep:32 or relief:16:6")
+                TECHS.iter().position(|t| t == a).expect(
+                    "basic, normal, parallax, pom:32, steep:32, relief:16:6, adaptive or cone-newton:64:3:25",
+                )
             })
             .collect()
     } else {
@@ -206,7 +225,8 @@ fn main() {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a thread pool");
 
     let m = renderlab_texture::materials::material("bricks", 1024).expect("built-in material");
-    let mat = ReliefMaterial::new(&m, &ComplexityParams::default(), false);
+    // With the relaxed cone map, which cone-newton reads (the other techniques read only the depths).
+    let mat = ReliefMaterial::new(&m, &ComplexityParams::default(), true);
     let scene =
         Scene::new(vec![SceneObject { name: "wall2".into(), mesh: bricks_wall(), material: 0 }], vec![m]);
     let cams: Vec<Camera> =
