@@ -36,7 +36,10 @@
  * layers, then 6 bisection steps between the last layer above and the first below), 6 the
  * thesis's adaptive POM (layers from the view angle and the complexity map, 4 to 32, then
  * POM's march and interpolation), 7 cone-newton (at most 64 relaxed cone steps and 3 Illinois
- * steps, stopping within 0.25 texels by Newton's estimate: the WGSL twin's operations).
+ * steps, stopping within 0.25 texels by Newton's estimate: the WGSL twin's operations), 8
+ * relaxed cone stepping (at most 16 cone steps on the packed map's per-cell ratios, a short
+ * march to the bottom when they run out, then 5 bisection steps: the operations of the CPU's
+ * packed-map kernel, the depth filtered by the sampler as for the other techniques).
  * The maths is the fused CPU frame's: the exact UV Jacobian from the perspective-correct
  * interpolants, the level of detail ½·log2(max(|J_x|², |J_y|²)) in texels clamped to the
  * levels, trilinear filtering by the sampler (the texture's own mip chain, repeat wrap), sRGB
@@ -54,7 +57,9 @@
 #include <string.h>
 #include <time.h>
 
-#define TECHS 8
+#define TECHS 9
+/* The relaxed cone march's fallback samples (`cone_step::TAIL`; the example checks it). */
+#define CONE_TAIL 4
 
 static void die(const char *msg) {
     fprintf(stderr, "llvmpipe_bench: %s\n", msg);
@@ -184,7 +189,7 @@ static const char *FRAGMENT =
     "}\n"
     "vec2 uv_per_depth(vec3 v) { return -v.xy / max(v.z, 1e-3) * HEIGHT_SCALE; }\n"
     "float depth_at(vec2 uv) { return textureLod(depth_map, uv, 0.0).r; }\n"
-    "#if TECH == 7\n"
+    "#if TECH == 7 || TECH == 8\n"
     /* The packed map's bilinear depth, cone ratio and depth gradient at texel coordinates
      * (x, y), as the CPU's packed fetch (power-of-two sides: wrap by masking). */
     "struct Packed { float depth; float ratio; float ddx; float ddy; };\n"
@@ -207,6 +212,57 @@ static const char *FRAGMENT =
     "}\n"
     "float cn_min(float a, float b) { return a < b ? a : b; }\n"
     "float cn_max(float a, float b) { return a > b ? a : b; }\n"
+    "#endif\n"
+    "#if TECH == 8\n"
+    /* Relaxed cone stepping on the packed map: the depth along the ray where it meets the
+     * surface (phases: 0 cone steps, 1 the tail toward the bottom, 2 bisection). */
+    "float cone_step(vec2 uv0, vec3 v) {\n"
+    "    const int steps = 16, refine = 5;\n"
+    "    vec2 dp = uv_per_depth(v);\n"
+    "    vec2 size = vec2(textureSize(packed_map, 0) - ivec2(1));\n"
+    "    float s = sqrt(dot(dp, dp));\n"
+    "    float px = uv0.x * size.x - 0.5, py = uv0.y * size.y - 0.5;\n"
+    "    float tu = dp.x * size.x, tv = dp.y * size.y;\n"
+    "    float t = 0.0, a = 0.0, b = 1.0;\n"
+    "    int k = 0, phase = 0;\n"
+    "    for (int iter = 0; iter <= steps + CONE_TAIL + refine + 2; iter++) {\n"
+    "        float c = phase == 0 ? t : phase == 1 ? t + (1.0 - t) * float(k) / float(CONE_TAIL) : 0.5 * (a + b);\n"
+    /* The depth filtered by the sampler, as the other techniques read it; the cone ratio of the
+     * bilinear cell's first texel, as the CPU's packed fetch takes it. */
+    "        float depth = depth_at(uv0 + dp * c);\n"
+    "        ivec2 n = textureSize(packed_map, 0) - ivec2(1);\n"
+    "        ivec2 cell = ivec2(floor(vec2(px + tu * c, py + tv * c))) & (n - ivec2(1));\n"
+    "        float ratio = float(texelFetch(packed_map, cell, 0).r & 0xffffu) * RATIO_STEP;\n"
+    "        float f = c - depth;\n"
+    "        bool found = false;\n"
+    "        if (phase == 0) {\n"
+    "            if (f >= 0.0) { b = c; found = true; }\n"
+    "            else {\n"
+    "                float gap = depth - c;\n"
+    "                a = c;\n"
+    "                float r = ratio;\n"
+    "                float step = s > 0.0 ? r * gap / (s + r) : gap;\n"
+    "                t = cn_min(c + cn_max(step, CN_MIN_STEP), 1.0);\n"
+    "                k += 1;\n"
+    "                if (k >= steps) { phase = 1; k = 0; }\n"
+    "            }\n"
+    "        } else if (phase == 1) {\n"
+    "            if (f >= 0.0 || k + 1 > CONE_TAIL) { b = c; found = true; }\n"
+    "            else { a = c; k += 1; }\n"
+    "        } else {\n"
+    "            if (f >= 0.0) b = c; else a = c;\n"
+    "            k += 1;\n"
+    "            if (k >= refine) return 0.5 * (a + b);\n"
+    "        }\n"
+    "        if (found) {\n"
+    "            if (b <= 0.0) return 0.0;\n"
+    "            phase = 2; k = 0;\n"
+    "        }\n"
+    "    }\n"
+    "    return 0.5 * (a + b);\n"
+    "}\n"
+    "#endif\n"
+    "#if TECH == 7\n"
     "float cn_interp(float a, float fa, float b, float fb) {\n"
     "    float den = fb - fa;\n"
     "    return den > 1e-12 ? cn_min(cn_max((a * fb - b * fa) / den, a), b) : 0.5 * (a + b);\n"
@@ -277,6 +333,8 @@ static const char *FRAGMENT =
     "    uv += uv_per_depth(vts) * depth_at(uv);\n"
     "#elif TECH == 7\n"
     "    uv += uv_per_depth(vts) * cone_newton(uv, vts);\n"
+    "#elif TECH == 8\n"
+    "    uv += uv_per_depth(vts) * cone_step(uv, vts);\n"
     "#elif TECH >= 3\n"
     "#if TECH == 6\n"
     /* The thesis's layer count: the complexity texel at the entry (nearest, wrapped), the view
@@ -454,9 +512,10 @@ int main(int argc, char **argv) {
                  "#define BINARY 6\n#define EXPONENT %d\n#define AMBIENT %.9g\n#define STRENGTH %.9g\n"
                  "#define DEPTH_STEP float(%.9g)\n#define RATIO_STEP float(%.9g)\n"
                  "#define CN_MIN_STEP float(%.9g)\n#define CN_MIN_SLOPE float(%.9g)\n"
-                 "#define CN_MAX_EPS float(%.9g)\n#define CN_JUMP float(%.9g)\n",
+                 "#define CN_MAX_EPS float(%.9g)\n#define CN_JUMP float(%.9g)\n#define CONE_TAIL %d\n",
                  t, aw, ah, albedo_levels, height_scale, t == 5 ? 16 : 32, (int)exponent, ambient,
-                 strength, consts[0], consts[1], consts[2], consts[3], consts[4], consts[5]);
+                 strength, consts[0], consts[1], consts[2], consts[3], consts[4], consts[5],
+                 CONE_TAIL);
         GLuint p = glCreateProgram();
         glAttachShader(p, compile(GL_VERTEX_SHADER, prelude, VERTEX));
         glAttachShader(p, compile(GL_FRAGMENT_SHADER, prelude, FRAGMENT));

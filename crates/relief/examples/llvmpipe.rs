@@ -20,7 +20,8 @@
 //! around `render_fused`, llvmpipe's by wall time around clear + draw + `glFinish`. It
 //! prints the medians and our time over llvmpipe's, with `lscpu`'s model and the load.
 //! Techniques (default all): basic, normal, parallax, pom:32, steep:32, relief:16:6, adaptive
-//! (the thesis's adaptive POM, 4 to 32 layers), cone-newton:64:3:25 (the GL program's eight).
+//! (the thesis's adaptive POM, 4 to 32 layers), cone-newton:64:3:25, cone:16:5:binary (relaxed
+//! cone stepping; the GL program's nine).
 
 use renderlab_core::color::linear_to_srgb;
 use renderlab_core::scene::{bricks_wall, BRICKS_WALL_CENTRE};
@@ -29,7 +30,7 @@ use renderlab_core::{Camera, Scene, SceneObject};
 use renderlab_relief::fused::{render_fused, FusedFrame, Texture8};
 use renderlab_relief::maps::complexity::ComplexityParams;
 use renderlab_relief::maps::packed::{DEPTH_STEP, RATIO_STEP};
-use renderlab_relief::march::cone_newton;
+use renderlab_relief::march::{cone_newton, cone_step};
 use renderlab_relief::{FrameInput, KernelChoice, ReliefMaterial, Technique};
 use std::io::{BufRead, BufReader, Write};
 use std::path::Path;
@@ -39,8 +40,17 @@ use std::time::Instant;
 /// The benchmark's views, in degrees from the wall's normal.
 const ANGLES: [f32; 4] = [0.0, 45.0, 60.0, 80.0];
 /// The GL program's techniques, in its numbering.
-const TECHS: [&str; 8] =
-    ["basic", "normal", "parallax", "pom:32", "steep:32", "relief:16:6", "adaptive", "cone-newton:64:3:25"];
+const TECHS: [&str; 9] = [
+    "basic",
+    "normal",
+    "parallax",
+    "pom:32",
+    "steep:32",
+    "relief:16:6",
+    "adaptive",
+    "cone-newton:64:3:25",
+    "cone:16:5:binary",
+];
 
 fn put_u32(out: &mut Vec<u8>, v: u32) {
     out.extend_from_slice(&v.to_le_bytes());
@@ -123,7 +133,8 @@ fn frame_file(scene: &Scene, mat: &ReliefMaterial, cams: &[Camera]) -> Vec<u8> {
         put_f32(&mut out, v);
     }
     // The packed map on its padded grid (depth and cone ratio codes), and the constants the
-    // cone-newton march reads.
+    // cone marches read (the GL program's fallback march takes CONE_TAIL = 4 samples).
+    assert_eq!(cone_step::TAIL, 4, "llvmpipe_bench.c's CONE_TAIL must follow cone_step::TAIL");
     put_u32(&mut out, p.stride() as u32);
     put_u32(&mut out, p.height() + 1);
     for &t in p.texels() {
@@ -214,7 +225,7 @@ fn main() {
             .iter()
             .map(|a| {
                 TECHS.iter().position(|t| t == a).expect(
-                    "basic, normal, parallax, pom:32, steep:32, relief:16:6, adaptive or cone-newton:64:3:25",
+                    "basic, normal, parallax, pom:32, steep:32, relief:16:6, adaptive, cone-newton:64:3:25 or cone:16:5:binary",
                 )
             })
             .collect()
