@@ -21,8 +21,8 @@
  * at v = 0); the depth map: u32 width, height, width·height u16 (depth · 65535); the
  * complexity map: u32 width, height (powers of two), width·height f32; the packed map on its
  * padded grid: u32 width + 1, height + 1, then u32 texels (16-bit depth code high, cone ratio
- * code low); f32 constants: depth step, ratio step, and cone-newton's least step, least slope,
- * largest tolerance and Newton reach.
+ * code low); f32 constants: depth step, ratio step, cone-newton's least step, least slope,
+ * largest tolerance and Newton reach, and the relaxed cone march's fallback sample count.
  *
  * Commands on stdin, one a line; each answered with one line on stdout:
  *
@@ -58,8 +58,6 @@
 #include <time.h>
 
 #define TECHS 9
-/* The relaxed cone march's fallback samples (`cone_step::TAIL`; the example checks it). */
-#define CONE_TAIL 4
 
 static void die(const char *msg) {
     fprintf(stderr, "llvmpipe_bench: %s\n", msg);
@@ -223,6 +221,7 @@ static const char *FRAGMENT =
     "    float s = sqrt(dot(dp, dp));\n"
     "    float px = uv0.x * size.x - 0.5, py = uv0.y * size.y - 0.5;\n"
     "    float tu = dp.x * size.x, tv = dp.y * size.y;\n"
+    "    ivec2 wrap = ivec2(size) - ivec2(1);\n"
     "    float t = 0.0, a = 0.0, b = 1.0;\n"
     "    int k = 0, phase = 0;\n"
     "    for (int iter = 0; iter <= steps + CONE_TAIL + refine + 2; iter++) {\n"
@@ -230,8 +229,7 @@ static const char *FRAGMENT =
     /* The depth filtered by the sampler, as the other techniques read it; the cone ratio of the
      * bilinear cell's first texel, as the CPU's packed fetch takes it. */
     "        float depth = depth_at(uv0 + dp * c);\n"
-    "        ivec2 n = textureSize(packed_map, 0) - ivec2(1);\n"
-    "        ivec2 cell = ivec2(floor(vec2(px + tu * c, py + tv * c))) & (n - ivec2(1));\n"
+    "        ivec2 cell = ivec2(floor(vec2(px + tu * c, py + tv * c))) & wrap;\n"
     "        float ratio = float(texelFetch(packed_map, cell, 0).r & 0xffffu) * RATIO_STEP;\n"
     "        float f = c - depth;\n"
     "        bool found = false;\n"
@@ -482,8 +480,8 @@ int main(int argc, char **argv) {
     read_map(&r, GL_TEXTURE2, GL_R16, GL_UNSIGNED_SHORT, 2, GL_LINEAR, "depth map");
     read_map(&r, GL_TEXTURE3, GL_R32F, GL_FLOAT, 4, GL_NEAREST, "complexity map");
     read_map(&r, GL_TEXTURE4, GL_R32UI, GL_UNSIGNED_INT, 4, GL_NEAREST, "packed map");
-    float consts[6];
-    for (int i = 0; i < 6; i++) consts[i] = f32(&r);
+    float consts[7];
+    for (int i = 0; i < 7; i++) consts[i] = f32(&r);
 
     /* The mesh. */
     GLuint vao, vbo, ibo;
@@ -515,7 +513,7 @@ int main(int argc, char **argv) {
                  "#define CN_MAX_EPS float(%.9g)\n#define CN_JUMP float(%.9g)\n#define CONE_TAIL %d\n",
                  t, aw, ah, albedo_levels, height_scale, t == 5 ? 16 : 32, (int)exponent, ambient,
                  strength, consts[0], consts[1], consts[2], consts[3], consts[4], consts[5],
-                 CONE_TAIL);
+                 (int)consts[6]);
         GLuint p = glCreateProgram();
         glAttachShader(p, compile(GL_VERTEX_SHADER, prelude, VERTEX));
         glAttachShader(p, compile(GL_FRAGMENT_SHADER, prelude, FRAGMENT));

@@ -369,7 +369,7 @@ impl ComplexityCodes {
 
     /// The value of texel `(x, y)` (`x < width`, `y < height`).
     pub fn get(&self, x: u32, y: u32) -> f32 {
-        self.values[self.codes[(y * self.width + x) as usize] as usize]
+        self.values[self.codes[y as usize * self.width as usize + x as usize] as usize]
     }
 }
 

@@ -201,11 +201,7 @@ pub trait Backend {
     /// The CPU has the kernel's features.
     #[inline(always)]
     unsafe fn reaching(t_max: &[f32; PACKET], rays: u32, dist: f32) -> u32 {
-        let mut keep = 0;
-        for (i, t) in t_max.iter().enumerate() {
-            keep |= ((dist <= *t * IZE) as u32) << i;
-        }
-        rays & keep
+        reaching_each(t_max, rays, dist)
     }
 
     /// A packet's test of a wide node: each ray `r` of `active` runs [`Backend::node`] with
@@ -238,6 +234,21 @@ pub trait Backend {
         }
         PacketNode::from_rows(&rows, dist)
     }
+}
+
+/// [`Backend::reaching`] one ray at a time, testing only the rays of `rays`: the scalar
+/// kernel's form, and every kernel's for a thinned-out packet (a few rays).
+#[inline(always)]
+pub fn reaching_each(t_max: &[f32; PACKET], rays: u32, dist: f32) -> u32 {
+    let (mut keep, mut r) = (rays, rays);
+    while r != 0 {
+        let i = r.trailing_zeros() as usize;
+        r &= r - 1;
+        // `i < 32 = PACKET`: a bit of a `u32`.
+        let reaches = dist <= t_max[i] * IZE;
+        keep &= !((!reaches as u32) << i);
+    }
+    keep
 }
 
 /// Transposes an 8 × 8 bit matrix held in a `u64` (bit `c` of byte `r` goes to bit `r` of byte

@@ -25,7 +25,7 @@
 use crate::hit::Hit;
 use crate::node::{WideNode, EMPTY, LEAF_BIT};
 use crate::ray::Ray;
-use crate::traverse::backend::{Backend, PacketNode, IZE, PACKET};
+use crate::traverse::backend::{reaching_each, Backend, PacketNode, PACKET};
 use crate::traverse::walk::STACK;
 use std::mem::MaybeUninit;
 
@@ -130,15 +130,7 @@ impl<B: Backend> Packet<B> {
     unsafe fn reaching(&self, rays: u32, dist: f32) -> u32 {
         if rays.count_ones() <= 4 {
             // Few rays (a thinned-out packet): test just those.
-            let (mut keep, mut r) = (rays, rays);
-            while r != 0 {
-                let i = r.trailing_zeros() as usize;
-                r &= r - 1;
-                // `i < PACKET`: bits of a mask of the packet's lanes.
-                let reaches = dist <= *self.t_max.get_unchecked(i) * IZE;
-                keep &= !((!reaches as u32) << i);
-            }
-            return keep;
+            return reaching_each(&self.t_max, rays, dist);
         }
         B::reaching(&self.t_max, rays, dist)
     }

@@ -5,7 +5,7 @@
 //! lanes never diverge. Each lane performs the scalar twin's operations
 //! (`simd::scalar::bisect`) in its order: the hits are bit-identical to it.
 
-use super::gather::{packed_depth, plane_depth, DepthConsts};
+use super::gather::{packed_depth, DepthConsts};
 use super::LANES;
 use crate::maps::packed::PackedRelief;
 use crate::march::pom_lanes::bracket;

@@ -4,7 +4,7 @@
 //! step for all of them. A finished lane takes the row's next ray at once. Each lane performs
 //! the scalar twin's operations in its order, so the hits are bit-identical to it.
 
-use super::gather::{gather_cell, packed_sample};
+use super::gather::packed_sample;
 use super::lanes::{interp_v, lane_group, setup_rays, RayLanes, RaySoa, COLUMNS};
 use crate::maps::packed::PackedRelief;
 use crate::march::cone_lanes::MIN_STEP;

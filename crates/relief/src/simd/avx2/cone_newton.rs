@@ -6,7 +6,7 @@
 //! performs the scalar step's IEEE operations in the same order, so the results are
 //! bit-identical to the scalar kernel's.
 
-use super::gather::{gather_cell, packed_sample};
+use super::gather::packed_sample;
 use super::lanes::{interp_v, lane_group, setup_rays, RayLanes, RaySoa, COLUMNS};
 use crate::maps::packed::{PackedRelief, DEPTH_STEP};
 use crate::march::cone_newton::{

@@ -56,8 +56,16 @@ pub(crate) use gather_cell;
 /// made of). The arguments are [`gather_cell`]'s. A macro for the reason that one is.
 macro_rules! packed_sample {
     ($base:expr, $stride:expr, $x:expr, $y:expr, $mask_x:expr, $mask_y:expr, $stride_v:expr, $lane_order:expr) => {{
-        let (fx, fy, t00, t10, t01, t11) =
-            gather_cell!($base, $stride, $x, $y, $mask_x, $mask_y, $stride_v, $lane_order);
+        let (fx, fy, t00, t10, t01, t11) = $crate::simd::avx2::gather::gather_cell!(
+            $base,
+            $stride,
+            $x,
+            $y,
+            $mask_x,
+            $mask_y,
+            $stride_v,
+            $lane_order
+        );
         let hi16 = |t: __m256i| _mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(t));
         let (d00, d10, d01, d11) = (hi16(t00), hi16(t10), hi16(t01), hi16(t11));
         let dx0 = _mm256_sub_ps(d10, d00);
@@ -150,7 +158,7 @@ macro_rules! packed_depth {
         let k: &DepthConsts = &$k;
         let x = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps($u, k.wf), k.half), k.lo), k.hi);
         let y = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps($v, k.hf), k.half), k.lo), k.hi);
-        plane_depth!(k.depths, k.below, x, y, k.mask_x, k.mask_y, k.stride_v)
+        $crate::simd::avx2::gather::plane_depth!(k.depths, k.below, x, y, k.mask_x, k.mask_y, k.stride_v)
     }};
 }
 pub(crate) use packed_depth;

@@ -5,7 +5,7 @@
 //! Each lane performs the scalar twin's operations (`simd::scalar::parallax`) in the same
 //! order, so the hits are bit-identical to it.
 
-use super::gather::plane_depth;
+use super::gather::{packed_depth, DepthConsts};
 use super::load::fields;
 use super::math::finite;
 use super::LANES;
@@ -59,16 +59,7 @@ pub(crate) unsafe fn trace_row<C: Counter>(
     counter: &mut C,
 ) {
     let n = rays.len().min(out.len());
-    let (mxk, myk) = map.masks().expect("power-of-two map");
-    // SAFETY (of the gathers below): indices are texels of the unpadded grid, so the 32-bit
-    // reads at them and one padded row further stay inside `depths` (one entry longer).
-    let depths = map.depths().as_ptr() as *const i32;
-    let depths_below = map.depths().as_ptr().add(map.stride()) as *const i32;
-    let stride = map.stride() as i32;
-    let (mask_x, mask_y) = (_mm256_set1_epi32(mxk), _mm256_set1_epi32(myk));
-    let stride_v = _mm256_set1_epi32(stride);
-    let (wf, hf) = (_mm256_set1_ps(map.width() as f32), _mm256_set1_ps(map.height() as f32));
-    let (half, lo, hi) = (_mm256_set1_ps(0.5), _mm256_set1_ps(-1.0e7), _mm256_set1_ps(1.0e7));
+    let k = DepthConsts::new(map);
     counter.count(n as u32);
     let mut start = 0;
     while start < n {
@@ -87,9 +78,7 @@ pub(crate) unsafe fn trace_row<C: Counter>(
             let ld = |a: &[f32; LANES]| _mm256_loadu_ps(a.as_ptr());
             (ld(&u), ld(&v), ld(&du), ld(&dv))
         };
-        let x = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(uu, wf), half), lo), hi);
-        let y = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_mul_ps(vv, hf), half), lo), hi);
-        let depth = plane_depth!(depths, depths_below, x, y, mask_x, mask_y, stride_v);
+        let depth = packed_depth!(k, uu, vv);
         let hu = _mm256_add_ps(uu, _mm256_mul_ps(du, depth));
         let hv = _mm256_add_ps(vv, _mm256_mul_ps(dv, depth));
         if m == LANES {

@@ -4,7 +4,7 @@
 //! once. Each lane performs the scalar twin's operations in the same order, so the results
 //! are bit-identical to it.
 
-use super::gather::{packed_depth, plane_depth, DepthConsts};
+use super::gather::{packed_depth, DepthConsts};
 use super::{LANES, RANKS};
 use crate::maps::packed::PackedRelief;
 use crate::march::pom_lanes::{finish, LayerRule};

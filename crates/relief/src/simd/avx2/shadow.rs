@@ -3,7 +3,7 @@
 //! performs [`crate::render::shadow::soft_shadow`]'s operations in its order on the packed
 //! map, so the factors are bit-identical to it.
 
-use super::gather::{packed_depth, plane_depth, DepthConsts};
+use super::gather::{packed_depth, DepthConsts};
 use super::LANES;
 use crate::maps::packed::PackedRelief;
 use crate::render::shadow::SHADOW_SHARPNESS;
