@@ -202,13 +202,15 @@ fn transpose8_moves_bit_c_of_byte_r_to_bit_r_of_byte_c() {
     }
 }
 
-/// The AVX2 packet node test against the scalar one on every node of a hierarchy: the same
-/// rays per child and the same least distances, bit for bit.
+/// The AVX2 packet node test, and where the CPU has AVX-512 its child-by-child test, against
+/// the scalar one on every node of a hierarchy: the same rays per child and the same least
+/// distances, bit for bit.
 #[test]
 #[cfg(target_arch = "x86_64")]
 fn packet_node_tests_agree_between_kernels() {
     use renderlab_trace::traverse::avx2::Avx2;
-    use renderlab_trace::traverse::backend::{Backend, RayQuery};
+    use renderlab_trace::traverse::avx512::Avx512;
+    use renderlab_trace::traverse::backend::{Backend, RayQuery, Rows};
     use renderlab_trace::traverse::scalar::Scalar;
     use std::mem::MaybeUninit;
     if !renderlab_trace::kernel::available(renderlab_trace::Kernel::Simd) {
@@ -232,12 +234,17 @@ fn packet_node_tests_agree_between_kernels() {
         state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
         (state >> 40) as f32 / (1u64 << 24) as f32
     };
+    let wide = renderlab_core::kernel::has_avx512();
+    let mut by_child = 0;
     let idle = RayQuery::new(&Ray::new(Vec3::ZERO, Vec3::X)).unwrap();
     for packet in 0..40 {
-        // Even packets share an origin and look down at the mesh; odd ones are random.
+        // Even packets share an origin and look down at the mesh (every fourth with all
+        // directions in one octant); odd ones are random.
         let eye = Vec3::new(rnd(), 1.0 + rnd(), rnd() - 1.0);
         let queries: [RayQuery; PACKET] = std::array::from_fn(|_| {
-            let (o, d) = if packet % 2 == 0 {
+            let (o, d) = if packet % 4 == 2 {
+                (eye, Vec3::new(rnd() + 0.01, -1.0 - rnd(), rnd() + 0.5))
+            } else if packet % 2 == 0 {
                 (eye, Vec3::new(rnd() - 0.2, -1.0 - rnd(), rnd() + 0.5))
             } else {
                 (Vec3::new(rnd(), rnd(), rnd()) * 2.0 - 0.5, Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5))
@@ -254,6 +261,12 @@ fn packet_node_tests_agree_between_kernels() {
         unsafe {
             let ps: [_; PACKET] = std::array::from_fn(|i| MaybeUninit::new(Scalar::prepare(&queries[i])));
             let pa: [_; PACKET] = std::array::from_fn(|i| MaybeUninit::new(Avx2::prepare(&queries[i])));
+            let mut rows = MaybeUninit::<Rows>::uninit();
+            if wide {
+                for (r, p) in pa.iter().enumerate() {
+                    Avx512::row(p.assume_init_ref(), &mut rows, r);
+                }
+            }
             for node in blas.nodes() {
                 for active in [all, all & 0x5a5a_a5a5, all & 0x0000_0007, all & 0x8000_0001] {
                     let s = Scalar::node_packet(&ps, node, active, &t_max);
@@ -264,9 +277,70 @@ fn packet_node_tests_agree_between_kernels() {
                         "packet {packet} active {active:#x}"
                     );
                     assert_eq!(s.dist.map(f32::to_bits), a.dist.map(f32::to_bits), "packet {packet}");
+                    if let Some(c) =
+                        wide.then(|| Avx512::node_by_child(&rows, node, active, &t_max)).flatten()
+                    {
+                        by_child += 1;
+                        assert_eq!((s.children, s.rays), (c.children, c.rays), "packet {packet} by child");
+                        assert_eq!(
+                            s.dist.map(f32::to_bits),
+                            c.dist.map(f32::to_bits),
+                            "packet {packet} by child"
+                        );
+                    }
                     for c in 0..8 {
                         assert_eq!(s.rays[c] & !active, 0, "only active rays enter children");
                         assert_eq!(s.children >> c & 1 != 0, s.rays[c] != 0);
+                    }
+                }
+            }
+        }
+    }
+    // The packets of one octant take the child-by-child test at every node.
+    assert!(!wide || by_child >= 10 * blas.nodes().len() * 4, "child by child ran {by_child} times");
+}
+
+/// The rows a packet's eight-ray setup writes are those each ray's own form gives.
+#[test]
+#[cfg(target_arch = "x86_64")]
+fn packet_rows_from_eight_rays_are_each_rays_row() {
+    use renderlab_trace::traverse::avx512::Avx512;
+    use renderlab_trace::traverse::backend::{Backend, Rows};
+    use std::mem::MaybeUninit;
+    if !renderlab_core::kernel::has_avx512()
+        || !renderlab_trace::kernel::available(renderlab_trace::Kernel::Simd)
+    {
+        return;
+    }
+    let rays: Vec<Ray> = (0..PACKET)
+        .map(|i| {
+            let f = i as f32;
+            match i % 5 {
+                // Invalid: a zero direction.
+                4 => Ray::new(Vec3::ONE, Vec3::ZERO),
+                _ => Ray::segment(Vec3::new(f, -f, 0.5), Vec3::new(1.0 - f * 0.1, 0.3, -f), 0.1 * f, 10.0),
+            }
+        })
+        .collect();
+    // SAFETY: the CPU has AVX2, FMA and AVX-512 F and VL (checked above).
+    unsafe {
+        let mut together = MaybeUninit::<Rows>::uninit();
+        let mut alone = MaybeUninit::<Rows>::uninit();
+        for (h, group) in rays.chunks_exact(8).enumerate() {
+            let mut out = [const { MaybeUninit::uninit() }; 8];
+            let mut t_max = [0.0; 8];
+            let valid =
+                Avx512::prepare8_rows(group.try_into().unwrap(), &mut out, &mut t_max, &mut together, h);
+            for (i, ray) in group.iter().enumerate() {
+                let one = Avx512::prepare_ray(ray);
+                assert_eq!(valid >> i & 1 == 1, one.is_some());
+                if let Some((p, _)) = one {
+                    Avx512::row(&p, &mut alone, 8 * h + i);
+                    let (a, b) =
+                        (together.as_ptr() as *const [f32; PACKET], alone.as_ptr() as *const [f32; PACKET]);
+                    for q in 0..8 {
+                        let (x, y) = ((*a.add(q))[8 * h + i], (*b.add(q))[8 * h + i]);
+                        assert_eq!(x.to_bits(), y.to_bits(), "ray {} quantity {q}", 8 * h + i);
                     }
                 }
             }

@@ -43,7 +43,7 @@ impl Backend for Avx2 {
     #[inline]
     #[target_feature(enable = "avx2,fma")]
     unsafe fn prepare8(rays: &[Ray; 8], out: &mut [MaybeUninit<Prepared>; 8], t_max: &mut [f32; 8]) -> u32 {
-        Prepared::eight(rays, out, t_max)
+        Prepared::eight(rays, out, t_max, None)
     }
 
     #[inline]

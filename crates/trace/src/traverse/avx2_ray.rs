@@ -12,7 +12,7 @@
 #![cfg(target_arch = "x86_64")]
 
 use crate::ray::Ray;
-use crate::traverse::backend::RayQuery;
+use crate::traverse::backend::{RayQuery, Rows, PACKET};
 use std::arch::x86_64::*;
 use std::mem::MaybeUninit;
 
@@ -165,6 +165,7 @@ impl Prepared {
         rays: &[Ray; 8],
         out: &mut [MaybeUninit<Prepared>; 8],
         t_max: &mut [f32; 8],
+        soa: Option<(&mut MaybeUninit<Rows>, usize)>,
     ) -> u32 {
         let src = rays.as_ptr() as *const f32;
         let mut rows = [_mm256_setzero_ps(); 8];
@@ -209,8 +210,17 @@ impl Prepared {
         let shear =
             [_mm256_div_ps(d_kx, d_kz), _mm256_div_ps(d_ky, d_kz), pick(is_x, is_y, inv[0], inv[1], inv[2])];
         let org_inv = [_mm256_mul_ps(ox, inv[0]), _mm256_mul_ps(oy, inv[1]), _mm256_mul_ps(oz, inv[2])];
+        let first = [ox, oy, oz, inv[0], inv[1], inv[2], t_min, octant(inv)];
+        if let Some((soa, h)) = soa {
+            // The first row of each form, one quantity of the eight rays to a register, is
+            // what the packet's rows hold (lanes `8·h ..`).
+            let base = soa.as_mut_ptr() as *mut f32;
+            for (i, x) in first.iter().enumerate() {
+                _mm256_storeu_ps(base.add(PACKET * i + 8 * h), *x);
+            }
+        }
         let groups = [
-            transpose([ox, oy, oz, inv[0], inv[1], inv[2], t_min, octant(inv)]),
+            transpose(first),
             transpose([near_x, near_y, near_z, far_x, far_y, far_z, zero, zero]),
             transpose([kx, ky, kz, o_kx, o_ky, o_kz, zero, zero]),
             transpose([shear[0], shear[1], shear[2], org_inv[0], org_inv[1], org_inv[2], zero, zero]),
@@ -400,7 +410,7 @@ mod tests {
             let mut out = [const { MaybeUninit::uninit() }; 8];
             let mut t_max = [0.0; 8];
             // SAFETY: the CPU has AVX2 and FMA (checked above).
-            let valid = unsafe { Prepared::eight(group, &mut out, &mut t_max) };
+            let valid = unsafe { Prepared::eight(group, &mut out, &mut t_max, None) };
             for (i, ray) in group.iter().enumerate() {
                 let q = RayQuery::new(ray);
                 assert_eq!(valid >> i & 1 == 1, q.is_some(), "{ray:?}");

@@ -36,6 +36,15 @@ pub const FUSED_SLABS: bool = cfg!(feature = "measure-fused-slabs");
 /// Rays a packet query traces together (a multiple of 8, at most 32: ray masks are `u32`).
 pub const PACKET: usize = 32;
 
+/// A packet's rays one quantity to a row, a lane per ray: origin x, y, z, `1/dir` x, y, z,
+/// the interval's start, and the octant ([`crate::traverse::avx2_ray::Prepared`]'s, as an
+/// integer's bits). What a kernel that tests many rays against one child at a time reads
+/// ([`Backend::ROWS`]); the lanes of rays not in the packet may hold anything and are never
+/// read.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+pub struct Rows(pub [[f32; PACKET]; 8]);
+
 /// What a packet's node test finds.
 #[derive(Clone, Copy, Debug)]
 pub struct PacketNode {
@@ -180,6 +189,36 @@ pub trait Backend {
         valid
     }
 
+    /// Whether the kernel's packet node test reads the packet's [`Rows`]: then the packet
+    /// writes them as it takes its rays ([`Backend::prepare8_rows`], [`Backend::row`]).
+    const ROWS: bool = false;
+
+    /// [`Backend::prepare8`], also writing lanes `8·h .. 8·h + 8` of `rows` for the rays it
+    /// accepts (kernels with [`Backend::ROWS`]; the others leave `rows` alone).
+    ///
+    /// # Safety
+    /// The CPU has the kernel's features; `h < PACKET / 8`.
+    #[inline(always)]
+    unsafe fn prepare8_rows(
+        rays: &[Ray; 8],
+        out: &mut [MaybeUninit<Self::Prepared>; 8],
+        t_max: &mut [f32; 8],
+        rows: &mut MaybeUninit<Rows>,
+        h: usize,
+    ) -> u32 {
+        let _ = (rows, h);
+        Self::prepare8(rays, out, t_max)
+    }
+
+    /// Writes lane `r` of `rows` for the ray `p` (kernels with [`Backend::ROWS`]).
+    ///
+    /// # Safety
+    /// The CPU has the kernel's features; `r < PACKET`.
+    #[inline(always)]
+    unsafe fn row(p: &Self::Prepared, rows: &mut MaybeUninit<Rows>, r: usize) {
+        let _ = (p, rows, r);
+    }
+
     /// Bit `i` of the mask is set when the ray enters child `i` before `t_max`; `dist[i]` is
     /// the distance at which it does (at least `t_min`).
     ///
@@ -233,6 +272,24 @@ pub trait Backend {
             }
         }
         PacketNode::from_rows(&rows, dist)
+    }
+
+    /// [`Backend::node_packet`] for a packet whose [`Rows`] are written (for the lanes of
+    /// `active`) when the kernel has [`Backend::ROWS`]: the same results. Kernels may override
+    /// it with a form that reads the rows.
+    ///
+    /// # Safety
+    /// As for [`Backend::node_packet`].
+    #[inline(always)]
+    unsafe fn node_packet_rows(
+        p: &[MaybeUninit<Self::Prepared>; PACKET],
+        rows: &MaybeUninit<Rows>,
+        node: &WideNode,
+        active: u32,
+        t_max: &[f32; PACKET],
+    ) -> PacketNode {
+        let _ = rows;
+        Self::node_packet(p, node, active, t_max)
     }
 }
 

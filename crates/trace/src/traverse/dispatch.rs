@@ -24,11 +24,10 @@ pub enum Query {
 
 /// The queries instantiated in a module compiled for the given CPU features.
 macro_rules! instantiate {
-    ($name:ident, $features:literal) => {
+    ($name:ident, $backend:ty, $features:literal) => {
         #[cfg(target_arch = "x86_64")]
         mod $name {
             use super::*;
-            use crate::traverse::avx2::Avx2;
 
             #[target_feature(enable = $features)]
             pub unsafe fn blas(
@@ -38,8 +37,8 @@ macro_rules! instantiate {
                 query: Query,
             ) -> Option<Hit> {
                 match query {
-                    Query::Closest => leaves::blas_closest::<Avx2, _>(blas, ray, filter),
-                    Query::Any => leaves::blas_any::<Avx2, _>(blas, ray, filter),
+                    Query::Closest => leaves::blas_closest::<$backend, _>(blas, ray, filter),
+                    Query::Any => leaves::blas_any::<$backend, _>(blas, ray, filter),
                 }
             }
 
@@ -51,38 +50,39 @@ macro_rules! instantiate {
                 query: Query,
             ) -> Option<Hit> {
                 match query {
-                    Query::Closest => leaves::tlas_closest::<Avx2, _>(tlas, ray, filter),
-                    Query::Any => leaves::tlas_any::<Avx2, _>(tlas, ray, filter),
+                    Query::Closest => leaves::tlas_closest::<$backend, _>(tlas, ray, filter),
+                    Query::Any => leaves::tlas_any::<$backend, _>(tlas, ray, filter),
                 }
             }
 
             #[target_feature(enable = $features)]
             pub unsafe fn closest_packet(blas: &Blas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
-                packet_leaves::blas_closest::<Avx2>(blas, rays)
+                packet_leaves::blas_closest::<$backend>(blas, rays)
             }
 
             #[target_feature(enable = $features)]
             pub unsafe fn any_packet(blas: &Blas, rays: &[Ray]) -> [bool; PACKET] {
-                packet_leaves::blas_any::<Avx2>(blas, rays)
+                packet_leaves::blas_any::<$backend>(blas, rays)
             }
 
             #[target_feature(enable = $features)]
             pub unsafe fn tlas_closest_packet(tlas: &Tlas, rays: &[Ray]) -> [Option<Hit>; PACKET] {
-                packet_leaves::tlas_closest::<Avx2>(tlas, rays)
+                packet_leaves::tlas_closest::<$backend>(tlas, rays)
             }
 
             #[target_feature(enable = $features)]
             pub unsafe fn tlas_any_packet(tlas: &Tlas, rays: &[Ray]) -> [bool; PACKET] {
-                packet_leaves::tlas_any::<Avx2>(tlas, rays)
+                packet_leaves::tlas_any::<$backend>(tlas, rays)
             }
         }
     };
 }
 
-instantiate!(simd, "avx2,fma");
-// The same AVX2 code, compiled where the CPU has AVX-512 with its 32 vector registers and mask
-// registers, so that a walk's state need not spill; the same operations, so the same bits.
-instantiate!(simd512, "avx2,fma,avx512f,avx512vl");
+instantiate!(simd, crate::traverse::avx2::Avx2, "avx2,fma");
+// Where the CPU has AVX-512: the same AVX2 code compiled with its 32 vector registers and mask
+// registers, so that a walk's state need not spill, and a packet's node test sixteen rays to a
+// register ([`crate::traverse::avx512`]); the same operations, so the same bits.
+instantiate!(simd512, crate::traverse::avx512::Avx512, "avx2,fma,avx512f,avx512vl");
 
 /// Which instantiation of the vector queries runs.
 #[cfg(target_arch = "x86_64")]

@@ -4,7 +4,8 @@
 //! Every ray keeps its own interval, best hit and kernel form (made eight rays at a time,
 //! [`Backend::prepare8`], also for the rays that enter an instance together). At a node, each ray still
 //! active runs the kernel's own single-ray node test ([`Backend::node`], so every box decision
-//! is bit for bit the one the single-ray walk makes); a child is visited when any ray enters
+//! is bit for bit the one the single-ray walk makes; the AVX-512 kernel may run the same test
+//! child by child, sixteen rays to a register, [`crate::traverse::avx512`]); a child is visited when any ray enters
 //! it, and only by the rays that do. A stack entry carries the child, the rays that entered
 //! it and the least entry distance among them; on popping, a ray stays only if that distance
 //! is within its own (possibly shortened) interval, the single-ray walk's test with a lower
@@ -25,7 +26,7 @@
 use crate::hit::Hit;
 use crate::node::{WideNode, EMPTY, LEAF_BIT};
 use crate::ray::Ray;
-use crate::traverse::backend::{reaching_each, Backend, PacketNode, PACKET};
+use crate::traverse::backend::{reaching_each, Backend, PacketNode, Rows, PACKET};
 use crate::traverse::walk::STACK;
 use std::mem::MaybeUninit;
 
@@ -44,6 +45,9 @@ pub(crate) struct Packet<B: Backend> {
     /// The lanes of `valid` written by [`Packet::set_ray`] or [`Packet::set8`]; the others never
     /// read.
     prepared: [MaybeUninit<B::Prepared>; PACKET],
+    /// The rays as rows, for kernels that read them ([`Backend::ROWS`]): the lanes of `valid`
+    /// written, the others never read.
+    rows: MaybeUninit<Rows>,
     /// Each ray's interval end, lowered by its hits (−∞ once it takes no further part).
     pub(crate) t_max: [f32; PACKET],
     /// Bit `i` set for each ray that can hit something.
@@ -57,6 +61,7 @@ impl<B: Backend> Packet<B> {
     pub(crate) fn empty() -> Packet<B> {
         Packet {
             prepared: [const { MaybeUninit::uninit() }; PACKET],
+            rows: MaybeUninit::uninit(),
             t_max: [f32::NEG_INFINITY; PACKET],
             valid: 0,
         }
@@ -71,6 +76,9 @@ impl<B: Backend> Packet<B> {
         if let Some((p, t_max)) = B::prepare_ray(ray) {
             self.valid |= 1 << r;
             self.t_max[r] = t_max;
+            if B::ROWS {
+                B::row(&p, &mut self.rows, r);
+            }
             self.prepared[r].write(p);
         }
     }
@@ -103,7 +111,12 @@ impl<B: Backend> Packet<B> {
         debug_assert!(h < PACKET / 8);
         let out = &mut *(self.prepared.as_mut_ptr().add(8 * h) as *mut [MaybeUninit<B::Prepared>; 8]);
         let t_max = &mut *(self.t_max.as_mut_ptr().add(8 * h) as *mut [f32; 8]);
-        self.valid |= B::prepare8(rays, out, t_max) << (8 * h);
+        let valid = if B::ROWS {
+            B::prepare8_rows(rays, out, t_max, &mut self.rows, h)
+        } else {
+            B::prepare8(rays, out, t_max)
+        };
+        self.valid |= valid << (8 * h);
     }
 
     /// Ray `r`'s kernel form.
@@ -119,7 +132,7 @@ impl<B: Backend> Packet<B> {
     #[inline(always)]
     unsafe fn node(&self, node: &WideNode, active: u32) -> PacketNode {
         // The walks keep `active` within `valid`, whose lanes are written.
-        B::node_packet(&self.prepared, node, active, &self.t_max)
+        B::node_packet_rows(&self.prepared, &self.rows, node, active, &self.t_max)
     }
 
     /// The rays of `rays` whose interval still reaches distance `dist`.
