@@ -60,7 +60,9 @@
 //! ([`Blas::closest_packet`], [`Blas::any_packet`], and the same on a [`Tlas`]) walk up to
 //! [`PACKET`] coherent rays together over the same kernels ([`traverse::packet`]) and give each
 //! ray the single-ray hit; on Intel's AVX-512 processors a packet's node is tested child by
-//! child, sixteen rays to a register ([`traverse::avx512`]), with the same results.
+//! child, sixteen rays to a register ([`traverse::avx512`]), with the same results, and
+//! packets of rays from one origin test a node's children once for all of their rays where
+//! interval bounds decide them ([`traverse::backend::PacketBounds`]).
 //!
 //! # Exactness
 //!

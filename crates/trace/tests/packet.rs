@@ -87,6 +87,45 @@ proptest! {
         }
     }
 
+    /// Bundles from one eye with directions in one octant (the packets whose nodes are first
+    /// tested for the packet as a whole, where the kernel keeps the rays as rows): each ray's
+    /// hit equals the single-ray query's and brute force's, in a mesh and in a scene.
+    #[test]
+    fn bundles_from_one_eye_match_single_rays(
+        meshes in prop::collection::vec(mesh(60), 1..3),
+        placements in prop::collection::vec((0u32..3, transform()), 0..5),
+        eye in vertex().prop_map(|v| v * 4.0),
+        base in (0.2f32..1.0, 0.2f32..1.0, 0.2f32..1.0, 0u8..8),
+        jitter in prop::collection::vec((-0.1f32..0.1, -0.1f32..0.1, -0.1f32..0.1, 0.0f32..1.0), 8..=PACKET),
+    ) {
+        let (x, y, z, signs) = base;
+        let sign = |bit: u8| if signs >> bit & 1 != 0 { -1.0 } else { 1.0 };
+        let base = Vec3::new(x * sign(0), y * sign(1), z * sign(2));
+        let rays: Vec<Ray> = jitter
+            .iter()
+            .map(|&(a, b, c, t)| {
+                let mut r = Ray::new(eye, base + Vec3::new(a, b, c));
+                if t < 0.3 {
+                    r.t_max = t * 20.0;
+                }
+                r
+            })
+            .collect();
+        check_packet(&blases(&meshes[0]), &meshes[0], &rays)?;
+        let instances: Vec<Instance> =
+            placements.iter().map(|&(m, t)| Instance::new(m % meshes.len() as u32, t)).collect();
+        for tlas in kernels().into_iter().map(|k| scene(&meshes, &instances, k)) {
+            let closest = tlas.closest_packet(&rays);
+            let any = tlas.any_packet(&rays);
+            for (i, r) in rays.iter().enumerate() {
+                let expected = brute::closest_hit(&meshes, &instances, r);
+                prop_assert_eq!(closest[i], tlas.closest_hit(r), "kernel {} lane {} ray {:?}", tlas.kernel(), i, r);
+                prop_assert_eq!(closest[i], expected, "kernel {} lane {} against brute force", tlas.kernel(), i);
+                prop_assert_eq!(any[i], expected.is_some(), "kernel {} lane {} any-hit", tlas.kernel(), i);
+            }
+        }
+    }
+
     /// Invalid rays (zero or non-finite direction, empty interval) beside valid ones.
     #[test]
     fn invalid_rays_hit_nothing_in_a_packet(
@@ -298,6 +337,103 @@ fn packet_node_tests_agree_between_kernels() {
     }
     // The packets of one octant take the child-by-child test at every node.
     assert!(!wide || by_child >= 10 * blas.nodes().len() * 4, "child by child ran {by_child} times");
+}
+
+/// A packet's node test for the packet as a whole (`PacketBounds`, rays from one origin):
+/// where it decides every child, the mask is exactly the children each ray's own test enters;
+/// where it takes undecided children too, the mask holds every child some ray enters; the
+/// distances are at or below every entering ray's; the AVX2 form gives the scalar form's bits.
+#[test]
+#[cfg(target_arch = "x86_64")]
+fn whole_packet_node_tests_bound_each_rays_test() {
+    use renderlab_trace::traverse::avx2::Avx2;
+    use renderlab_trace::traverse::backend::{Backend, PacketBounds, RayQuery};
+    use renderlab_trace::traverse::scalar::Scalar;
+    if !renderlab_trace::kernel::available(renderlab_trace::Kernel::Simd) {
+        return;
+    }
+    let mut tris = Vec::new();
+    let n = 24;
+    for i in 0..n {
+        for j in 0..n {
+            let p = |x: usize, z: usize| {
+                let (x, z) = (x as f32 / n as f32, z as f32 / n as f32);
+                Vec3::new(x, (x * 9.0).sin() * (z * 7.0).cos() * 0.2, z)
+            };
+            tris.push([p(i, j), p(i + 1, j), p(i + 1, j + 1)]);
+            tris.push([p(i, j), p(i + 1, j + 1), p(i, j + 1)]);
+        }
+    }
+    let blas = Blas::from_triangles(&tris).unwrap();
+    let mut state = 11u64;
+    let mut rnd = move || {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (state >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let (mut decided, mut loose) = (0, 0);
+    for packet in 0..60 {
+        // Narrow and wide bundles from one eye looking down at the mesh, some rays shortened.
+        let eye = Vec3::new(rnd(), 0.5 + rnd(), rnd() - 0.5);
+        let spread = if packet % 2 == 0 { 0.02 } else { 0.3 };
+        let aim = Vec3::new(0.2 + 0.6 * rnd(), 0.0, 0.2 + 0.6 * rnd()) - eye;
+        let queries: Vec<RayQuery> = (0..PACKET)
+            .map(|_| {
+                let d = aim + Vec3::new(rnd() - 0.5, 0.0, rnd() - 0.5) * spread;
+                let mut r = Ray::new(eye, d);
+                if rnd() < 0.3 {
+                    r.t_max = 0.5 + rnd();
+                }
+                RayQuery::new(&r).unwrap()
+            })
+            .collect();
+        let range = |f: &dyn Fn(&RayQuery) -> f32| {
+            queries
+                .iter()
+                .fold([f32::INFINITY, f32::NEG_INFINITY], |[lo, hi], q| [lo.min(f(q)), hi.max(f(q))])
+        };
+        let org = [0, 1, 2].map(|a| range(&|q: &RayQuery| q.org[a]));
+        let inv = [0, 1, 2].map(|a| range(&|q: &RayQuery| q.inv[a]));
+        let Some(b) =
+            PacketBounds::new(org, inv, range(&|q: &RayQuery| q.t_min), range(&|q: &RayQuery| q.t_max)[1])
+        else {
+            continue;
+        };
+        let t_low = range(&|q: &RayQuery| q.t_max)[0];
+        for node in blas.nodes() {
+            let scalar = b.decide(node, t_low);
+            // SAFETY: the CPU has AVX2 and FMA (checked above).
+            let vector = unsafe { Avx2::whole(&b, node, t_low) };
+            assert_eq!(
+                scalar.map(|(m, d)| (m, d.map(f32::to_bits))),
+                vector.map(|(m, d)| (m, d.map(f32::to_bits)))
+            );
+            let Some((mask, dist)) = scalar else { continue };
+            // SAFETY: the scalar kernel needs no CPU feature.
+            let each: Vec<(u32, [f32; 8])> =
+                queries.iter().map(|q| unsafe { Scalar::node(&Scalar::prepare(q), node, q.t_max) }).collect();
+            let union = each.iter().fold(0, |u, (m, _)| u | m);
+            assert_eq!(union & !mask, 0, "packet {packet}: a child some ray enters is left out");
+            let exact = each.iter().all(|&(m, _)| m == mask);
+            let leaves =
+                node.children.iter().any(|&c| c & renderlab_trace::node::LEAF_BIT != 0 && c != u32::MAX);
+            // Children are taken loosely only above the leaves.
+            assert!(exact || !leaves, "packet {packet}: a leaf's parent taken loosely");
+            if exact {
+                decided += 1;
+            } else {
+                loose += 1;
+            }
+            for (m, d) in &each {
+                for c in 0..8 {
+                    if m >> c & 1 != 0 {
+                        assert!(dist[c] <= d[c], "packet {packet} child {c}: {} above {}", dist[c], d[c]);
+                    }
+                }
+            }
+        }
+    }
+    eprintln!("decided {decided}, taken loosely {loose}");
+    assert!(decided > 100 && loose > 0, "decided {decided}, taken loosely {loose}");
 }
 
 /// The rows a packet's eight-ray setup writes are those each ray's own form gives.

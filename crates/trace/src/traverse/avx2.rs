@@ -9,10 +9,12 @@
 
 #![cfg(target_arch = "x86_64")]
 
-use crate::node::{TriBlock, WideNode, WIDTH};
+use crate::node::{TriBlock, WideNode, EMPTY, WIDTH};
 use crate::ray::Ray;
 use crate::traverse::avx2_ray::Prepared;
-use crate::traverse::backend::{Backend, BlockHits, PacketNode, RayQuery, FUSED_SLABS, IZE, PACKET};
+use crate::traverse::backend::{
+    Backend, BlockHits, PacketBounds, PacketNode, RayQuery, FUSED_SLABS, IZE, LOOSE, PACKET,
+};
 use crate::triangle::{edge_functions_f64, EXACT_EDGES, FUSED};
 use std::arch::x86_64::*;
 use std::mem::MaybeUninit;
@@ -44,6 +46,62 @@ impl Backend for Avx2 {
     #[target_feature(enable = "avx2,fma")]
     unsafe fn prepare8(rays: &[Ray; 8], out: &mut [MaybeUninit<Prepared>; 8], t_max: &mut [f32; 8]) -> u32 {
         Prepared::eight(rays, out, t_max, None)
+    }
+
+    #[inline]
+    #[target_feature(enable = "avx2,fma")]
+    unsafe fn whole(b: &PacketBounds, node: &WideNode, t_low: f32) -> Option<(u32, [f32; WIDTH])> {
+        // `PacketBounds::decide` with the eight children in the lanes: the same operations.
+        let mut near = [[_mm256_setzero_ps(); 2]; 3];
+        let mut far = [[_mm256_setzero_ps(); 2]; 3];
+        for a in 0..3 {
+            let o = _mm256_set1_ps(b.org[a]);
+            let (i0, i1) = (_mm256_set1_ps(b.inv[a][0]), _mm256_set1_ps(b.inv[a][1]));
+            for (out, row) in [(&mut near[a], b.near[a]), (&mut far[a], b.far[a])] {
+                let x = _mm256_sub_ps(_mm256_load_ps(node.bounds.get_unchecked(row).as_ptr()), o);
+                let (p0, p1) = (_mm256_mul_ps(x, i0), _mm256_mul_ps(x, i1));
+                *out = [_mm256_min_ps(p0, p1), _mm256_max_ps(p0, p1)];
+            }
+        }
+        let ize = _mm256_set1_ps(IZE);
+        let near_low = _mm256_max_ps(
+            _mm256_max_ps(near[0][0], near[1][0]),
+            _mm256_max_ps(near[2][0], _mm256_set1_ps(b.t_min[0])),
+        );
+        let near_high = _mm256_max_ps(
+            _mm256_max_ps(near[0][1], near[1][1]),
+            _mm256_max_ps(near[2][1], _mm256_set1_ps(b.t_min[1])),
+        );
+        let far_low = _mm256_mul_ps(
+            _mm256_min_ps(
+                _mm256_min_ps(far[0][0], far[1][0]),
+                _mm256_min_ps(far[2][0], _mm256_set1_ps(t_low)),
+            ),
+            ize,
+        );
+        let far_high = _mm256_mul_ps(
+            _mm256_min_ps(
+                _mm256_min_ps(far[0][1], far[1][1]),
+                _mm256_min_ps(far[2][1], _mm256_set1_ps(b.t_max)),
+            ),
+            ize,
+        );
+        let none = _mm256_cmp_ps::<_CMP_GT_OQ>(near_low, far_high);
+        let every = _mm256_cmp_ps::<_CMP_LE_OQ>(near_high, far_low);
+        let undecided = !_mm256_movemask_ps(_mm256_or_ps(none, every)) as u32 & 0xff;
+        if undecided != 0 {
+            // Leaf references have the top bit set (and so does `EMPTY`).
+            let refs = _mm256_loadu_si256(node.children.as_ptr() as *const __m256i);
+            let empty = _mm256_cmpeq_epi32(refs, _mm256_set1_epi32(EMPTY as i32));
+            let leaves =
+                _mm256_movemask_ps(_mm256_andnot_ps(_mm256_castsi256_ps(empty), _mm256_castsi256_ps(refs)));
+            if undecided.count_ones() > LOOSE || leaves != 0 {
+                return None;
+            }
+        }
+        let mut dist = [0.0f32; WIDTH];
+        _mm256_storeu_ps(dist.as_mut_ptr(), near_low);
+        Some((!_mm256_movemask_ps(none) as u32 & 0xff, dist))
     }
 
     #[inline]

@@ -14,6 +14,10 @@
 //! written at the packet's setup) and all of the packet's active rays in one octant (they then
 //! read the same planes of the node); otherwise, and for packets thinned out to fewer than
 //! [`CHILD_BY_CHILD`] rays, the AVX2 kernel's ray-by-ray test runs.
+//!
+//! The rows also give a packet of rays from one origin its [`PacketBounds`] (masked
+//! reductions over the rows) and the least interval end of its active rays, for the test of a
+//! node for the packet as a whole ([`Backend::whole`], the AVX2 kernel's).
 
 #![cfg(target_arch = "x86_64")]
 
@@ -21,7 +25,9 @@ use crate::node::{TriBlock, WideNode, EMPTY, WIDTH};
 use crate::ray::Ray;
 use crate::traverse::avx2::Avx2;
 use crate::traverse::avx2_ray::Prepared;
-use crate::traverse::backend::{Backend, BlockHits, PacketNode, RayQuery, Rows, FUSED_SLABS, IZE, PACKET};
+use crate::traverse::backend::{
+    Backend, BlockHits, PacketBounds, PacketNode, RayQuery, Rows, FUSED_SLABS, IZE, PACKET,
+};
 use std::arch::x86_64::*;
 use std::mem::MaybeUninit;
 
@@ -76,6 +82,56 @@ impl Backend for Avx512 {
         for i in 0..8 {
             *base.add(PACKET * i + r) = *first.add(i);
         }
+    }
+
+    #[inline]
+    #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
+    unsafe fn bounds(rows: &MaybeUninit<Rows>, valid: u32, t_max: &[f32; PACKET]) -> Option<PacketBounds> {
+        let rows = rows.as_ptr() as *const f32;
+        let halves = [valid as u16, (valid >> 16) as u16];
+        // Rays from several origins have no bounds: found first, in a few compares.
+        let lead = valid.trailing_zeros() as usize;
+        for q in 0..3 {
+            let o = _mm512_set1_ps(*rows.add(PACKET * q + lead));
+            for (h, &k) in halves.iter().enumerate() {
+                let x = _mm512_maskz_loadu_ps(k, rows.add(PACKET * q + 16 * h));
+                if _mm512_mask_cmp_ps_mask::<_CMP_NEQ_UQ>(k, x, o) != 0 {
+                    return None;
+                }
+            }
+        }
+        // Each quantity's least and greatest value over the rays (no closure: it would be
+        // compiled without the target features).
+        let mut range = [[f32::INFINITY, f32::NEG_INFINITY]; 7];
+        for (q, r) in range.iter_mut().enumerate() {
+            for (h, &k) in halves.iter().enumerate() {
+                let x = _mm512_maskz_loadu_ps(k, rows.add(PACKET * q + 16 * h));
+                r[0] = r[0].min(_mm512_mask_reduce_min_ps(k, x));
+                r[1] = r[1].max(_mm512_mask_reduce_max_ps(k, x));
+            }
+        }
+        let t_high = _mm512_reduce_max_ps(_mm512_max_ps(
+            _mm512_maskz_loadu_ps(halves[0], t_max.as_ptr()),
+            _mm512_maskz_loadu_ps(halves[1], t_max.as_ptr().add(16)),
+        ));
+        PacketBounds::new([range[0], range[1], range[2]], [range[3], range[4], range[5]], range[6], t_high)
+    }
+
+    #[inline]
+    #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
+    unsafe fn t_low(t_max: &[f32; PACKET], rays: u32) -> f32 {
+        let (k0, k1) = (rays as u16, (rays >> 16) as u16);
+        let inf = _mm512_set1_ps(f32::INFINITY);
+        _mm512_reduce_min_ps(_mm512_min_ps(
+            _mm512_mask_loadu_ps(inf, k0, t_max.as_ptr()),
+            _mm512_mask_loadu_ps(inf, k1, t_max.as_ptr().add(16)),
+        ))
+    }
+
+    #[inline]
+    #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
+    unsafe fn whole(b: &PacketBounds, node: &WideNode, t_low: f32) -> Option<(u32, [f32; WIDTH])> {
+        Avx2::whole(b, node, t_low)
     }
 
     #[inline]

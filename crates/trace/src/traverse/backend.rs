@@ -12,7 +12,7 @@
 //! rounding can add a box the ray misses, never drop one it hits. So a ray aimed exactly at a
 //! vertex or edge reaches every triangle there, and the watertight test decides.
 
-use crate::node::{TriBlock, WideNode, WIDTH};
+use crate::node::{TriBlock, WideNode, EMPTY, LEAF_BIT, WIDTH};
 use crate::ray::Ray;
 use crate::triangle::TriRay;
 
@@ -44,6 +44,94 @@ pub const PACKET: usize = 32;
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
 pub struct Rows(pub [[f32; PACKET]; 8]);
+
+/// Undecided children ([`PacketBounds::decide`]) up to which a node of inner children is taken
+/// for the whole packet, conservatively.
+pub const LOOSE: u32 = 2;
+
+/// What bounds a packet's rays' slab tests: the range over the packet's rays of each quantity
+/// the test reads (`1/dir`, the interval's start, and its end as it was set up, which hits only
+/// lower) for rays from one origin whose directions share their signs and have no zero
+/// component: a pinhole camera's rays, say. From it interval arithmetic bounds every ray's
+/// entry and exit distance of each child box, so one test of a node's eight children serves
+/// all the rays where it decides them ([`PacketBounds::decide`]), in place of a test per ray.
+///
+/// Only for rays from one origin: for rays from many points (bounce and shadow rays) the
+/// bounds decide few children and, measured, the test cost more than it saved.
+#[derive(Clone, Copy, Debug)]
+pub struct PacketBounds {
+    /// The rays' origin.
+    pub org: [f32; 3],
+    /// Least and greatest `1/dir` per axis (one sign per axis, finite).
+    pub inv: [[f32; 2]; 3],
+    /// Least and greatest interval start.
+    pub t_min: [f32; 2],
+    /// Greatest interval end.
+    pub t_max: f32,
+    /// The row of the near plane per axis, shared by all the rays.
+    pub near: [usize; 3],
+    /// The row of the far plane per axis.
+    pub far: [usize; 3],
+}
+
+impl PacketBounds {
+    /// The bounds of rays whose origins range over `org` (least and greatest per axis) and whose
+    /// `1/dir`, interval starts and ends range over `inv`, `t_min` and up to `t_max`; `None`
+    /// where the origins differ or the ranges of `1/dir` do not keep one sign per axis or are
+    /// not finite.
+    pub fn new(org: [[f32; 2]; 3], inv: [[f32; 2]; 3], t_min: [f32; 2], t_max: f32) -> Option<PacketBounds> {
+        let shared = org.iter().all(|[lo, hi]| lo == hi);
+        let signed = inv.iter().all(|&[lo, hi]| lo.is_finite() && hi.is_finite() && (hi < 0.0 || lo > 0.0));
+        let sign = |a: usize| (inv[a][1] < 0.0) as usize;
+        (shared && signed).then(|| PacketBounds {
+            org: org.map(|[lo, _]| lo),
+            inv,
+            t_min,
+            t_max,
+            near: [0, 1, 2].map(|a| 2 * a + sign(a)),
+            far: [0, 1, 2].map(|a| 2 * a + 1 - sign(a)),
+        })
+    }
+
+    /// The children of `node` taken for every ray of a set whose interval ends are at least
+    /// `t_low`, and per child a distance at or below every ray's entry distance; `None` where
+    /// the rays must be tested one by one.
+    ///
+    /// A child is *decided* when every ray enters it or none does; the mask then holds the ones
+    /// every ray enters, exactly what each ray's own test says. Over the range of `1/dir`,
+    /// `(plane − o)·inv` is greatest and least at its ends, and each operation rounds
+    /// monotonically, so the ends' rounded values bound every ray's rounded value. Where at
+    /// most [`LOOSE`] children are undecided and none of the node's children is a leaf, the mask
+    /// also holds the undecided ones, which the rays then enter conservatively (some may not
+    /// reach them, and are dropped by their own tests further down, before any leaf); the
+    /// hits stay those of the single-ray walk, whose leaf tests each ray still reaches only
+    /// through its own box test of the leaf.
+    #[inline(always)]
+    pub fn decide(&self, node: &WideNode, t_low: f32) -> Option<(u32, [f32; WIDTH])> {
+        let (mut every, mut none) = (0u32, 0u32);
+        let mut dist = [f32::INFINITY; WIDTH];
+        for (c, d) in dist.iter_mut().enumerate() {
+            let range = |a: usize, row: usize| {
+                let x = node.bounds[row][c] - self.org[a];
+                let [i0, i1] = self.inv[a];
+                let (p0, p1) = (x * i0, x * i1);
+                (p0.min(p1), p0.max(p1))
+            };
+            let (nx, ny, nz) = (range(0, self.near[0]), range(1, self.near[1]), range(2, self.near[2]));
+            let (fx, fy, fz) = (range(0, self.far[0]), range(1, self.far[1]), range(2, self.far[2]));
+            let near_low = nx.0.max(ny.0).max(nz.0.max(self.t_min[0]));
+            let near_high = nx.1.max(ny.1).max(nz.1.max(self.t_min[1]));
+            let far_low = fx.0.min(fy.0).min(fz.0.min(t_low)) * IZE;
+            let far_high = fx.1.min(fy.1).min(fz.1.min(self.t_max)) * IZE;
+            none |= ((near_low > far_high) as u32) << c;
+            every |= ((near_high <= far_low) as u32) << c;
+            *d = near_low;
+        }
+        let undecided = !(every | none) & 0xff;
+        let leaves = node.children.iter().filter(|&&c| c & LEAF_BIT != 0 && c != EMPTY).count();
+        (undecided == 0 || (undecided.count_ones() <= LOOSE && leaves == 0)).then_some((!none & 0xff, dist))
+    }
+}
 
 /// What a packet's node test finds.
 #[derive(Clone, Copy, Debug)]
@@ -208,6 +296,42 @@ pub trait Backend {
     ) -> u32 {
         let _ = (rows, h);
         Self::prepare8(rays, out, t_max)
+    }
+
+    /// The bounds of the slab tests of a packet's rays `valid` ([`PacketBounds`]), where the
+    /// kernel finds them (kernels with [`Backend::ROWS`], from the rows); `None` otherwise.
+    ///
+    /// # Safety
+    /// The CPU has the kernel's features; the lanes of `valid` of `rows` are written.
+    #[inline(always)]
+    unsafe fn bounds(rows: &MaybeUninit<Rows>, valid: u32, t_max: &[f32; PACKET]) -> Option<PacketBounds> {
+        let _ = (rows, valid, t_max);
+        None
+    }
+
+    /// The least interval end of the rays of `rays`.
+    ///
+    /// # Safety
+    /// The CPU has the kernel's features.
+    #[inline(always)]
+    unsafe fn t_low(t_max: &[f32; PACKET], rays: u32) -> f32 {
+        let (mut low, mut r) = (f32::INFINITY, rays);
+        while r != 0 {
+            low = low.min(t_max[r.trailing_zeros() as usize]);
+            r &= r - 1;
+        }
+        low
+    }
+
+    /// The children of `node` that `b` decides for every ray of a set whose interval ends are
+    /// at least `t_low` ([`PacketBounds::decide`]). Kernels may override it with a faster form
+    /// of the same results.
+    ///
+    /// # Safety
+    /// The CPU has the kernel's features.
+    #[inline(always)]
+    unsafe fn whole(b: &PacketBounds, node: &WideNode, t_low: f32) -> Option<(u32, [f32; WIDTH])> {
+        b.decide(node, t_low)
     }
 
     /// Writes lane `r` of `rows` for the ray `p` (kernels with [`Backend::ROWS`]).

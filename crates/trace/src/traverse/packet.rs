@@ -17,21 +17,34 @@
 //! When a node is reached by at most [`SPARSE`] rays the packet has diverged: each of them
 //! walks the subtree alone with the single-ray walk.
 //!
+//! Rays from one origin (a pinhole camera's) whose kernel keeps them as rows have
+//! [`PacketBounds`]: at a node reached by at least [`WHOLE`] of them, one test of the eight
+//! children bounds every ray's test ([`Backend::whole`]). Where it decides each child (entered
+//! by all of the rays or by none) its answer is each ray's own; above the leaves it may also
+//! send all of the rays into a few children that only some enter, and their own tests further
+//! down drop the others. Otherwise the rays are tested one by one.
+//!
 //! Why the hits equal the single-ray query's: a ray tests a leaf's triangles only after its
-//! own conservative box test accepted every node on the way (with an interval no shorter than
-//! its final hit), so it reaches every leaf holding a hit it could return; and the closest
-//! hit is chosen by [`Hit::precedes`], which does not depend on the order in which leaves are
-//! tested. The any-hit walk retires a ray at its first hit.
+//! own conservative box test accepted the leaf (with an interval no shorter than its final
+//! hit), and every node on the single walk's way to it is visited by the ray (each node test
+//! above gives the ray at least the children its own test gives), so it reaches every leaf
+//! holding a hit it could return; and the closest hit is chosen by [`Hit::precedes`], which
+//! does not depend on the order in which leaves are tested. The any-hit walk retires a ray at
+//! its first hit.
 
 use crate::hit::Hit;
 use crate::node::{WideNode, EMPTY, LEAF_BIT};
 use crate::ray::Ray;
-use crate::traverse::backend::{reaching_each, Backend, PacketNode, Rows, PACKET};
+use crate::traverse::backend::{reaching_each, Backend, PacketBounds, PacketNode, Rows, PACKET};
 use crate::traverse::walk::STACK;
 use std::mem::MaybeUninit;
 
 /// A node reached by this many active rays or fewer is walked by each of them alone.
 pub const SPARSE: u32 = 2;
+
+/// Active rays from which a node is first tested for the packet as a whole, where the
+/// packet's rays share their origin ([`PacketBounds`]).
+pub const WHOLE: u32 = 8;
 
 #[derive(Clone, Copy)]
 struct Entry {
@@ -52,6 +65,8 @@ pub(crate) struct Packet<B: Backend> {
     pub(crate) t_max: [f32; PACKET],
     /// Bit `i` set for each ray that can hit something.
     pub(crate) valid: u32,
+    /// The bounds of the rays' slab tests, where the kernel finds them.
+    bounds: Option<PacketBounds>,
 }
 
 impl<B: Backend> Packet<B> {
@@ -64,6 +79,20 @@ impl<B: Backend> Packet<B> {
             rows: MaybeUninit::uninit(),
             t_max: [f32::NEG_INFINITY; PACKET],
             valid: 0,
+            bounds: None,
+        }
+    }
+
+    /// Finds the packet's [`PacketBounds`] once its rays are in (kernels with
+    /// [`Backend::ROWS`], for packets of at least [`WHOLE`] rays).
+    ///
+    /// # Safety
+    /// The CPU has `B`'s features.
+    #[inline(always)]
+    unsafe fn bound(&mut self) {
+        self.bounds = None;
+        if B::ROWS && self.valid.count_ones() >= WHOLE {
+            self.bounds = B::bounds(&self.rows, self.valid, &self.t_max);
         }
     }
 
@@ -131,6 +160,14 @@ impl<B: Backend> Packet<B> {
     /// Which rays of `active` enter each child, and their least entry distance.
     #[inline(always)]
     unsafe fn node(&self, node: &WideNode, active: u32) -> PacketNode {
+        if let Some(b) = &self.bounds {
+            if active.count_ones() >= WHOLE {
+                if let Some((children, dist)) = B::whole(b, node, B::t_low(&self.t_max, active)) {
+                    let rays = std::array::from_fn(|c| if children >> c & 1 != 0 { active } else { 0 });
+                    return PacketNode { children, rays, dist };
+                }
+            }
+        }
         // The walks keep `active` within `valid`, whose lanes are written.
         B::node_packet_rows(&self.prepared, &self.rows, node, active, &self.t_max)
     }
@@ -201,6 +238,7 @@ pub(crate) unsafe fn closest<B: Backend, L: PacketLeaves<B>>(
     if root == EMPTY {
         return;
     }
+    p.bound();
     let mut stack = [const { MaybeUninit::<Entry>::uninit() }; STACK];
     let mut sp = 0usize;
     let (mut cur, mut active) = (root, p.valid);
@@ -276,6 +314,7 @@ pub(crate) unsafe fn any<B: Backend, L: PacketLeaves<B>>(
     if root == EMPTY {
         return done;
     }
+    p.bound();
     let mut stack = [const { MaybeUninit::<Entry>::uninit() }; STACK];
     let mut sp = 0usize;
     let (mut cur, mut active) = (root, p.valid);
