@@ -241,6 +241,31 @@ fn transpose8_moves_bit_c_of_byte_r_to_bit_r_of_byte_c() {
     }
 }
 
+/// A wavy height field of `2·n²` triangles over the unit square (many wide levels).
+fn wavy_grid(n: usize) -> Vec<[Vec3; 3]> {
+    let p = |x: usize, z: usize| {
+        let (x, z) = (x as f32 / n as f32, z as f32 / n as f32);
+        Vec3::new(x, (x * 9.0).sin() * (z * 7.0).cos() * 0.2, z)
+    };
+    let mut tris = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            tris.push([p(i, j), p(i + 1, j), p(i + 1, j + 1)]);
+            tris.push([p(i, j), p(i + 1, j + 1), p(i, j + 1)]);
+        }
+    }
+    tris
+}
+
+/// A reproducible stream of numbers in `[0, 1)` (a linear congruential generator).
+fn uniform(seed: u64) -> impl FnMut() -> f32 {
+    let mut state = seed;
+    move || {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (state >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
 /// The AVX2 packet node test, and where the CPU has AVX-512 its child-by-child test, against
 /// the scalar one on every node of a hierarchy: the same rays per child and the same least
 /// distances, bit for bit.
@@ -255,24 +280,8 @@ fn packet_node_tests_agree_between_kernels() {
     if !renderlab_trace::kernel::available(renderlab_trace::Kernel::Simd) {
         return;
     }
-    let mut tris = Vec::new();
-    let n = 24;
-    for i in 0..n {
-        for j in 0..n {
-            let p = |x: usize, z: usize| {
-                let (x, z) = (x as f32 / n as f32, z as f32 / n as f32);
-                Vec3::new(x, (x * 9.0).sin() * (z * 7.0).cos() * 0.2, z)
-            };
-            tris.push([p(i, j), p(i + 1, j), p(i + 1, j + 1)]);
-            tris.push([p(i, j), p(i + 1, j + 1), p(i, j + 1)]);
-        }
-    }
-    let blas = Blas::from_triangles(&tris).unwrap();
-    let mut state = 7u64;
-    let mut rnd = move || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        (state >> 40) as f32 / (1u64 << 24) as f32
-    };
+    let blas = Blas::from_triangles(&wavy_grid(24)).unwrap();
+    let mut rnd = uniform(7);
     let wide = renderlab_core::kernel::has_avx512();
     let mut by_child = 0;
     let idle = RayQuery::new(&Ray::new(Vec3::ZERO, Vec3::X)).unwrap();
@@ -352,24 +361,8 @@ fn whole_packet_node_tests_bound_each_rays_test() {
     if !renderlab_trace::kernel::available(renderlab_trace::Kernel::Simd) {
         return;
     }
-    let mut tris = Vec::new();
-    let n = 24;
-    for i in 0..n {
-        for j in 0..n {
-            let p = |x: usize, z: usize| {
-                let (x, z) = (x as f32 / n as f32, z as f32 / n as f32);
-                Vec3::new(x, (x * 9.0).sin() * (z * 7.0).cos() * 0.2, z)
-            };
-            tris.push([p(i, j), p(i + 1, j), p(i + 1, j + 1)]);
-            tris.push([p(i, j), p(i + 1, j + 1), p(i, j + 1)]);
-        }
-    }
-    let blas = Blas::from_triangles(&tris).unwrap();
-    let mut state = 11u64;
-    let mut rnd = move || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        (state >> 40) as f32 / (1u64 << 24) as f32
-    };
+    let blas = Blas::from_triangles(&wavy_grid(24)).unwrap();
+    let mut rnd = uniform(11);
     let (mut decided, mut loose) = (0, 0);
     for packet in 0..60 {
         // Narrow and wide bundles from one eye looking down at the mesh, some rays shortened.
