@@ -384,11 +384,13 @@ fn whole_packet_node_tests_bound_each_rays_test() {
                 .iter()
                 .fold([f32::INFINITY, f32::NEG_INFINITY], |[lo, hi], q| [lo.min(f(q)), hi.max(f(q))])
         };
-        let org = [0, 1, 2].map(|a| range(&|q: &RayQuery| q.org[a]));
         let inv = [0, 1, 2].map(|a| range(&|q: &RayQuery| q.inv[a]));
-        let Some(b) =
-            PacketBounds::new(org, inv, range(&|q: &RayQuery| q.t_min), range(&|q: &RayQuery| q.t_max)[1])
-        else {
+        let Some(b) = PacketBounds::new(
+            eye.to_array(),
+            inv,
+            range(&|q: &RayQuery| q.t_min),
+            range(&|q: &RayQuery| q.t_max)[1],
+        ) else {
             continue;
         };
         let t_low = range(&|q: &RayQuery| q.t_max)[0];

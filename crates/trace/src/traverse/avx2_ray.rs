@@ -165,7 +165,7 @@ impl Prepared {
         rays: &[Ray; 8],
         out: &mut [MaybeUninit<Prepared>; 8],
         t_max: &mut [f32; 8],
-        soa: Option<(&mut MaybeUninit<Rows>, usize)>,
+        as_rows: Option<(&mut MaybeUninit<Rows>, usize)>,
     ) -> u32 {
         let src = rays.as_ptr() as *const f32;
         let mut rows = [_mm256_setzero_ps(); 8];
@@ -211,10 +211,10 @@ impl Prepared {
             [_mm256_div_ps(d_kx, d_kz), _mm256_div_ps(d_ky, d_kz), pick(is_x, is_y, inv[0], inv[1], inv[2])];
         let org_inv = [_mm256_mul_ps(ox, inv[0]), _mm256_mul_ps(oy, inv[1]), _mm256_mul_ps(oz, inv[2])];
         let first = [ox, oy, oz, inv[0], inv[1], inv[2], t_min, octant(inv)];
-        if let Some((soa, h)) = soa {
+        if let Some((out_rows, h)) = as_rows {
             // The first row of each form, one quantity of the eight rays to a register, is
             // what the packet's rows hold (lanes `8·h ..`).
-            let base = soa.as_mut_ptr() as *mut f32;
+            let base = out_rows.as_mut_ptr() as *mut f32;
             for (i, x) in first.iter().enumerate() {
                 _mm256_storeu_ps(base.add(PACKET * i + 8 * h), *x);
             }

@@ -9,7 +9,7 @@
 //! of their masks; child by child it costs at most eight children times two sixteen-lane
 //! tests, and each child's ray mask comes out of a compare directly. That pays where the core
 //! executes 512-bit operations at full width (Intel's AVX-512 cores: the blob's primary-ray
-//! packets +30 to +40 % on a Xeon), not where it splits them in two (AMD's Zen 4: −8 %), so it
+//! packets +13 to +49 % on a Xeon), not where it splits them in two (AMD's Zen 4: −7 %), so it
 //! runs where [`crate::kernel::child_by_child`] says. It needs the rays as rows ([`Rows`],
 //! written at the packet's setup) and all of the packet's active rays in one octant (they then
 //! read the same planes of the node); otherwise, and for packets thinned out to fewer than
@@ -26,10 +26,21 @@ use crate::ray::Ray;
 use crate::traverse::avx2::Avx2;
 use crate::traverse::avx2_ray::Prepared;
 use crate::traverse::backend::{
-    Backend, BlockHits, PacketBounds, PacketNode, RayQuery, Rows, FUSED_SLABS, IZE, PACKET,
+    planes_of, Backend, BlockHits, PacketBounds, PacketNode, RayQuery, Rows, FUSED_SLABS, IZE, PACKET,
 };
 use std::arch::x86_64::*;
 use std::mem::MaybeUninit;
+
+/// Methods that run the AVX2 kernel's own code, here compiled with AVX-512's 32 registers.
+macro_rules! as_avx2 {
+    ($(fn $name:ident($($arg:ident: $ty:ty),* $(,)?) -> $ret:ty;)*) => {$(
+        #[inline]
+        #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
+        unsafe fn $name($($arg: $ty),*) -> $ret {
+            Avx2::$name($($arg),*)
+        }
+    )*};
+}
 
 /// Active rays from which a packet's node is tested child by child.
 pub const CHILD_BY_CHILD: u32 = 8;
@@ -43,22 +54,20 @@ impl Backend for Avx512 {
 
     const ROWS: bool = true;
 
-    #[inline]
-    #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
-    unsafe fn prepare(q: &RayQuery) -> Prepared {
-        Avx2::prepare(q)
-    }
-
-    #[inline]
-    #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
-    unsafe fn prepare_ray(ray: &Ray) -> Option<(Prepared, f32)> {
-        Avx2::prepare_ray(ray)
-    }
-
-    #[inline]
-    #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
-    unsafe fn prepare8(rays: &[Ray; 8], out: &mut [MaybeUninit<Prepared>; 8], t_max: &mut [f32; 8]) -> u32 {
-        Avx2::prepare8(rays, out, t_max)
+    as_avx2! {
+        fn prepare(q: &RayQuery) -> Prepared;
+        fn prepare_ray(ray: &Ray) -> Option<(Prepared, f32)>;
+        fn prepare8(rays: &[Ray; 8], out: &mut [MaybeUninit<Prepared>; 8], t_max: &mut [f32; 8]) -> u32;
+        fn whole(b: &PacketBounds, node: &WideNode, t_low: f32) -> Option<(u32, [f32; WIDTH])>;
+        fn node(p: &Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; 8]);
+        fn block(p: &Prepared, block: &TriBlock, t_max: f32) -> BlockHits;
+        fn reaching(t_max: &[f32; PACKET], rays: u32, dist: f32) -> u32;
+        fn node_packet(
+            p: &[MaybeUninit<Prepared>; PACKET],
+            node: &WideNode,
+            active: u32,
+            t_max: &[f32; PACKET]
+        ) -> PacketNode;
     }
 
     #[inline]
@@ -91,21 +100,22 @@ impl Backend for Avx512 {
         let halves = [valid as u16, (valid >> 16) as u16];
         // Rays from several origins have no bounds: found first, in a few compares.
         let lead = valid.trailing_zeros() as usize;
-        for q in 0..3 {
-            let o = _mm512_set1_ps(*rows.add(PACKET * q + lead));
+        let mut org = [0.0f32; 3];
+        for (q, o) in org.iter_mut().enumerate() {
+            *o = *rows.add(PACKET * q + lead);
             for (h, &k) in halves.iter().enumerate() {
                 let x = _mm512_maskz_loadu_ps(k, rows.add(PACKET * q + 16 * h));
-                if _mm512_mask_cmp_ps_mask::<_CMP_NEQ_UQ>(k, x, o) != 0 {
+                if _mm512_mask_cmp_ps_mask::<_CMP_NEQ_UQ>(k, x, _mm512_set1_ps(*o)) != 0 {
                     return None;
                 }
             }
         }
-        // Each quantity's least and greatest value over the rays (no closure: it would be
-        // compiled without the target features).
-        let mut range = [[f32::INFINITY, f32::NEG_INFINITY]; 7];
-        for (q, r) in range.iter_mut().enumerate() {
+        // The least and greatest `1/dir` per axis and interval start over the rays (rows 3 to
+        // 6; no closure: it would be compiled without the target features).
+        let mut range = [[f32::INFINITY, f32::NEG_INFINITY]; 4];
+        for (i, r) in range.iter_mut().enumerate() {
             for (h, &k) in halves.iter().enumerate() {
-                let x = _mm512_maskz_loadu_ps(k, rows.add(PACKET * q + 16 * h));
+                let x = _mm512_maskz_loadu_ps(k, rows.add(PACKET * (3 + i) + 16 * h));
                 r[0] = r[0].min(_mm512_mask_reduce_min_ps(k, x));
                 r[1] = r[1].max(_mm512_mask_reduce_max_ps(k, x));
             }
@@ -114,7 +124,7 @@ impl Backend for Avx512 {
             _mm512_maskz_loadu_ps(halves[0], t_max.as_ptr()),
             _mm512_maskz_loadu_ps(halves[1], t_max.as_ptr().add(16)),
         ));
-        PacketBounds::new([range[0], range[1], range[2]], [range[3], range[4], range[5]], range[6], t_high)
+        PacketBounds::new(org, [range[0], range[1], range[2]], range[3], t_high)
     }
 
     #[inline]
@@ -126,41 +136,6 @@ impl Backend for Avx512 {
             _mm512_mask_loadu_ps(inf, k0, t_max.as_ptr()),
             _mm512_mask_loadu_ps(inf, k1, t_max.as_ptr().add(16)),
         ))
-    }
-
-    #[inline]
-    #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
-    unsafe fn whole(b: &PacketBounds, node: &WideNode, t_low: f32) -> Option<(u32, [f32; WIDTH])> {
-        Avx2::whole(b, node, t_low)
-    }
-
-    #[inline]
-    #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
-    unsafe fn node(p: &Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; 8]) {
-        Avx2::node(p, node, t_max)
-    }
-
-    #[inline]
-    #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
-    unsafe fn block(p: &Prepared, block: &TriBlock, t_max: f32) -> BlockHits {
-        Avx2::block(p, block, t_max)
-    }
-
-    #[inline]
-    #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
-    unsafe fn reaching(t_max: &[f32; PACKET], rays: u32, dist: f32) -> u32 {
-        Avx2::reaching(t_max, rays, dist)
-    }
-
-    #[inline]
-    #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
-    unsafe fn node_packet(
-        p: &[MaybeUninit<Prepared>; PACKET],
-        node: &WideNode,
-        active: u32,
-        t_max: &[f32; PACKET],
-    ) -> PacketNode {
-        Avx2::node_packet(p, node, active, t_max)
     }
 
     #[inline]
@@ -227,9 +202,7 @@ unsafe fn child_by_child(
     t_max: &[f32; PACKET],
     octant: u32,
 ) -> PacketNode {
-    let sign = |a: u32| ((octant >> a) & 1) as usize;
-    let near = [sign(0), 2 + sign(1), 4 + sign(2)];
-    let far = [1 - sign(0), 3 - sign(1), 5 - sign(2)];
+    let (near, far) = planes_of(octant);
     // Each half's rays: origin, `1/dir`, interval start and end (only active lanes read).
     let mut rays = [[_mm512_setzero_ps(); 8]; 2];
     for (h, &k) in halves.iter().enumerate() {

@@ -45,6 +45,15 @@ pub const PACKET: usize = 32;
 #[repr(C, align(64))]
 pub struct Rows(pub [[f32; PACKET]; 8]);
 
+/// The rows of [`WideNode::bounds`] holding the near and the far plane of each axis for a
+/// direction of octant `octant` (bit `a` set where the direction's component `a` is
+/// negative): the minima's row `2a` and the maxima's `2a + 1`, swapped for a negative axis.
+#[inline(always)]
+pub fn planes_of(octant: u32) -> ([usize; 3], [usize; 3]) {
+    let sign = |a: usize| ((octant >> a) & 1) as usize;
+    ([0, 1, 2].map(|a| 2 * a + sign(a)), [0, 1, 2].map(|a| 2 * a + 1 - sign(a)))
+}
+
 /// Undecided children ([`PacketBounds::decide`]) up to which a node of inner children is taken
 /// for the whole packet, conservatively.
 pub const LOOSE: u32 = 2;
@@ -75,22 +84,15 @@ pub struct PacketBounds {
 }
 
 impl PacketBounds {
-    /// The bounds of rays whose origins range over `org` (least and greatest per axis) and whose
-    /// `1/dir`, interval starts and ends range over `inv`, `t_min` and up to `t_max`; `None`
-    /// where the origins differ or the ranges of `1/dir` do not keep one sign per axis or are
-    /// not finite.
-    pub fn new(org: [[f32; 2]; 3], inv: [[f32; 2]; 3], t_min: [f32; 2], t_max: f32) -> Option<PacketBounds> {
-        let shared = org.iter().all(|[lo, hi]| lo == hi);
+    /// The bounds of rays from `org` whose `1/dir`, interval starts and ends range over `inv`,
+    /// `t_min` (least and greatest per axis) and up to `t_max`; `None` where the ranges of
+    /// `1/dir` do not keep one sign per axis or are not finite. (The kernel finds that the
+    /// rays share their origin before it asks.)
+    pub fn new(org: [f32; 3], inv: [[f32; 2]; 3], t_min: [f32; 2], t_max: f32) -> Option<PacketBounds> {
         let signed = inv.iter().all(|&[lo, hi]| lo.is_finite() && hi.is_finite() && (hi < 0.0 || lo > 0.0));
-        let sign = |a: usize| (inv[a][1] < 0.0) as usize;
-        (shared && signed).then(|| PacketBounds {
-            org: org.map(|[lo, _]| lo),
-            inv,
-            t_min,
-            t_max,
-            near: [0, 1, 2].map(|a| 2 * a + sign(a)),
-            far: [0, 1, 2].map(|a| 2 * a + 1 - sign(a)),
-        })
+        let octant = (0..3).fold(0, |o, a| o | ((inv[a][1] < 0.0) as u32) << a);
+        let (near, far) = planes_of(octant);
+        signed.then_some(PacketBounds { org, inv, t_min, t_max, near, far })
     }
 
     /// The children of `node` taken for every ray of a set whose interval ends are at least
@@ -197,8 +199,7 @@ impl RayQuery {
         }
         let d = ray.dir.to_array();
         let inv = d.map(|x| 1.0 / x);
-        let near = [0, 1, 2].map(|a| 2 * a + inv[a].is_sign_negative() as usize);
-        let far = [0, 1, 2].map(|a| 2 * a + 1 - inv[a].is_sign_negative() as usize);
+        let (near, far) = planes_of((0..3).fold(0, |o, a| o | (inv[a].is_sign_negative() as u32) << a));
         let d_org = ray.origin.to_array();
         Some(RayQuery {
             org: ray.origin.to_array(),
