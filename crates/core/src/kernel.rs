@@ -97,6 +97,28 @@ pub fn has_avx512() -> bool {
     }
 }
 
+/// Whether the CPU is Intel's (its CPUID vendor string, "GenuineIntel"): for choices that
+/// depend on how a core executes 512-bit operations (Intel's AVX-512 cores at full width,
+/// AMD's Zen 4 in two halves), where a feature flag does not tell.
+pub fn intel() -> bool {
+    vendor() == *b"GenuineIntel"
+}
+
+/// The CPU's vendor string as CPUID leaf 0 gives it (EBX, EDX, ECX); zeros off x86-64.
+fn vendor() -> [u8; 12] {
+    // (Written only on x86-64.)
+    #[allow(unused_mut)]
+    let mut v = [0u8; 12];
+    #[cfg(target_arch = "x86_64")]
+    {
+        let id = std::arch::x86_64::__cpuid(0);
+        for (i, word) in [id.ebx, id.edx, id.ecx].into_iter().enumerate() {
+            v[4 * i..4 * i + 4].copy_from_slice(&word.to_le_bytes());
+        }
+    }
+    v
+}
+
 /// AVX2 building blocks that the vector kernels of several crates share (the raster's
 /// eight-pixel resolve, the relief kernels' lane loads).
 #[cfg(target_arch = "x86_64")]
@@ -126,6 +148,17 @@ pub mod avx2 {
 
 #[cfg(test)]
 mod tests {
+
+    /// The vendor check agrees with the kernel's own account of the CPU (Linux's
+    /// `/proc/cpuinfo`), where there is one.
+    #[test]
+    fn intel_matches_the_vendor_the_kernel_reports() {
+        let Ok(info) = std::fs::read_to_string("/proc/cpuinfo") else { return };
+        let Some(vendor) = info.lines().find_map(|l| l.strip_prefix("vendor_id")) else { return };
+        let vendor = vendor.trim_start_matches([' ', '\t', ':']).trim();
+        assert_eq!(std::str::from_utf8(&super::vendor()), Ok(vendor));
+        assert_eq!(super::intel(), vendor == "GenuineIntel", "vendor_id {vendor:?}");
+    }
     use super::*;
 
     #[test]

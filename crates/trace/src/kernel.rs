@@ -45,25 +45,12 @@ pub fn child_by_child() -> bool {
     *BY_CHILD.get_or_init(|| match std::env::var(CHILD_BY_CHILD).as_deref() {
         Ok("1") => true,
         Ok("0") => false,
-        _ => intel(),
+        _ => renderlab_core::kernel::intel(),
     })
 }
 
 /// The environment variable that overrides [`child_by_child`] (`1` or `0`).
 pub const CHILD_BY_CHILD: &str = "RENDERLAB_CHILD_BY_CHILD";
-
-/// Whether the processor is Intel's (its CPUID vendor string).
-fn intel() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
-        let id = std::arch::x86_64::__cpuid(0);
-        [id.ebx, id.edx, id.ecx] == [0x756e_6547, 0x4965_6e69, 0x6c65_746e]
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
-    }
-}
 
 /// Whether the CPU has fused multiply-add instructions.
 fn has_fma() -> bool {
