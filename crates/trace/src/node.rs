@@ -22,15 +22,21 @@ pub const LEAF_BIT: u32 = 1 << 31;
 /// The reference of an empty hierarchy's root (and of unused child slots).
 pub const EMPTY: u32 = u32::MAX;
 
-/// One node of an 8-wide BVH: 224 bytes, aligned to 32 for AVX2 loads.
+/// One node of an 8-wide BVH: 256 bytes, aligned to 64, so that a node is exactly four cache
+/// lines and its address is its index shifted by 8 (a multiply by 224, the size without the
+/// padding, is three cycles more on every step of a walk's chain of dependent loads).
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[repr(C, align(32))]
+#[repr(C, align(64))]
 pub struct WideNode {
     /// `bounds[2·axis]` are the children's minima along `axis`, `bounds[2·axis + 1]` their maxima.
     pub bounds: [[f32; WIDTH]; 6],
     /// The children's references.
     pub children: [u32; WIDTH],
+    /// Unused (zero): pads the node to 256 bytes.
+    pub pad: [u32; WIDTH],
 }
+
+const _: () = assert!(std::mem::size_of::<WideNode>() == 256);
 
 impl WideNode {
     /// A node with every slot unused.
@@ -44,6 +50,7 @@ impl WideNode {
             [f32::NEG_INFINITY; WIDTH],
         ],
         children: [EMPTY; WIDTH],
+        pad: [0; WIDTH],
     };
 
     /// Puts a child with box `b` and reference `child` in slot `slot`.

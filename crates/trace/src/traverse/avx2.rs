@@ -13,7 +13,7 @@ use crate::node::{TriBlock, WideNode, EMPTY, WIDTH};
 use crate::ray::Ray;
 use crate::traverse::avx2_ray::Prepared;
 use crate::traverse::backend::{
-    Backend, BlockHits, PacketBounds, PacketNode, RayQuery, FUSED_SLABS, IZE, LOOSE, PACKET,
+    Backend, BlockHits, PacketBounds, PacketNode, RayQuery, FAR, IZE, LOOSE, PACKET,
 };
 use crate::triangle::{edge_functions_f64, EXACT_EDGES, FUSED};
 use std::arch::x86_64::*;
@@ -56,14 +56,15 @@ impl Backend for Avx2 {
         let mut far = [[_mm256_setzero_ps(); 2]; 3];
         for a in 0..3 {
             let o = _mm256_set1_ps(b.org[a]);
-            let (i0, i1) = (_mm256_set1_ps(b.inv[a][0]), _mm256_set1_ps(b.inv[a][1]));
-            for (out, row) in [(&mut near[a], b.near[a]), (&mut far[a], b.far[a])] {
+            let [i0, i1] = b.inv[a];
+            for (out, row, [i0, i1]) in
+                [(&mut near[a], b.near[a], [i0, i1]), (&mut far[a], b.far[a], [i0 * FAR, i1 * FAR])]
+            {
                 let x = _mm256_sub_ps(_mm256_load_ps(node.bounds.get_unchecked(row).as_ptr()), o);
-                let (p0, p1) = (_mm256_mul_ps(x, i0), _mm256_mul_ps(x, i1));
+                let (p0, p1) = (_mm256_mul_ps(x, _mm256_set1_ps(i0)), _mm256_mul_ps(x, _mm256_set1_ps(i1)));
                 *out = [_mm256_min_ps(p0, p1), _mm256_max_ps(p0, p1)];
             }
         }
-        let ize = _mm256_set1_ps(IZE);
         let near_low = _mm256_max_ps(
             _mm256_max_ps(near[0][0], near[1][0]),
             _mm256_max_ps(near[2][0], _mm256_set1_ps(b.t_min[0])),
@@ -72,19 +73,13 @@ impl Backend for Avx2 {
             _mm256_max_ps(near[0][1], near[1][1]),
             _mm256_max_ps(near[2][1], _mm256_set1_ps(b.t_min[1])),
         );
-        let far_low = _mm256_mul_ps(
-            _mm256_min_ps(
-                _mm256_min_ps(far[0][0], far[1][0]),
-                _mm256_min_ps(far[2][0], _mm256_set1_ps(t_low)),
-            ),
-            ize,
+        let far_low = _mm256_min_ps(
+            _mm256_min_ps(far[0][0], far[1][0]),
+            _mm256_min_ps(far[2][0], _mm256_set1_ps(t_low * IZE)),
         );
-        let far_high = _mm256_mul_ps(
-            _mm256_min_ps(
-                _mm256_min_ps(far[0][1], far[1][1]),
-                _mm256_min_ps(far[2][1], _mm256_set1_ps(b.t_max)),
-            ),
-            ize,
+        let far_high = _mm256_min_ps(
+            _mm256_min_ps(far[0][1], far[1][1]),
+            _mm256_min_ps(far[2][1], _mm256_set1_ps(b.t_max * IZE)),
         );
         let none = _mm256_cmp_ps::<_CMP_GT_OQ>(near_low, far_high);
         let every = _mm256_cmp_ps::<_CMP_LE_OQ>(near_high, far_low);
@@ -268,24 +263,23 @@ unsafe fn slabs_of(p: &Prepared, planes: &[__m256; 6], t_max: f32) -> (__m256, _
     // (Macros rather than closures keep every intrinsic inside this function's target
     // features.)
     macro_rules! slab {
-        ($a:expr, $plane:expr) => {
-            if FUSED_SLABS {
-                _mm256_fmsub_ps($plane, _mm256_set1_ps(p.inv[$a]), _mm256_set1_ps(p.org_inv[$a]))
-            } else {
-                _mm256_mul_ps(_mm256_sub_ps($plane, _mm256_set1_ps(p.org[$a])), _mm256_set1_ps(p.inv[$a]))
-            }
+        ($a:expr, $plane:expr, $inv:expr) => {
+            _mm256_mul_ps(_mm256_sub_ps($plane, _mm256_set1_ps(p.org[$a])), _mm256_set1_ps($inv[$a]))
         };
     }
     let near = _mm256_max_ps(
-        slab!(0, planes[0]),
-        _mm256_max_ps(slab!(1, planes[1]), _mm256_max_ps(slab!(2, planes[2]), _mm256_set1_ps(p.t_min))),
-    );
-    let far = _mm256_mul_ps(
-        _mm256_min_ps(
-            slab!(0, planes[3]),
-            _mm256_min_ps(slab!(1, planes[4]), _mm256_min_ps(slab!(2, planes[5]), _mm256_set1_ps(t_max))),
+        slab!(0, planes[0], p.inv),
+        _mm256_max_ps(
+            slab!(1, planes[1], p.inv),
+            _mm256_max_ps(slab!(2, planes[2], p.inv), _mm256_set1_ps(p.t_min)),
         ),
-        _mm256_set1_ps(IZE),
+    );
+    let far = _mm256_min_ps(
+        slab!(0, planes[3], p.inv_far),
+        _mm256_min_ps(
+            slab!(1, planes[4], p.inv_far),
+            _mm256_min_ps(slab!(2, planes[5], p.inv_far), _mm256_set1_ps(t_max * IZE)),
+        ),
     );
     (near, _mm256_cmp_ps::<_CMP_LE_OQ>(near, far))
 }

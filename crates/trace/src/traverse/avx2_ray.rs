@@ -12,7 +12,7 @@
 #![cfg(target_arch = "x86_64")]
 
 use crate::ray::Ray;
-use crate::traverse::backend::{RayQuery, Rows, PACKET};
+use crate::traverse::backend::{RayQuery, Rows, FAR, PACKET};
 use std::arch::x86_64::*;
 use std::mem::MaybeUninit;
 
@@ -36,7 +36,8 @@ pub struct Prepared {
     pub(super) tri_org: [f32; 3],
     pad2: [f32; 2],
     pub(super) shear: [f32; 3],
-    pub(super) org_inv: [f32; 3],
+    /// `inv · FAR`: the far planes' factor ([`FAR`]).
+    pub(super) inv_far: [f32; 3],
     pad3: [f32; 2],
 }
 
@@ -71,7 +72,7 @@ impl Prepared {
             ],
             pad2: [0.0; 2],
             shear: q.tri.shear,
-            org_inv: q.org_inv,
+            inv_far: q.inv_far,
             pad3: [0.0; 2],
         }
     }
@@ -126,7 +127,7 @@ impl Prepared {
         );
         let shear = _mm_div_ps(num, _mm_set1_ps(d[kz]));
         let tri_org = _mm_permutevar_ps(org, _mm_setr_epi32(kx as i32, ky as i32, kz as i32, 3));
-        let org_inv = _mm_mul_ps(org, inv);
+        let inv_far = _mm_mul_ps(inv, _mm_set1_ps(FAR));
         let mut o = [0.0f32; 4];
         let mut iv = [0.0f32; 4];
         let mut sh = [0.0f32; 4];
@@ -136,7 +137,7 @@ impl Prepared {
         _mm_storeu_ps(iv.as_mut_ptr(), inv);
         _mm_storeu_ps(sh.as_mut_ptr(), shear);
         _mm_storeu_ps(to.as_mut_ptr(), tri_org);
-        _mm_storeu_ps(oi.as_mut_ptr(), org_inv);
+        _mm_storeu_ps(oi.as_mut_ptr(), inv_far);
         let (n0, n1, n2) = (sign(0), sign(1), sign(2));
         let p = Prepared {
             org: [o[0], o[1], o[2]],
@@ -150,7 +151,7 @@ impl Prepared {
             tri_org: [to[0], to[1], to[2]],
             pad2: [0.0; 2],
             shear: [sh[0], sh[1], sh[2]],
-            org_inv: [oi[0], oi[1], oi[2]],
+            inv_far: [oi[0], oi[1], oi[2]],
             pad3: [0.0; 2],
         };
         Some((p, t1))
@@ -209,7 +210,12 @@ impl Prepared {
         // `1 / dir[kz]` is the same division as `inv[kz]`.
         let shear =
             [_mm256_div_ps(d_kx, d_kz), _mm256_div_ps(d_ky, d_kz), pick(is_x, is_y, inv[0], inv[1], inv[2])];
-        let org_inv = [_mm256_mul_ps(ox, inv[0]), _mm256_mul_ps(oy, inv[1]), _mm256_mul_ps(oz, inv[2])];
+        let far_factor = _mm256_set1_ps(FAR);
+        let inv_far = [
+            _mm256_mul_ps(inv[0], far_factor),
+            _mm256_mul_ps(inv[1], far_factor),
+            _mm256_mul_ps(inv[2], far_factor),
+        ];
         let first = [ox, oy, oz, inv[0], inv[1], inv[2], t_min, octant(inv)];
         if let Some((out_rows, h)) = as_rows {
             // The first row of each form, one quantity of the eight rays to a register, is
@@ -223,7 +229,7 @@ impl Prepared {
             transpose(first),
             transpose([near_x, near_y, near_z, far_x, far_y, far_z, zero, zero]),
             transpose([kx, ky, kz, o_kx, o_ky, o_kz, zero, zero]),
-            transpose([shear[0], shear[1], shear[2], org_inv[0], org_inv[1], org_inv[2], zero, zero]),
+            transpose([shear[0], shear[1], shear[2], inv_far[0], inv_far[1], inv_far[2], zero, zero]),
         ];
         for (lane, dst) in out.iter_mut().enumerate() {
             // `Prepared` is four aligned rows of eight words.

@@ -26,7 +26,7 @@ use crate::ray::Ray;
 use crate::traverse::avx2::Avx2;
 use crate::traverse::avx2_ray::Prepared;
 use crate::traverse::backend::{
-    planes_of, Backend, BlockHits, PacketBounds, PacketNode, RayQuery, Rows, FUSED_SLABS, IZE, PACKET,
+    planes_of, Backend, BlockHits, PacketBounds, PacketNode, RayQuery, Rows, FAR, IZE, PACKET,
 };
 use std::arch::x86_64::*;
 use std::mem::MaybeUninit;
@@ -158,8 +158,7 @@ impl Backend for Avx512 {
 
 impl Avx512 {
     /// The packet's node test child by child, sixteen rays at a time: the same results as
-    /// [`Backend::node_packet`], or `None` when the active rays do not share their octant (or
-    /// the slab distances are the fused form, [`FUSED_SLABS`], which the rows do not hold).
+    /// [`Backend::node_packet`], or `None` when the active rays do not share their octant.
     ///
     /// # Safety
     /// The CPU has AVX2, FMA, AVX-512 F and VL; the lanes of `active` of `rows` are written
@@ -172,7 +171,7 @@ impl Avx512 {
         active: u32,
         t_max: &[f32; PACKET],
     ) -> Option<PacketNode> {
-        if FUSED_SLABS || active == 0 {
+        if active == 0 {
             return None;
         }
         let rows = rows.as_ptr() as *const f32;
@@ -203,17 +202,22 @@ unsafe fn child_by_child(
     octant: u32,
 ) -> PacketNode {
     let (near, far) = planes_of(octant);
-    // Each half's rays: origin, `1/dir`, interval start and end (only active lanes read).
-    let mut rays = [[_mm512_setzero_ps(); 8]; 2];
+    // Each half's rays: origin, `1/dir`, interval start, the far planes' `1/dir · FAR` and
+    // the interval's end times `IZE` (only active lanes read).
+    let mut rays = [[_mm512_setzero_ps(); 11]; 2];
+    let (far_factor, ize) = (_mm512_set1_ps(FAR), _mm512_set1_ps(IZE));
     for (h, &k) in halves.iter().enumerate() {
         if k != 0 {
             for (i, x) in rays[h].iter_mut().take(7).enumerate() {
                 *x = _mm512_maskz_loadu_ps(k, rows.add(PACKET * i + 16 * h));
             }
-            rays[h][7] = _mm512_maskz_loadu_ps(k, t_max.as_ptr().add(16 * h));
+            for a in 0..3 {
+                rays[h][7 + a] = _mm512_mul_ps(rays[h][3 + a], far_factor);
+            }
+            rays[h][10] = _mm512_mul_ps(_mm512_maskz_loadu_ps(k, t_max.as_ptr().add(16 * h)), ize);
         }
     }
-    let (inf, ize) = (_mm512_set1_ps(f32::INFINITY), _mm512_set1_ps(IZE));
+    let inf = _mm512_set1_ps(f32::INFINITY);
     let mut out = PacketNode { children: 0, rays: [0; WIDTH], dist: [f32::INFINITY; WIDTH] };
     let refs = _mm256_loadu_si256(node.children.as_ptr() as *const __m256i);
     let unused =
@@ -231,7 +235,7 @@ unsafe fn child_by_child(
             if k == 0 {
                 continue;
             }
-            let [ox, oy, oz, ix, iy, iz, t0, t1] = rays[h];
+            let [ox, oy, oz, ix, iy, iz, t0, jx, jy, jz, t1] = rays[h];
             // (Macros rather than closures keep every intrinsic inside this function's target
             // features.)
             macro_rules! slab {
@@ -243,12 +247,9 @@ unsafe fn child_by_child(
                 slab!(n0, ox, ix),
                 _mm512_max_ps(slab!(n1, oy, iy), _mm512_max_ps(slab!(n2, oz, iz), t0)),
             );
-            let t_far = _mm512_mul_ps(
-                _mm512_min_ps(
-                    slab!(f0, ox, ix),
-                    _mm512_min_ps(slab!(f1, oy, iy), _mm512_min_ps(slab!(f2, oz, iz), t1)),
-                ),
-                ize,
+            let t_far = _mm512_min_ps(
+                slab!(f0, ox, jx),
+                _mm512_min_ps(slab!(f1, oy, jy), _mm512_min_ps(slab!(f2, oz, jz), t1)),
             );
             let hit = _mm512_mask_cmp_ps_mask::<_CMP_LE_OQ>(k, t_near, t_far);
             entered |= (hit as u32) << (16 * h);

@@ -7,10 +7,20 @@
 //! `inv`. A zero direction component gives `inv = ±∞`; a ray lying exactly in a slab's plane
 //! then gives `0·∞ = NaN`, and the min/max below are ordered so that a NaN distance is ignored
 //! (each is `x86`'s `maxps(a, b)`: `if a > b { a } else { b }`, which returns `b` when `a` is
-//! NaN), i.e. the ray counts as inside that slab. The far distance is scaled by
-//! `1 + 2γ₃` (Ize, "Robust BVH ray traversal", JCGT 2013), which makes the test conservative:
-//! rounding can add a box the ray misses, never drop one it hits. So a ray aimed exactly at a
-//! vertex or edge reaches every triangle there, and the watertight test decides.
+//! NaN), i.e. the ray counts as inside that slab.
+//!
+//! Rounding is made conservative as Ize proposes ("Robust BVH ray traversal", JCGT 2013):
+//! rounding can add a box the ray misses, never drop one it hits, so a ray aimed exactly at a
+//! vertex or edge reaches every triangle there and the watertight test decides. Ize scales
+//! the far distance by `1 + 2γ₃`; here the factor is carried by the ray instead, so that the
+//! node test's chain of dependent operations has no multiply after its minimum: the far
+//! planes' distances use `inv_far = fl(inv · FAR)` ([`FAR`], `1 + 2γ₅`) and the interval's
+//! end is `fl(t_max · IZE)`. With `N` and `F` a box's exact entry and exit distances for
+//! the exact direction, the computed entry distance (three roundings: `1/dir`, the
+//! subtraction, the product) is at most `N·(1 + γ₃)` and the computed exit distance (four:
+//! those and `inv · FAR`) at least `F·FAR·(1 − γ₄)`, which is at least `F·(1 + γ₃)`; so
+//! `N ≤ F` implies that the computed entry is at most the computed exit, and likewise
+//! against the interval's end scaled by `IZE`.
 
 use crate::node::{TriBlock, WideNode, EMPTY, LEAF_BIT, WIDTH};
 use crate::ray::Ray;
@@ -28,10 +38,13 @@ pub const IZE: f32 = if cfg!(feature = "measure-no-ize") {
     1.0 + 2.0 * (3.0 * 5.960_464_5e-8 / (1.0 - 3.0 * 5.960_464_5e-8))
 };
 
-/// Whether slab distances are computed as one fused `b·inv − o·inv` (with `o·inv` per ray)
-/// instead of `(b − o)·inv`: on only to measure what the exact subtraction costs; the fused
-/// form's error is relative to `o·inv`, not to the distance, so Ize's factor no longer covers it.
-pub const FUSED_SLABS: bool = cfg!(feature = "measure-fused-slabs");
+/// `1 + 2γ₅`: the factor on `1/dir` for a ray's far planes (see the module's text). (1 only
+/// to measure what the factors cost, with [`IZE`].)
+pub const FAR: f32 = if cfg!(feature = "measure-no-ize") {
+    1.0
+} else {
+    1.0 + 2.0 * (5.0 * 5.960_464_5e-8 / (1.0 - 5.0 * 5.960_464_5e-8))
+};
 
 /// Rays a packet query traces together (a multiple of 8, at most 32: ray masks are `u32`).
 pub const PACKET: usize = 32;
@@ -101,7 +114,8 @@ impl PacketBounds {
     ///
     /// A child is *decided* when every ray enters it or none does; the mask then holds the ones
     /// every ray enters, exactly what each ray's own test says. Over the range of `1/dir`,
-    /// `(plane − o)·inv` is greatest and least at its ends, and each operation rounds
+    /// `(plane − o)·inv` is greatest and least at its ends (and `inv · FAR` ranges over the ends'
+    /// products), and each operation rounds
     /// monotonically, so the ends' rounded values bound every ray's rounded value. Where at
     /// most [`LOOSE`] children are undecided and none of the node's children is a leaf, the mask
     /// also holds the undecided ones, which the rays then enter conservatively (some may not
@@ -113,18 +127,19 @@ impl PacketBounds {
         let (mut every, mut none) = (0u32, 0u32);
         let mut dist = [f32::INFINITY; WIDTH];
         for (c, d) in dist.iter_mut().enumerate() {
-            let range = |a: usize, row: usize| {
+            let range = |a: usize, row: usize, [i0, i1]: [f32; 2]| {
                 let x = node.bounds[row][c] - self.org[a];
-                let [i0, i1] = self.inv[a];
                 let (p0, p1) = (x * i0, x * i1);
                 (p0.min(p1), p0.max(p1))
             };
-            let (nx, ny, nz) = (range(0, self.near[0]), range(1, self.near[1]), range(2, self.near[2]));
-            let (fx, fy, fz) = (range(0, self.far[0]), range(1, self.far[1]), range(2, self.far[2]));
+            let near = |a: usize| range(a, self.near[a], self.inv[a]);
+            let far = |a: usize| range(a, self.far[a], self.inv[a].map(|i| i * FAR));
+            let (nx, ny, nz) = (near(0), near(1), near(2));
+            let (fx, fy, fz) = (far(0), far(1), far(2));
             let near_low = nx.0.max(ny.0).max(nz.0.max(self.t_min[0]));
             let near_high = nx.1.max(ny.1).max(nz.1.max(self.t_min[1]));
-            let far_low = fx.0.min(fy.0).min(fz.0.min(t_low)) * IZE;
-            let far_high = fx.1.min(fy.1).min(fz.1.min(self.t_max)) * IZE;
+            let far_low = fx.0.min(fy.0).min(fz.0.min(t_low * IZE));
+            let far_high = fx.1.min(fy.1).min(fz.1.min(self.t_max * IZE));
             none |= ((near_low > far_high) as u32) << c;
             every |= ((near_high <= far_low) as u32) << c;
             *d = near_low;
@@ -180,8 +195,8 @@ pub struct RayQuery {
     pub t_min: f32,
     /// The interval's end as the ray was given.
     pub t_max: f32,
-    /// `org · inv` per axis (used only by the fused slab form, [`FUSED_SLABS`]).
-    pub org_inv: [f32; 3],
+    /// `inv · FAR` per axis: the far planes' factor ([`FAR`]).
+    pub inv_far: [f32; 3],
     /// The sheared frame of the watertight test.
     pub tri: TriRay,
 }
@@ -200,7 +215,6 @@ impl RayQuery {
         let d = ray.dir.to_array();
         let inv = d.map(|x| 1.0 / x);
         let (near, far) = planes_of((0..3).fold(0, |o, a| o | (inv[a].is_sign_negative() as u32) << a));
-        let d_org = ray.origin.to_array();
         Some(RayQuery {
             org: ray.origin.to_array(),
             inv,
@@ -208,7 +222,7 @@ impl RayQuery {
             far,
             t_min,
             t_max: ray.t_max,
-            org_inv: [0, 1, 2].map(|a| d_org[a] * inv[a]),
+            inv_far: inv.map(|x| x * FAR),
             tri: TriRay::new(ray.origin, ray.dir),
         })
     }

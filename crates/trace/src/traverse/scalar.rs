@@ -2,7 +2,7 @@
 //! operations in the same order (so the same bits).
 
 use crate::node::{TriBlock, WideNode, BLOCK, WIDTH};
-use crate::traverse::backend::{max_ps, min_ps, Backend, BlockHits, RayQuery, FUSED_SLABS, IZE};
+use crate::traverse::backend::{max_ps, min_ps, Backend, BlockHits, RayQuery, IZE};
 use crate::triangle::intersect;
 
 /// The scalar kernel.
@@ -22,17 +22,10 @@ impl Backend for Scalar {
         let mut mask = 0;
         let mut dist = [0.0; WIDTH];
         for (i, d) in dist.iter_mut().enumerate() {
-            let slab = |a: usize, row: usize| {
-                if FUSED_SLABS {
-                    node.bounds[row][i].mul_add(q.inv[a], -q.org_inv[a])
-                } else {
-                    (node.bounds[row][i] - q.org[a]) * q.inv[a]
-                }
-            };
-            let near =
-                max_ps(slab(0, q.near[0]), max_ps(slab(1, q.near[1]), max_ps(slab(2, q.near[2]), q.t_min)));
-            let far =
-                min_ps(slab(0, q.far[0]), min_ps(slab(1, q.far[1]), min_ps(slab(2, q.far[2]), t_max))) * IZE;
+            let near = |a: usize| (node.bounds[q.near[a]][i] - q.org[a]) * q.inv[a];
+            let far = |a: usize| (node.bounds[q.far[a]][i] - q.org[a]) * q.inv_far[a];
+            let near = max_ps(near(0), max_ps(near(1), max_ps(near(2), q.t_min)));
+            let far = min_ps(far(0), min_ps(far(1), min_ps(far(2), t_max * IZE)));
             mask |= ((near <= far) as u32) << i;
             *d = near;
         }
