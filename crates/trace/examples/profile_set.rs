@@ -129,8 +129,9 @@ fn sah(blas: &Blas) -> (f64, f64) {
     }
     let root = blas.bounds().half_area() as f64;
     let mut cost = (0.0, 0.0);
-    if blas.root() != EMPTY && root > 0.0 {
-        walk(blas.nodes(), blas.root(), root, &mut cost);
+    let tree = blas.indexed();
+    if tree.root != EMPTY && root > 0.0 {
+        walk(&tree.nodes, tree.root, root, &mut cost);
     }
     (cost.0 / root, cost.1 / root)
 }

@@ -6,7 +6,7 @@ use crate::build::binned::{self, PrimRef, SahParams, MAX_PRIMS};
 use crate::build::collapse::collapse;
 use crate::error::BuildError;
 use crate::kernel::Kernel;
-use crate::node::{TriBlock, WideNode, BLOCK, LEAF_BIT};
+use crate::node::{Arena, TriBlock, WideNode, BLOCK, LEAF_BIT};
 use crate::triangle::is_hittable;
 use glam::Vec3;
 use rayon::prelude::*;
@@ -16,11 +16,10 @@ use rayon::prelude::*;
 pub const BLAS_SAH: SahParams = SahParams { max_leaf: BLOCK, block: BLOCK, traversal_cost: 1.0 };
 
 /// A mesh's BVH: 8-wide nodes over leaves of up to four triangles, stored with the leaves'
-/// vertices (so a query never reads the mesh).
+/// vertices (so a query never reads the mesh), nodes and leaves together in one [`Arena`].
 #[derive(Clone, Debug)]
 pub struct Blas {
-    pub(crate) nodes: Vec<WideNode>,
-    pub(crate) blocks: Vec<TriBlock>,
+    pub(crate) arena: Arena,
     pub(crate) root: u32,
     pub(crate) kernel: Kernel,
     bounds: Aabb,
@@ -67,7 +66,9 @@ impl Blas {
             LEAF_BIT | (blocks.len() - 1) as u32
         });
         let bounds = if hittable == 0 { Aabb::EMPTY } else { bvh.nodes[0].bounds() };
-        Ok(Blas { nodes, blocks, root, kernel: crate::kernel::best(), bounds, triangles: count, hittable })
+        drop(bvh);
+        let (arena, root) = Arena::new(&nodes, &blocks, root);
+        Ok(Blas { arena, root, kernel: crate::kernel::best(), bounds, triangles: count, hittable })
     }
 
     /// The same hierarchy queried with `kernel` (the scalar kernel where the CPU lacks it).
@@ -98,37 +99,41 @@ impl Blas {
 
     /// Wide nodes.
     pub fn node_count(&self) -> usize {
-        self.nodes.len()
+        self.arena.node_count()
     }
 
     /// Leaf blocks.
     pub fn block_count(&self) -> usize {
-        self.blocks.len()
+        self.arena.block_count()
     }
 
-    /// The wide nodes, root first (for inspection, and for uploading to a GPU).
-    pub fn nodes(&self) -> &[WideNode] {
-        &self.nodes
-    }
-
-    /// The leaf blocks.
-    pub fn blocks(&self) -> &[TriBlock] {
-        &self.blocks
-    }
-
-    /// The root's reference: node 0, a leaf (a mesh of at most four triangles) or
-    /// [`crate::node::EMPTY`].
-    pub fn root(&self) -> u32 {
-        self.root
+    /// The hierarchy with its nodes and leaf blocks in separate arrays (a copy, made on each
+    /// call): node references are node indices, root first, and leaf references block
+    /// indices (with [`LEAF_BIT`]). For inspection, and for uploading to a GPU.
+    pub fn indexed(&self) -> Indexed {
+        let (nodes, blocks, root) = self.arena.indexed(self.root);
+        Indexed { nodes, blocks, root }
     }
 
     /// Wide levels on the longest root-to-leaf path (0 when the root is a leaf or empty).
     pub fn depth(&self) -> usize {
-        crate::node::depth(&self.nodes, self.root)
+        crate::node::depth(&self.arena, self.root)
     }
 
-    /// Bytes of nodes and leaf blocks.
+    /// Bytes of nodes and leaf blocks (with the padding that keeps nodes on cache lines).
     pub fn memory_bytes(&self) -> usize {
-        std::mem::size_of_val(self.nodes.as_slice()) + std::mem::size_of_val(self.blocks.as_slice())
+        self.arena.bytes()
     }
+}
+
+/// A bottom level with nodes and leaf blocks in separate arrays ([`Blas::indexed`]).
+#[derive(Clone, Debug)]
+pub struct Indexed {
+    /// The wide nodes, root first; node references are indices here.
+    pub nodes: Vec<WideNode>,
+    /// The leaf blocks; leaf references are [`LEAF_BIT`] and an index here.
+    pub blocks: Vec<TriBlock>,
+    /// The root's reference: node 0, a leaf (a mesh of at most four triangles) or
+    /// [`crate::node::EMPTY`].
+    pub root: u32,
 }

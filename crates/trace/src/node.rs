@@ -3,9 +3,11 @@
 //! A [`WideNode`] holds its eight children's boxes as six rows of eight floats (min x, max x,
 //! min y, max y, min z, max z), so one AVX2 load fetches one plane of all eight children, and
 //! eight 32-bit child references. A reference with [`LEAF_BIT`] set is a leaf: in a bottom
-//! level the index of a [`TriBlock`], in the top level an instance index; otherwise it is the
-//! index of another node. Unused slots have empty boxes (`min = +∞`, `max = −∞`), which no slab
-//! test accepts, so the traversal needs no child count.
+//! level a [`TriBlock`], in the top level an instance index; otherwise it is another node. A
+//! bottom level keeps its nodes and blocks together in an [`Arena`], where a reference is an
+//! offset in [`UNIT`]s; a top level keeps its nodes in an array, where it is an index (both
+//! are [`Nodes`] to the walk). Unused slots have empty boxes (`min = +∞`, `max = −∞`), which
+//! no slab test accepts, so the traversal needs no child count.
 
 use crate::aabb::Aabb;
 use glam::Vec3;
@@ -105,10 +107,213 @@ impl TriBlock {
 }
 
 /// Wide levels on the longest path from `root` down to a leaf (0 for a leaf or [`EMPTY`]).
-pub fn depth(nodes: &[WideNode], root: u32) -> usize {
+pub fn depth<N: Nodes + ?Sized>(nodes: &N, root: u32) -> usize {
     if root & LEAF_BIT != 0 {
         return 0;
     }
-    let n = &nodes[root as usize];
+    let n = nodes.get(root);
     1 + n.children.iter().filter(|&&c| c != EMPTY).map(|&c| depth(nodes, c)).max().unwrap_or(0)
 }
+
+/// Where a walk finds the nodes of a hierarchy by their references: an array indexed by
+/// node number (a top level's [`WideNode`]s) or an [`Arena`] (a bottom level's).
+pub trait Nodes {
+    /// The node with reference `r` (without [`LEAF_BIT`]).
+    ///
+    /// # Safety
+    /// `r` is a node reference of this store's hierarchy.
+    unsafe fn node(&self, r: u32) -> &WideNode;
+
+    /// [`Nodes::node`], checked: panics on a reference outside the store.
+    fn get(&self, r: u32) -> &WideNode;
+}
+
+impl Nodes for [WideNode] {
+    #[inline(always)]
+    unsafe fn node(&self, r: u32) -> &WideNode {
+        debug_assert!((r as usize) < self.len());
+        self.get_unchecked(r as usize)
+    }
+
+    fn get(&self, r: u32) -> &WideNode {
+        &self[r as usize]
+    }
+}
+
+/// The bytes of one reference unit of an [`Arena`].
+pub const UNIT: usize = 32;
+
+/// One cache line of an [`Arena`]'s storage (the alignment of its nodes).
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+struct Line([u8; 64]);
+
+/// A bottom level's nodes and leaf blocks in one allocation, depth first, each node followed
+/// by its leaf children's blocks and then its node children's subtrees: a node and the leaves
+/// a ray tests after it share memory pages and lie where the hardware's stream prefetch looks
+/// next. References are offsets in units of [`UNIT`] bytes (a leaf's with [`LEAF_BIT`]);
+/// nodes start on a cache line. Measured against separate node and block arrays (the same
+/// walk, `profile_set`): bounce rays +2 to +9 %, shadow rays +2 to +5 % on the meshes larger
+/// than the cache.
+#[derive(Clone, Debug, Default)]
+pub struct Arena {
+    lines: Vec<Line>,
+    nodes: usize,
+    blocks: usize,
+}
+
+impl Arena {
+    /// The arena of the hierarchy `nodes` (references: node indices) over `blocks` (leaf
+    /// references: block indices) from `root`, and the root's reference in it.
+    pub fn new(nodes: &[WideNode], blocks: &[TriBlock], root: u32) -> (Arena, u32) {
+        // First the size, then the bytes, written in place: no second copy of a large mesh.
+        fn size(nodes: &[WideNode], r: u32, at: &mut usize) {
+            if r & LEAF_BIT != 0 {
+                *at += (r != EMPTY) as usize * BLOCK_BYTES;
+                return;
+            }
+            *at = at.next_multiple_of(64) + NODE_BYTES;
+            let n = &nodes[r as usize];
+            *at += n.children.iter().filter(|&&c| c & LEAF_BIT != 0 && c != EMPTY).count() * BLOCK_BYTES;
+            for &c in n.children.iter().filter(|&&c| c & LEAF_BIT == 0) {
+                size(nodes, c, at);
+            }
+        }
+        fn put(nodes: &[WideNode], blocks: &[TriBlock], r: u32, out: &mut Arena, at: &mut usize) -> u32 {
+            if r == EMPTY {
+                return EMPTY;
+            }
+            if r & LEAF_BIT != 0 {
+                let here = *at;
+                out.write(here, &blocks[(r & !LEAF_BIT) as usize]);
+                out.blocks += 1;
+                *at += BLOCK_BYTES;
+                return LEAF_BIT | (here / UNIT) as u32;
+            }
+            let here = at.next_multiple_of(64);
+            *at = here + NODE_BYTES;
+            out.nodes += 1;
+            let mut node = nodes[r as usize];
+            for c in node.children.iter_mut().filter(|c| **c & LEAF_BIT != 0) {
+                *c = put(nodes, blocks, *c, out, at);
+            }
+            for c in node.children.iter_mut().filter(|c| **c & LEAF_BIT == 0) {
+                *c = put(nodes, blocks, *c, out, at);
+            }
+            out.write(here, &node);
+            (here / UNIT) as u32
+        }
+        let mut bytes = 0;
+        if root != EMPTY {
+            size(nodes, root, &mut bytes);
+        }
+        assert!(
+            bytes / UNIT < LEAF_BIT as usize,
+            "a hierarchy of {bytes} bytes is past an arena's references"
+        );
+        let mut arena = Arena { lines: vec![Line([0; 64]); bytes.div_ceil(64)], nodes: 0, blocks: 0 };
+        let mut at = 0;
+        let root = put(nodes, blocks, root, &mut arena, &mut at);
+        debug_assert_eq!(at, bytes);
+        (arena, root)
+    }
+
+    /// Copies `x` to byte `at` (within the storage; a multiple of `x`'s alignment).
+    fn write<T: Copy>(&mut self, at: usize, x: &T) {
+        let size = std::mem::size_of::<T>();
+        assert!(at.is_multiple_of(std::mem::align_of::<T>()) && at + size <= self.lines.len() * 64);
+        // SAFETY: in bounds and aligned (checked above); `T` is plain data (`Copy`, no padding
+        // read back as anything but bytes of the same type).
+        unsafe { std::ptr::write((self.lines.as_mut_ptr() as *mut u8).add(at) as *mut T, *x) }
+    }
+
+    /// The leaf block with reference `r` (with or without [`LEAF_BIT`]).
+    ///
+    /// # Safety
+    /// `r` is a leaf reference of this arena's hierarchy.
+    #[inline(always)]
+    pub unsafe fn block(&self, r: u32) -> &TriBlock {
+        let at = ((r & !LEAF_BIT) as usize) * UNIT;
+        debug_assert!(at + BLOCK_BYTES <= self.lines.len() * 64);
+        &*((self.lines.as_ptr() as *const u8).add(at) as *const TriBlock)
+    }
+
+    /// Wide nodes.
+    pub fn node_count(&self) -> usize {
+        self.nodes
+    }
+
+    /// Leaf blocks.
+    pub fn block_count(&self) -> usize {
+        self.blocks
+    }
+
+    /// Bytes of storage (nodes, blocks and the padding that keeps nodes on cache lines).
+    pub fn bytes(&self) -> usize {
+        self.lines.len() * 64
+    }
+
+    /// The hierarchy from `root` with nodes and blocks in separate arrays, in the arena's
+    /// order: node references are node indices (the root is node 0) and leaf references block
+    /// indices; and the root's reference there. The form a GPU tracer uploads.
+    pub fn indexed(&self, root: u32) -> (Vec<WideNode>, Vec<TriBlock>, u32) {
+        fn take(arena: &Arena, r: u32, nodes: &mut Vec<WideNode>, blocks: &mut Vec<TriBlock>) -> u32 {
+            if r == EMPTY {
+                return EMPTY;
+            }
+            if r & LEAF_BIT != 0 {
+                blocks.push(*arena.block_checked(r));
+                return LEAF_BIT | (blocks.len() - 1) as u32;
+            }
+            let index = nodes.len();
+            nodes.push(WideNode::EMPTY);
+            let mut node = *arena.get(r);
+            for c in node.children.iter_mut().filter(|c| **c & LEAF_BIT != 0) {
+                *c = take(arena, *c, nodes, blocks);
+            }
+            for c in node.children.iter_mut().filter(|c| **c & LEAF_BIT == 0) {
+                *c = take(arena, *c, nodes, blocks);
+            }
+            nodes[index] = node;
+            index as u32
+        }
+        let (mut nodes, mut blocks) = (Vec::with_capacity(self.nodes), Vec::with_capacity(self.blocks));
+        let root = take(self, root, &mut nodes, &mut blocks);
+        (nodes, blocks, root)
+    }
+
+    /// [`Arena::block`], checked: panics on a reference outside the storage or misaligned.
+    fn block_checked(&self, r: u32) -> &TriBlock {
+        let at = ((r & !LEAF_BIT) as usize) * UNIT;
+        assert!(at + BLOCK_BYTES <= self.bytes(), "block reference {r:#x} outside the arena");
+        // SAFETY: in bounds; every unit offset is aligned for a block (16 bytes).
+        unsafe { self.block(r) }
+    }
+}
+
+impl Nodes for Arena {
+    #[inline(always)]
+    unsafe fn node(&self, r: u32) -> &WideNode {
+        let at = (r as usize) * UNIT;
+        debug_assert!(at.is_multiple_of(64) && at + NODE_BYTES <= self.lines.len() * 64);
+        &*((self.lines.as_ptr() as *const u8).add(at) as *const WideNode)
+    }
+
+    fn get(&self, r: u32) -> &WideNode {
+        let at = (r as usize) * UNIT;
+        assert!(
+            at.is_multiple_of(64) && at + NODE_BYTES <= self.bytes(),
+            "node reference {r:#x} outside the arena"
+        );
+        // SAFETY: in bounds and on a cache line (checked above).
+        unsafe { self.node(r) }
+    }
+}
+
+/// Bytes of a [`WideNode`].
+const NODE_BYTES: usize = std::mem::size_of::<WideNode>();
+
+/// Bytes of a [`TriBlock`] (a multiple of [`UNIT`], so blocks and nodes share the units).
+const BLOCK_BYTES: usize = std::mem::size_of::<TriBlock>();
+
+const _: () = assert!(BLOCK_BYTES.is_multiple_of(UNIT) && NODE_BYTES.is_multiple_of(64));

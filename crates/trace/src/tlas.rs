@@ -142,7 +142,7 @@ impl Tlas {
 
     /// Top-level wide levels on the longest path (0 when the root is a leaf or empty).
     pub fn depth(&self) -> usize {
-        crate::node::depth(&self.nodes, self.root)
+        crate::node::depth(self.nodes.as_slice(), self.root)
     }
 
     /// Top-level wide nodes.

@@ -281,6 +281,7 @@ fn packet_node_tests_agree_between_kernels() {
         return;
     }
     let blas = Blas::from_triangles(&wavy_grid(24)).unwrap();
+    let nodes = blas.indexed().nodes;
     let mut rnd = uniform(7);
     let wide = renderlab_core::kernel::has_avx512();
     let mut by_child = 0;
@@ -315,7 +316,7 @@ fn packet_node_tests_agree_between_kernels() {
                     Avx512::row(p.assume_init_ref(), &mut rows, r);
                 }
             }
-            for node in blas.nodes() {
+            for node in &nodes {
                 for active in [all, all & 0x5a5a_a5a5, all & 0x0000_0007, all & 0x8000_0001] {
                     let s = Scalar::node_packet(&ps, node, active, &t_max);
                     let a = Avx2::node_packet(&pa, node, active, &t_max);
@@ -345,7 +346,7 @@ fn packet_node_tests_agree_between_kernels() {
         }
     }
     // The packets of one octant take the child-by-child test at every node.
-    assert!(!wide || by_child >= 10 * blas.nodes().len() * 4, "child by child ran {by_child} times");
+    assert!(!wide || by_child >= 10 * nodes.len() * 4, "child by child ran {by_child} times");
 }
 
 /// A packet's node test for the packet as a whole (`PacketBounds`, rays from one origin):
@@ -394,7 +395,7 @@ fn whole_packet_node_tests_bound_each_rays_test() {
             continue;
         };
         let t_low = range(&|q: &RayQuery| q.t_max)[0];
-        for node in blas.nodes() {
+        for node in &blas.indexed().nodes {
             let scalar = b.decide(node, t_low);
             // SAFETY: the CPU has AVX2 and FMA (checked above).
             let vector = unsafe { Avx2::whole(&b, node, t_low) };

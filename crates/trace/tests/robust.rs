@@ -6,6 +6,7 @@ mod common;
 
 use common::{check, kernels, scene};
 use glam::{Affine3A, Vec3};
+use renderlab_trace::blas::Indexed;
 use renderlab_trace::build::binned::MAX_DEPTH;
 use renderlab_trace::{Blas, BuildError, Instance, Ray, Tlas};
 
@@ -193,9 +194,45 @@ fn the_build_does_not_depend_on_the_thread_count() {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| Blas::from_triangles(&tris).unwrap())
     };
-    let (one, two) = (build(1), build(2));
-    assert_eq!(one.nodes(), two.nodes());
-    assert_eq!(one.root(), two.root());
-    let prims = |b: &Blas| b.blocks().iter().map(|b| b.prim).collect::<Vec<_>>();
+    let (one, two) = (build(1).indexed(), build(2).indexed());
+    assert_eq!(one.nodes, two.nodes);
+    assert_eq!(one.root, two.root);
+    let prims = |b: &Indexed| b.blocks.iter().map(|b| b.prim).collect::<Vec<_>>();
     assert_eq!(prims(&one), prims(&two));
+}
+
+#[test]
+fn the_arena_holds_the_built_hierarchy_and_gives_it_back() {
+    // Meshes whose root is empty, a leaf, one node and many levels; each mesh's arena, read
+    // back into separate arrays, rebuilt into an arena and read back again, is the same
+    // hierarchy (node boxes and references, block vertices and triangles), and holds every
+    // hittable triangle once.
+    let grid = |n: usize| -> Vec<[Vec3; 3]> {
+        let p = |i: usize, j: usize| Vec3::new(i as f32, ((i * 7 + j * 3) % 5) as f32 * 0.1, j as f32);
+        (0..n * n)
+            .flat_map(|k| {
+                let (i, j) = (k % n, k / n);
+                [[p(i, j), p(i + 1, j), p(i + 1, j + 1)], [p(i, j), p(i + 1, j + 1), p(i, j + 1)]]
+            })
+            .collect()
+    };
+    for tris in [Vec::new(), vec![unit_triangle(0.0)], grid(2), grid(5), grid(40)] {
+        let blas = Blas::from_triangles(&tris).unwrap();
+        let one = blas.indexed();
+        assert_eq!((one.nodes.len(), one.blocks.len()), (blas.node_count(), blas.block_count()));
+        let (arena, root) = renderlab_trace::node::Arena::new(&one.nodes, &one.blocks, one.root);
+        let (nodes, blocks, root) = arena.indexed(root);
+        assert_eq!(nodes, one.nodes);
+        assert_eq!(root, one.root);
+        let bits = |b: &[renderlab_trace::node::TriBlock]| {
+            b.iter().map(|b| (b.v.map(|row| row.map(f32::to_bits)), b.prim)).collect::<Vec<_>>()
+        };
+        assert_eq!(bits(&blocks), bits(&one.blocks));
+        let mut prims: Vec<u32> = blocks.iter().flat_map(|b| b.prim).filter(|&p| p != u32::MAX).collect();
+        prims.sort_unstable();
+        assert_eq!(prims, (0..tris.len() as u32).collect::<Vec<_>>());
+        // Nodes start on cache lines and the storage has no more than their padding spare.
+        assert!(blas.memory_bytes() >= 256 * nodes.len() + 160 * blocks.len());
+        assert!(blas.memory_bytes() <= 256 * nodes.len() + 160 * blocks.len() + 64 * (nodes.len() + 1));
+    }
 }

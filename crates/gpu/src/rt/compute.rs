@@ -104,16 +104,19 @@ pub fn flatten(tlas: &Tlas, masks: &[u8]) -> Flattened {
     let mut block_base = Vec::with_capacity(tlas.meshes().len());
     let mut blocks = Vec::new();
     let (mut blas_depth, mut triangles) = (0, 0);
+    let mut roots = Vec::with_capacity(tlas.meshes().len());
     for mesh in tlas.meshes() {
         node_base.push((nodes.len() / (NODE_BYTES / 4)) as u32);
         block_base.push((blocks.len() / (BLOCK_BYTES / 4)) as u32);
-        for n in mesh.nodes() {
+        let tree = mesh.indexed();
+        for n in &tree.nodes {
             node_words(n, &mut nodes);
         }
-        for b in mesh.blocks() {
+        for b in &tree.blocks {
             block_words(b, &mut blocks);
         }
-        blas_depth = blas_depth.max(depth(mesh.nodes(), mesh.root()));
+        blas_depth = blas_depth.max(depth(&tree.nodes, tree.root));
+        roots.push(tree.root);
         triangles += mesh.hittable_count();
     }
     let mut instances = Vec::with_capacity(tlas.placed().len() * INSTANCE_BYTES / 4);
@@ -124,7 +127,7 @@ pub fn flatten(tlas: &Tlas, masks: &[u8]) -> Flattened {
             instances.extend([c.x_axis[r], c.y_axis[r], c.z_axis[r], t[r]].map(f32::to_bits));
         }
         let mesh = p.mesh as usize;
-        let root = tlas.meshes().get(mesh).map_or(EMPTY, |b| b.root());
+        let root = roots.get(mesh).copied().unwrap_or(EMPTY);
         let mask = masks.get(i).copied().unwrap_or(ALL_INSTANCES as u8) as u32;
         instances.extend([root, node_base[mesh], block_base[mesh], mask]);
     }

@@ -52,7 +52,7 @@ fn triangles(tlas: &Tlas) -> Vec<MeshTriangles> {
         .iter()
         .map(|mesh| {
             let mut out = MeshTriangles { vertices: Vec::new(), prims: Vec::new() };
-            for block in mesh.blocks() {
+            for block in &mesh.indexed().blocks {
                 for (lane, &prim) in block.prim.iter().enumerate() {
                     if prim != u32::MAX {
                         out.vertices.extend(block.vertices(lane));

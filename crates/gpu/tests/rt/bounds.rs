@@ -118,7 +118,7 @@ impl Triangles {
                 .iter()
                 .map(|mesh| {
                     let mut tris = Vec::new();
-                    for b in mesh.blocks() {
+                    for b in &mesh.indexed().blocks {
                         for (lane, &p) in b.prim.iter().enumerate() {
                             if p != u32::MAX {
                                 if tris.len() <= p as usize {

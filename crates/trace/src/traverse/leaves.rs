@@ -7,7 +7,7 @@
 
 use crate::blas::Blas;
 use crate::hit::{Hit, HitFilter};
-use crate::node::TriBlock;
+use crate::node::Arena;
 use crate::ray::Ray;
 use crate::tlas::Tlas;
 use crate::traverse::backend::{prefetch, Backend};
@@ -22,7 +22,7 @@ pub(crate) fn no_hit(t_max: f32) -> Hit {
 
 /// Leaves of a bottom level: triangle blocks.
 pub(crate) struct Triangles<'a, B: Backend, F> {
-    pub(crate) blocks: &'a [TriBlock],
+    pub(crate) blocks: &'a Arena,
     pub(crate) prepared: &'a B::Prepared,
     pub(crate) instance: u32,
     pub(crate) best: &'a mut Hit,
@@ -32,8 +32,7 @@ pub(crate) struct Triangles<'a, B: Backend, F> {
 impl<B: Backend, F: HitFilter> Leaves for Triangles<'_, B, F> {
     #[inline(always)]
     unsafe fn closest(&mut self, leaf: u32, t_max: &mut f32) {
-        debug_assert!((leaf as usize) < self.blocks.len());
-        let block = self.blocks.get_unchecked(leaf as usize);
+        let block = self.blocks.block(leaf);
         let hits = B::block(self.prepared, block, *t_max);
         let mut mask = hits.mask;
         while mask != 0 {
@@ -52,8 +51,7 @@ impl<B: Backend, F: HitFilter> Leaves for Triangles<'_, B, F> {
 
     #[inline(always)]
     unsafe fn any(&mut self, leaf: u32, t_max: f32) -> bool {
-        debug_assert!((leaf as usize) < self.blocks.len());
-        let block = self.blocks.get_unchecked(leaf as usize);
+        let block = self.blocks.block(leaf);
         let hits = B::block(self.prepared, block, t_max);
         let mut mask = hits.mask;
         while mask != 0 {
@@ -77,7 +75,7 @@ impl<B: Backend, F: HitFilter> Leaves for Triangles<'_, B, F> {
     #[inline(always)]
     fn fetch(&self, leaf: u32) {
         // SAFETY: leaf payloads come from the same build as `blocks`.
-        prefetch(unsafe { self.blocks.get_unchecked(leaf as usize) });
+        prefetch(unsafe { self.blocks.block(leaf) });
     }
 }
 
@@ -108,26 +106,26 @@ impl<B: Backend, F: HitFilter> Leaves for Instances<'_, B, F> {
     unsafe fn closest(&mut self, instance: u32, t_max: &mut f32) {
         let Some((blas, p)) = self.enter(instance, *t_max) else { return };
         let mut tris = Triangles::<B, F> {
-            blocks: &blas.blocks,
+            blocks: &blas.arena,
             prepared: &p,
             instance,
             best: self.best,
             filter: self.filter,
         };
-        walk::closest::<B, _>(&blas.nodes, blas.root, &p, &mut tris, t_max);
+        walk::closest::<B, _, _>(&blas.arena, blas.root, &p, &mut tris, t_max);
     }
 
     #[inline(always)]
     unsafe fn any(&mut self, instance: u32, t_max: f32) -> bool {
         let Some((blas, p)) = self.enter(instance, t_max) else { return false };
         let mut tris = Triangles::<B, F> {
-            blocks: &blas.blocks,
+            blocks: &blas.arena,
             prepared: &p,
             instance,
             best: self.best,
             filter: self.filter,
         };
-        walk::any::<B, _>(&blas.nodes, blas.root, &p, &mut tris, t_max)
+        walk::any::<B, _, _>(&blas.arena, blas.root, &p, &mut tris, t_max)
     }
 }
 
@@ -141,13 +139,13 @@ pub unsafe fn blas_closest<B: Backend, F: HitFilter>(blas: &Blas, ray: &Ray, fil
     let mut best = no_hit(t_max0);
     let mut t_max = t_max0;
     let mut tris = Triangles::<B, F> {
-        blocks: &blas.blocks,
+        blocks: &blas.arena,
         prepared: &p,
         instance: Hit::NO_INSTANCE,
         best: &mut best,
         filter,
     };
-    walk::closest::<B, _>(&blas.nodes, blas.root, &p, &mut tris, &mut t_max);
+    walk::closest::<B, _, _>(&blas.arena, blas.root, &p, &mut tris, &mut t_max);
     (best.primitive != u32::MAX).then_some(best)
 }
 
@@ -160,13 +158,13 @@ pub unsafe fn blas_any<B: Backend, F: HitFilter>(blas: &Blas, ray: &Ray, filter:
     let (p, t_max) = B::prepare_ray(ray)?;
     let mut best = no_hit(t_max);
     let mut tris = Triangles::<B, F> {
-        blocks: &blas.blocks,
+        blocks: &blas.arena,
         prepared: &p,
         instance: Hit::NO_INSTANCE,
         best: &mut best,
         filter,
     };
-    walk::any::<B, _>(&blas.nodes, blas.root, &p, &mut tris, t_max).then_some(best)
+    walk::any::<B, _, _>(&blas.arena, blas.root, &p, &mut tris, t_max).then_some(best)
 }
 
 /// The closest accepted hit of `ray` among all instances.
@@ -179,7 +177,7 @@ pub unsafe fn tlas_closest<B: Backend, F: HitFilter>(tlas: &Tlas, ray: &Ray, fil
     let mut best = no_hit(t_max0);
     let mut t_max = t_max0;
     let mut insts = Instances::<B, F> { tlas, ray, best: &mut best, filter, backend: PhantomData };
-    walk::closest::<B, _>(&tlas.nodes, tlas.root, &p, &mut insts, &mut t_max);
+    walk::closest::<B, _, _>(tlas.nodes.as_slice(), tlas.root, &p, &mut insts, &mut t_max);
     (best.primitive != u32::MAX).then_some(best)
 }
 
@@ -192,5 +190,5 @@ pub unsafe fn tlas_any<B: Backend, F: HitFilter>(tlas: &Tlas, ray: &Ray, filter:
     let (p, t_max) = B::prepare_ray(ray)?;
     let mut best = no_hit(t_max);
     let mut insts = Instances::<B, F> { tlas, ray, best: &mut best, filter, backend: PhantomData };
-    walk::any::<B, _>(&tlas.nodes, tlas.root, &p, &mut insts, t_max).then_some(best)
+    walk::any::<B, _, _>(tlas.nodes.as_slice(), tlas.root, &p, &mut insts, t_max).then_some(best)
 }

@@ -188,8 +188,11 @@ impl<B: Backend> Packet<B> {
 
 /// What a packet walk does at the leaves of one level, and for a ray that goes on alone.
 pub(crate) trait PacketLeaves<B: Backend> {
-    /// The hierarchy's nodes.
-    fn nodes(&self) -> &[WideNode];
+    /// The hierarchy's node with reference `r`.
+    ///
+    /// # Safety
+    /// `r` is a node reference of the hierarchy.
+    unsafe fn node(&self, r: u32) -> &WideNode;
 
     /// Starts loading what `child` refers to.
     ///
@@ -251,8 +254,7 @@ pub(crate) unsafe fn closest<B: Backend, L: PacketLeaves<B>>(
                 leaves.closest_alone(p, best, cur, r);
             }
         } else if cur & LEAF_BIT == 0 {
-            debug_assert!((cur as usize) < leaves.nodes().len());
-            let node = leaves.nodes().get_unchecked(cur as usize);
+            let node = leaves.node(cur);
             let n = p.node(node, active);
             let mut children = n.children;
             if children.count_ones() == 1 {
@@ -343,8 +345,7 @@ pub(crate) unsafe fn any<B: Backend, L: PacketLeaves<B>>(
                 break 'walk;
             }
         } else {
-            debug_assert!((cur as usize) < leaves.nodes().len());
-            let node = leaves.nodes().get_unchecked(cur as usize);
+            let node = leaves.node(cur);
             let n = p.node(node, active);
             let mut children = n.children;
             if children.count_ones() == 1 {

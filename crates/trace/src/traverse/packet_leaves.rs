@@ -9,7 +9,7 @@
 
 use crate::blas::Blas;
 use crate::hit::{Hit, Opaque};
-use crate::node::{WideNode, LEAF_BIT};
+use crate::node::{Nodes, WideNode, LEAF_BIT};
 use crate::ray::Ray;
 use crate::tlas::Tlas;
 use crate::traverse::backend::{prefetch, Backend, PACKET};
@@ -38,22 +38,22 @@ impl<'a> Blocks<'a> {
     where
         'a: 'b,
     {
-        Triangles { blocks: &self.blas.blocks, prepared: p.ray(r), instance: self.instance, best, filter }
+        Triangles { blocks: &self.blas.arena, prepared: p.ray(r), instance: self.instance, best, filter }
     }
 }
 
 impl<B: Backend> PacketLeaves<B> for Blocks<'_> {
     #[inline(always)]
-    fn nodes(&self) -> &[WideNode] {
-        &self.blas.nodes
+    unsafe fn node(&self, r: u32) -> &WideNode {
+        self.blas.arena.node(r)
     }
 
     #[inline(always)]
     unsafe fn fetch(&self, child: u32) {
         if child & LEAF_BIT == 0 {
-            prefetch(self.blas.nodes.get_unchecked(child as usize));
+            prefetch(self.blas.arena.node(child));
         } else {
-            prefetch(self.blas.blocks.get_unchecked((child & !LEAF_BIT) as usize));
+            prefetch(self.blas.arena.block(child));
         }
     }
 
@@ -79,7 +79,7 @@ impl<B: Backend> PacketLeaves<B> for Blocks<'_> {
         let mut t_max = p.t_max[r];
         let mut opaque = Opaque;
         let mut leaves = self.ray(p, r, &mut best[r], &mut opaque);
-        walk::closest::<B, _>(&self.blas.nodes, node, p.ray(r), &mut leaves, &mut t_max);
+        walk::closest::<B, _, _>(&self.blas.arena, node, p.ray(r), &mut leaves, &mut t_max);
         p.t_max[r] = t_max;
     }
 
@@ -100,7 +100,7 @@ impl<B: Backend> PacketLeaves<B> for Blocks<'_> {
         let mut scratch = no_hit(0.0);
         let mut opaque = Opaque;
         let mut leaves = self.ray(p, r, &mut scratch, &mut opaque);
-        walk::any::<B, _>(&self.blas.nodes, node, p.ray(r), &mut leaves, p.t_max[r])
+        walk::any::<B, _, _>(&self.blas.arena, node, p.ray(r), &mut leaves, p.t_max[r])
     }
 }
 
@@ -167,14 +167,14 @@ impl Placed<'_> {
 
 impl<B: Backend> PacketLeaves<B> for Placed<'_> {
     #[inline(always)]
-    fn nodes(&self) -> &[WideNode] {
-        &self.tlas.nodes
+    unsafe fn node(&self, r: u32) -> &WideNode {
+        self.tlas.nodes.as_slice().node(r)
     }
 
     #[inline(always)]
     unsafe fn fetch(&self, child: u32) {
         if child & LEAF_BIT == 0 {
-            prefetch(self.tlas.nodes.get_unchecked(child as usize));
+            prefetch(self.tlas.nodes.as_slice().node(child));
         }
     }
 
@@ -202,7 +202,7 @@ impl<B: Backend> PacketLeaves<B> for Placed<'_> {
         let mut t_max = p.t_max[r];
         let mut opaque = Opaque;
         let mut leaves = self.ray::<B>(r, &mut best[r], &mut opaque);
-        walk::closest::<B, _>(&self.tlas.nodes, node, p.ray(r), &mut leaves, &mut t_max);
+        walk::closest::<B, _, _>(self.tlas.nodes.as_slice(), node, p.ray(r), &mut leaves, &mut t_max);
         p.t_max[r] = t_max;
     }
 
@@ -218,7 +218,7 @@ impl<B: Backend> PacketLeaves<B> for Placed<'_> {
         let mut scratch = no_hit(0.0);
         let mut opaque = Opaque;
         let mut leaves = self.ray::<B>(r, &mut scratch, &mut opaque);
-        walk::any::<B, _>(&self.tlas.nodes, node, p.ray(r), &mut leaves, p.t_max[r])
+        walk::any::<B, _, _>(self.tlas.nodes.as_slice(), node, p.ray(r), &mut leaves, p.t_max[r])
     }
 }
 

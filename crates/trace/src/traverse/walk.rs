@@ -14,7 +14,7 @@
 //! builder bounds paths to [`MAX_DEPTH`] levels.
 
 use crate::build::binned::MAX_DEPTH;
-use crate::node::{WideNode, EMPTY, LEAF_BIT, WIDTH};
+use crate::node::{Nodes, EMPTY, LEAF_BIT, WIDTH};
 use crate::traverse::backend::{prefetch, Backend, IZE};
 use std::mem::MaybeUninit;
 
@@ -52,9 +52,9 @@ struct Entry {
 /// Starts loading `child`: a node's box rows and references, or what the leaves say a leaf
 /// needs, so that the walk need not wait when it gets there.
 #[inline(always)]
-unsafe fn fetch<L: Leaves>(nodes: &[WideNode], leaves: &L, child: u32) {
+unsafe fn fetch<N: Nodes + ?Sized, L: Leaves>(nodes: &N, leaves: &L, child: u32) {
     if child & LEAF_BIT == 0 {
-        prefetch(nodes.get_unchecked(child as usize));
+        prefetch(nodes.node(child));
     } else {
         leaves.fetch(child & !LEAF_BIT);
     }
@@ -66,8 +66,8 @@ unsafe fn fetch<L: Leaves>(nodes: &[WideNode], leaves: &L, child: u32) {
 /// The CPU has `B`'s features; `nodes` and `root` come from one build (child references in
 /// range, depth within [`MAX_DEPTH`]).
 #[inline(always)]
-pub unsafe fn closest<B: Backend, L: Leaves>(
-    nodes: &[WideNode],
+pub unsafe fn closest<B: Backend, N: Nodes + ?Sized, L: Leaves>(
+    nodes: &N,
     root: u32,
     p: &B::Prepared,
     leaves: &mut L,
@@ -81,8 +81,7 @@ pub unsafe fn closest<B: Backend, L: Leaves>(
     let mut cur = root;
     'walk: loop {
         if cur & LEAF_BIT == 0 {
-            debug_assert!((cur as usize) < nodes.len());
-            let node = nodes.get_unchecked(cur as usize);
+            let node = nodes.node(cur);
             let (mut mask, dist) = B::node(p, node, *t_max);
             if mask != 0 {
                 let i0 = mask.trailing_zeros() as usize;
@@ -160,8 +159,8 @@ pub unsafe fn closest<B: Backend, L: Leaves>(
 /// # Safety
 /// As for [`closest`].
 #[inline(always)]
-pub unsafe fn any<B: Backend, L: Leaves>(
-    nodes: &[WideNode],
+pub unsafe fn any<B: Backend, N: Nodes + ?Sized, L: Leaves>(
+    nodes: &N,
     root: u32,
     p: &B::Prepared,
     leaves: &mut L,
@@ -175,8 +174,7 @@ pub unsafe fn any<B: Backend, L: Leaves>(
     let mut cur = root;
     loop {
         if cur & LEAF_BIT == 0 {
-            debug_assert!((cur as usize) < nodes.len());
-            let node = nodes.get_unchecked(cur as usize);
+            let node = nodes.node(cur);
             let (mut mask, _) = B::node(p, node, t_max);
             if mask != 0 {
                 let first = mask.trailing_zeros() as usize;
