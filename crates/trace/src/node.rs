@@ -34,8 +34,10 @@ pub struct WideNode {
     pub bounds: [[f32; WIDTH]; 6],
     /// The children's references.
     pub children: [u32; WIDTH],
-    /// Unused (zero): pads the node to 256 bytes.
-    pub pad: [u32; WIDTH],
+    /// Per child that is a node in an [`Arena`]: the cache lines of that node's own leaf
+    /// blocks, which follow it there (a walk entering the child requests them with the
+    /// child's lines). Zero elsewhere; pads the node to 256 bytes.
+    pub after: [u32; WIDTH],
 }
 
 const _: () = assert!(std::mem::size_of::<WideNode>() == 256);
@@ -52,7 +54,7 @@ impl WideNode {
             [f32::NEG_INFINITY; WIDTH],
         ],
         children: [EMPTY; WIDTH],
-        pad: [0; WIDTH],
+        after: [0; WIDTH],
     };
 
     /// Puts a child with box `b` and reference `child` in slot `slot`.
@@ -197,7 +199,11 @@ impl Arena {
             for c in node.children.iter_mut().filter(|c| **c & LEAF_BIT != 0) {
                 *c = put(nodes, blocks, *c, out, at);
             }
-            for c in node.children.iter_mut().filter(|c| **c & LEAF_BIT == 0) {
+            for (c, after) in
+                node.children.iter_mut().zip(&mut node.after).filter(|(c, _)| **c & LEAF_BIT == 0)
+            {
+                let leaves = nodes[*c as usize].children.iter().filter(|&&l| l & LEAF_BIT != 0 && l != EMPTY);
+                *after = (leaves.count() * BLOCK_BYTES).div_ceil(64) as u32;
                 *c = put(nodes, blocks, *c, out, at);
             }
             out.write(here, &node);
@@ -268,6 +274,7 @@ impl Arena {
             let index = nodes.len();
             nodes.push(WideNode::EMPTY);
             let mut node = *arena.get(r);
+            node.after = [0; WIDTH];
             for c in node.children.iter_mut().filter(|c| **c & LEAF_BIT != 0) {
                 *c = take(arena, *c, nodes, blocks);
             }

@@ -220,14 +220,38 @@ fn the_arena_holds_the_built_hierarchy_and_gives_it_back() {
         let blas = Blas::from_triangles(&tris).unwrap();
         let one = blas.indexed();
         assert_eq!((one.nodes.len(), one.blocks.len()), (blas.node_count(), blas.block_count()));
-        let (arena, root) = renderlab_trace::node::Arena::new(&one.nodes, &one.blocks, one.root);
-        let (nodes, blocks, root) = arena.indexed(root);
+        let (arena, arena_root) = renderlab_trace::node::Arena::new(&one.nodes, &one.blocks, one.root);
+        let (nodes, blocks, root) = arena.indexed(arena_root);
         assert_eq!(nodes, one.nodes);
         assert_eq!(root, one.root);
         let bits = |b: &[renderlab_trace::node::TriBlock]| {
             b.iter().map(|b| (b.v.map(|row| row.map(f32::to_bits)), b.prim)).collect::<Vec<_>>()
         };
         assert_eq!(bits(&blocks), bits(&one.blocks));
+        // In the arena each node's leaf blocks follow it, and its parent records their lines.
+        fn follow(arena: &renderlab_trace::node::Arena, r: u32, after: Option<u32>) {
+            use renderlab_trace::node::{Nodes, EMPTY, LEAF_BIT, UNIT};
+            if r & LEAF_BIT != 0 {
+                return;
+            }
+            let n = arena.get(r);
+            let leaves: Vec<u32> =
+                n.children.iter().copied().filter(|&c| c & LEAF_BIT != 0 && c != EMPTY).collect();
+            for (j, &l) in leaves.iter().enumerate() {
+                assert_eq!((l & !LEAF_BIT) as usize * UNIT, r as usize * UNIT + 256 + 160 * j);
+            }
+            if let Some(after) = after {
+                assert_eq!(after as usize, (160 * leaves.len()).div_ceil(64));
+            }
+            for (&c, &a) in n.children.iter().zip(&n.after) {
+                if c & LEAF_BIT == 0 {
+                    follow(arena, c, Some(a));
+                } else {
+                    assert_eq!(a, 0);
+                }
+            }
+        }
+        follow(&arena, arena_root, None);
         let mut prims: Vec<u32> = blocks.iter().flat_map(|b| b.prim).filter(|&p| p != u32::MAX).collect();
         prims.sort_unstable();
         assert_eq!(prims, (0..tris.len() as u32).collect::<Vec<_>>());

@@ -459,6 +459,22 @@ pub fn transpose8(mut x: u64) -> u64 {
     x ^ t ^ (t << 28)
 }
 
+/// Asks the CPU to start loading the `lines` cache lines from `p` on (a hint: never faults).
+#[inline(always)]
+pub fn prefetch_lines(p: *const u8, lines: usize) {
+    #[cfg(target_arch = "x86_64")]
+    for i in 0..lines {
+        // SAFETY: prefetching is a hint that never faults, whatever the address.
+        unsafe {
+            std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(
+                p.wrapping_add(64 * i) as *const i8
+            )
+        };
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = (p, lines);
+}
+
 /// Asks the CPU to start loading every cache line of `x` (a node or leaf block about to be
 /// visited), so that the walk does not wait for it when it gets there. Does nothing on other
 /// architectures.

@@ -194,11 +194,12 @@ pub(crate) trait PacketLeaves<B: Backend> {
     /// `r` is a node reference of the hierarchy.
     unsafe fn node(&self, r: u32) -> &WideNode;
 
-    /// Starts loading what `child` refers to.
+    /// Starts loading what `child` refers to (and, for a node, the `after` lines that follow
+    /// it, [`WideNode::after`]).
     ///
     /// # Safety
     /// `child` comes from this hierarchy.
-    unsafe fn fetch(&self, child: u32);
+    unsafe fn fetch(&self, child: u32, after: u32);
 
     /// The rays of `active` look for closer hits in leaf `leaf` (its reference without
     /// [`LEAF_BIT`]), lowering their `t_max` to them.
@@ -267,7 +268,7 @@ pub(crate) unsafe fn closest<B: Backend, L: PacketLeaves<B>>(
                 let c = children.trailing_zeros() as usize;
                 children &= children - 1;
                 let child = node.children[c];
-                leaves.fetch(child);
+                leaves.fetch(child, node.after[c]);
                 debug_assert!(sp < STACK);
                 stack.get_unchecked_mut(sp).write(Entry { node: child, rays: n.rays[c], dist: n.dist[c] });
                 sp += 1;
@@ -357,7 +358,7 @@ pub(crate) unsafe fn any<B: Backend, L: PacketLeaves<B>>(
                 let c = children.trailing_zeros() as usize;
                 children &= children - 1;
                 let child = node.children[c];
-                leaves.fetch(child);
+                leaves.fetch(child, node.after[c]);
                 debug_assert!(sp < STACK);
                 stack.get_unchecked_mut(sp).write(Entry { node: child, rays: n.rays[c], dist: 0.0 });
                 sp += 1;

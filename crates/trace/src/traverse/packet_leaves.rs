@@ -12,7 +12,7 @@ use crate::hit::{Hit, Opaque};
 use crate::node::{Nodes, WideNode, LEAF_BIT};
 use crate::ray::Ray;
 use crate::tlas::Tlas;
-use crate::traverse::backend::{prefetch, Backend, PACKET};
+use crate::traverse::backend::{prefetch, prefetch_lines, Backend, PACKET};
 use crate::traverse::leaves::{no_hit, Instances, Triangles};
 use crate::traverse::packet::{self, Packet, PacketLeaves};
 use crate::traverse::walk::{self, Leaves};
@@ -49,9 +49,11 @@ impl<B: Backend> PacketLeaves<B> for Blocks<'_> {
     }
 
     #[inline(always)]
-    unsafe fn fetch(&self, child: u32) {
+    unsafe fn fetch(&self, child: u32, after: u32) {
         if child & LEAF_BIT == 0 {
-            prefetch(self.blas.arena.node(child));
+            let n = self.blas.arena.node(child);
+            prefetch(n);
+            prefetch_lines((n as *const WideNode).add(1) as *const u8, after.min(walk::AFTER) as usize);
         } else {
             prefetch(self.blas.arena.block(child));
         }
@@ -172,7 +174,7 @@ impl<B: Backend> PacketLeaves<B> for Placed<'_> {
     }
 
     #[inline(always)]
-    unsafe fn fetch(&self, child: u32) {
+    unsafe fn fetch(&self, child: u32, _after: u32) {
         if child & LEAF_BIT == 0 {
             prefetch(self.tlas.nodes.as_slice().node(child));
         }

@@ -14,8 +14,8 @@
 //! builder bounds paths to [`MAX_DEPTH`] levels.
 
 use crate::build::binned::MAX_DEPTH;
-use crate::node::{Nodes, EMPTY, LEAF_BIT, WIDTH};
-use crate::traverse::backend::{prefetch, Backend, IZE};
+use crate::node::{Nodes, WideNode, EMPTY, LEAF_BIT, WIDTH};
+use crate::traverse::backend::{prefetch, prefetch_lines, Backend, IZE};
 use std::mem::MaybeUninit;
 
 /// Stack entries a walk can need.
@@ -49,12 +49,20 @@ struct Entry {
     dist: f32,
 }
 
-/// Starts loading `child`: a node's box rows and references, or what the leaves say a leaf
-/// needs, so that the walk need not wait when it gets there.
+/// Lines after a node, at most, requested with it ([`WideNode::after`]).
+pub const AFTER: u32 = 8;
+
+/// Starts loading child `slot` of `node`: a node's box rows and references and the leaf blocks
+/// that follow it in an arena (up to [`AFTER`] lines), or what the leaves say a leaf needs, so
+/// that the walk need not wait when it gets there.
 #[inline(always)]
-unsafe fn fetch<N: Nodes + ?Sized, L: Leaves>(nodes: &N, leaves: &L, child: u32) {
+unsafe fn fetch<N: Nodes + ?Sized, L: Leaves>(nodes: &N, leaves: &L, node: &WideNode, slot: usize) {
+    let child = *node.children.get_unchecked(slot);
     if child & LEAF_BIT == 0 {
-        prefetch(nodes.node(child));
+        let n = nodes.node(child);
+        prefetch(n);
+        let after = (*node.after.get_unchecked(slot)).min(AFTER);
+        prefetch_lines((n as *const WideNode).add(1) as *const u8, after as usize);
     } else {
         leaves.fetch(child & !LEAF_BIT);
     }
@@ -90,16 +98,15 @@ pub unsafe fn closest<B: Backend, N: Nodes + ?Sized, L: Leaves>(
                     cur = node.children[i0];
                     // All of the child's lines at once: the test reads its box rows, then its
                     // references (another line), which would otherwise wait for the test.
-                    fetch(nodes, leaves, cur);
+                    fetch(nodes, leaves, node, i0);
                     continue 'walk;
                 }
                 let i1 = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
                 // Both are requested before the order is known, so that a mispredicted
                 // comparison does not delay the loads of the child entered.
-                let (c0, c1) = (node.children[i0], node.children[i1]);
-                fetch(nodes, leaves, c0);
-                fetch(nodes, leaves, c1);
+                fetch(nodes, leaves, node, i0);
+                fetch(nodes, leaves, node, i1);
                 if mask == 0 {
                     let (near, far) = if dist[i1] < dist[i0] { (i1, i0) } else { (i0, i1) };
                     debug_assert!(sp < STACK);
@@ -118,7 +125,7 @@ pub unsafe fn closest<B: Backend, N: Nodes + ?Sized, L: Leaves>(
                 while mask != 0 {
                     let i = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
-                    fetch(nodes, leaves, node.children[i]);
+                    fetch(nodes, leaves, node, i);
                     stack.get_unchecked_mut(sp).write(Entry { node: node.children[i], dist: dist[i] });
                     sp += 1;
                 }
@@ -182,13 +189,13 @@ pub unsafe fn any<B: Backend, N: Nodes + ?Sized, L: Leaves>(
                 while mask != 0 {
                     let i = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
-                    fetch(nodes, leaves, node.children[i]);
+                    fetch(nodes, leaves, node, i);
                     debug_assert!(sp < STACK);
                     stack.get_unchecked_mut(sp).write(node.children[i]);
                     sp += 1;
                 }
                 cur = node.children[first];
-                fetch(nodes, leaves, cur);
+                fetch(nodes, leaves, node, first);
                 continue;
             }
         } else if leaves.any(cur & !LEAF_BIT, t_max) {
