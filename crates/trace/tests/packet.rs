@@ -266,6 +266,60 @@ fn uniform(seed: u64) -> impl FnMut() -> f32 {
     }
 }
 
+/// The single-ray node test with its slab terms reduced as a tree (taken for rays whose every
+/// `1/dir` is finite) against the chain form and the scalar kernel, on every node of a
+/// hierarchy, bit for bit: random rays, rays starting on box planes and at distance zero (where
+/// signed zeros meet), axis-aligned rays (which the tree form must refuse) and clipped intervals.
+#[test]
+#[cfg(target_arch = "x86_64")]
+fn the_tree_node_test_agrees_with_the_chain() {
+    use renderlab_trace::traverse::avx2::Avx2;
+    use renderlab_trace::traverse::backend::{Backend, RayQuery};
+    use renderlab_trace::traverse::scalar::Scalar;
+    if !renderlab_trace::kernel::available(renderlab_trace::Kernel::Simd) {
+        return;
+    }
+    let blas = Blas::from_triangles(&wavy_grid(12)).unwrap();
+    let nodes = blas.indexed().nodes;
+    let mut rnd = uniform(11);
+    let (mut tree, mut refused) = (0, 0);
+    for i in 0..600 {
+        let node = &nodes[i % nodes.len()];
+        let plane = node.bounds[i % 6][(i / 6) % 8];
+        let mut o = Vec3::new(rnd(), rnd() - 0.5, rnd()) * 1.4 - 0.2;
+        let mut d = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5);
+        match i % 5 {
+            // On a child's plane (a slab distance of ±0).
+            1 if plane.is_finite() => o[(i % 6) / 2] = plane,
+            // Axis-aligned: two infinite `1/dir`.
+            2 => d = [Vec3::X, Vec3::NEG_Y, Vec3::Z][i % 3],
+            // One zero component.
+            3 => d[i % 3] = 0.0,
+            _ => {}
+        }
+        let mut ray = Ray::new(o, d);
+        if i % 7 == 0 {
+            ray.t_max = rnd() * 0.5;
+        }
+        let Some(q) = RayQuery::new(&ray) else { continue };
+        // SAFETY: the CPU has AVX2 and FMA (checked above).
+        unsafe {
+            let p = Avx2::prepare(&q);
+            assert_eq!(Avx2::tree_safe(&p), q.inv.iter().all(|x| x.is_finite()), "ray {ray:?}");
+            let chain = Avx2::node(&p, node, q.t_max);
+            let bits = |(m, d): (u32, [f32; 8])| (m, d.map(f32::to_bits));
+            assert_eq!(bits(chain), bits(Scalar::node(&q, node, q.t_max)), "ray {ray:?}");
+            if Avx2::tree_safe(&p) {
+                tree += 1;
+                assert_eq!(bits(Avx2::node_tree(&p, node, q.t_max)), bits(chain), "ray {ray:?}");
+            } else {
+                refused += 1;
+            }
+        }
+    }
+    assert!(tree > 300 && refused > 100, "{tree} tree-safe rays, {refused} refused");
+}
+
 /// The AVX2 packet node test, and where the CPU has AVX-512 its child-by-child test, against
 /// the scalar one on every node of a hierarchy: the same rays per child and the same least
 /// distances, bit for bit.

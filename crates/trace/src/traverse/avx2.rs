@@ -102,7 +102,21 @@ impl Backend for Avx2 {
     #[inline]
     #[target_feature(enable = "avx2,fma")]
     unsafe fn node(p: &Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; 8]) {
-        let (near, hit) = slabs(p, node, t_max);
+        let (near, hit) = slabs::<false>(p, node, t_max);
+        let mut dist = [0.0f32; 8];
+        _mm256_storeu_ps(dist.as_mut_ptr(), near);
+        (_mm256_movemask_ps(hit) as u32, dist)
+    }
+
+    #[inline(always)]
+    fn tree_safe(p: &Prepared) -> bool {
+        p.finite != 0
+    }
+
+    #[inline]
+    #[target_feature(enable = "avx2,fma")]
+    unsafe fn node_tree(p: &Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; 8]) {
+        let (near, hit) = slabs::<true>(p, node, t_max);
         let mut dist = [0.0f32; 8];
         _mm256_storeu_ps(dist.as_mut_ptr(), near);
         (_mm256_movemask_ps(hit) as u32, dist)
@@ -137,14 +151,15 @@ impl Backend for Avx2 {
                 others |= 1 << r;
                 continue;
             }
-            let (near, hit) = slabs_of(q, &shared, *t_max.get_unchecked(r));
+            let (near, hit) = slabs_of::<false>(q, &shared, *t_max.get_unchecked(r));
             *rows.get_unchecked_mut(r / 8) |= (_mm256_movemask_ps(hit) as u32 as u64) << (8 * (r % 8));
             least = _mm256_min_ps(_mm256_blendv_ps(inf, near, hit), least);
         }
         while others != 0 {
             let r = others.trailing_zeros() as usize;
             others &= others - 1;
-            let (near, hit) = slabs(p.get_unchecked(r).assume_init_ref(), node, *t_max.get_unchecked(r));
+            let (near, hit) =
+                slabs::<false>(p.get_unchecked(r).assume_init_ref(), node, *t_max.get_unchecked(r));
             *rows.get_unchecked_mut(r / 8) |= (_mm256_movemask_ps(hit) as u32 as u64) << (8 * (r % 8));
             least = _mm256_min_ps(_mm256_blendv_ps(inf, near, hit), least);
         }
@@ -232,8 +247,8 @@ impl Backend for Avx2 {
 /// ray enters before `t_max`.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn slabs(p: &Prepared, node: &WideNode, t_max: f32) -> (__m256, __m256) {
-    slabs_of(p, &planes(p, node), t_max)
+unsafe fn slabs<const TREE: bool>(p: &Prepared, node: &WideNode, t_max: f32) -> (__m256, __m256) {
+    slabs_of::<TREE>(p, &planes(p, node), t_max)
 }
 
 /// The node's rows that ray `p` reads, in the order near x, y, z, far x, y, z (the same for
@@ -259,7 +274,7 @@ unsafe fn planes(p: &Prepared, node: &WideNode) -> [__m256; 6] {
 /// [`slabs`] with the ray's rows of the node already loaded ([`planes`]).
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn slabs_of(p: &Prepared, planes: &[__m256; 6], t_max: f32) -> (__m256, __m256) {
+unsafe fn slabs_of<const TREE: bool>(p: &Prepared, planes: &[__m256; 6], t_max: f32) -> (__m256, __m256) {
     // (Macros rather than closures keep every intrinsic inside this function's target
     // features.)
     macro_rules! slab {
@@ -267,20 +282,23 @@ unsafe fn slabs_of(p: &Prepared, planes: &[__m256; 6], t_max: f32) -> (__m256, _
             _mm256_mul_ps(_mm256_sub_ps($plane, _mm256_set1_ps(p.org[$a])), _mm256_set1_ps($inv[$a]))
         };
     }
-    let near = _mm256_max_ps(
-        slab!(0, planes[0], p.inv),
-        _mm256_max_ps(
-            slab!(1, planes[1], p.inv),
-            _mm256_max_ps(slab!(2, planes[2], p.inv), _mm256_set1_ps(p.t_min)),
-        ),
-    );
-    let far = _mm256_min_ps(
-        slab!(0, planes[3], p.inv_far),
-        _mm256_min_ps(
-            slab!(1, planes[4], p.inv_far),
-            _mm256_min_ps(slab!(2, planes[5], p.inv_far), _mm256_set1_ps(t_max * IZE)),
-        ),
-    );
+    let (n0, n1, n2) = (slab!(0, planes[0], p.inv), slab!(1, planes[1], p.inv), slab!(2, planes[2], p.inv));
+    let (f0, f1, f2) =
+        (slab!(0, planes[3], p.inv_far), slab!(1, planes[4], p.inv_far), slab!(2, planes[5], p.inv_far));
+    let (t0, t1) = (_mm256_set1_ps(p.t_min), _mm256_set1_ps(t_max * IZE));
+    // Two levels where no term can be NaN ([`Prepared::finite`], the walk's choice), else the
+    // chain whose order ignores NaN terms; the same values either way.
+    let (near, far) = if TREE {
+        (
+            _mm256_max_ps(_mm256_max_ps(n0, n1), _mm256_max_ps(n2, t0)),
+            _mm256_min_ps(_mm256_min_ps(f0, f1), _mm256_min_ps(f2, t1)),
+        )
+    } else {
+        (
+            _mm256_max_ps(n0, _mm256_max_ps(n1, _mm256_max_ps(n2, t0))),
+            _mm256_min_ps(f0, _mm256_min_ps(f1, _mm256_min_ps(f2, t1))),
+        )
+    };
     (near, _mm256_cmp_ps::<_CMP_LE_OQ>(near, far))
 }
 

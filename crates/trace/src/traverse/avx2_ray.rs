@@ -30,7 +30,11 @@ pub struct Prepared {
     pub(super) octant: u32,
     pub(super) near: [u32; 3],
     pub(super) far: [u32; 3],
-    pad1: [u32; 2],
+    /// 1 where every `1/dir` is finite: no slab distance can be NaN (`0·∞`), so the node
+    /// test may take the maximum and minimum of its four terms as a tree of two levels
+    /// (the same values: `max` and `min` do not round) instead of the chain that ignores NaNs.
+    pub(super) finite: u32,
+    pad1: u32,
     pub(super) k: [u32; 3],
     /// The origin's coordinates along `kx`, `ky`, `kz`.
     pub(super) tri_org: [f32; 3],
@@ -63,7 +67,8 @@ impl Prepared {
             octant: (n0 as u32 & 1) | (n1 as u32 & 1) << 1 | (n2 as u32 & 1) << 2,
             near: [n0 as u32, n1 as u32, n2 as u32],
             far: [f0 as u32, f1 as u32, f2 as u32],
-            pad1: [0; 2],
+            finite: q.inv.iter().all(|x| x.is_finite()) as u32,
+            pad1: 0,
             k: [kx as u32, ky as u32, kz as u32],
             tri_org: [
                 _mm_cvtss_f32(o),
@@ -146,7 +151,8 @@ impl Prepared {
             octant: n0 | n1 << 1 | n2 << 2,
             near: [n0, 2 + n1, 4 + n2],
             far: [1 - n0, 3 - n1, 5 - n2],
-            pad1: [0; 2],
+            finite: iv[..3].iter().all(|x| x.is_finite()) as u32,
+            pad1: 0,
             k: [kx as u32, ky as u32, kz as u32],
             tri_org: [to[0], to[1], to[2]],
             pad2: [0.0; 2],
@@ -210,6 +216,11 @@ impl Prepared {
         // `1 / dir[kz]` is the same division as `inv[kz]`.
         let shear =
             [_mm256_div_ps(d_kx, d_kz), _mm256_div_ps(d_ky, d_kz), pick(is_x, is_y, inv[0], inv[1], inv[2])];
+        // 1 (as an integer's bits) in the lanes whose `1/dir` is finite on every axis.
+        let all_finite = _mm256_and_ps(
+            _mm256_and_ps(finite(inv[0]), _mm256_and_ps(finite(inv[1]), finite(inv[2]))),
+            _mm256_castsi256_ps(_mm256_set1_epi32(1)),
+        );
         let far_factor = _mm256_set1_ps(FAR);
         let inv_far = [
             _mm256_mul_ps(inv[0], far_factor),
@@ -227,7 +238,7 @@ impl Prepared {
         }
         let groups = [
             transpose(first),
-            transpose([near_x, near_y, near_z, far_x, far_y, far_z, zero, zero]),
+            transpose([near_x, near_y, near_z, far_x, far_y, far_z, all_finite, zero]),
             transpose([kx, ky, kz, o_kx, o_ky, o_kz, zero, zero]),
             transpose([shear[0], shear[1], shear[2], inv_far[0], inv_far[1], inv_far[2], zero, zero]),
         ];

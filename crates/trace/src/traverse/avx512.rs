@@ -54,12 +54,18 @@ impl Backend for Avx512 {
 
     const ROWS: bool = true;
 
+    #[inline(always)]
+    fn tree_safe(p: &Prepared) -> bool {
+        Avx2::tree_safe(p)
+    }
+
     as_avx2! {
         fn prepare(q: &RayQuery) -> Prepared;
         fn prepare_ray(ray: &Ray) -> Option<(Prepared, f32)>;
         fn prepare8(rays: &[Ray; 8], out: &mut [MaybeUninit<Prepared>; 8], t_max: &mut [f32; 8]) -> u32;
         fn whole(b: &PacketBounds, node: &WideNode, t_low: f32) -> Option<(u32, [f32; WIDTH])>;
         fn node(p: &Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; 8]);
+        fn node_tree(p: &Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; 8]);
         fn block(p: &Prepared, block: &TriBlock, t_max: f32) -> BlockHits;
         fn reaching(t_max: &[f32; PACKET], rays: u32, dist: f32) -> u32;
         fn node_packet(

@@ -365,6 +365,25 @@ pub trait Backend {
     /// The CPU has the kernel's features.
     unsafe fn node(p: &Self::Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; 8]);
 
+    /// Whether [`Backend::node_tree`] may test nodes for the ray `p`: where none of its slab
+    /// distances can be NaN (every `1/dir` finite). The walk asks once per ray.
+    #[inline(always)]
+    fn tree_safe(p: &Self::Prepared) -> bool {
+        let _ = p;
+        false
+    }
+
+    /// [`Backend::node`] for a ray that [`Backend::tree_safe`] accepts: the same results, which
+    /// a kernel may compute with a shorter chain of dependent operations (the maximum and
+    /// minimum of the slab distances as a tree, not a chain ordered to ignore NaNs).
+    ///
+    /// # Safety
+    /// The CPU has the kernel's features.
+    #[inline(always)]
+    unsafe fn node_tree(p: &Self::Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; 8]) {
+        Self::node(p, node, t_max)
+    }
+
     /// The block's triangles hit within `[t_min, t_max]`.
     ///
     /// # Safety

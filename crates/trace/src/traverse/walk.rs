@@ -81,6 +81,22 @@ pub unsafe fn closest<B: Backend, N: Nodes + ?Sized, L: Leaves>(
     leaves: &mut L,
     t_max: &mut f32,
 ) {
+    if B::tree_safe(p) {
+        closest_with::<B, N, L, true>(nodes, root, p, leaves, t_max)
+    } else {
+        closest_with::<B, N, L, false>(nodes, root, p, leaves, t_max)
+    }
+}
+
+/// [`closest`] with [`Backend::node_tree`] where `TREE`, else [`Backend::node`].
+#[inline(always)]
+unsafe fn closest_with<B: Backend, N: Nodes + ?Sized, L: Leaves, const TREE: bool>(
+    nodes: &N,
+    root: u32,
+    p: &B::Prepared,
+    leaves: &mut L,
+    t_max: &mut f32,
+) {
     if root == EMPTY {
         return;
     }
@@ -90,7 +106,8 @@ pub unsafe fn closest<B: Backend, N: Nodes + ?Sized, L: Leaves>(
     'walk: loop {
         if cur & LEAF_BIT == 0 {
             let node = nodes.node(cur);
-            let (mut mask, dist) = B::node(p, node, *t_max);
+            let (mut mask, dist) =
+                if TREE { B::node_tree(p, node, *t_max) } else { B::node(p, node, *t_max) };
             if mask != 0 {
                 let i0 = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
@@ -173,6 +190,22 @@ pub unsafe fn any<B: Backend, N: Nodes + ?Sized, L: Leaves>(
     leaves: &mut L,
     t_max: f32,
 ) -> bool {
+    if B::tree_safe(p) {
+        any_with::<B, N, L, true>(nodes, root, p, leaves, t_max)
+    } else {
+        any_with::<B, N, L, false>(nodes, root, p, leaves, t_max)
+    }
+}
+
+/// [`any`] with [`Backend::node_tree`] where `TREE`, else [`Backend::node`].
+#[inline(always)]
+unsafe fn any_with<B: Backend, N: Nodes + ?Sized, L: Leaves, const TREE: bool>(
+    nodes: &N,
+    root: u32,
+    p: &B::Prepared,
+    leaves: &mut L,
+    t_max: f32,
+) -> bool {
     if root == EMPTY {
         return false;
     }
@@ -182,7 +215,7 @@ pub unsafe fn any<B: Backend, N: Nodes + ?Sized, L: Leaves>(
     loop {
         if cur & LEAF_BIT == 0 {
             let node = nodes.node(cur);
-            let (mut mask, _) = B::node(p, node, t_max);
+            let (mut mask, _) = if TREE { B::node_tree(p, node, t_max) } else { B::node(p, node, t_max) };
             if mask != 0 {
                 let first = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
