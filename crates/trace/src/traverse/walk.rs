@@ -8,7 +8,13 @@
 //! prefetched as soon as it is known: a lone one so that its reference line (read after its
 //! box test) comes with its box rows; where there are two or more, before the closest walk
 //! compares distances, so that the child entered next is on its way even when the comparison's
-//! branch is mispredicted, and the pushed ones while the walk descends.
+//! branch is mispredicted, and the pushed ones while the walk descends. A node child is
+//! requested with the leaf blocks that follow it in an arena (up to [`AFTER`] lines, as its
+//! parent records, [`crate::node::WideNode::after`]): most of a walk's time on a large mesh is
+//! waiting for memory, and those blocks are the ones it tests next.
+//!
+//! A ray whose every `1/dir` is finite takes the kernel's [`Backend::node_tree`], whose
+//! chain of dependent operations is shorter; the walk is compiled once for each form.
 //!
 //! The stack is a fixed array: each level of a path leaves at most seven entries, and the
 //! builder bounds paths to [`MAX_DEPTH`] levels.
