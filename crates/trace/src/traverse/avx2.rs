@@ -16,6 +16,7 @@ use crate::traverse::backend::{
     Backend, BlockHits, PacketBounds, PacketNode, RayQuery, FAR, IZE, LOOSE, PACKET,
 };
 use crate::triangle::{edge_functions_f64, EXACT_EDGES, FUSED};
+use glam::Affine3A;
 use std::arch::x86_64::*;
 use std::mem::MaybeUninit;
 
@@ -40,6 +41,12 @@ impl Backend for Avx2 {
     #[target_feature(enable = "avx2,fma")]
     unsafe fn prepare_ray(ray: &Ray) -> Option<(Prepared, f32)> {
         Prepared::single(ray)
+    }
+
+    #[inline]
+    #[target_feature(enable = "avx2,fma")]
+    unsafe fn prepare_transformed(ray: &Ray, m: &Affine3A, t_max: f32) -> Option<(Prepared, f32)> {
+        Prepared::transformed(ray, m, t_max)
     }
 
     #[inline]

@@ -13,6 +13,7 @@
 
 use crate::ray::Ray;
 use crate::traverse::backend::{RayQuery, Rows, FAR, PACKET};
+use glam::{Affine3A, Vec3A};
 use std::arch::x86_64::*;
 use std::mem::MaybeUninit;
 
@@ -161,6 +162,23 @@ impl Prepared {
             pad3: [0.0; 2],
         };
         Some((p, t1))
+    }
+
+    /// [`Prepared::single`] of `ray` carried by `m` ([`Ray::transformed`]) with its interval
+    /// ending at `t_max`: the same bits, with the carried ray assembled in registers and
+    /// written with one store, which the setup's one load then reads directly (written field
+    /// by field, the load waits for the stores to complete).
+    #[inline]
+    #[target_feature(enable = "avx2,fma")]
+    pub(super) unsafe fn transformed(ray: &Ray, m: &Affine3A, t_max: f32) -> Option<(Prepared, f32)> {
+        let o = __m128::from(m.transform_point3a(Vec3A::from(ray.origin)));
+        let d = __m128::from(m.transform_vector3a(Vec3A::from(ray.dir)));
+        // (ox, oy, oz, dx) and (dy, dz, t_min, t_max): the ray's eight floats.
+        let lo = _mm_blend_ps::<0b1000>(o, _mm_shuffle_ps::<0x00>(d, d));
+        let hi = _mm_shuffle_ps::<0x49>(d, _mm_setr_ps(ray.t_min, t_max, 0.0, 0.0));
+        let mut carried = MaybeUninit::<Ray>::uninit();
+        _mm256_storeu_ps(carried.as_mut_ptr() as *mut f32, _mm256_set_m128(hi, lo));
+        Prepared::single(carried.assume_init_ref())
     }
 
     /// The kernel forms of eight rays: lane `i` of `out` and `t_max[i]` (the ray's interval
@@ -412,6 +430,43 @@ mod tests {
                     assert_eq!(t_max.to_bits(), q.t_max.to_bits());
                 }
                 None => assert!(single.is_none(), "accepted {ray:?}"),
+            }
+        }
+    }
+
+    #[test]
+    fn a_ray_carried_in_registers_is_the_carried_ray_set_up_bit_for_bit() {
+        if !(is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma")) {
+            return;
+        }
+        let maps = [
+            Affine3A::IDENTITY,
+            Affine3A::from_scale_rotation_translation(
+                Vec3::new(0.5, 2.0, 1.5),
+                glam::Quat::from_rotation_y(0.7) * glam::Quat::from_rotation_x(-0.3),
+                Vec3::new(3.0, -1.0, 0.25),
+            ),
+            // Flattens z: carried directions may lose a component or vanish.
+            Affine3A::from_scale(Vec3::new(1.0, 1.0, 0.0)),
+            Affine3A::from_translation(Vec3::new(f32::INFINITY, 0.0, 0.0)),
+        ];
+        for m in &maps {
+            for ray in rays() {
+                for t_max in [ray.t_max, 0.5, 0.0, f32::NAN] {
+                    let mut carried = ray.transformed(m);
+                    carried.t_max = t_max;
+                    // SAFETY: the CPU has AVX2 and FMA (checked above).
+                    let (a, b) =
+                        unsafe { (Prepared::transformed(&ray, m, t_max), Prepared::single(&carried)) };
+                    match (a, b) {
+                        (Some((p, ta)), Some((q, tb))) => {
+                            assert_eq!(words(&p), words(&q), "{ray:?} by {m:?}");
+                            assert_eq!(ta.to_bits(), tb.to_bits());
+                        }
+                        (None, None) => {}
+                        _ => panic!("{ray:?} by {m:?}: carried {a:?} set up as {b:?}"),
+                    }
+                }
             }
         }
     }

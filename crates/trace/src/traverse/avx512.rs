@@ -28,6 +28,7 @@ use crate::traverse::avx2_ray::Prepared;
 use crate::traverse::backend::{
     planes_of, Backend, BlockHits, PacketBounds, PacketNode, RayQuery, Rows, FAR, IZE, PACKET,
 };
+use glam::Affine3A;
 use std::arch::x86_64::*;
 use std::mem::MaybeUninit;
 
@@ -62,6 +63,7 @@ impl Backend for Avx512 {
     as_avx2! {
         fn prepare(q: &RayQuery) -> Prepared;
         fn prepare_ray(ray: &Ray) -> Option<(Prepared, f32)>;
+        fn prepare_transformed(ray: &Ray, m: &Affine3A, t_max: f32) -> Option<(Prepared, f32)>;
         fn prepare8(rays: &[Ray; 8], out: &mut [MaybeUninit<Prepared>; 8], t_max: &mut [f32; 8]) -> u32;
         fn whole(b: &PacketBounds, node: &WideNode, t_low: f32) -> Option<(u32, [f32; WIDTH])>;
         fn node(p: &Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; 8]);

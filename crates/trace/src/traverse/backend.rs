@@ -27,7 +27,7 @@ use crate::ray::Ray;
 use crate::triangle::TriRay;
 
 pub use crate::lanes::{max_ps, min_ps};
-use glam::Vec3;
+use glam::{Affine3A, Vec3};
 use std::mem::MaybeUninit;
 
 /// `1 + 2γ₃` with `γₙ = nε / (1 − nε)`, `ε = 2⁻²⁴`: Ize's factor for the far slab distance.
@@ -265,6 +265,19 @@ pub trait Backend {
     #[inline(always)]
     unsafe fn prepare_ray(ray: &Ray) -> Option<(Self::Prepared, f32)> {
         RayQuery::new(ray).map(|q| (Self::prepare(&q), q.t_max))
+    }
+
+    /// [`Backend::prepare_ray`] of `ray` carried by `m` ([`Ray::transformed`], as into an
+    /// instance's object space) with its interval ending at `t_max`. Kernels may override it
+    /// with a faster form of the same results.
+    ///
+    /// # Safety
+    /// The CPU has the kernel's features.
+    #[inline(always)]
+    unsafe fn prepare_transformed(ray: &Ray, m: &Affine3A, t_max: f32) -> Option<(Self::Prepared, f32)> {
+        let mut carried = ray.transformed(m);
+        carried.t_max = t_max;
+        Self::prepare_ray(&carried)
     }
 
     /// The kernel forms of eight rays (a packet's setup): lane `i` of `out` and `t_max[i]` (the

@@ -94,9 +94,7 @@ impl<'a, B: Backend, F: HitFilter> Instances<'a, B, F> {
     unsafe fn enter(&self, instance: u32, t_max: f32) -> Option<(&'a Blas, B::Prepared)> {
         debug_assert!((instance as usize) < self.tlas.placed.len());
         let placed = self.tlas.placed.get_unchecked(instance as usize);
-        let mut ray = self.ray.transformed(&placed.world_to_object);
-        ray.t_max = t_max;
-        let (p, _) = B::prepare_ray(&ray)?;
+        let (p, _) = B::prepare_transformed(self.ray, &placed.world_to_object, t_max)?;
         Some((self.tlas.meshes.get_unchecked(placed.mesh as usize), p))
     }
 }
