@@ -3,9 +3,9 @@
 //!
 //! # Layout
 //!
-//! The 8-wide nodes are uploaded in the CPU's own layout (224 bytes: six rows of eight child
-//! bounds, then eight child references), so the GPU walks the very tree the CPU walks and
-//! the upload is a copy. One node buffer holds the top level first, then every mesh's nodes;
+//! The 8-wide nodes are uploaded in the CPU's node layout less its padding (224 bytes: six
+//! rows of eight child bounds, then eight child references), from the separate-array form of
+//! each mesh's hierarchy (`Blas::indexed`), so the GPU walks the very tree the CPU walks. One node buffer holds the top level first, then every mesh's nodes;
 //! one block buffer every mesh's 4-triangle leaf blocks (160 bytes, vertices in
 //! structure-of-arrays form); an instance record (64 bytes) holds the world-to-object rows,
 //! the mesh's root reference, where its nodes and blocks start, and its mask. Child references
