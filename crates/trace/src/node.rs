@@ -158,7 +158,7 @@ struct Line([u8; 64]);
 /// walk, `profile_set`, 5 alternating rounds): single rays on the meshes larger than the
 /// caches +1 to +6 %, instanced shadow rays +10 %; and with a node's leaf lines requested
 /// when the node is ([`WideNode::after`]), a further +4 to +20 %.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Default)]
 pub struct Arena {
     lines: Vec<Line>,
     nodes: usize,
@@ -296,6 +296,17 @@ impl Arena {
         assert!(at + BLOCK_BYTES <= self.bytes(), "block reference {r:#x} outside the arena");
         // SAFETY: in bounds; every unit offset is aligned for a block (16 bytes).
         unsafe { self.block(r) }
+    }
+}
+
+impl std::fmt::Debug for Arena {
+    /// The counts, not the bytes (a large mesh's arena is hundreds of megabytes).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Arena")
+            .field("nodes", &self.nodes)
+            .field("blocks", &self.blocks)
+            .field("bytes", &self.bytes())
+            .finish()
     }
 }
 

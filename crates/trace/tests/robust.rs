@@ -218,6 +218,8 @@ fn the_arena_holds_the_built_hierarchy_and_gives_it_back() {
     };
     for tris in [Vec::new(), vec![unit_triangle(0.0)], grid(2), grid(5), grid(40)] {
         let blas = Blas::from_triangles(&tris).unwrap();
+        // Its debug form gives the counts, not the storage's bytes.
+        assert!(format!("{blas:?}").len() < 400, "{blas:?}");
         let one = blas.indexed();
         assert_eq!((one.nodes.len(), one.blocks.len()), (blas.node_count(), blas.block_count()));
         let (arena, arena_root) = renderlab_trace::node::Arena::new(&one.nodes, &one.blocks, one.root);
