@@ -114,9 +114,9 @@ impl PacketBounds {
     ///
     /// A child is *decided* when every ray enters it or none does; the mask then holds the ones
     /// every ray enters, exactly what each ray's own test says. Over the range of `1/dir`,
-    /// `(plane − o)·inv` is greatest and least at its ends (and `inv · FAR` ranges over the ends'
-    /// products), and each operation rounds
-    /// monotonically, so the ends' rounded values bound every ray's rounded value. Where at
+    /// `(plane − o)·inv` is greatest and least at its ends (and `inv · FAR` ranges over the
+    /// ends' products), and each operation rounds monotonically, so the ends' rounded values
+    /// bound every ray's rounded value. Where at
     /// most [`LOOSE`] children are undecided and none of the node's children is a leaf, the mask
     /// also holds the undecided ones, which the rays then enter conservatively (some may not
     /// reach them, and are dropped by their own tests further down, before any leaf); the
