@@ -6,7 +6,8 @@ use crate::build::binned::{self, PrimRef, SahParams, MAX_PRIMS};
 use crate::build::collapse::collapse;
 use crate::error::BuildError;
 use crate::kernel::Kernel;
-use crate::node::{Arena, TriBlock, WideNode, BLOCK, LEAF_BIT};
+pub use crate::node::Indexed;
+use crate::node::{Arena, TriBlock, BLOCK, LEAF_BIT};
 use crate::triangle::is_hittable;
 use glam::Vec3;
 use rayon::prelude::*;
@@ -67,7 +68,7 @@ impl Blas {
         });
         let bounds = if hittable == 0 { Aabb::EMPTY } else { bvh.nodes[0].bounds() };
         drop(bvh);
-        let (arena, root) = Arena::new(&nodes, &blocks, root);
+        let (arena, root) = Arena::new(&Indexed { nodes, blocks, root });
         Ok(Blas { arena, root, kernel: crate::kernel::best(), bounds, triangles: count, hittable })
     }
 
@@ -111,8 +112,7 @@ impl Blas {
     /// call): node references are node indices, root first, and leaf references block
     /// indices (with [`LEAF_BIT`]). For inspection, and for uploading to a GPU.
     pub fn indexed(&self) -> Indexed {
-        let (nodes, blocks, root) = self.arena.indexed(self.root);
-        Indexed { nodes, blocks, root }
+        self.arena.indexed(self.root)
     }
 
     /// Wide levels on the longest root-to-leaf path (0 when the root is a leaf or empty).
@@ -124,16 +124,4 @@ impl Blas {
     pub fn memory_bytes(&self) -> usize {
         self.arena.bytes()
     }
-}
-
-/// A bottom level with nodes and leaf blocks in separate arrays ([`Blas::indexed`]).
-#[derive(Clone, Debug)]
-pub struct Indexed {
-    /// The wide nodes, root first; node references are indices here.
-    pub nodes: Vec<WideNode>,
-    /// The leaf blocks; leaf references are [`LEAF_BIT`] and an index here.
-    pub blocks: Vec<TriBlock>,
-    /// The root's reference: node 0, a leaf (a mesh of at most four triangles) or
-    /// [`crate::node::EMPTY`].
-    pub root: u32,
 }

@@ -165,10 +165,23 @@ pub struct Arena {
     blocks: usize,
 }
 
+/// A bottom level with nodes and leaf blocks in separate arrays: the form a build makes and
+/// a GPU tracer uploads ([`Arena::new`], [`Arena::indexed`]).
+#[derive(Clone, Debug)]
+pub struct Indexed {
+    /// The wide nodes, root first; node references are indices here.
+    pub nodes: Vec<WideNode>,
+    /// The leaf blocks; leaf references are [`LEAF_BIT`] and an index here.
+    pub blocks: Vec<TriBlock>,
+    /// The root's reference: node 0, a leaf (a mesh of at most four triangles) or [`EMPTY`].
+    pub root: u32,
+}
+
 impl Arena {
-    /// The arena of the hierarchy `nodes` (references: node indices) over `blocks` (leaf
-    /// references: block indices) from `root`, and the root's reference in it.
-    pub fn new(nodes: &[WideNode], blocks: &[TriBlock], root: u32) -> (Arena, u32) {
+    /// The arena of the hierarchy `tree`, and its root's reference in it.
+    pub fn new(tree: &Indexed) -> (Arena, u32) {
+        let Indexed { nodes, blocks, root } = tree;
+        let (nodes, blocks, root) = (nodes.as_slice(), blocks.as_slice(), *root);
         // First the size, then the bytes, written in place: no second copy of a large mesh.
         fn size(nodes: &[WideNode], r: u32, at: &mut usize) {
             if r & LEAF_BIT != 0 {
@@ -261,9 +274,8 @@ impl Arena {
     }
 
     /// The hierarchy from `root` with nodes and blocks in separate arrays, in the arena's
-    /// order: node references are node indices (the root is node 0) and leaf references block
-    /// indices; and the root's reference there. The form a GPU tracer uploads.
-    pub fn indexed(&self, root: u32) -> (Vec<WideNode>, Vec<TriBlock>, u32) {
+    /// order (the root is node 0), its nodes' [`WideNode::after`] cleared.
+    pub fn indexed(&self, root: u32) -> Indexed {
         fn take(arena: &Arena, r: u32, nodes: &mut Vec<WideNode>, blocks: &mut Vec<TriBlock>) -> u32 {
             if r == EMPTY {
                 return EMPTY;
@@ -287,7 +299,7 @@ impl Arena {
         }
         let (mut nodes, mut blocks) = (Vec::with_capacity(self.nodes), Vec::with_capacity(self.blocks));
         let root = take(self, root, &mut nodes, &mut blocks);
-        (nodes, blocks, root)
+        Indexed { nodes, blocks, root }
     }
 
     /// [`Arena::block`], checked: panics on a reference outside the storage or misaligned.

@@ -266,6 +266,13 @@ fn uniform(seed: u64) -> impl FnMut() -> f32 {
     }
 }
 
+/// The nodes of [`wavy_grid`]`(n)`'s hierarchy where the CPU has the vector kernels; `None`
+/// elsewhere (the kernel comparisons below then have nothing to compare).
+fn vector_grid_nodes(n: usize) -> Option<Vec<renderlab_trace::node::WideNode>> {
+    renderlab_trace::kernel::available(renderlab_trace::Kernel::Simd)
+        .then(|| Blas::from_triangles(&wavy_grid(n)).unwrap().indexed().nodes)
+}
+
 /// The single-ray node test with its slab terms reduced as a tree (taken for rays whose every
 /// `1/dir` is finite) against the chain form and the scalar kernel, on every node of a
 /// hierarchy, bit for bit: random rays, rays starting on box planes and at distance zero (where
@@ -276,11 +283,7 @@ fn the_tree_node_test_agrees_with_the_chain() {
     use renderlab_trace::traverse::avx2::Avx2;
     use renderlab_trace::traverse::backend::{Backend, RayQuery};
     use renderlab_trace::traverse::scalar::Scalar;
-    if !renderlab_trace::kernel::available(renderlab_trace::Kernel::Simd) {
-        return;
-    }
-    let blas = Blas::from_triangles(&wavy_grid(12)).unwrap();
-    let nodes = blas.indexed().nodes;
+    let Some(nodes) = vector_grid_nodes(12) else { return };
     let mut rnd = uniform(11);
     let (mut tree, mut refused) = (0, 0);
     for i in 0..600 {
@@ -331,11 +334,7 @@ fn packet_node_tests_agree_between_kernels() {
     use renderlab_trace::traverse::backend::{Backend, RayQuery, Rows};
     use renderlab_trace::traverse::scalar::Scalar;
     use std::mem::MaybeUninit;
-    if !renderlab_trace::kernel::available(renderlab_trace::Kernel::Simd) {
-        return;
-    }
-    let blas = Blas::from_triangles(&wavy_grid(24)).unwrap();
-    let nodes = blas.indexed().nodes;
+    let Some(nodes) = vector_grid_nodes(24) else { return };
     let mut rnd = uniform(7);
     let wide = renderlab_core::kernel::has_avx512();
     let mut by_child = 0;
@@ -413,10 +412,7 @@ fn whole_packet_node_tests_bound_each_rays_test() {
     use renderlab_trace::traverse::avx2::Avx2;
     use renderlab_trace::traverse::backend::{Backend, PacketBounds, RayQuery};
     use renderlab_trace::traverse::scalar::Scalar;
-    if !renderlab_trace::kernel::available(renderlab_trace::Kernel::Simd) {
-        return;
-    }
-    let blas = Blas::from_triangles(&wavy_grid(24)).unwrap();
+    let Some(nodes) = vector_grid_nodes(24) else { return };
     let mut rnd = uniform(11);
     let (mut decided, mut loose) = (0, 0);
     for packet in 0..60 {
@@ -449,7 +445,7 @@ fn whole_packet_node_tests_bound_each_rays_test() {
             continue;
         };
         let t_low = range(&|q: &RayQuery| q.t_max)[0];
-        for node in &blas.indexed().nodes {
+        for node in &nodes {
             let scalar = b.decide(node, t_low);
             // SAFETY: the CPU has AVX2 and FMA (checked above).
             let vector = unsafe { Avx2::whole(&b, node, t_low) };

@@ -222,8 +222,8 @@ fn the_arena_holds_the_built_hierarchy_and_gives_it_back() {
         assert!(format!("{blas:?}").len() < 400, "{blas:?}");
         let one = blas.indexed();
         assert_eq!((one.nodes.len(), one.blocks.len()), (blas.node_count(), blas.block_count()));
-        let (arena, arena_root) = renderlab_trace::node::Arena::new(&one.nodes, &one.blocks, one.root);
-        let (nodes, blocks, root) = arena.indexed(arena_root);
+        let (arena, arena_root) = renderlab_trace::node::Arena::new(&one);
+        let Indexed { nodes, blocks, root } = arena.indexed(arena_root);
         assert_eq!(nodes, one.nodes);
         assert_eq!(root, one.root);
         let bits = |b: &[renderlab_trace::node::TriBlock]| {

@@ -12,7 +12,7 @@ use crate::hit::{Hit, Opaque};
 use crate::node::{Nodes, WideNode, LEAF_BIT};
 use crate::ray::Ray;
 use crate::tlas::Tlas;
-use crate::traverse::backend::{prefetch, prefetch_lines, Backend, PACKET};
+use crate::traverse::backend::{prefetch, Backend, PACKET};
 use crate::traverse::leaves::{no_hit, Instances, Triangles};
 use crate::traverse::packet::{self, Packet, PacketLeaves};
 use crate::traverse::walk::{self, Leaves};
@@ -51,9 +51,7 @@ impl<B: Backend> PacketLeaves<B> for Blocks<'_> {
     #[inline(always)]
     unsafe fn fetch(&self, child: u32, after: u32) {
         if child & LEAF_BIT == 0 {
-            let n = self.blas.arena.node(child);
-            prefetch(n);
-            prefetch_lines((n as *const WideNode).add(1) as *const u8, after.min(walk::AFTER) as usize);
+            walk::prefetch_node(self.blas.arena.node(child), after);
         } else {
             prefetch(self.blas.arena.block(child));
         }

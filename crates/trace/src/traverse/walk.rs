@@ -65,13 +65,18 @@ pub const AFTER: u32 = 8;
 unsafe fn fetch<N: Nodes + ?Sized, L: Leaves>(nodes: &N, leaves: &L, node: &WideNode, slot: usize) {
     let child = *node.children.get_unchecked(slot);
     if child & LEAF_BIT == 0 {
-        let n = nodes.node(child);
-        prefetch(n);
-        let after = (*node.after.get_unchecked(slot)).min(AFTER);
-        prefetch_lines((n as *const WideNode).add(1) as *const u8, after as usize);
+        prefetch_node(nodes.node(child), *node.after.get_unchecked(slot));
     } else {
         leaves.fetch(child & !LEAF_BIT);
     }
+}
+
+/// Starts loading node `n` and the first `after` lines that follow it (at most [`AFTER`]): its
+/// leaf blocks in an arena ([`WideNode::after`]).
+#[inline(always)]
+pub(crate) fn prefetch_node(n: &WideNode, after: u32) {
+    prefetch(n);
+    prefetch_lines((n as *const WideNode).wrapping_add(1) as *const u8, after.min(AFTER) as usize);
 }
 
 /// Walks the hierarchy `nodes` from `root` for the closest hit.
