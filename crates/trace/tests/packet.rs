@@ -567,3 +567,85 @@ proptest! {
         }
     }
 }
+
+/// Kernel `B`'s packet bounds of `rays` (at most [`PACKET`]; set up eight at a time where
+/// they fill a group, alone otherwise, as a packet does), against the ranges of each valid
+/// ray's own setup ([`RayQuery`]): the same origin, the least and greatest `1/dir` and interval
+/// start, the greatest interval end; `None` where the valid rays' origins differ.
+///
+/// # Safety
+/// The CPU has `B`'s features.
+unsafe fn check_bounds<B: renderlab_trace::traverse::backend::Backend>(rays: &[Ray]) {
+    use renderlab_trace::traverse::backend::{PacketBounds, RayQuery, Rows};
+    use std::mem::MaybeUninit;
+    let mut rows = MaybeUninit::<Rows>::uninit();
+    let mut t_max = [f32::NEG_INFINITY; PACKET];
+    let mut valid = 0u32;
+    for (h, group) in rays.chunks(8).enumerate() {
+        if let Ok(group) = <&[Ray; 8]>::try_from(group) {
+            let mut out = [const { MaybeUninit::uninit() }; 8];
+            let t = &mut *(t_max.as_mut_ptr().add(8 * h) as *mut [f32; 8]);
+            valid |= B::prepare8_rows(group, &mut out, t, &mut rows, h) << (8 * h);
+        } else {
+            for (i, ray) in group.iter().enumerate() {
+                if let Some((p, t)) = B::prepare_ray(ray) {
+                    B::row(&p, &mut rows, 8 * h + i);
+                    t_max[8 * h + i] = t;
+                    valid |= 1 << (8 * h + i);
+                }
+            }
+        }
+    }
+    let queries: Vec<RayQuery> = rays.iter().filter_map(RayQuery::new).collect();
+    assert_eq!(valid.count_ones() as usize, queries.len());
+    let org = queries[0].org;
+    let range = |f: &dyn Fn(&RayQuery) -> f32| {
+        queries.iter().fold([f32::INFINITY, f32::NEG_INFINITY], |[lo, hi], q| [lo.min(f(q)), hi.max(f(q))])
+    };
+    let want = queries.iter().all(|q| q.org == org).then(|| {
+        let inv = [0, 1, 2].map(|a| range(&|q: &RayQuery| q.inv[a]));
+        PacketBounds::new(org, inv, range(&|q| q.t_min), range(&|q| q.t_max)[1])
+    });
+    let got = B::bounds(&rows, valid, &t_max);
+    assert_eq!(format!("{got:?}"), format!("{:?}", want.flatten()), "rays {rays:?}");
+}
+
+#[test]
+fn packet_bounds_are_the_ranges_of_the_packets_rays() {
+    // Rays from one eye into one octant (bounds found) and into several (none: the signs of
+    // `1/dir` differ), full and partly filled packets with invalid rays among them, and rays
+    // from two origins (none).
+    let eye = Vec3::new(0.5, 1.2, -0.6);
+    let fan = |n: usize, spread: f32, shift: usize| -> Vec<Ray> {
+        (0..n)
+            .map(|i| {
+                let f = (i + shift) as f32 / n as f32;
+                match (i + shift) % 7 {
+                    6 => Ray::new(eye, Vec3::ZERO),
+                    k => Ray::segment(
+                        eye,
+                        Vec3::new(0.2 + spread * f, -1.0, 0.3 - spread * f),
+                        0.01 * k as f32,
+                        5.0 + f,
+                    ),
+                }
+            })
+            .collect()
+    };
+    let mut sets = vec![fan(32, 0.1, 0), fan(32, 0.5, 3), fan(19, 0.1, 1), fan(12, 0.1, 2), fan(32, 3.0, 0)];
+    let mut two = fan(32, 0.1, 0);
+    two[17].origin += Vec3::X;
+    sets.push(two);
+    let simd = renderlab_trace::kernel::available(renderlab_trace::Kernel::Simd);
+    for rays in &sets {
+        // SAFETY: each kernel runs only where the CPU has its features (checked here).
+        unsafe {
+            if simd {
+                check_bounds::<renderlab_trace::traverse::avx2::Avx2>(rays);
+            }
+            if simd && renderlab_core::kernel::has_avx512() {
+                check_bounds::<renderlab_trace::traverse::avx512::Avx512>(rays);
+            }
+        }
+    }
+}

@@ -15,9 +15,10 @@
 //! read the same planes of the node); otherwise, and for packets thinned out to fewer than
 //! [`CHILD_BY_CHILD`] rays, the AVX2 kernel's ray-by-ray test runs.
 //!
-//! The rows also give a packet of rays from one origin its [`PacketBounds`] (masked
-//! reductions over the rows) and the least interval end of its active rays, for the test of a
-//! node for the packet as a whole ([`Backend::whole`], the AVX2 kernel's).
+//! The rows also give a packet of rays from one origin its [`PacketBounds`] and the least
+//! interval end of its active rays (masked reductions over the rows, where the AVX2 kernel
+//! blends), for the test of a node for the packet as a whole ([`Backend::whole`], the AVX2
+//! kernel's).
 
 #![cfg(target_arch = "x86_64")]
 
