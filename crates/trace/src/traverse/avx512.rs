@@ -56,6 +56,12 @@ impl Backend for Avx512 {
 
     const ROWS: bool = true;
 
+    /// Where the node test runs child by child, it reads the rows of every packet.
+    #[inline(always)]
+    fn rows_always() -> bool {
+        crate::kernel::child_by_child()
+    }
+
     #[inline(always)]
     fn tree_safe(p: &Prepared) -> bool {
         Avx2::tree_safe(p)
@@ -66,7 +72,6 @@ impl Backend for Avx512 {
         fn prepare_ray(ray: &Ray) -> Option<(Prepared, f32)>;
         fn prepare_transformed(ray: &Ray, m: &Affine3A, t_max: f32) -> Option<(Prepared, f32)>;
         fn prepare8(rays: &[Ray; 8], out: &mut [MaybeUninit<Prepared>; 8], t_max: &mut [f32; 8]) -> u32;
-        fn whole(b: &PacketBounds, node: &WideNode, t_low: f32) -> Option<(u32, [f32; WIDTH])>;
         fn node(p: &Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; 8]);
         fn node_tree(p: &Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; 8]);
         fn block(p: &Prepared, block: &TriBlock, t_max: f32) -> BlockHits;
@@ -77,6 +82,12 @@ impl Backend for Avx512 {
             active: u32,
             t_max: &[f32; PACKET]
         ) -> PacketNode;
+    }
+
+    #[inline]
+    #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
+    unsafe fn whole(b: &PacketBounds, node: &WideNode, t_low: f32) -> Option<(u32, [f32; WIDTH])> {
+        Avx2::whole_in_line(b, node, t_low)
     }
 
     #[inline]

@@ -309,6 +309,14 @@ pub trait Backend {
     /// writes them as it takes its rays ([`Backend::prepare8_rows`], [`Backend::row`]).
     const ROWS: bool = false;
 
+    /// Whether the kernel's packet node test ([`Backend::node_packet_rows`]) reads the rows of
+    /// every packet (kernels with [`Backend::ROWS`]); otherwise only packets of rays from one
+    /// origin keep rows, for their bounds. Read once per packet.
+    #[inline(always)]
+    fn rows_always() -> bool {
+        false
+    }
+
     /// [`Backend::prepare8`], also writing lanes `8·h .. 8·h + 8` of `rows` for the rays it
     /// accepts (kernels with [`Backend::ROWS`]; the others leave `rows` alone).
     ///

@@ -58,8 +58,8 @@ pub(crate) struct Packet<B: Backend> {
     /// The lanes of `valid` written by [`Packet::set_ray`] or [`Packet::set8`]; the others never
     /// read.
     prepared: [MaybeUninit<B::Prepared>; PACKET],
-    /// The rays as rows, for kernels that read them ([`Backend::ROWS`]): the lanes of `valid`
-    /// written, the others never read.
+    /// The rays as rows where the packet keeps them ([`Packet::keep_rows`]): the lanes of
+    /// `valid` written, the others never read.
     rows: MaybeUninit<Rows>,
     /// Each ray's interval end, lowered by its hits (−∞ once it takes no further part).
     pub(crate) t_max: [f32; PACKET],
@@ -67,6 +67,10 @@ pub(crate) struct Packet<B: Backend> {
     pub(crate) valid: u32,
     /// The bounds of the rays' slab tests, where the kernel finds them.
     bounds: Option<PacketBounds>,
+    /// Whether the rays are kept as rows: for kernels with [`Backend::ROWS`], where the
+    /// kernel's node test reads them ([`Backend::rows_always`]) or the rays share their
+    /// origin (only then can they have bounds); rays from many points skip the writing.
+    keep_rows: bool,
 }
 
 impl<B: Backend> Packet<B> {
@@ -80,7 +84,22 @@ impl<B: Backend> Packet<B> {
             t_max: [f32::NEG_INFINITY; PACKET],
             valid: 0,
             bounds: None,
+            keep_rows: B::ROWS && B::rows_always(),
         }
+    }
+
+    /// Keeps the rays as rows where the kernel has [`Backend::ROWS`] and `shared_origin` (the
+    /// rays about to be put in share their origin), or where its node test reads them anyway.
+    /// Called on an empty packet, before its rays are put in.
+    #[inline(always)]
+    pub(crate) fn keep_rows(&mut self, shared_origin: bool) {
+        self.keep_rows = B::ROWS && (shared_origin || B::rows_always());
+    }
+
+    /// Whether the packet keeps its rays as rows ([`Packet::keep_rows`]).
+    #[inline(always)]
+    pub(crate) fn keeps_rows(&self) -> bool {
+        self.keep_rows
     }
 
     /// Finds the packet's [`PacketBounds`] once its rays are in (kernels with
@@ -91,7 +110,7 @@ impl<B: Backend> Packet<B> {
     #[inline(always)]
     unsafe fn bound(&mut self) {
         self.bounds = None;
-        if B::ROWS && self.valid.count_ones() >= WHOLE {
+        if self.keep_rows && self.valid.count_ones() >= WHOLE {
             self.bounds = B::bounds(&self.rows, self.valid, &self.t_max);
         }
     }
@@ -105,7 +124,7 @@ impl<B: Backend> Packet<B> {
         if let Some((p, t_max)) = B::prepare_ray(ray) {
             self.valid |= 1 << r;
             self.t_max[r] = t_max;
-            if B::ROWS {
+            if self.keep_rows {
                 B::row(&p, &mut self.rows, r);
             }
             self.prepared[r].write(p);
@@ -119,6 +138,8 @@ impl<B: Backend> Packet<B> {
     #[inline(always)]
     pub(crate) unsafe fn load(&mut self, rays: &[Ray]) {
         let rays = &rays[..rays.len().min(PACKET)];
+        // (The first origin that differs ends the comparison: rays from many points pay one.)
+        self.keep_rows(rays.len() >= WHOLE as usize && rays.iter().all(|r| r.origin == rays[0].origin));
         let mut groups = rays.chunks_exact(8);
         for (h, group) in groups.by_ref().enumerate() {
             // `h < PACKET / 8`.
@@ -140,7 +161,7 @@ impl<B: Backend> Packet<B> {
         debug_assert!(h < PACKET / 8);
         let out = &mut *(self.prepared.as_mut_ptr().add(8 * h) as *mut [MaybeUninit<B::Prepared>; 8]);
         let t_max = &mut *(self.t_max.as_mut_ptr().add(8 * h) as *mut [f32; 8]);
-        let valid = if B::ROWS {
+        let valid = if self.keep_rows {
             B::prepare8_rows(rays, out, t_max, &mut self.rows, h)
         } else {
             B::prepare8(rays, out, t_max)

@@ -127,6 +127,8 @@ impl Placed<'_> {
     ) -> &Blas {
         debug_assert!((instance as usize) < self.tlas.placed.len());
         let placed = self.tlas.placed.get_unchecked(instance as usize);
+        // World rays from one origin are carried to one origin (the same map of the same point).
+        object.keep_rows(p.keeps_rows());
         let carried = |r: usize| {
             let mut ray = self.rays.get_unchecked(r).transformed(&placed.world_to_object);
             ray.t_max = p.t_max[r];
