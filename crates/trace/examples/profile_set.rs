@@ -10,7 +10,9 @@
 //!
 //! Arguments: a scene file (`out/embree/MESH.bin`: one mesh, or with `instances` placed copies
 //! of it), a ray set in it (`primary`, `bounce`, `shadow`), a query (`single` or `packet`) and
-//! a number of passes. It builds our hierarchy over the mesh (and for an instanced scene our
+//! a number of passes, or `serve`: then, after the build, it prints `ready` and runs one pass
+//! per line read on its input, printing each pass's seconds (for `scripts/paired_passes.py`,
+//! which alternates two builds pass by pass). It builds our hierarchy over the mesh (and for an instanced scene our
 //! `Tlas` over the copies) and prints the mesh hierarchy's size and its SAH cost in Embree's
 //! own statistic (so that it reads beside Embree's `verbose=3` output: per node, its box's half
 //! area; per leaf, its box's half area times its blocks; all over the root's half area), then
@@ -148,9 +150,14 @@ fn trace(q: &Accel, rays: &[Ray], occlusion: bool, query: &str) -> usize {
 
 fn run(args: &[String]) -> Result<(), String> {
     let [file, set, query, passes] = args else {
-        return Err("usage: profile_set SCENE.bin SET single|packet PASSES".into());
+        return Err("usage: profile_set SCENE.bin SET single|packet PASSES|serve".into());
     };
-    let passes: usize = passes.parse().ok().filter(|&p| p > 0).ok_or("PASSES must be a positive integer")?;
+    let serve = passes == "serve";
+    let passes: usize = if serve {
+        1
+    } else {
+        passes.parse().ok().filter(|&p| p > 0).ok_or("PASSES must be a positive integer or `serve`")?
+    };
     if query != "single" && query != "packet" {
         return Err(format!("the query must be `single` or `packet`, not `{query}`"));
     }
@@ -186,6 +193,18 @@ fn run(args: &[String]) -> Result<(), String> {
         writeln!(out, "{} instances of it", instances.len()).map_err(write_err)?;
         Accel::Scene(tlas, idx.len() as u32)
     };
+    if serve {
+        // One pass per line read, its seconds written back: a driver alternates two builds
+        // pass by pass (scripts/paired_passes.py), so that the machine's drift cancels.
+        writeln!(out, "ready").and_then(|_| out.flush()).map_err(write_err)?;
+        for line in std::io::stdin().lines() {
+            line.map_err(|e| format!("cannot read the input: {e}"))?;
+            let start = Instant::now();
+            trace(&accel, rays, set.occlusion, query);
+            writeln!(out, "{}", start.elapsed().as_secs_f64()).and_then(|_| out.flush()).map_err(write_err)?;
+        }
+        return Ok(());
+    }
     let start = Instant::now();
     let found: usize = (0..passes).map(|_| trace(&accel, rays, set.occlusion, query)).sum();
     let secs = start.elapsed().as_secs_f64();
