@@ -201,7 +201,9 @@ fn run(args: &[String]) -> Result<(), String> {
             line.map_err(|e| format!("cannot read the input: {e}"))?;
             let start = Instant::now();
             trace(&accel, rays, set.occlusion, query);
-            writeln!(out, "{}", start.elapsed().as_secs_f64()).and_then(|_| out.flush()).map_err(write_err)?;
+            writeln!(out, "{}", start.elapsed().as_secs_f64())
+                .and_then(|_| out.flush())
+                .map_err(write_err)?;
         }
         return Ok(());
     }
