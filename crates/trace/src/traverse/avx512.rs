@@ -72,6 +72,14 @@ impl Backend for Avx512 {
         fn prepare_ray(ray: &Ray) -> Option<(Prepared, f32)>;
         fn prepare_transformed(ray: &Ray, m: &Affine3A, t_max: f32) -> Option<(Prepared, f32)>;
         fn prepare8(rays: &[Ray; 8], out: &mut [MaybeUninit<Prepared>; 8], t_max: &mut [f32; 8]) -> u32;
+        fn prepare8_rows(
+            rays: &[Ray; 8],
+            out: &mut [MaybeUninit<Prepared>; 8],
+            t_max: &mut [f32; 8],
+            rows: &mut MaybeUninit<Rows>,
+            h: usize,
+        ) -> u32;
+        fn row(p: &Prepared, rows: &mut MaybeUninit<Rows>, r: usize) -> ();
         fn node(p: &Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; 8]);
         fn node_tree(p: &Prepared, node: &WideNode, t_max: f32) -> (u32, [f32; 8]);
         fn block(p: &Prepared, block: &TriBlock, t_max: f32) -> BlockHits;
@@ -88,29 +96,6 @@ impl Backend for Avx512 {
     #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
     unsafe fn whole(b: &PacketBounds, node: &WideNode, t_low: f32) -> Option<(u32, [f32; WIDTH])> {
         Avx2::whole_in_line(b, node, t_low)
-    }
-
-    #[inline]
-    #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
-    unsafe fn prepare8_rows(
-        rays: &[Ray; 8],
-        out: &mut [MaybeUninit<Prepared>; 8],
-        t_max: &mut [f32; 8],
-        rows: &mut MaybeUninit<Rows>,
-        h: usize,
-    ) -> u32 {
-        Prepared::eight(rays, out, t_max, Some((rows, h)))
-    }
-
-    #[inline]
-    #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
-    unsafe fn row(p: &Prepared, rows: &mut MaybeUninit<Rows>, r: usize) {
-        // The form's first 32 bytes are the eight quantities of the rows, in their order.
-        let first = p as *const Prepared as *const f32;
-        let base = rows.as_mut_ptr() as *mut f32;
-        for i in 0..8 {
-            *base.add(PACKET * i + r) = *first.add(i);
-        }
     }
 
     #[inline]
