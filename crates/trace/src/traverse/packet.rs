@@ -102,8 +102,8 @@ impl<B: Backend> Packet<B> {
         self.keep_rows
     }
 
-    /// Finds the packet's [`PacketBounds`] once its rays are in (kernels with
-    /// [`Backend::ROWS`], for packets of at least [`WHOLE`] rays).
+    /// Finds the packet's [`PacketBounds`] once its rays are in (packets that keep their rays
+    /// as rows, [`Packet::keep_rows`], of at least [`WHOLE`] rays).
     ///
     /// # Safety
     /// The CPU has `B`'s features.
