@@ -79,8 +79,9 @@ impl Backend for Avx2 {
         let mut org = [0.0f32; 3];
         for (q, o) in org.iter_mut().enumerate() {
             *o = *rows.add(PACKET * q + lead);
-            for (g, &(k, _)) in groups.iter().enumerate() {
-                let x = _mm256_load_ps(rows.add(PACKET * q + 8 * g));
+            for (g, &(k, m)) in groups.iter().enumerate() {
+                // Masked loads: the lanes outside `valid` are not read (they may be unwritten).
+                let x = _mm256_maskload_ps(rows.add(PACKET * q + 8 * g), _mm256_castps_si256(m));
                 let differ = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_NEQ_UQ>(x, _mm256_set1_ps(*o))) as u32;
                 if differ & k != 0 {
                     return None;
@@ -94,7 +95,7 @@ impl Backend for Avx2 {
         for (i, r) in range.iter_mut().enumerate() {
             let (mut lo, mut hi) = (inf, ninf);
             for (g, &(_, m)) in groups.iter().enumerate() {
-                let x = _mm256_load_ps(rows.add(PACKET * (3 + i) + 8 * g));
+                let x = _mm256_maskload_ps(rows.add(PACKET * (3 + i) + 8 * g), _mm256_castps_si256(m));
                 lo = _mm256_min_ps(lo, _mm256_blendv_ps(inf, x, m));
                 hi = _mm256_max_ps(hi, _mm256_blendv_ps(ninf, x, m));
             }
