@@ -12,12 +12,12 @@
 //! of it), a ray set in it (`primary`, `bounce`, `shadow`), a query (`single` or `packet`) and
 //! a number of passes, or `serve`: then, after the build, it prints `ready` and runs one pass
 //! per line read on its input, printing each pass's seconds (for `scripts/paired_passes.py`,
-//! which alternates two builds pass by pass). It builds our hierarchy over the mesh (and for an instanced scene our
-//! `Tlas` over the copies) and prints the mesh hierarchy's size and its SAH cost in Embree's
-//! own statistic (so that it reads beside Embree's `verbose=3` output: per node, its box's half
-//! area; per leaf, its box's half area times its blocks; all over the root's half area), then
-//! the rate of the passes (wall clock, one thread). It traces through the `embree` example's own
-//! [`Accel`], so the two time the same queries.
+//! which alternates two builds pass by pass). It builds our hierarchy over the mesh (and for an
+//! instanced scene our `Tlas` over the copies) and prints the mesh hierarchy's size and its SAH
+//! cost in Embree's own statistic (so that it reads beside Embree's `verbose=3` output: per
+//! node, its box's half area; per leaf, its box's half area times its blocks; all over the
+//! root's half area), then the rate of the passes (wall clock, one thread). It traces through
+//! the `embree` example's own [`Accel`], so the two time the same queries.
 
 #[path = "../benches/common/mod.rs"]
 mod common;

@@ -30,15 +30,15 @@
 //! Both levels use the same 8-wide node ([`node::WideNode`], 256 bytes, four cache lines): the
 //! eight children's boxes stored as six rows of eight floats (min x, max x, min y, …), so that
 //! one AVX2 load brings one plane of all eight children and a node visit is a couple of dozen
-//! vector instructions, eight 32-bit child references whose top bit marks a leaf, and per
-//! child the lines of leaf blocks that follow it in memory (so a walk requests them with it). Bounds stay
-//! full-precision floats: compressed nodes (8-bit child planes, as in the compressed wide BVH
-//! that obvhs uses) save memory but cost a decompression per visit, and exact boxes are what
-//! the conservative slab test below reasons about. A bottom-level leaf is one block of up to
-//! four triangles ([`node::TriBlock`], 160 bytes) holding the vertices themselves in
-//! structure-of-arrays form, so a leaf test reads one contiguous block and follows no index;
-//! a bottom level keeps nodes and blocks in one [`node::Arena`], each node followed by its
-//! own leaf blocks; the top level's leaves are instance indices.
+//! vector instructions, eight 32-bit child references whose top bit marks a leaf, and per child
+//! the lines of leaf blocks that follow it in memory (so a walk requests them with it). Bounds
+//! stay full-precision floats: compressed nodes (8-bit child planes, as in the compressed wide
+//! BVH that obvhs uses) save memory but cost a decompression per visit, and exact boxes are
+//! what the conservative slab test below reasons about. A bottom-level leaf is one block of up
+//! to four triangles ([`node::TriBlock`], 160 bytes) holding the vertices themselves in
+//! structure-of-arrays form, so a leaf test reads one contiguous block and follows no index; a
+//! bottom level keeps nodes and blocks in one [`node::Arena`], each node followed by its own
+//! leaf blocks; the top level's leaves are instance indices.
 //!
 //! # Build
 //!

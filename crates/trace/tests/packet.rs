@@ -8,6 +8,7 @@ mod common;
 use common::*;
 use glam::{Affine3A, Vec3};
 use proptest::prelude::*;
+use renderlab_trace::traverse::backend::{PacketBounds, RayQuery};
 use renderlab_trace::{brute, Blas, Hit, Instance, Ray, Tlas, PACKET};
 
 /// Checks one packet on every kernel's hierarchy.
@@ -281,7 +282,7 @@ fn vector_grid_nodes(n: usize) -> Option<Vec<renderlab_trace::node::WideNode>> {
 #[cfg(target_arch = "x86_64")]
 fn the_tree_node_test_agrees_with_the_chain() {
     use renderlab_trace::traverse::avx2::Avx2;
-    use renderlab_trace::traverse::backend::{Backend, RayQuery};
+    use renderlab_trace::traverse::backend::Backend;
     use renderlab_trace::traverse::scalar::Scalar;
     let Some(nodes) = vector_grid_nodes(12) else { return };
     let mut rnd = uniform(11);
@@ -331,7 +332,7 @@ fn the_tree_node_test_agrees_with_the_chain() {
 fn packet_node_tests_agree_between_kernels() {
     use renderlab_trace::traverse::avx2::Avx2;
     use renderlab_trace::traverse::avx512::Avx512;
-    use renderlab_trace::traverse::backend::{Backend, RayQuery, Rows};
+    use renderlab_trace::traverse::backend::{Backend, Rows};
     use renderlab_trace::traverse::scalar::Scalar;
     use std::mem::MaybeUninit;
     let Some(nodes) = vector_grid_nodes(24) else { return };
@@ -410,7 +411,7 @@ fn packet_node_tests_agree_between_kernels() {
 #[cfg(target_arch = "x86_64")]
 fn whole_packet_node_tests_bound_each_rays_test() {
     use renderlab_trace::traverse::avx2::Avx2;
-    use renderlab_trace::traverse::backend::{Backend, PacketBounds, RayQuery};
+    use renderlab_trace::traverse::backend::Backend;
     use renderlab_trace::traverse::scalar::Scalar;
     let Some(nodes) = vector_grid_nodes(24) else { return };
     let mut rnd = uniform(11);
@@ -430,21 +431,8 @@ fn whole_packet_node_tests_bound_each_rays_test() {
                 RayQuery::new(&r).unwrap()
             })
             .collect();
-        let range = |f: &dyn Fn(&RayQuery) -> f32| {
-            queries
-                .iter()
-                .fold([f32::INFINITY, f32::NEG_INFINITY], |[lo, hi], q| [lo.min(f(q)), hi.max(f(q))])
-        };
-        let inv = [0, 1, 2].map(|a| range(&|q: &RayQuery| q.inv[a]));
-        let Some(b) = PacketBounds::new(
-            eye.to_array(),
-            inv,
-            range(&|q: &RayQuery| q.t_min),
-            range(&|q: &RayQuery| q.t_max)[1],
-        ) else {
-            continue;
-        };
-        let t_low = range(&|q: &RayQuery| q.t_max)[0];
+        let Some(b) = bounds_of(&queries) else { continue };
+        let t_low = range_of(&queries, |q| q.t_max)[0];
         for node in &nodes {
             let scalar = b.decide(node, t_low);
             // SAFETY: the CPU has AVX2 and FMA (checked above).
@@ -576,7 +564,7 @@ proptest! {
 /// # Safety
 /// The CPU has `B`'s features.
 unsafe fn check_bounds<B: renderlab_trace::traverse::backend::Backend>(rays: &[Ray]) {
-    use renderlab_trace::traverse::backend::{PacketBounds, RayQuery, Rows};
+    use renderlab_trace::traverse::backend::Rows;
     use std::mem::MaybeUninit;
     let mut rows = MaybeUninit::<Rows>::uninit();
     let mut t_max = [f32::NEG_INFINITY; PACKET];
@@ -598,16 +586,24 @@ unsafe fn check_bounds<B: renderlab_trace::traverse::backend::Backend>(rays: &[R
     }
     let queries: Vec<RayQuery> = rays.iter().filter_map(RayQuery::new).collect();
     assert_eq!(valid.count_ones() as usize, queries.len());
-    let org = queries[0].org;
-    let range = |f: &dyn Fn(&RayQuery) -> f32| {
-        queries.iter().fold([f32::INFINITY, f32::NEG_INFINITY], |[lo, hi], q| [lo.min(f(q)), hi.max(f(q))])
-    };
-    let want = queries.iter().all(|q| q.org == org).then(|| {
-        let inv = [0, 1, 2].map(|a| range(&|q: &RayQuery| q.inv[a]));
-        PacketBounds::new(org, inv, range(&|q| q.t_min), range(&|q| q.t_max)[1])
-    });
     let got = B::bounds(&rows, valid, &t_max);
-    assert_eq!(format!("{got:?}"), format!("{:?}", want.flatten()), "rays {rays:?}");
+    assert_eq!(format!("{got:?}"), format!("{:?}", bounds_of(&queries)), "rays {rays:?}");
+}
+
+/// The least and greatest of `f` over `queries`.
+fn range_of(queries: &[RayQuery], f: impl Fn(&RayQuery) -> f32) -> [f32; 2] {
+    queries.iter().fold([f32::INFINITY, f32::NEG_INFINITY], |[lo, hi], q| [lo.min(f(q)), hi.max(f(q))])
+}
+
+/// The packet bounds of rays set up as `queries`, from each ray's own setup: `None` where
+/// their origins differ (or [`PacketBounds::new`] refuses the ranges).
+fn bounds_of(queries: &[RayQuery]) -> Option<PacketBounds> {
+    let org = queries.first()?.org;
+    if queries.iter().any(|q| q.org != org) {
+        return None;
+    }
+    let inv = [0, 1, 2].map(|a| range_of(queries, |q| q.inv[a]));
+    PacketBounds::new(org, inv, range_of(queries, |q| q.t_min), range_of(queries, |q| q.t_max)[1])
 }
 
 #[test]

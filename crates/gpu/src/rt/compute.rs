@@ -3,15 +3,16 @@
 //!
 //! # Layout
 //!
-//! The 8-wide nodes are uploaded in the CPU's node layout less its padding (224 bytes: six
-//! rows of eight child bounds, then eight child references), from the separate-array form of
-//! each mesh's hierarchy (`Blas::indexed`), so the GPU walks the very tree the CPU walks. One node buffer holds the top level first, then every mesh's nodes;
-//! one block buffer every mesh's 4-triangle leaf blocks (160 bytes, vertices in
-//! structure-of-arrays form); an instance record (64 bytes) holds the world-to-object rows,
-//! the mesh's root reference, where its nodes and blocks start, and its mask. Child references
-//! stay local to their mesh, and the walk adds the instance's bases. A wide node's six rows
-//! read as twelve `vec4`s, so one visit is six slab tests of four children at a time; a
-//! block's rows are the four triangles' coordinates, so the triangle test runs on four lanes.
+//! The 8-wide nodes are uploaded in the CPU's node layout less its padding (224 bytes: six rows
+//! of eight child bounds, then eight child references), from the separate-array form of each
+//! mesh's hierarchy (`Blas::indexed`), so the GPU walks the very tree the CPU walks. One node
+//! buffer holds the top level first, then every mesh's nodes; one block buffer every mesh's
+//! 4-triangle leaf blocks (160 bytes, vertices in structure-of-arrays form); an instance record
+//! (64 bytes) holds the world-to-object rows, the mesh's root reference, where its nodes and
+//! blocks start, and its mask. Child references stay local to their mesh, and the walk adds the
+//! instance's bases. A wide node's six rows read as twelve `vec4`s, so one visit is six slab
+//! tests of four children at a time; a block's rows are the four triangles' coordinates, so the
+//! triangle test runs on four lanes.
 //!
 //! # Agreement with the CPU
 //!
