@@ -92,6 +92,7 @@ pub mod kernel;
 pub mod lanes;
 pub mod node;
 pub mod packet;
+mod pages;
 pub mod query;
 pub mod ray;
 pub mod tlas;

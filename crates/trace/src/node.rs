@@ -10,6 +10,7 @@
 //! no slab test accepts, so the traversal needs no child count.
 
 use crate::aabb::Aabb;
+use crate::pages::Lines;
 use glam::Vec3;
 
 /// Children per node.
@@ -145,11 +146,6 @@ impl Nodes for [WideNode] {
 /// The bytes of one reference unit of an [`Arena`].
 pub const UNIT: usize = 32;
 
-/// One cache line of an [`Arena`]'s storage (the alignment of its nodes).
-#[derive(Clone, Copy, Debug)]
-#[repr(C, align(64))]
-struct Line([u8; 64]);
-
 /// A bottom level's nodes and leaf blocks in one allocation, depth first, each node followed
 /// by its leaf children's blocks and then its node children's subtrees: a node and the leaves
 /// a ray tests after it share memory pages and lie where the hardware's stream prefetch looks
@@ -157,10 +153,12 @@ struct Line([u8; 64]);
 /// nodes start on a cache line. Measured against separate node and block arrays (the same
 /// walk, `profile_set`, 5 alternating rounds): single rays on the meshes larger than the
 /// caches +1 to +6 %, instanced shadow rays +10 %; and with a node's leaf lines requested
-/// when the node is ([`WideNode::after`]), a further +4 to +20 %.
+/// when the node is ([`WideNode::after`]), a further +4 to +20 %. A large arena lies on 2 MiB
+/// pages where the operating system offers them (Linux's transparent huge pages), so that its
+/// scattered reads seldom miss the address translation cache as well.
 #[derive(Clone, Default)]
 pub struct Arena {
-    lines: Vec<Line>,
+    lines: Lines,
     nodes: usize,
     blocks: usize,
 }
@@ -231,7 +229,7 @@ impl Arena {
             bytes / UNIT < LEAF_BIT as usize,
             "a hierarchy of {bytes} bytes is past an arena's references"
         );
-        let mut arena = Arena { lines: vec![Line([0; 64]); bytes.div_ceil(64)], nodes: 0, blocks: 0 };
+        let mut arena = Arena { lines: Lines::zeroed(bytes.div_ceil(64)), nodes: 0, blocks: 0 };
         let mut at = 0;
         let root = put(nodes, blocks, root, &mut arena, &mut at);
         debug_assert_eq!(at, bytes);
@@ -241,10 +239,12 @@ impl Arena {
     /// Copies `x` to byte `at` (within the storage; a multiple of `x`'s alignment).
     fn write<T: Copy>(&mut self, at: usize, x: &T) {
         let size = std::mem::size_of::<T>();
-        assert!(at.is_multiple_of(std::mem::align_of::<T>()) && at + size <= self.lines.len() * 64);
+        assert!(
+            at.is_multiple_of(std::mem::align_of::<T>()) && at + size <= self.lines.as_slice().len() * 64
+        );
         // SAFETY: in bounds and aligned (checked above); `T` is plain data (`Copy`, no padding
         // read back as anything but bytes of the same type).
-        unsafe { std::ptr::write((self.lines.as_mut_ptr() as *mut u8).add(at) as *mut T, *x) }
+        unsafe { std::ptr::write((self.lines.as_mut_slice().as_mut_ptr() as *mut u8).add(at) as *mut T, *x) }
     }
 
     /// The leaf block with reference `r` (with or without [`LEAF_BIT`]).
@@ -254,8 +254,8 @@ impl Arena {
     #[inline(always)]
     pub unsafe fn block(&self, r: u32) -> &TriBlock {
         let at = ((r & !LEAF_BIT) as usize) * UNIT;
-        debug_assert!(at + BLOCK_BYTES <= self.lines.len() * 64);
-        &*((self.lines.as_ptr() as *const u8).add(at) as *const TriBlock)
+        debug_assert!(at + BLOCK_BYTES <= self.lines.as_slice().len() * 64);
+        &*((self.lines.as_slice().as_ptr() as *const u8).add(at) as *const TriBlock)
     }
 
     /// Wide nodes.
@@ -270,7 +270,7 @@ impl Arena {
 
     /// Bytes of storage (nodes, blocks and the padding that keeps nodes on cache lines).
     pub fn bytes(&self) -> usize {
-        self.lines.len() * 64
+        self.lines.as_slice().len() * 64
     }
 
     /// The hierarchy from `root` with nodes and blocks in separate arrays, in the arena's
@@ -326,8 +326,8 @@ impl Nodes for Arena {
     #[inline(always)]
     unsafe fn node(&self, r: u32) -> &WideNode {
         let at = (r as usize) * UNIT;
-        debug_assert!(at.is_multiple_of(64) && at + NODE_BYTES <= self.lines.len() * 64);
-        &*((self.lines.as_ptr() as *const u8).add(at) as *const WideNode)
+        debug_assert!(at.is_multiple_of(64) && at + NODE_BYTES <= self.lines.as_slice().len() * 64);
+        &*((self.lines.as_slice().as_ptr() as *const u8).add(at) as *const WideNode)
     }
 
     fn get(&self, r: u32) -> &WideNode {
