@@ -1,12 +1,12 @@
 //! POM on the packed map, the march of POM's `simd` kernel: the layered march, its bound and
 //! its interpolation are the thesis's (see [`crate::march::layered`]); only the depths are
 //! the packed map's 16-bit ones. Non-finite inputs count as zero (as in cone-newton's
-//! kernels). This file holds the layer rules ([`LayerRule`]) and the per-ray set-up and
-//! result that the scalar and vector kernels ([`crate::simd`]) share. The same lanes run
+//! kernels). This file holds the layer rules ([`LayerRule`]) and the per-ray set-up that the
+//! scalar and vector kernels ([`crate::simd`]) share (the vector kernel finishes its lanes
+//! with [`crate::march::layered::interpolate`]'s operations in lanes). The same lanes run
 //! steep parallax (no interpolation) and relief mapping (the march, then a bisection of the
 //! last layer's bracket).
 
-use crate::march::layered::{interpolate, March};
 use crate::trace::{uv_per_depth, ReliefHit, ReliefInputs};
 use glam::{Vec2, Vec3};
 
@@ -138,45 +138,4 @@ pub(crate) fn bracket(
     let dp = if dp.is_finite() { dp } else { Vec2::ZERO };
     let uv0 = if uv.is_finite() { uv } else { Vec2::ZERO };
     Some((uv0, dp, hit.depth - layer_depth, hit.depth))
-}
-
-/// The UV of layer `i`, as the layered march computes it.
-#[inline(always)]
-fn layer_uv(uv0: Vec2, step: Vec2, i: u32) -> Vec2 {
-    if i == 0 {
-        uv0
-    } else {
-        uv0 + step * i as f32
-    }
-}
-
-/// The result once the march stopped at layer `i` (interpolated when `rule` says so), with
-/// depth-map values `map` there and `prev_map` one layer up (as
-/// [`crate::march::layered::interpolate`] finishes the march).
-#[inline(always)]
-pub(crate) fn finish<R: LayerRule>(
-    rule: &R,
-    layers: u32,
-    uv0: Vec2,
-    step: Vec2,
-    i: u32,
-    map: f32,
-    prev_map: f32,
-) -> ReliefHit {
-    let layer_depth = 1.0 / layers.max(1) as f32;
-    let layer = i as f32 * layer_depth;
-    if !rule.interpolates() {
-        return ReliefHit { uv: layer_uv(uv0, step, i), depth: layer, layers };
-    }
-    let prev_layer = if i == 0 { 0.0 } else { layer - layer_depth };
-    let m = March {
-        prev_uv: layer_uv(uv0, step, i.saturating_sub(1)),
-        prev_map,
-        prev_layer,
-        uv: layer_uv(uv0, step, i),
-        map,
-        layer,
-    };
-    let (uv, depth) = interpolate(&m);
-    ReliefHit { uv, depth, layers }
 }

@@ -18,7 +18,7 @@ use std::arch::x86_64::*;
 const GROUP: usize = 2 * LANES;
 
 macro_rules! kernel {
-    ($name:ident, $features:literal) => {
+    ($name:ident, $features:literal, $fetch:ident) => {
         /// Bisects, `steps` times, the bracket of each of `out`'s hits (the march's results
         /// for `rays`), replacing the hit by the bracket's final midpoint.
         #[target_feature(enable = $features)]
@@ -63,7 +63,7 @@ macro_rules! kernel {
                             let mid = _mm256_mul_ps(half, _mm256_add_ps(va[g], vb[g]));
                             let u = _mm256_add_ps(vu0[g], _mm256_mul_ps(vdu[g], mid));
                             let v = _mm256_add_ps(vv0[g], _mm256_mul_ps(vdv[g], mid));
-                            let depth = packed_depth!(k, u, v);
+                            let depth = packed_depth!($fetch, k, u, v);
                             // `mid >= depth` (false for NaN, as in the scalar comparison).
                             let below = _mm256_cmp_ps::<_CMP_GE_OQ>(mid, depth);
                             vb[g] = _mm256_blendv_ps(vb[g], mid, below);
@@ -97,5 +97,5 @@ macro_rules! kernel {
     };
 }
 
-kernel!(refine_row, "avx2");
-kernel!(refine_row_avx512, "avx2,avx512f,avx512vl");
+kernel!(refine_row, "avx2", loads);
+kernel!(refine_row_avx512, "avx2,avx512f,avx512vl", gathers);

@@ -78,7 +78,7 @@ pub(crate) unsafe fn trace_row<C: Counter>(
             let ld = |a: &[f32; LANES]| _mm256_loadu_ps(a.as_ptr());
             (ld(&u), ld(&v), ld(&du), ld(&dv))
         };
-        let depth = packed_depth!(k, uu, vv);
+        let depth = packed_depth!(loads, k, uu, vv);
         let hu = _mm256_add_ps(uu, _mm256_mul_ps(du, depth));
         let hv = _mm256_add_ps(vv, _mm256_mul_ps(dv, depth));
         if m == LANES {

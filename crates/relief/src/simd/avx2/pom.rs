@@ -7,7 +7,7 @@
 use super::gather::{packed_depth, DepthConsts};
 use super::{LANES, RANKS};
 use crate::maps::packed::PackedRelief;
-use crate::march::pom_lanes::{finish, LayerRule};
+use crate::march::pom_lanes::LayerRule;
 use crate::trace::{ReliefHit, ReliefInputs, MIN_VIEW_Z};
 use glam::{Vec2, Vec3};
 use renderlab_core::counter::Counter;
@@ -66,7 +66,7 @@ unsafe fn setup_columns(height_scale: f32, rays: &[(Vec2, Vec3)], cols: [&mut Ve
 }
 
 macro_rules! kernel {
-    ($name:ident, $features:literal) => {
+    ($name:ident, $features:literal, $fetch:ident) => {
         #[target_feature(enable = $features)]
         pub(crate) unsafe fn $name<R: LayerRule, C: Counter>(
             rule: &R,
@@ -148,7 +148,7 @@ macro_rules! kernel {
                     let u = _mm256_blendv_ps(_mm256_add_ps(g.u0, _mm256_mul_ps(g.su, fi)), g.u0, first);
                     let v = _mm256_blendv_ps(_mm256_add_ps(g.v0, _mm256_mul_ps(g.sv, fi)), g.v0, first);
                     // PackedRelief::depth, from the depth plane.
-                    let m = packed_depth!(k, u, v);
+                    let m = packed_depth!($fetch, k, u, v);
                     // Layer 0 has no layer above: its own value.
                     let prev = _mm256_blendv_ps(g.prev, m, first);
                     let go_on = _mm256_and_ps(
@@ -157,19 +157,57 @@ macro_rules! kernel {
                     );
                     let done = (!(_mm256_movemask_ps(go_on) as u32)) & 0xff & g.active;
                     if done != 0 {
-                        let (mut mi, mut mm, mut mp, mut own) =
-                            ([0i32; LANES], [0.0f32; LANES], [0.0f32; LANES], [0i32; LANES]);
-                        _mm256_storeu_si256(mi.as_mut_ptr() as *mut __m256i, g.i);
-                        _mm256_storeu_ps(mm.as_mut_ptr(), m);
-                        _mm256_storeu_ps(mp.as_mut_ptr(), prev);
+                        // Every lane's result at once, with the operations and order of the
+                        // scalar twin's ending ([`crate::march::layered::interpolate`]), then the
+                        // finished lanes' results written: measured in one program against the
+                        // ending lane by lane, the whole frame's medians −5 to −10 % for POM-32,
+                        // −9 to −12 % for adaptive POM, −2 to −6 % for relief mapping.
+                        let one = _mm256_set1_ps(1.0);
+                        let zero = _mm256_setzero_ps();
+                        let layer_depth =
+                            _mm256_div_ps(one, _mm256_cvtepi32_ps(_mm256_max_epi32(g.nl, one_i)));
+                        let layer = _mm256_mul_ps(fi, layer_depth);
+                        let (hu, hv, depth) = if rule.interpolates() {
+                            let ip = _mm256_max_epi32(_mm256_sub_epi32(g.i, one_i), zero_i);
+                            let fp = _mm256_cvtepi32_ps(ip);
+                            let p0 = _mm256_castsi256_ps(_mm256_cmpeq_epi32(ip, zero_i));
+                            let pu = _mm256_blendv_ps(_mm256_add_ps(g.u0, _mm256_mul_ps(g.su, fp)), g.u0, p0);
+                            let pv = _mm256_blendv_ps(_mm256_add_ps(g.v0, _mm256_mul_ps(g.sv, fp)), g.v0, p0);
+                            let prev_layer = _mm256_blendv_ps(_mm256_sub_ps(layer, layer_depth), zero, first);
+                            let after = _mm256_sub_ps(m, layer);
+                            let before = _mm256_sub_ps(prev, prev_layer);
+                            let denom = _mm256_sub_ps(after, before);
+                            let q = _mm256_div_ps(after, denom);
+                            // `clamp(0, 1)` as `f32::clamp` (a −0 stays −0).
+                            let q = _mm256_blendv_ps(q, zero, _mm256_cmp_ps::<_CMP_LT_OQ>(q, zero));
+                            let q = _mm256_blendv_ps(q, one, _mm256_cmp_ps::<_CMP_GT_OQ>(q, one));
+                            let big = _mm256_cmp_ps::<_CMP_GT_OQ>(
+                                _mm256_andnot_ps(_mm256_set1_ps(-0.0), denom),
+                                _mm256_set1_ps(1e-12),
+                            );
+                            let w = _mm256_and_ps(q, big);
+                            let w1 = _mm256_sub_ps(one, w);
+                            (
+                                _mm256_add_ps(_mm256_mul_ps(pu, w), _mm256_mul_ps(u, w1)),
+                                _mm256_add_ps(_mm256_mul_ps(pv, w), _mm256_mul_ps(v, w1)),
+                                _mm256_add_ps(_mm256_mul_ps(prev_layer, w), _mm256_mul_ps(layer, w1)),
+                            )
+                        } else {
+                            (u, v, layer)
+                        };
+                        let (mut ou, mut ov, mut od, mut on, mut own) =
+                            ([0.0f32; LANES], [0.0f32; LANES], [0.0f32; LANES], [0i32; LANES], [0i32; LANES]);
+                        _mm256_storeu_ps(ou.as_mut_ptr(), hu);
+                        _mm256_storeu_ps(ov.as_mut_ptr(), hv);
+                        _mm256_storeu_ps(od.as_mut_ptr(), depth);
+                        _mm256_storeu_si256(on.as_mut_ptr() as *mut __m256i, g.nl);
                         _mm256_storeu_si256(own.as_mut_ptr() as *mut __m256i, g.owner);
                         let mut f = done;
                         while f != 0 {
                             let l = f.trailing_zeros() as usize;
                             f &= f - 1;
-                            let r = own[l] as usize;
-                            let (uv0, step) = (Vec2::new(cu[r], cv[r]), Vec2::new(csu[r], csv[r]));
-                            out[r] = finish(rule, cn[r] as u32, uv0, step, mi[l] as u32, mm[l], mp[l]);
+                            out[own[l] as usize] =
+                                ReliefHit { uv: Vec2::new(ou[l], ov[l]), depth: od[l], layers: on[l] as u32 };
                         }
                     }
                     // Going on: this layer becomes the previous one.
@@ -186,14 +224,14 @@ macro_rules! kernel {
     };
 }
 
-kernel!(march_row, "avx2");
+kernel!(march_row, "avx2", loads);
 
 thread_local! {
     /// Each thread's ray columns (entry, step, layer depth and count), reused from row to
     /// row so that a frame allocates nothing.
     static COLUMNS: std::cell::Cell<[Vec<f32>; 6]> = const { std::cell::Cell::new([const { Vec::new() }; 6]) };
 }
-kernel!(march_row_avx512, "avx2,avx512f,avx512vl");
+kernel!(march_row_avx512, "avx2,avx512f,avx512vl", gathers);
 
 /// Stamps out the whole trace of a row for one build of the kernels: the layered march in
 /// lanes, then, for relief mapping's rules, the bisection pass ([`super::bisect`]). Without

@@ -16,7 +16,7 @@ use std::arch::x86_64::*;
 const GROUP: usize = 2 * LANES;
 
 macro_rules! kernel {
-    ($name:ident, $features:literal) => {
+    ($name:ident, $features:literal, $fetch:ident) => {
         /// The soft-shadow factor of each hit of `hits` (lit by `points`' light) with
         /// `samples` samples, into `out`.
         #[target_feature(enable = $features)]
@@ -86,7 +86,7 @@ macro_rules! kernel {
                         let ray_depth = _mm256_sub_ps(vd[g], risen);
                         let su = _mm256_add_ps(vu[g], _mm256_mul_ps(dlx[g], risen));
                         let sv = _mm256_add_ps(vv[g], _mm256_mul_ps(dly[g], risen));
-                        let depth = packed_depth!(k, su, sv);
+                        let depth = packed_depth!($fetch, k, su, sv);
                         let pen = _mm256_mul_ps(_mm256_sub_ps(ray_depth, depth), weight);
                         // `occlusion.max(pen)` keeps `occlusion` when `pen` is NaN.
                         occ[g] = _mm256_max_ps(pen, occ[g]);
@@ -109,5 +109,5 @@ macro_rules! kernel {
     };
 }
 
-kernel!(soft_shadow_row, "avx2");
-kernel!(soft_shadow_row_avx512, "avx2,avx512f,avx512vl");
+kernel!(soft_shadow_row, "avx2", loads);
+kernel!(soft_shadow_row_avx512, "avx2,avx512f,avx512vl", gathers);
