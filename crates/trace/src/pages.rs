@@ -5,14 +5,15 @@
 //! with 4 KiB pages most of those reads also miss the processor's address translation cache
 //! (2048 entries on AMD Zen 3, 8 MiB of 4 KiB pages), each miss a walk of the page tables
 //! before the line itself is asked for. A storage of at least [`ADVISE_FROM`] bytes is
-//! therefore aligned to [`HUGE`] and, on Linux, advised as a candidate for transparent huge pages
-//! (`madvise(MADV_HUGEPAGE)`, which the kernel honours in its default `madvise` mode) before
-//! it is first written, so the pages are 2 MiB from the first fault. Embree's allocator does
-//! the same for its hierarchies. Measured (`scripts/paired_passes.py`, single rays, the
-//! scenes of BENCHMARKS.md's Embree section, AMD Zen 3): the 1M-triangle terrain's bounce
-//! rays +6 to +7 %, the blobs' +8 %, coherent primary and shadow rays unchanged.
-//! Elsewhere, or where the kernel declines, the storage is ordinary pages and nothing else
-//! differs.
+//! therefore aligned to [`HUGE`] and, on Linux, advised as a candidate for transparent huge
+//! pages (`madvise(MADV_HUGEPAGE)`, which the kernel honours in its `always` and `madvise`
+//! modes) before it is first written, so the pages are 2 MiB from the first fault. Embree's
+//! process holds its hierarchy on them too (61–65 MB of them while it traces the terrain).
+//! Measured (`scripts/paired_passes.py`, single rays, the scenes of BENCHMARKS.md's Embree
+//! section, AMD Zen 3, medians of 3 or 4 rounds): the 1M-triangle terrain's bounce rays +4 to
+//! +6 % (its packets +4 %), the 3.3M-triangle blobs' primary, bounce and shadow rays +7 to
+//! +9 %, the terrain's primary and shadow rays unchanged. Elsewhere, or where the kernel
+//! declines, the storage is ordinary pages and nothing else differs.
 
 use std::alloc::{alloc, dealloc, handle_alloc_error, Layout};
 use std::ptr::NonNull;
@@ -26,10 +27,9 @@ pub(crate) struct Line(pub [u8; 64]);
 pub(crate) const HUGE: usize = 2 << 20;
 
 /// Bytes from which a storage is aligned to, and advised onto, large pages: what the address
-/// translation cache of 4 KiB pages covers (8 MiB on Zen 3). A smaller storage gains nothing
-/// there, and on large pages its lines fall into the caches' sets by their virtual addresses
-/// alone (with 4 KiB pages, the physical pages scatter them): the 69k-triangle bunny's
-/// hierarchy (4 MB) read 2 to 6 % slower for primary rays on them.
+/// translation cache of 4 KiB pages covers (8 MiB on Zen 3). A smaller storage has nothing to
+/// gain there: the 69k-triangle bunny's hierarchy (4 MB) on large pages read 2 to 3 % slower
+/// for primary rays, within the noise.
 pub(crate) const ADVISE_FROM: usize = 8 << 20;
 
 /// Zeroed cache lines in one allocation, on large pages from [`ADVISE_FROM`] bytes (see the
