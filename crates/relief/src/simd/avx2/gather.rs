@@ -105,28 +105,22 @@ macro_rules! plane_words {
                 ($p.add(ix[$k] as usize) as *const i32).read_unaligned()
             };
         }
-        (
-            _mm256_setr_epi32(
-                at!(d, 0),
-                at!(d, 1),
-                at!(d, 2),
-                at!(d, 3),
-                at!(d, 4),
-                at!(d, 5),
-                at!(d, 6),
-                at!(d, 7),
-            ),
-            _mm256_setr_epi32(
-                at!(b, 0),
-                at!(b, 1),
-                at!(b, 2),
-                at!(b, 3),
-                at!(b, 4),
-                at!(b, 5),
-                at!(b, 6),
-                at!(b, 7),
-            ),
-        )
+        // The eight lanes' words from plane row pointer `p`.
+        macro_rules! words {
+            ($p:expr) => {
+                _mm256_setr_epi32(
+                    at!($p, 0),
+                    at!($p, 1),
+                    at!($p, 2),
+                    at!($p, 3),
+                    at!($p, 4),
+                    at!($p, 5),
+                    at!($p, 6),
+                    at!($p, 7),
+                )
+            };
+        }
+        (words!(d), words!(b))
     }};
 }
 pub(crate) use plane_words;
