@@ -4,7 +4,7 @@
 //!
 //! Meshes ([`MESHES`]), each with its own view ([`View`]): a procedural terrain of 708 × 708
 //! quads (1,002,528 triangles), displaced by a sum of ridged sine octaves into hills and
-//! canyons; a closed lumpy blob of the Stanford bunny's size (69,312 triangles, [`blob`]); and
+//! canyons; a closed lumpy blob of the Stanford bunny's size (69,312 triangles, [`blob()`]); and
 //! 48 transformed copies of the blob flattened into one mesh (3,326,976 triangles). Primary
 //! rays: a 512 × 512 pinhole camera, in tiles of 8 × 8 pixels (tiles row by row, pixels in
 //! Morton order inside a tile), so that every 8 consecutive rays are a 4 × 2 block of pixels,

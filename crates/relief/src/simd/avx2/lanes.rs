@@ -274,12 +274,13 @@ impl RayLanes {
 }
 
 /// Declares, in a cone kernel's file, `Group` (one vector of rays: the constants of each
-/// lane's ray and its variable state, the fields of [`State`], with `side` where the march
-/// keeps Illinois's memory there) and `refill(march, group, free, next, n, columns)`, which
-/// loads the next rays (from `next` on, at most `n`) into the lanes set in `free` (a bit per
-/// lane), each in the state `start(march)`, leaves lanes without a ray inactive and returns
-/// the new `next`. Stamped into each kernel's file (as the kernels are for each build), so
-/// that each kernel's code is compiled as if written there.
+/// lane's ray and its variable state, the fields of
+/// [`State`](crate::march::cone_lanes::State), with `side` where the march keeps Illinois's
+/// memory there) and `refill(march, group, free, next, n, columns)`, which loads the next rays
+/// (from `next` on, at most `n`) into the lanes set in `free` (a bit per lane), each in the
+/// state `start(march)`, leaves lanes without a ray inactive and returns the new `next`.
+/// Stamped into each kernel's file (as the kernels are for each build), so that each kernel's
+/// code is compiled as if written there.
 macro_rules! lane_group {
     ($march:ty, $start:path $(, $side:ident)?) => {
         /// One vector of rays: the constants of each lane's ray and its variable state

@@ -30,9 +30,9 @@ struct Group {
     active: u32,
 }
 
-/// [`setup`] for every ray, eight at a time (the same operations in the same order): the
-/// entry, the per-layer step and the layer depth of each ray into the columns, from its layer
-/// count in `counts`.
+/// [`setup`](crate::march::pom_lanes::setup) for every ray, eight at a time (the same
+/// operations in the same order): the entry, the per-layer step and the layer depth of each
+/// ray into the columns, from its layer count in `counts`.
 #[inline]
 #[target_feature(enable = "avx2")]
 unsafe fn setup_columns(height_scale: f32, rays: &[(Vec2, Vec3)], cols: [&mut Vec<f32>; 5], counts: &[f32]) {
