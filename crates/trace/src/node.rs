@@ -239,12 +239,10 @@ impl Arena {
     /// Copies `x` to byte `at` (within the storage; a multiple of `x`'s alignment).
     fn write<T: Copy>(&mut self, at: usize, x: &T) {
         let size = std::mem::size_of::<T>();
-        assert!(
-            at.is_multiple_of(std::mem::align_of::<T>()) && at + size <= self.lines.as_slice().len() * 64
-        );
+        assert!(at.is_multiple_of(std::mem::align_of::<T>()) && at + size <= self.lines.len() * 64);
         // SAFETY: in bounds and aligned (checked above); `T` is plain data (`Copy`, no padding
         // read back as anything but bytes of the same type).
-        unsafe { std::ptr::write((self.lines.as_mut_slice().as_mut_ptr() as *mut u8).add(at) as *mut T, *x) }
+        unsafe { std::ptr::write((self.lines.as_mut_ptr() as *mut u8).add(at) as *mut T, *x) }
     }
 
     /// The leaf block with reference `r` (with or without [`LEAF_BIT`]).
@@ -254,8 +252,8 @@ impl Arena {
     #[inline(always)]
     pub unsafe fn block(&self, r: u32) -> &TriBlock {
         let at = ((r & !LEAF_BIT) as usize) * UNIT;
-        debug_assert!(at + BLOCK_BYTES <= self.lines.as_slice().len() * 64);
-        &*((self.lines.as_slice().as_ptr() as *const u8).add(at) as *const TriBlock)
+        debug_assert!(at + BLOCK_BYTES <= self.lines.len() * 64);
+        &*((self.lines.as_ptr() as *const u8).add(at) as *const TriBlock)
     }
 
     /// Wide nodes.
@@ -270,7 +268,7 @@ impl Arena {
 
     /// Bytes of storage (nodes, blocks and the padding that keeps nodes on cache lines).
     pub fn bytes(&self) -> usize {
-        self.lines.as_slice().len() * 64
+        self.lines.len() * 64
     }
 
     /// The hierarchy from `root` with nodes and blocks in separate arrays, in the arena's
@@ -326,8 +324,8 @@ impl Nodes for Arena {
     #[inline(always)]
     unsafe fn node(&self, r: u32) -> &WideNode {
         let at = (r as usize) * UNIT;
-        debug_assert!(at.is_multiple_of(64) && at + NODE_BYTES <= self.lines.as_slice().len() * 64);
-        &*((self.lines.as_slice().as_ptr() as *const u8).add(at) as *const WideNode)
+        debug_assert!(at.is_multiple_of(64) && at + NODE_BYTES <= self.lines.len() * 64);
+        &*((self.lines.as_ptr() as *const u8).add(at) as *const WideNode)
     }
 
     fn get(&self, r: u32) -> &WideNode {

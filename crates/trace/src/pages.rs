@@ -33,7 +33,7 @@ pub(crate) const HUGE: usize = 2 << 20;
 pub(crate) const ADVISE_FROM: usize = 8 << 20;
 
 /// Zeroed cache lines in one allocation, on large pages from [`ADVISE_FROM`] bytes (see the
-/// module).
+/// module); read and written as a slice of lines, like the `Vec<Line>` it replaces.
 pub(crate) struct Lines {
     ptr: NonNull<Line>,
     len: usize,
@@ -69,18 +69,22 @@ impl Lines {
         let align = if bytes >= ADVISE_FROM { HUGE } else { 64 };
         (len > 0).then(|| Layout::from_size_align(bytes, align).expect("storage size overflows"))
     }
+}
 
-    /// The lines, as a slice.
+impl std::ops::Deref for Lines {
+    type Target = [Line];
+
     #[inline(always)]
-    pub(crate) fn as_slice(&self) -> &[Line] {
+    fn deref(&self) -> &[Line] {
         // SAFETY: `ptr` holds `len` initialised lines (or is dangling with `len` 0).
         unsafe { std::slice::from_raw_parts(self.ptr.as_ptr(), self.len) }
     }
+}
 
-    /// The lines, mutably.
+impl std::ops::DerefMut for Lines {
     #[inline(always)]
-    pub(crate) fn as_mut_slice(&mut self) -> &mut [Line] {
-        // SAFETY: as in `as_slice`, and `self` is borrowed uniquely.
+    fn deref_mut(&mut self) -> &mut [Line] {
+        // SAFETY: as in `deref`, and `self` is borrowed uniquely.
         unsafe { std::slice::from_raw_parts_mut(self.ptr.as_ptr(), self.len) }
     }
 }
@@ -94,7 +98,7 @@ impl Default for Lines {
 impl Clone for Lines {
     fn clone(&self) -> Lines {
         let mut copy = Lines::zeroed(self.len);
-        copy.as_mut_slice().copy_from_slice(self.as_slice());
+        copy.copy_from_slice(self);
         copy
     }
 }
@@ -128,16 +132,16 @@ mod tests {
     fn storage_of_any_size_is_zeroed_aligned_and_copies() {
         for len in [0, 1, 3, ADVISE_FROM / 64 - 1, ADVISE_FROM / 64, ADVISE_FROM / 64 + 5] {
             let mut s = Lines::zeroed(len);
-            assert_eq!(s.as_slice().len(), len);
-            assert!(s.as_slice().iter().all(|l| l.0 == [0; 64]));
+            assert_eq!(s.len(), len);
+            assert!(s.iter().all(|l| l.0 == [0; 64]));
             let align = if len * 64 >= ADVISE_FROM { HUGE } else { 64 };
-            assert_eq!(s.as_slice().as_ptr() as usize % align, 0, "{len} lines");
-            if let Some(last) = s.as_mut_slice().last_mut() {
+            assert_eq!(s.as_ptr() as usize % align, 0, "{len} lines");
+            if let Some(last) = s.last_mut() {
                 last.0[63] = 7;
             }
             let c = s.clone();
-            assert_eq!(c.as_slice().len(), len);
-            assert_eq!(c.as_slice().last().map(|l| l.0[63]), (len > 0).then_some(7));
+            assert_eq!(c.len(), len);
+            assert_eq!(c.last().map(|l| l.0[63]), (len > 0).then_some(7));
         }
     }
 }
