@@ -10,7 +10,10 @@
 //! MESHES is a comma-separated list of `renderlab_trace::workload::MESHES` and `instances`
 //! (default all: the 1M-triangle terrain, the 69k-triangle blob, 48 blobs in one 3.3M-triangle
 //! mesh, and the same 48 blobs as instances of one blob: our `Tlas` against Embree's instances,
-//! tracing the flattened blobs' rays, hits numbered as in the flattened mesh). For each
+//! tracing the flattened blobs' rays, hits numbered as in the flattened mesh), or
+//! `small-blob`, which only runs when named: the blob with 1,728 triangles, whose hierarchy
+//! stays in a core's caches, so that the two libraries' arithmetic is compared apart from
+//! their waits for memory. For each
 //! mesh the example builds our hierarchy (median of 3 builds), makes its rays (primary rays in
 //! tiled Morton order, one diffuse bounce, shadow segments), writes them with the mesh to
 //! `out/embree/MESH.bin` and a depth image of the primary hits to `out/embree/MESH.pgm`. Then,
@@ -33,7 +36,7 @@ use common::{
 };
 use glam::Affine3A;
 use glam::Vec3;
-use renderlab_trace::workload::{blob, placements};
+use renderlab_trace::workload::{blob, placements, DIAGNOSTIC_MESHES};
 use renderlab_trace::{Blas, Hit, Instance, Ray, Tlas, PACKET};
 use std::collections::BTreeMap;
 use std::io::Write;
@@ -358,9 +361,10 @@ fn main() {
     let exe = Path::new(args.get(1).map_or("out/embree_bench", String::as_str)).to_path_buf();
     let reps: usize = args.get(2).map_or(5, |s| s.parse().expect("REPS"));
     let rounds: usize = args.get(3).map_or(2, |s| s.parse().expect("ROUNDS"));
-    let all: Vec<&'static str> = MESHES.iter().copied().chain(["instances"]).collect();
+    let default: Vec<&'static str> = MESHES.iter().copied().chain(["instances"]).collect();
+    let all: Vec<&'static str> = default.iter().copied().chain(DIAGNOSTIC_MESHES).collect();
     let names: Vec<&'static str> = match args.get(4) {
-        None => all.clone(),
+        None => default,
         Some(list) => list
             .split(',')
             .map(|n| *all.iter().find(|&&m| m == n).unwrap_or_else(|| panic!("meshes: {all:?}")))

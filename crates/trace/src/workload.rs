@@ -14,7 +14,7 @@
 
 mod blob;
 
-pub use blob::{blob, flatten, placements, BLOB_GRID, COPIES};
+pub use blob::{blob, blob_with, flatten, placements, BLOB_GRID, COPIES, SMALL_BLOB_GRID};
 
 use crate::{Blas, Ray};
 use glam::Vec3;
@@ -59,7 +59,11 @@ pub const BLOBS_VIEW: View = View {
 /// The benchmark meshes by name: `terrain`, `blob`, `blobs`.
 pub const MESHES: [&str; 3] = ["terrain", "blob", "blobs"];
 
-/// The mesh named `name` (one of [`MESHES`]) and its view, or `None`.
+/// Meshes that [`mesh`] also makes but the benchmarks leave out unless asked: `small-blob`,
+/// the blob with [`SMALL_BLOB_GRID`] (1,728 triangles), small enough to stay in a core's caches.
+pub const DIAGNOSTIC_MESHES: [&str; 1] = ["small-blob"];
+
+/// The mesh named `name` (one of [`MESHES`] or [`DIAGNOSTIC_MESHES`]) and its view, or `None`.
 pub fn mesh(name: &str) -> Option<(Vec<Vec3>, Vec<[u32; 3]>, View)> {
     Some(match name {
         "terrain" => {
@@ -68,6 +72,10 @@ pub fn mesh(name: &str) -> Option<(Vec<Vec3>, Vec<[u32; 3]>, View)> {
         }
         "blob" => {
             let (p, t) = blob();
+            (p, t, BLOB_VIEW)
+        }
+        "small-blob" => {
+            let (p, t) = blob_with(SMALL_BLOB_GRID);
             (p, t, BLOB_VIEW)
         }
         "blobs" => {

@@ -1,18 +1,37 @@
-//! The benchmark workload's meshes are what the comparisons say they are: the blob is closed
-//! (every edge shared by exactly two triangles, in opposite directions, so it is consistently
-//! wound) and of the stated size, and its copies are placed without changing it.
+//! The benchmark workload's meshes are what the comparisons say they are: the blob, at both
+//! its sizes, is closed (every edge shared by exactly two triangles, in opposite directions, so
+//! it is consistently wound) and of the stated size, and its copies are placed without changing
+//! it.
 
-use renderlab_trace::workload::{blob, flatten, placements, BLOB_GRID, COPIES};
+use glam::Vec3;
+use renderlab_trace::workload::{blob, flatten, mesh, placements, BLOB_GRID, COPIES, SMALL_BLOB_GRID};
 use std::collections::HashMap;
 
 #[test]
 fn the_blob_is_closed_and_consistently_wound() {
     let (pos, tris) = blob();
-    assert_eq!(tris.len(), 12 * BLOB_GRID * BLOB_GRID);
+    closed_and_wound(&pos, &tris, BLOB_GRID);
+}
+
+#[test]
+fn the_small_blob_is_the_blob_coarser() {
+    let (pos, tris, _) = mesh("small-blob").expect("a diagnostic mesh");
+    assert_eq!(tris.len(), 1728);
+    closed_and_wound(&pos, &tris, SMALL_BLOB_GRID);
+    // The same surface: the vertex in a cube corner's direction is the fine blob's.
+    let corner = |p: &[Vec3]| {
+        let d = Vec3::splat(-1.0).normalize();
+        p.iter().copied().find(|v| (v.normalize() - d).length() < 1e-6).expect("a corner vertex")
+    };
+    assert_eq!(corner(&pos), corner(&blob().0));
+}
+
+fn closed_and_wound(pos: &[Vec3], tris: &[[u32; 3]], grid: usize) {
+    assert_eq!(tris.len(), 12 * grid * grid);
     // A closed genus-0 mesh: V − E + F = 2, with E = 3F / 2.
     assert_eq!(pos.len() as i64 - (3 * tris.len() / 2) as i64 + tris.len() as i64, 2);
     let mut edges: HashMap<(u32, u32), i32> = HashMap::new();
-    for t in &tris {
+    for t in tris {
         for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
             *edges.entry((a, b)).or_default() += 1;
         }

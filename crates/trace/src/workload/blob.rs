@@ -14,6 +14,11 @@ use std::collections::HashMap;
 /// Quads along each edge of each cube face.
 pub const BLOB_GRID: usize = 76;
 
+/// Quads along each edge of each face of the small blob (1,728 triangles): a mesh whose
+/// hierarchy (about 100 kB) fits a core's second-level cache, so that a comparison on it
+/// measures the query's arithmetic and branches rather than its waits for memory.
+pub const SMALL_BLOB_GRID: usize = 12;
+
 /// Copies in the many-blobs scene.
 pub const COPIES: usize = 48;
 
@@ -35,7 +40,12 @@ fn radius(d: Vec3) -> f32 {
 
 /// The blob: positions and indexed triangles (closed, consistently wound outwards).
 pub fn blob() -> (Vec<Vec3>, Vec<[u32; 3]>) {
-    let n = BLOB_GRID as i32;
+    blob_with(BLOB_GRID)
+}
+
+/// The blob's surface sampled with `grid` quads along each cube edge (`12·grid²` triangles).
+pub fn blob_with(grid: usize) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    let n = grid as i32;
     let mut index: HashMap<(i32, i32, i32), u32> = HashMap::new();
     let mut pos = Vec::new();
     let mut vertex = |p: (i32, i32, i32)| {
@@ -46,7 +56,7 @@ pub fn blob() -> (Vec<Vec3>, Vec<[u32; 3]>) {
             pos.len() as u32 - 1
         })
     };
-    let mut tris = Vec::with_capacity(12 * BLOB_GRID * BLOB_GRID);
+    let mut tris = Vec::with_capacity(12 * grid * grid);
     // Each face: a fixed axis at 0 or n, the other two running over the lattice; (u, v) ordered
     // so that u × v points out of the cube.
     for axis in 0..3 {
