@@ -68,7 +68,7 @@ impl Blas {
         });
         let bounds = if hittable == 0 { Aabb::EMPTY } else { bvh.nodes[0].bounds() };
         drop(bvh);
-        let (arena, root) = Arena::new(&Indexed { nodes, blocks, root });
+        let (arena, root) = Arena::new(&Indexed { nodes, blocks, root })?;
         Ok(Blas { arena, root, kernel: crate::kernel::best(), bounds, triangles: count, hittable })
     }
 

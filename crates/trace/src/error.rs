@@ -23,10 +23,11 @@ pub enum BuildError {
         /// How many meshes there are.
         meshes: usize,
     },
-    /// More triangles in one mesh, or more instances, than the node encoding addresses.
+    /// More triangles in one mesh, or more instances, or a larger mesh hierarchy, than the
+    /// node encoding addresses.
     #[error("{count} {what} exceed the limit of {limit}")]
     TooMany {
-        /// "triangles" or "instances".
+        /// "triangles", "instances" or "bytes of a mesh's hierarchy".
         what: &'static str,
         /// How many were given.
         count: usize,

@@ -222,7 +222,7 @@ fn the_arena_holds_the_built_hierarchy_and_gives_it_back() {
         assert!(format!("{blas:?}").len() < 400, "{blas:?}");
         let one = blas.indexed();
         assert_eq!((one.nodes.len(), one.blocks.len()), (blas.node_count(), blas.block_count()));
-        let (arena, arena_root) = renderlab_trace::node::Arena::new(&one);
+        let (arena, arena_root) = renderlab_trace::node::Arena::new(&one).expect("a small arena");
         let Indexed { nodes, blocks, root } = arena.indexed(arena_root);
         assert_eq!(nodes, one.nodes);
         assert_eq!(root, one.root);
