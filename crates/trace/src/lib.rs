@@ -46,8 +46,9 @@
 //! the three axes, the cost counted in 4-triangle blocks so leaves come out full), in parallel
 //! with rayon (subtrees as tasks, the large top nodes binned in parallel chunks), and its
 //! result does not depend on the number of threads. It is then collapsed into 8-wide nodes
-//! the way Embree's wide builders do ([`build::collapse`]: open the child of largest surface
-//! area until a node has eight). Below a fixed depth the build splits at the object median,
+//! by a dynamic program that picks, of every way to group the binary nodes into wide ones, the
+//! one with the least expected node tests ([`build::collapse`]; fewer and fuller nodes than
+//! Embree's greedy opening of the largest child). Below a fixed depth the build splits at the object median,
 //! which bounds every path, so the traversal's stack is a fixed array that cannot overflow.
 //!
 //! # Traversal
