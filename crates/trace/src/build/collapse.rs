@@ -7,13 +7,15 @@
 //! every choice). A dynamic program over the binary tree (as Ylitie, Karras and Laine's wide
 //! conversion, with the leaves fixed) finds, for every binary node and every `i ≤ 8`, the
 //! cheapest way to stand for its subtree with at most `i` children of a wide node, and so the
-//! cheapest tree. Against the greedy collapse Embree's wide builders use (a wide node opens its
-//! largest child until it has eight), the same leaves under fewer, fuller nodes: the bunny's
+//! cheapest tree.
+//!
+//! Against the greedy collapse Embree's wide builders use (a wide node opens its largest child
+//! until it has eight), the same leaves sit under fewer, fuller nodes: the 69k-triangle blob's
 //! 4,600 nodes become 3,537, the 1M-triangle terrain's 77,507 become 52,095, and their node
-//! part of the SAH falls 3 %. Single rays (`scripts/paired_passes.py`, two builds, 3 rounds
-//! of 8 pairs, AMD Zen 3): terrain primary / bounce / shadow +1.6 / +9.3 / +3.5 %, bunny
-//! +0.7 / −0.4 / +2.5 %, the 1,728-triangle blob +4.6 to +5.2 %. The pass is linear in the
-//! binary nodes (about 0.1 s of the terrain's build, one thread).
+//! part of the SAH falls 3 %. Single rays (`scripts/paired_passes.py`, two builds, 3 rounds of
+//! 8 pairs, AMD Zen 3), primary / bounce / shadow: terrain +1.6 / +9.3 / +3.5 %, the
+//! 69k-triangle blob +0.7 / −0.4 / +2.5 %, the 1,728-triangle blob +4.6 to +5.2 %. The pass is
+//! linear in the binary nodes (about 0.1 s of the terrain's build, one thread).
 //!
 //! Nodes are written depth-first, each node before its children's subtrees, so a ray
 //! descending the nearest child reads nearby memory.
@@ -58,15 +60,17 @@ impl Plan {
         plan
     }
 
-    /// Appends to `out` the slots that stand for `slot`'s subtree with at most `i` children.
-    fn children(&self, bvh: &Bvh2, slot: usize, i: usize, out: &mut Vec<usize>) {
+    /// Appends to `out[..*len]` the slots that stand for `slot`'s subtree with at most `i`
+    /// children (`*len + i ≤ 8`).
+    fn children(&self, bvh: &Bvh2, slot: usize, i: usize, out: &mut [usize; WIDTH], len: &mut usize) {
         let n = &bvh.nodes[slot];
         let k = if n.is_leaf() { 0 } else { self.split[slot][i - 1] as usize };
         if k == 0 {
-            out.push(slot);
+            out[*len] = slot;
+            *len += 1;
         } else {
-            self.children(bvh, n.a as usize, k, out);
-            self.children(bvh, n.b as usize, i - k, out);
+            self.children(bvh, n.a as usize, k, out, len);
+            self.children(bvh, n.b as usize, i - k, out, len);
         }
     }
 }
@@ -109,6 +113,8 @@ fn fill(bvh: &Bvh2, base: usize, split: &mut [[u8; WIDTH]], node: &mut [u8]) -> 
     cost
 }
 
+/// Writes the wide node at binary slot `slot` and, depth first, the wide nodes below it;
+/// returns its index in `out`.
 fn wide(
     bvh: &Bvh2,
     plan: &Plan,
@@ -120,12 +126,11 @@ fn wide(
     out.push(WideNode::EMPTY);
     let top = &bvh.nodes[slot];
     let k = plan.node[slot] as usize;
-    let mut kids = Vec::with_capacity(WIDTH);
-    plan.children(bvh, top.a as usize, k, &mut kids);
-    plan.children(bvh, top.b as usize, WIDTH - k, &mut kids);
-    debug_assert!(kids.len() <= WIDTH);
+    let (mut kids, mut count) = ([0usize; WIDTH], 0);
+    plan.children(bvh, top.a as usize, k, &mut kids, &mut count);
+    plan.children(bvh, top.b as usize, WIDTH - k, &mut kids, &mut count);
     let mut node = WideNode::EMPTY;
-    for (s, &k) in kids.iter().enumerate() {
+    for (s, &k) in kids[..count].iter().enumerate() {
         let n = &bvh.nodes[k];
         let child =
             if n.is_leaf() { make_leaf(&bvh.refs[n.prims()]) } else { wide(bvh, plan, k, out, make_leaf) };
