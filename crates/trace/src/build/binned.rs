@@ -10,8 +10,8 @@
 //! A node's bins also give its children's boxes, and the partition, which moves each primitive
 //! once, gives the boxes of their centroids, so each level reads the primitives twice (binning,
 //! partitioning) and a bin keeps one box, not two (the 1M-triangle terrain's build 5–10 %
-//! faster than with two, criterion, alternated; the same trees). Small nodes use fewer bins (about one per
-//! primitive), which keeps the plane sweep from costing more than the binning.
+//! faster than with two, criterion, alternated; the same trees). Small nodes use fewer bins
+//! (about one per primitive), which keeps the plane sweep from costing more than the binning.
 //!
 //! Parallelism: the two subtrees of a node with at least [`PAR_NODE`] primitives are built as
 //! rayon tasks, and a node with at least [`PAR_BIN`] primitives bins in parallel chunks. The
