@@ -48,8 +48,9 @@
 //! result does not depend on the number of threads. It is then collapsed into 8-wide nodes
 //! by a dynamic program that picks, of every way to group the binary nodes into wide ones, the
 //! one with the least expected node tests ([`build::collapse`]; fewer and fuller nodes than
-//! Embree's greedy opening of the largest child). Below a fixed depth the build splits at the object median,
-//! which bounds every path, so the traversal's stack is a fixed array that cannot overflow.
+//! Embree's greedy opening of the largest child). Below a fixed depth the build splits at the
+//! object median, which bounds every path, so the traversal's stack is a fixed array that
+//! cannot overflow.
 //!
 //! # Traversal
 //!

@@ -249,7 +249,7 @@ fn build_node(
                 let split_cost = p.traversal_cost * area + s.cost;
                 if !(fits_leaf && leaf_cost <= split_cost) {
                     let binner = &s.binner;
-                    let (mid, [lc, rc]) = partition(refs, |r| binner.bin(r.centre2(), s.axis) <= s.bin);
+                    let (mid, [lc, rc]) = partition(refs, |c| binner.bin(c, s.axis) <= s.bin);
                     if mid > 0 && mid < n {
                         let left = Bounds { geometry: s.left, centres: lc };
                         split = Some((mid, left, Bounds { geometry: s.right, centres: rc }));
@@ -440,14 +440,14 @@ fn sah_split(refs: &[PrimRef], bounds: &Bounds, p: &SahParams, scratch: &mut Bin
     Some(Split { binner, axis, bin, cost, left: side(&row[..=bin]), right: side(&row[bin + 1..]) })
 }
 
-/// Moves the primitives for which `left` holds to the front; returns how many there are and
-/// the boxes of the two sides' (doubled) centroids.
-fn partition(refs: &mut [PrimRef], left: impl Fn(&PrimRef) -> bool) -> (usize, [Box4; 2]) {
+/// Moves the primitives whose (doubled) centroid `left` accepts to the front; returns how many
+/// there are and the boxes of the two sides' centroids.
+fn partition(refs: &mut [PrimRef], left: impl Fn(Vec4) -> bool) -> (usize, [Box4; 2]) {
     let (mut i, mut j) = (0, refs.len());
     let (mut lc, mut rc) = (Box4::EMPTY, Box4::EMPTY);
     while i < j {
         let c = refs[i].centre2();
-        if left(&refs[i]) {
+        if left(c) {
             lc = lc.grow(c);
             i += 1;
         } else {
