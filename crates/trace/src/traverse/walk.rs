@@ -2,7 +2,9 @@
 //!
 //! Closest hit: at a node the kernel tests all eight child boxes; one hit child is entered
 //! directly, two are ordered by entry distance (the farther pushed), more are pushed and sorted
-//! so the nearest is on top, and the nearest is entered. A leaf may shorten the ray (`t_max`);
+//! so the nearest is on top (by a sorting network of conditional moves: an insertion sort's
+//! branches on the distances mispredict for rays in all directions; bounce rays +1 to +4 % on
+//! the blob, +3 % on the 48 blobs, +6 to +12 % on the terrain), and the nearest is entered. A leaf may shorten the ray (`t_max`);
 //! popped entries farther than the shortened ray are dropped. Any hit: the same without
 //! ordering, stopping at the first accepted hit. Every hit child (a node, or a leaf's data) is
 //! prefetched as soon as it is known: a lone one so that its reference line (read after its
@@ -49,10 +51,24 @@ pub trait Leaves {
     }
 }
 
+/// A closest walk's stack entry: a node or leaf reference and its entry distance. Its eight
+/// bytes read as a `u64` are a key that orders as the distance, then the reference ([`sort`]):
+/// the distance is the high half.
+#[cfg(target_endian = "little")]
 #[derive(Clone, Copy)]
+#[repr(C, align(8))]
 struct Entry {
     node: u32,
     dist: f32,
+}
+
+/// As above, for a big-endian target.
+#[cfg(target_endian = "big")]
+#[derive(Clone, Copy)]
+#[repr(C, align(8))]
+struct Entry {
+    dist: f32,
+    node: u32,
 }
 
 /// Lines after a node, at most, requested with it ([`WideNode::after`]).
@@ -77,6 +93,49 @@ unsafe fn fetch<N: Nodes + ?Sized, L: Leaves>(nodes: &N, leaves: &L, node: &Wide
 pub(crate) fn prefetch_node(n: &WideNode, after: u32) {
     prefetch(n);
     prefetch_lines((n as *const WideNode).wrapping_add(1) as *const u8, after.min(AFTER) as usize);
+}
+
+/// Sorting networks for 3 to 8 entries (pairs of positions to compare and exchange), the
+/// fewest comparisons known for each count.
+#[rustfmt::skip]
+const NETWORKS: [&[(usize, usize)]; 6] = [
+    &[(0, 1), (1, 2), (0, 1)],
+    &[(0, 1), (2, 3), (0, 2), (1, 3), (1, 2)],
+    &[(0, 1), (3, 4), (2, 4), (2, 3), (0, 3), (0, 2), (1, 4), (1, 3), (1, 2)],
+    &[(1, 2), (4, 5), (0, 2), (3, 5), (0, 1), (3, 4), (2, 5), (0, 3), (1, 4), (2, 4), (1, 3), (2, 3)],
+    &[
+        (1, 2), (3, 4), (5, 6), (0, 2), (3, 5), (4, 6), (0, 1), (4, 5),
+        (2, 6), (0, 4), (1, 5), (0, 3), (2, 5), (1, 3), (2, 4), (2, 3),
+    ],
+    &[
+        (0, 2), (1, 3), (4, 6), (5, 7), (0, 4), (1, 5), (2, 6), (3, 7), (0, 1), (2, 3),
+        (4, 5), (6, 7), (2, 4), (3, 5), (1, 4), (3, 6), (1, 2), (3, 4), (5, 6),
+    ],
+];
+
+/// Sorts `n` (3 to 8) stack entries at `s`, read as keys (a distance's bits above its
+/// reference: distances are never negative, so the keys order as the distances do), so that
+/// the nearest is on top (last), by a sorting network: conditional moves, no branch on the
+/// data, which for rays in all directions mispredicts.
+#[inline(always)]
+unsafe fn sort(s: *mut u64, n: usize) {
+    macro_rules! network {
+        ($k:expr) => {
+            for &(i, j) in NETWORKS[$k - 3] {
+                let (x, y) = (*s.add(i), *s.add(j));
+                *s.add(i) = x.max(y);
+                *s.add(j) = x.min(y);
+            }
+        };
+    }
+    match n {
+        3 => network!(3),
+        4 => network!(4),
+        5 => network!(5),
+        6 => network!(6),
+        7 => network!(7),
+        _ => network!(8),
+    }
 }
 
 /// Walks the hierarchy `nodes` from `root` for the closest hit.
@@ -143,8 +202,8 @@ unsafe fn closest_with<B: Backend, N: Nodes + ?Sized, L: Leaves, const TREE: boo
                     cur = node.children[near];
                     continue 'walk;
                 }
-                // Three or more: push all, then sort them so that the nearest is on top (and,
-                // at equal distances, the lowest slot).
+                // Three or more: push all, then sort them so that the nearest is on top (at
+                // equal distances, the lower reference), without branching on the distances.
                 let base = sp;
                 for i in [i0, i1] {
                     stack.get_unchecked_mut(sp).write(Entry { node: node.children[i], dist: dist[i] });
@@ -158,16 +217,7 @@ unsafe fn closest_with<B: Backend, N: Nodes + ?Sized, L: Leaves, const TREE: boo
                     sp += 1;
                 }
                 debug_assert!(sp <= STACK);
-                for k in base + 1..sp {
-                    let x = stack.get_unchecked(k).assume_init();
-                    let mut j = k;
-                    while j > base && stack.get_unchecked(j - 1).assume_init().dist <= x.dist {
-                        let y = stack.get_unchecked(j - 1).assume_init();
-                        stack.get_unchecked_mut(j).write(y);
-                        j -= 1;
-                    }
-                    stack.get_unchecked_mut(j).write(x);
-                }
+                sort(stack.as_mut_ptr().add(base) as *mut u64, sp - base);
                 sp -= 1;
                 cur = stack.get_unchecked(sp).assume_init().node;
                 continue 'walk;
@@ -250,5 +300,42 @@ unsafe fn any_with<B: Backend, N: Nodes + ?Sized, L: Leaves, const TREE: bool>(
         }
         sp -= 1;
         cur = stack.get_unchecked(sp).assume_init();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every network sorts: by the 0-1 principle, a comparator network that sorts every
+    /// sequence of zeros and ones sorts every sequence.
+    #[test]
+    fn networks_sort_every_sequence_of_zeros_and_ones() {
+        for n in 3..=8 {
+            for bits in 0u32..1 << n {
+                let mut keys: Vec<u64> = (0..n).map(|i| u64::from((bits >> i) & 1)).collect();
+                // SAFETY: `keys` holds `n` keys.
+                unsafe { sort(keys.as_mut_ptr(), n) };
+                assert!(keys.windows(2).all(|w| w[0] >= w[1]), "{n} keys {bits:#b}: {keys:?}");
+            }
+        }
+    }
+
+    /// An entry read as a key orders as its distance, then its reference (the layout `sort`
+    /// relies on), for distances the node tests produce (never negative).
+    #[test]
+    fn keys_order_as_distances() {
+        let key = |node: u32, dist: f32| {
+            let e = Entry { node, dist };
+            // SAFETY: `Entry` is two 4-byte fields, 8 bytes, aligned to 8.
+            unsafe { *(&e as *const Entry as *const u64) }
+        };
+        let dists = [0.0f32, 1e-30, 0.5, 1.0, 3.5, 1e30, f32::INFINITY];
+        for (i, &a) in dists.iter().enumerate() {
+            for &b in &dists[i + 1..] {
+                assert!(key(u32::MAX, a) < key(0, b), "{a} {b}");
+            }
+            assert!(key(1, a) < key(2, a));
+        }
     }
 }
