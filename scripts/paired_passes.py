@@ -18,15 +18,35 @@ Example (run from the repository root after the `embree` example has written the
         out/embree/terrain.bin shadow single
 
 A ratio above 1 means BUILD_B is faster.
+
+A build named `embree:PATH` is the Embree program (`scripts/embree_bench`) at PATH, serving the
+same set with `rtcIntersect1`/`rtcOccluded1` (query `single`) or in MODE (`embree:PATH:MODE`,
+one of 1, 8, 16, 1M): ours against Embree's, pass by pass, the two processes sharing the
+machine's moments. For example
+
+    scripts/paired_passes.py embree:out/embree_bench target/release/examples/profile_set \
+        out/embree/blob.bin bounce single 5 16
 """
+import os
 import statistics
 import subprocess
 import sys
 
 
 def start(build, scene, ray_set, query):
-    p = subprocess.Popen([build, scene, ray_set, query, "serve"], stdin=subprocess.PIPE,
-                         stdout=subprocess.PIPE, text=True, bufsize=1)
+    env = None
+    if build.startswith("embree:"):
+        path, _, mode = build[len("embree:"):].partition(":")
+        env = dict(os.environ, EMBREE_BENCH_ONLY=f"{ray_set}:{mode or '1'}")
+        command = [path, scene, "-", "serve"]
+        build = path
+    else:
+        command = [build, scene, ray_set, query, "serve"]
+    try:
+        p = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True,
+                             bufsize=1, env=env)
+    except OSError as e:
+        sys.exit(f"paired_passes: cannot run {build}: {e}")
     for line in p.stdout:
         if line.strip() == "ready":
             return p

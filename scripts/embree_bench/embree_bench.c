@@ -36,6 +36,11 @@
  * context flag when the set says its rays are coherent (except occlusion in an instanced
  * scene). Builds use Embree's default quality (medium) and all cores.
  *
+ * Serving passes (for scripts/paired_passes.py, which alternates it pass by pass with our
+ * `profile_set … serve`): `embree_bench SCENE.bin - serve` with EMBREE_BENCH_ONLY=SET:MODE
+ * builds the default scene once, runs one warm-up pass, prints "ready", then runs one pass per
+ * line read on its input and prints that pass's seconds (wall clock), until its input ends.
+ *
  * For profiling one workload (under valgrind's cachegrind, say), two environment variables:
  * EMBREE_BENCH_ONLY=SET:MODE traces only that set in that mode on the default scene (the robust
  * scene is still built) and writes no hits file, and EMBREE_BENCH_CONFIG is passed to rtcNewDevice ("verbose=3" prints
@@ -261,8 +266,9 @@ static RTCScene build(RTCDevice device, uint32_t nv, const float *pos, uint32_t 
 }
 
 int main(int argc, char **argv) {
-    if (argc < 3) die("usage: embree_bench SCENE.bin HITS.bin [REPS]");
-    int reps = argc > 3 ? atoi(argv[3]) : 5;
+    if (argc < 3) die("usage: embree_bench SCENE.bin HITS.bin [REPS|serve]");
+    int serve = argc > 3 && !strcmp(argv[3], "serve");
+    int reps = serve ? 1 : argc > 3 ? atoi(argv[3]) : 5;
     if (reps < 1 || reps > MAX_REPS) die("REPS must be 1..64");
     FILE *f = fopen(argv[1], "rb");
     if (!f) die("cannot open the scene file");
@@ -317,6 +323,7 @@ int main(int argc, char **argv) {
         memcpy(only_set, only, (size_t)(colon - only));
         strcpy(only_mode, colon + 1);
     }
+    if (serve && !only) die("serve needs EMBREE_BENCH_ONLY=SET:MODE");
     RTCDevice device = rtcNewDevice(getenv("EMBREE_BENCH_CONFIG"));
     if (!device) die("Embree found no device");
     printf("embree %d.%d.%d, %u triangles, %u instances, %d passes per mode\n", RTC_VERSION_MAJOR,
@@ -326,14 +333,14 @@ int main(int argc, char **argv) {
     enum RTCSceneFlags scene_flags[2] = {RTC_SCENE_FLAG_NONE, RTC_SCENE_FLAG_ROBUST};
     const char *mode_names[4] = {"1", "8", "16", "1M"};
     Pass passes[4] = {pass1, pass8, pass16, pass1m};
-    for (int sc = 0; sc < 2; sc++) {
+    for (int sc = 0; sc < (serve ? 1 : 2); sc++) {
         double ms[3];
         RTCScene scene = NULL;
-        for (int b = 0; b < 3; b++) {
+        for (int b = 0; b < (serve ? 1 : 3); b++) {
             if (scene) rtcReleaseScene(scene);
             scene = build(device, nv, pos, nt, idx, ninst, xfm, scene_flags[sc], &ms[b]);
         }
-        printf("build %s %.1f ms (median of 3, wall clock)\n", scene_names[sc], median(ms, 3));
+        printf("build %s %.1f ms (median of %d, wall clock)\n", scene_names[sc], median(ms, serve ? 1 : 3), serve ? 1 : 3);
         for (uint32_t s = 0; s < nsets; s++) {
             Set *set = &sets[s];
             uint32_t *prim = alloc((size_t)set->n * 4);
@@ -343,6 +350,18 @@ int main(int argc, char **argv) {
                 if (only && (sc != 0 || strcmp(only_set, set->name) || strcmp(only_mode, mode_names[m]))) continue;
                 double cpu[MAX_REPS], wall[MAX_REPS];
                 passes[m](scene, set, prim, t, occ); /* warm-up */
+                if (serve) {
+                    char line[64];
+                    printf("ready\n");
+                    fflush(stdout);
+                    while (fgets(line, sizeof line, stdin)) {
+                        double w0 = now(CLOCK_MONOTONIC);
+                        passes[m](scene, set, prim, t, occ);
+                        printf("%.9f\n", now(CLOCK_MONOTONIC) - w0);
+                        fflush(stdout);
+                    }
+                    return 0;
+                }
                 for (int r = 0; r < reps; r++) {
                     double c0 = now(CLOCK_THREAD_CPUTIME_ID), w0 = now(CLOCK_MONOTONIC);
                     passes[m](scene, set, prim, t, occ);
