@@ -25,7 +25,11 @@
 //! Embree's single-ray query and to its best mode, and the agreement of our hits with
 //! Embree's: the same triangle and a distance within 1e-4 (relative, at least 1e-4 absolute)
 //! for closest hits, the same answer for shadow rays; then a summary table over all rounds and
-//! both libraries' build times. Our packet queries are checked against our single-ray queries
+//! both libraries' build times. Each round also times our single-ray query against Embree's
+//! pass by pass, alternately (3 × REPS pairs, the Embree program serving passes of one set),
+//! so that the two meet the same moments of the shared machine: the second summary table, the
+//! steadier measure of the single-ray ratio (separate runs of the two drift apart by 10 % and
+//! more). Our packet queries are checked against our single-ray queries
 //! bit for bit.
 
 #[path = "../benches/common/mod.rs"]
@@ -39,9 +43,9 @@ use glam::Vec3;
 use renderlab_trace::workload::{blob, placements, DIAGNOSTIC_MESHES};
 use renderlab_trace::{Blas, Hit, Instance, Ray, Tlas, PACKET};
 use std::collections::BTreeMap;
-use std::io::Write;
+use std::io::{BufRead, BufReader, Write};
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Stdio};
 use std::time::Instant;
 
 /// A named set of rays and its query.
@@ -200,6 +204,82 @@ fn ours(blas: &Accel, set: &RaySet, reps: usize) -> Vec<(&'static str, f64)> {
             ),
         ]
     }
+}
+
+/// One pass of our single-ray query over a set; returns the hits (or occluded rays).
+fn single_pass(accel: &Accel, set: &RaySet) -> usize {
+    let r = &set.rays;
+    if set.occlusion {
+        r.iter().filter(|r| accel.any_hit(r)).count()
+    } else {
+        r.iter().filter(|r| accel.closest_hit(r).is_some()).count()
+    }
+}
+
+/// Our single-ray query against Embree's (`rtcIntersect1`, `rtcOccluded1`) on one set, pass by
+/// pass alternately: the Embree program serves passes (`EMBREE_BENCH_ONLY=SET:1 … - serve`),
+/// so that both queries meet the same moments of a shared machine, whose speed drifts by 10 %
+/// and more within a minute. Returns our speed over Embree's (the median over `pairs` pairs of
+/// Embree's pass time over ours, the pair's order alternating) and both rates (M rays per
+/// second of the median pass, wall clock).
+fn paired_single(exe: &Path, bench: &Bench, set: &RaySet, pairs: usize) -> (f64, f64, f64) {
+    let fail = |what: &str| -> ! { panic!("{} serving {} {}: {what}", exe.display(), bench.name, set.name) };
+    let mut child = Command::new(exe)
+        .arg(&bench.scene_path)
+        .arg("-")
+        .arg("serve")
+        .env("EMBREE_BENCH_ONLY", format!("{}:1", set.name))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap_or_else(|e| fail(&e.to_string()));
+    let mut input = child.stdin.take().expect("piped");
+    let mut output = BufReader::new(child.stdout.take().expect("piped"));
+    let mut line = String::new();
+    loop {
+        line.clear();
+        if output.read_line(&mut line).unwrap_or(0) == 0 {
+            fail("it ended before it was ready");
+        }
+        if line.trim() == "ready" {
+            break;
+        }
+    }
+    let ours = || {
+        let t = Instant::now();
+        std::hint::black_box(single_pass(&bench.accel, set));
+        t.elapsed().as_secs_f64()
+    };
+    let (mut ratios, mut a, mut b) = (Vec::new(), Vec::new(), Vec::new());
+    {
+        let mut theirs = || -> f64 {
+            writeln!(input, "pass").unwrap_or_else(|e| fail(&e.to_string()));
+            line.clear();
+            output.read_line(&mut line).unwrap_or_else(|e| fail(&e.to_string()));
+            line.trim().parse().unwrap_or_else(|_| fail("a pass's time is not a number"))
+        };
+        let (_, _) = (ours(), theirs());
+        for i in 0..pairs {
+            let (x, y) = if i % 2 == 0 {
+                let x = ours();
+                (x, theirs())
+            } else {
+                let y = theirs();
+                (ours(), y)
+            };
+            ratios.push(y / x);
+            a.push(x);
+            b.push(y);
+        }
+    }
+    drop(input); // the program ends at the end of its input
+    let _ = child.wait();
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let n = set.rays.len() as f64 / 1e6;
+    (median(&mut ratios), n / median(&mut a), n / median(&mut b))
 }
 
 /// Embree's rates: (scene flag, set, mode) → (M rays per CPU second, rays as its single query).
@@ -394,6 +474,8 @@ fn main() {
     // (mesh, set) → per round: ours single, ours best, Embree single, Embree best (mode).
     let mut summary: BTreeMap<(usize, usize), Vec<Row>> = BTreeMap::new();
     let mut embree_builds: BTreeMap<usize, Vec<String>> = BTreeMap::new();
+    // (mesh, set) → per round: our single-ray speed over Embree's, passes alternated.
+    let mut paired: BTreeMap<(usize, usize), Vec<f64>> = BTreeMap::new();
     for round in 1..=rounds {
         for (b, bench) in benches.iter().enumerate() {
             println!("\n{} round {round} (load average {})", bench.name, load_average());
@@ -401,6 +483,14 @@ fn main() {
                 bench.sets.iter().map(|s| ours(&bench.accel, s, reps)).collect();
             let (theirs, builds) = embree(&exe, &bench.scene_path, &bench.hits_path, reps);
             embree_builds.entry(b).or_default().extend(builds);
+            for (k, s) in bench.sets.iter().enumerate() {
+                let (ratio, ours, emb) = paired_single(&exe, bench, s, 3 * reps);
+                println!(
+                    "  {:8} single-ray passes alternated with Embree's: ours {ours:.2}, Embree {emb:.2} M rays/s (wall clock), ours/Embree {ratio:.3}",
+                    s.name
+                );
+                paired.entry((b, k)).or_default().push(ratio);
+            }
             println!("  load average after: {}", load_average());
             println!(
                 "  {:8} {:>7} {:>7} | {:>7} {:>7} {:>7} {:>7} | {:>7} {:>7} {:>7} | ours/1  best/best  (M rays/s, CPU time)",
@@ -469,6 +559,22 @@ fn main() {
             join(&|r| format!("{:.2} ({})", r.4, r.3)),
             join(&|r| format!("{:.2}", r.0 / r.2)),
             join(&|r| format!("{:.2}", r.1 / r.4)),
+        );
+    }
+    println!(
+        "\nsingle rays, ours over Embree's rtcIntersect1 / rtcOccluded1 with passes alternated (rounds separated by /):"
+    );
+    println!("| mesh | rays | single / Embree 1, alternated | median |");
+    println!("|---|---|---|---|");
+    for ((b, k), ratios) in &paired {
+        let mut sorted = ratios.clone();
+        sorted.sort_by(f64::total_cmp);
+        println!(
+            "| {} | {} | {} | {:.2} |",
+            benches[*b].name,
+            benches[*b].sets[*k].name,
+            ratios.iter().map(|r| format!("{r:.2}")).collect::<Vec<_>>().join(" / "),
+            sorted[sorted.len() / 2]
         );
     }
     println!("\nbuilds (median of 3, wall clock, all cores):");
