@@ -4,13 +4,14 @@
 //! directly, two are ordered by entry distance (the farther pushed), more are pushed and sorted
 //! so the nearest is on top (by a sorting network of conditional moves: an insertion sort's
 //! branches on the distances mispredict for rays in all directions; bounce rays +1 to +4 % on
-//! the blob, +3 % on the 48 blobs, +6 to +12 % on the terrain), and the nearest is entered. A leaf may shorten the ray (`t_max`);
-//! popped entries farther than the shortened ray are dropped. Any hit: the same without
-//! ordering, stopping at the first accepted hit. Every hit child (a node, or a leaf's data) is
-//! prefetched as soon as it is known: a lone one so that its reference line (read after its
-//! box test) comes with its box rows; where there are two or more, before the closest walk
-//! compares distances, so that the child entered next is on its way even when the comparison's
-//! branch is mispredicted, and the pushed ones while the walk descends. A node child is
+//! the blob, +3 % on the 48 blobs, +6 to +12 % on the terrain), and the nearest is entered. A
+//! leaf may shorten the ray (`t_max`); popped entries farther than the shortened ray are
+//! dropped. Any hit: the same without ordering, stopping at the first accepted hit. Every hit
+//! child (a node, or a leaf's data) is prefetched as soon as it is known: a lone one so that
+//! its reference line (read after its box test) comes with its box rows; where there are two
+//! or more, before the closest walk compares distances, so that the child entered next is on
+//! its way even when the comparison's branch is mispredicted, and the pushed ones while the
+//! walk descends. A node child is
 //! requested with the leaf blocks that follow it in an arena (up to [`AFTER`] lines, as its
 //! parent records, [`crate::node::WideNode::after`]): most of a walk's time on a large mesh is
 //! waiting for memory, and those blocks are the ones it tests next.
