@@ -224,64 +224,91 @@ impl Backend for Avx2 {
     #[inline]
     #[target_feature(enable = "avx2,fma")]
     unsafe fn block(p: &Prepared, block: &TriBlock, t_max: f32) -> BlockHits {
-        let [kx, ky, kz] = p.k.map(|a| a as usize);
-        let [sx, sy, sz] = p.shear.map(|x| _mm_set1_ps(x));
-        let tri_org = p.tri_org.map(|x| _mm_set1_ps(x));
-        // Rows are 16-byte aligned ([`TriBlock`] is `align(16)`, rows are 16 bytes); `k` is a
-        // permutation of 0..3.
-        macro_rules! rel {
-            ($j:expr) => {
-                (
-                    _mm_sub_ps(_mm_load_ps(block.v.get_unchecked(3 * $j + kx).as_ptr()), tri_org[0]),
-                    _mm_sub_ps(_mm_load_ps(block.v.get_unchecked(3 * $j + ky).as_ptr()), tri_org[1]),
-                    _mm_sub_ps(_mm_load_ps(block.v.get_unchecked(3 * $j + kz).as_ptr()), tri_org[2]),
-                )
-            };
-        }
-        let (a_x, a_y, a_z) = rel!(0);
-        let (b_x, b_y, b_z) = rel!(1);
-        let (c_x, c_y, c_z) = rel!(2);
-        let ax = _mm_sub_ps(a_x, _mm_mul_ps(sx, a_z));
-        let ay = _mm_sub_ps(a_y, _mm_mul_ps(sy, a_z));
-        let bx = _mm_sub_ps(b_x, _mm_mul_ps(sx, b_z));
-        let by = _mm_sub_ps(b_y, _mm_mul_ps(sy, b_z));
-        let cx = _mm_sub_ps(c_x, _mm_mul_ps(sx, c_z));
-        let cy = _mm_sub_ps(c_y, _mm_mul_ps(sy, c_z));
-        let mut u = _mm_sub_ps(_mm_mul_ps(cx, by), _mm_mul_ps(cy, bx));
-        let mut v = _mm_sub_ps(_mm_mul_ps(ax, cy), _mm_mul_ps(ay, cx));
-        let mut w = _mm_sub_ps(_mm_mul_ps(bx, ay), _mm_mul_ps(by, ax));
-        let zero = _mm_setzero_ps();
-        let mut inside = inside(u, v, w);
-        if !EAGER && _mm_movemask_ps(inside) == 0 {
-            return BlockHits::default();
-        }
-        if EXACT_EDGES {
-            let on_edge =
-                _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(u, zero), _mm_cmpeq_ps(v, zero)), _mm_cmpeq_ps(w, zero));
-            let on_edge = _mm_movemask_ps(_mm_and_ps(on_edge, inside));
-            if on_edge != 0 {
-                (u, v, w) = exact_edges(on_edge, [ax, ay, bx, by, cx, cy], [u, v, w]);
-                inside = self::inside(u, v, w);
-            }
-        }
-        let det = _mm_add_ps(_mm_add_ps(u, v), w);
-        let az = _mm_mul_ps(sz, a_z);
-        let bz = _mm_mul_ps(sz, b_z);
-        let cz = _mm_mul_ps(sz, c_z);
-        let tt = fmadd(w, cz, fmadd(v, bz, _mm_mul_ps(u, az)));
-        let rcp = _mm_div_ps(_mm_set1_ps(1.0), det);
-        let t = _mm_mul_ps(tt, rcp);
-        let in_range = _mm_and_ps(_mm_cmpge_ps(t, _mm_set1_ps(p.t_min)), _mm_cmple_ps(t, _mm_set1_ps(t_max)));
-        let ok = _mm_and_ps(inside, _mm_and_ps(_mm_cmpneq_ps(det, zero), in_range));
-        let mask = _mm_movemask_ps(ok) as u32;
-        let mut hits = BlockHits { mask, ..BlockHits::default() };
-        if mask != 0 {
-            _mm_storeu_ps(hits.t.as_mut_ptr(), t);
-            _mm_storeu_ps(hits.u.as_mut_ptr(), _mm_mul_ps(v, rcp));
-            _mm_storeu_ps(hits.v.as_mut_ptr(), _mm_mul_ps(w, rcp));
-        }
-        hits
+        let (o, s) = (p.tri_org, p.shear);
+        let frame = Frame {
+            tri_org: [_mm_set1_ps(o[0]), _mm_set1_ps(o[1]), _mm_set1_ps(o[2])],
+            shear: [_mm_set1_ps(s[0]), _mm_set1_ps(s[1]), _mm_set1_ps(s[2])],
+            k: [16 * p.k[0] as usize, 16 * p.k[1] as usize, 16 * p.k[2] as usize],
+            t_min: _mm_set1_ps(p.t_min),
+        };
+        block_with(&frame, block, t_max)
     }
+}
+
+/// What the triangle test reads of a ray, in registers: its origin along `kx`, `ky`, `kz` and
+/// its shear, broadcast, the byte offsets of the `kx`, `ky`, `kz` rows within a vertex's
+/// three rows of a [`TriBlock`], and the interval's start, broadcast.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Frame {
+    pub(crate) tri_org: [__m128; 3],
+    pub(crate) shear: [__m128; 3],
+    pub(crate) k: [usize; 3],
+    pub(crate) t_min: __m128,
+}
+
+/// The watertight test of a block's four triangles for the ray whose frame is `frame`
+/// ([`Backend::block`]).
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+pub(crate) unsafe fn block_with(frame: &Frame, block: &TriBlock, t_max: f32) -> BlockHits {
+    let [kx, ky, kz] = frame.k;
+    let [sx, sy, sz] = frame.shear;
+    let tri_org = frame.tri_org;
+    // Rows are 16-byte aligned ([`TriBlock`] is `align(16)`, rows are 16 bytes); `k` holds
+    // offsets of rows 0..3 of a vertex.
+    let base = block.v.as_ptr() as *const u8;
+    macro_rules! rel {
+        ($j:expr) => {
+            (
+                _mm_sub_ps(_mm_load_ps(base.add(48 * $j + kx) as *const f32), tri_org[0]),
+                _mm_sub_ps(_mm_load_ps(base.add(48 * $j + ky) as *const f32), tri_org[1]),
+                _mm_sub_ps(_mm_load_ps(base.add(48 * $j + kz) as *const f32), tri_org[2]),
+            )
+        };
+    }
+    let (a_x, a_y, a_z) = rel!(0);
+    let (b_x, b_y, b_z) = rel!(1);
+    let (c_x, c_y, c_z) = rel!(2);
+    let ax = _mm_sub_ps(a_x, _mm_mul_ps(sx, a_z));
+    let ay = _mm_sub_ps(a_y, _mm_mul_ps(sy, a_z));
+    let bx = _mm_sub_ps(b_x, _mm_mul_ps(sx, b_z));
+    let by = _mm_sub_ps(b_y, _mm_mul_ps(sy, b_z));
+    let cx = _mm_sub_ps(c_x, _mm_mul_ps(sx, c_z));
+    let cy = _mm_sub_ps(c_y, _mm_mul_ps(sy, c_z));
+    let mut u = _mm_sub_ps(_mm_mul_ps(cx, by), _mm_mul_ps(cy, bx));
+    let mut v = _mm_sub_ps(_mm_mul_ps(ax, cy), _mm_mul_ps(ay, cx));
+    let mut w = _mm_sub_ps(_mm_mul_ps(bx, ay), _mm_mul_ps(by, ax));
+    let zero = _mm_setzero_ps();
+    let mut inside = inside(u, v, w);
+    if !EAGER && _mm_movemask_ps(inside) == 0 {
+        return BlockHits::default();
+    }
+    if EXACT_EDGES {
+        let on_edge =
+            _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(u, zero), _mm_cmpeq_ps(v, zero)), _mm_cmpeq_ps(w, zero));
+        let on_edge = _mm_movemask_ps(_mm_and_ps(on_edge, inside));
+        if on_edge != 0 {
+            (u, v, w) = exact_edges(on_edge, [ax, ay, bx, by, cx, cy], [u, v, w]);
+            inside = self::inside(u, v, w);
+        }
+    }
+    let det = _mm_add_ps(_mm_add_ps(u, v), w);
+    let az = _mm_mul_ps(sz, a_z);
+    let bz = _mm_mul_ps(sz, b_z);
+    let cz = _mm_mul_ps(sz, c_z);
+    let tt = fmadd(w, cz, fmadd(v, bz, _mm_mul_ps(u, az)));
+    let rcp = _mm_div_ps(_mm_set1_ps(1.0), det);
+    let t = _mm_mul_ps(tt, rcp);
+    let in_range = _mm_and_ps(_mm_cmpge_ps(t, frame.t_min), _mm_cmple_ps(t, _mm_set1_ps(t_max)));
+    let ok = _mm_and_ps(inside, _mm_and_ps(_mm_cmpneq_ps(det, zero), in_range));
+    let mask = _mm_movemask_ps(ok) as u32;
+    let mut hits = BlockHits { mask, ..BlockHits::default() };
+    if mask != 0 {
+        _mm_storeu_ps(hits.t.as_mut_ptr(), t);
+        _mm_storeu_ps(hits.u.as_mut_ptr(), _mm_mul_ps(v, rcp));
+        _mm_storeu_ps(hits.v.as_mut_ptr(), _mm_mul_ps(w, rcp));
+    }
+    hits
 }
 
 /// The slab tests of a node's eight children: the entry distances and which children the
@@ -316,17 +343,40 @@ unsafe fn planes(p: &Prepared, node: &WideNode) -> [__m256; 6] {
 #[inline]
 #[target_feature(enable = "avx2,fma")]
 unsafe fn slabs_of<const TREE: bool>(p: &Prepared, planes: &[__m256; 6], t_max: f32) -> (__m256, __m256) {
+    // (No closures: a closure is compiled without the target features.)
+    macro_rules! broadcast {
+        ($x:expr) => {
+            [_mm256_set1_ps($x[0]), _mm256_set1_ps($x[1]), _mm256_set1_ps($x[2])]
+        };
+    }
+    let (org, inv, inv_far) = (broadcast!(p.org), broadcast!(p.inv), broadcast!(p.inv_far));
+    slabs_with::<TREE>(&org, &inv, &inv_far, _mm256_set1_ps(p.t_min), planes, t_max)
+}
+
+/// The slab tests of the rows `planes` (near x, y, z, far x, y, z) for a ray whose origin,
+/// `1/dir`, `inv · FAR` and interval start are broadcast: the entry distances and which
+/// children the ray enters before `t_max`.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+pub(crate) unsafe fn slabs_with<const TREE: bool>(
+    org: &[__m256; 3],
+    inv: &[__m256; 3],
+    inv_far: &[__m256; 3],
+    t0: __m256,
+    planes: &[__m256; 6],
+    t_max: f32,
+) -> (__m256, __m256) {
     // (Macros rather than closures keep every intrinsic inside this function's target
     // features.)
     macro_rules! slab {
         ($a:expr, $plane:expr, $inv:expr) => {
-            _mm256_mul_ps(_mm256_sub_ps($plane, _mm256_set1_ps(p.org[$a])), _mm256_set1_ps($inv[$a]))
+            _mm256_mul_ps(_mm256_sub_ps($plane, org[$a]), $inv[$a])
         };
     }
-    let (n0, n1, n2) = (slab!(0, planes[0], p.inv), slab!(1, planes[1], p.inv), slab!(2, planes[2], p.inv));
+    let (n0, n1, n2) = (slab!(0, planes[0], inv), slab!(1, planes[1], inv), slab!(2, planes[2], inv));
     let (f0, f1, f2) =
-        (slab!(0, planes[3], p.inv_far), slab!(1, planes[4], p.inv_far), slab!(2, planes[5], p.inv_far));
-    let (t0, t1) = (_mm256_set1_ps(p.t_min), _mm256_set1_ps(t_max * IZE));
+        (slab!(0, planes[3], inv_far), slab!(1, planes[4], inv_far), slab!(2, planes[5], inv_far));
+    let t1 = _mm256_set1_ps(t_max * IZE);
     // Two levels where no term can be NaN ([`Prepared::finite`], the walk's choice), else the
     // chain whose order ignores NaN terms; the same values either way.
     let (near, far) = if TREE {
@@ -346,7 +396,7 @@ unsafe fn slabs_of<const TREE: bool>(p: &Prepared, planes: &[__m256; 6], t_max: 
 /// `a·b + c`, fused as [`crate::triangle::fused`].
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn fmadd(a: __m128, b: __m128, c: __m128) -> __m128 {
+pub(crate) unsafe fn fmadd(a: __m128, b: __m128, c: __m128) -> __m128 {
     if FUSED {
         _mm_fmadd_ps(a, b, c)
     } else {
@@ -358,7 +408,7 @@ unsafe fn fmadd(a: __m128, b: __m128, c: __m128) -> __m128 {
 /// [`crate::triangle::inside`].
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn inside(u: __m128, v: __m128, w: __m128) -> __m128 {
+pub(crate) unsafe fn inside(u: __m128, v: __m128, w: __m128) -> __m128 {
     let zero = _mm_setzero_ps();
     _mm_or_ps(
         _mm_cmpge_ps(_mm_min_ps(u, _mm_min_ps(v, w)), zero),
@@ -370,7 +420,11 @@ unsafe fn inside(u: __m128, v: __m128, w: __m128) -> __m128 {
 #[cold]
 #[inline(never)]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn exact_edges(lanes: i32, proj: [__m128; 6], uvw: [__m128; 3]) -> (__m128, __m128, __m128) {
+pub(crate) unsafe fn exact_edges(
+    lanes: i32,
+    proj: [__m128; 6],
+    uvw: [__m128; 3],
+) -> (__m128, __m128, __m128) {
     let mut p = [[0.0f32; 4]; 6];
     for (dst, src) in p.iter_mut().zip(proj) {
         _mm_storeu_ps(dst.as_mut_ptr(), src);

@@ -94,38 +94,14 @@ impl Prepared {
     #[target_feature(enable = "avx2,fma")]
     pub(super) unsafe fn single(ray: &Ray) -> Option<(Prepared, f32)> {
         let all = _mm256_loadu_ps(ray as *const Ray as *const f32);
-        let (t0, t1) = (ray.t_min, ray.t_max);
-        // Origin and direction finite (lanes 0..6), some direction component non-zero (lanes
-        // 3..6), `t_min` not NaN and the interval not empty, as `RayQuery::new` decides.
-        let finite_in = _mm256_movemask_ps(finite(all)) as u32 & 0x3f;
-        let nonzero =
-            _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_NEQ_OQ>(all, _mm256_setzero_ps())) as u32 & 0x38;
-        let t_min = if t0 > 0.0 { t0 } else { 0.0 };
-        let nonempty = t_min <= t1;
-        if t0.is_nan() || finite_in != 0x3f || nonzero == 0 || !nonempty {
-            return None;
-        }
+        let (t_min, t1) = (accepted(ray, all)?, ray.t_max);
         // `1/dir` in lanes 3..6 (the other lanes' quotients are not used); its signs are those
         // of `dir` (for ±0 and ±∞ too), read from the ray so the rows need not wait for it.
         let inv = _mm256_div_ps(_mm256_set1_ps(1.0), all);
         let signs = _mm256_movemask_ps(all) as u32;
         let octant = (signs >> 3) & 7;
         let all_finite = (_mm256_movemask_ps(finite(inv)) as u32 >> 3) & 7 == 7;
-        // The sheared frame: `kz` the axis of the largest |dir| (the first of equals), `kx`,
-        // `ky` the next two cyclically, swapped when `dir[kz] < 0` (its sign bit: `dir[kz]` is
-        // not zero), as `TriRay::new`.
-        let a = [ray.dir.x.abs(), ray.dir.y.abs(), ray.dir.z.abs()];
-        let kz = if a[0] > a[1] && a[0] > a[2] {
-            0
-        } else if a[1] > a[2] {
-            1
-        } else {
-            2
-        };
-        let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
-        if (octant >> kz) & 1 != 0 {
-            std::mem::swap(&mut kx, &mut ky);
-        }
+        let [kx, ky, kz] = frame_axes(ray, octant).map(|a| a as i32);
         let zero = _mm256_setzero_ps();
         // Row 0: org, inv, t_min, octant.
         let tail =
@@ -278,11 +254,45 @@ unsafe fn abs(x: __m256) -> __m256 {
     _mm256_andnot_ps(_mm256_set1_ps(-0.0), x)
 }
 
-/// The lanes where `x` is finite (`|x| < ∞`, as `f32::is_finite`).
-#[inline]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn finite(x: __m256) -> __m256 {
+/// The lanes where `x` is finite (`|x| < ∞`, as `f32::is_finite`). (Inlined into callers with
+/// the kernel's features, like the two below.)
+#[inline(always)]
+pub(super) unsafe fn finite(x: __m256) -> __m256 {
     _mm256_cmp_ps::<_CMP_LT_OQ>(abs(x), _mm256_set1_ps(f32::INFINITY))
+}
+
+/// The interval's start where [`RayQuery::new`] accepts `ray` (loaded as the eight lanes
+/// `all`): origin and direction finite (lanes 0..6), some direction component non-zero
+/// (lanes 3..6), `t_min` not NaN and the interval not empty (a NaN end counts as empty).
+#[inline(always)]
+pub(super) unsafe fn accepted(ray: &Ray, all: __m256) -> Option<f32> {
+    let (t0, t1) = (ray.t_min, ray.t_max);
+    let finite_in = _mm256_movemask_ps(finite(all)) as u32 & 0x3f;
+    let nonzero = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_NEQ_OQ>(all, _mm256_setzero_ps())) as u32 & 0x38;
+    let t_min = if t0 > 0.0 { t0 } else { 0.0 };
+    let nonempty = t_min <= t1;
+    (!t0.is_nan() && finite_in == 0x3f && nonzero != 0 && nonempty).then_some(t_min)
+}
+
+/// The sheared frame's axes `[kx, ky, kz]` of a ray whose direction's sign bits are `octant`,
+/// as `TriRay::new` chooses them: `kz` the axis of the largest |dir| (the first of equals),
+/// `kx`, `ky` the next two cyclically, swapped when `dir[kz] < 0` (its sign bit: `dir[kz]` is
+/// not zero).
+#[inline(always)]
+pub(super) fn frame_axes(ray: &Ray, octant: u32) -> [usize; 3] {
+    let a = [ray.dir.x.abs(), ray.dir.y.abs(), ray.dir.z.abs()];
+    let kz = if a[0] > a[1] && a[0] > a[2] {
+        0
+    } else if a[1] > a[2] {
+        1
+    } else {
+        2
+    };
+    let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
+    if (octant >> kz) & 1 != 0 {
+        std::mem::swap(&mut kx, &mut ky);
+    }
+    [kx, ky, kz]
 }
 
 /// The rows of the near and far planes of the axis whose minima are row `MIN`, by the sign of

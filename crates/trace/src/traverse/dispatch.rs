@@ -1,7 +1,10 @@
 //! The run-time choice of kernel: each query is instantiated once per kernel, the vector copy
 //! inside a function compiled for AVX2 and FMA (and a second one also compiled for AVX-512,
 //! whose 32 registers the same code then uses, taken where the CPU has it), and called after
-//! the CPU check made when the hierarchy's kernel was chosen.
+//! the CPU check made when the hierarchy's kernel was chosen. In the AVX2 copy the single-ray
+//! queries run on [`crate::traverse::avx2_single`], the packets on the AVX2 kernel; the
+//! AVX-512 copy keeps its own form for both (the single-ray form was measured on AMD's Zen 3
+//! only).
 
 use crate::blas::Blas;
 use crate::hit::{Hit, HitFilter};
@@ -22,9 +25,10 @@ pub enum Query {
     Any,
 }
 
-/// The queries instantiated in a module compiled for the given CPU features.
+/// The queries instantiated in a module compiled for the given CPU features: the packet
+/// queries on the kernel `$backend`, the single-ray queries on `$single`.
 macro_rules! instantiate {
-    ($name:ident, $backend:ty, $features:literal) => {
+    ($name:ident, $backend:ty, $single:ty, $features:literal) => {
         #[cfg(target_arch = "x86_64")]
         mod $name {
             use super::*;
@@ -37,8 +41,8 @@ macro_rules! instantiate {
                 query: Query,
             ) -> Option<Hit> {
                 match query {
-                    Query::Closest => leaves::blas_closest::<$backend, _>(blas, ray, filter),
-                    Query::Any => leaves::blas_any::<$backend, _>(blas, ray, filter),
+                    Query::Closest => leaves::blas_closest::<$single, _>(blas, ray, filter),
+                    Query::Any => leaves::blas_any::<$single, _>(blas, ray, filter),
                 }
             }
 
@@ -50,8 +54,8 @@ macro_rules! instantiate {
                 query: Query,
             ) -> Option<Hit> {
                 match query {
-                    Query::Closest => leaves::tlas_closest::<$backend, _>(tlas, ray, filter),
-                    Query::Any => leaves::tlas_any::<$backend, _>(tlas, ray, filter),
+                    Query::Closest => leaves::tlas_closest::<$single, _>(tlas, ray, filter),
+                    Query::Any => leaves::tlas_any::<$single, _>(tlas, ray, filter),
                 }
             }
 
@@ -78,11 +82,16 @@ macro_rules! instantiate {
     };
 }
 
-instantiate!(simd, crate::traverse::avx2::Avx2, "avx2,fma");
+instantiate!(simd, crate::traverse::avx2::Avx2, crate::traverse::avx2_single::Avx2Single, "avx2,fma");
 // Where the CPU has AVX-512: the same AVX2 code compiled with its 32 vector registers and mask
 // registers, so that a walk's state need not spill, and a packet's node test sixteen rays to a
 // register ([`crate::traverse::avx512`]); the same operations, so the same bits.
-instantiate!(simd512, crate::traverse::avx512::Avx512, "avx2,fma,avx512f,avx512vl");
+instantiate!(
+    simd512,
+    crate::traverse::avx512::Avx512,
+    crate::traverse::avx512::Avx512,
+    "avx2,fma,avx512f,avx512vl"
+);
 
 /// Which instantiation of the vector queries runs.
 #[cfg(target_arch = "x86_64")]
