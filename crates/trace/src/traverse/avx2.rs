@@ -224,14 +224,7 @@ impl Backend for Avx2 {
     #[inline]
     #[target_feature(enable = "avx2,fma")]
     unsafe fn block(p: &Prepared, block: &TriBlock, t_max: f32) -> BlockHits {
-        let (o, s) = (p.tri_org, p.shear);
-        let frame = Frame {
-            tri_org: [_mm_set1_ps(o[0]), _mm_set1_ps(o[1]), _mm_set1_ps(o[2])],
-            shear: [_mm_set1_ps(s[0]), _mm_set1_ps(s[1]), _mm_set1_ps(s[2])],
-            k: [16 * p.k[0] as usize, 16 * p.k[1] as usize, 16 * p.k[2] as usize],
-            t_min: _mm_set1_ps(p.t_min),
-        };
-        block_with(&frame, block, t_max)
+        block_with(&Frame::of(p), block, t_max)
     }
 }
 
@@ -244,6 +237,21 @@ pub(crate) struct Frame {
     pub(crate) shear: [__m128; 3],
     pub(crate) k: [usize; 3],
     pub(crate) t_min: __m128,
+}
+
+impl Frame {
+    /// The frame of the ray `p`.
+    #[inline]
+    #[target_feature(enable = "avx2,fma")]
+    pub(crate) unsafe fn of(p: &Prepared) -> Frame {
+        let (o, s) = (p.tri_org, p.shear);
+        Frame {
+            tri_org: [_mm_set1_ps(o[0]), _mm_set1_ps(o[1]), _mm_set1_ps(o[2])],
+            shear: [_mm_set1_ps(s[0]), _mm_set1_ps(s[1]), _mm_set1_ps(s[2])],
+            k: [16 * p.k[0] as usize, 16 * p.k[1] as usize, 16 * p.k[2] as usize],
+            t_min: _mm_set1_ps(p.t_min),
+        }
+    }
 }
 
 /// The watertight test of a block's four triangles for the ray whose frame is `frame`
@@ -343,14 +351,15 @@ unsafe fn planes(p: &Prepared, node: &WideNode) -> [__m256; 6] {
 #[inline]
 #[target_feature(enable = "avx2,fma")]
 unsafe fn slabs_of<const TREE: bool>(p: &Prepared, planes: &[__m256; 6], t_max: f32) -> (__m256, __m256) {
-    // (No closures: a closure is compiled without the target features.)
-    macro_rules! broadcast {
-        ($x:expr) => {
-            [_mm256_set1_ps($x[0]), _mm256_set1_ps($x[1]), _mm256_set1_ps($x[2])]
-        };
-    }
-    let (org, inv, inv_far) = (broadcast!(p.org), broadcast!(p.inv), broadcast!(p.inv_far));
+    let (org, inv, inv_far) = (broadcast3(p.org), broadcast3(p.inv), broadcast3(p.inv_far));
     slabs_with::<TREE>(&org, &inv, &inv_far, _mm256_set1_ps(p.t_min), planes, t_max)
+}
+
+/// Each of three scalars broadcast to a register.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+pub(crate) unsafe fn broadcast3(x: [f32; 3]) -> [__m256; 3] {
+    [_mm256_set1_ps(x[0]), _mm256_set1_ps(x[1]), _mm256_set1_ps(x[2])]
 }
 
 /// The slab tests of the rows `planes` (near x, y, z, far x, y, z) for a ray whose origin,
@@ -396,7 +405,7 @@ pub(crate) unsafe fn slabs_with<const TREE: bool>(
 /// `a·b + c`, fused as [`crate::triangle::fused`].
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-pub(crate) unsafe fn fmadd(a: __m128, b: __m128, c: __m128) -> __m128 {
+unsafe fn fmadd(a: __m128, b: __m128, c: __m128) -> __m128 {
     if FUSED {
         _mm_fmadd_ps(a, b, c)
     } else {
@@ -408,7 +417,7 @@ pub(crate) unsafe fn fmadd(a: __m128, b: __m128, c: __m128) -> __m128 {
 /// [`crate::triangle::inside`].
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-pub(crate) unsafe fn inside(u: __m128, v: __m128, w: __m128) -> __m128 {
+unsafe fn inside(u: __m128, v: __m128, w: __m128) -> __m128 {
     let zero = _mm_setzero_ps();
     _mm_or_ps(
         _mm_cmpge_ps(_mm_min_ps(u, _mm_min_ps(v, w)), zero),
@@ -420,11 +429,7 @@ pub(crate) unsafe fn inside(u: __m128, v: __m128, w: __m128) -> __m128 {
 #[cold]
 #[inline(never)]
 #[target_feature(enable = "avx2,fma")]
-pub(crate) unsafe fn exact_edges(
-    lanes: i32,
-    proj: [__m128; 6],
-    uvw: [__m128; 3],
-) -> (__m128, __m128, __m128) {
+unsafe fn exact_edges(lanes: i32, proj: [__m128; 6], uvw: [__m128; 3]) -> (__m128, __m128, __m128) {
     let mut p = [[0.0f32; 4]; 6];
     for (dst, src) in p.iter_mut().zip(proj) {
         _mm_storeu_ps(dst.as_mut_ptr(), src);

@@ -22,7 +22,7 @@
 
 use crate::node::{TriBlock, WideNode};
 use crate::ray::Ray;
-use crate::traverse::avx2::{block_with, slabs_with, Frame};
+use crate::traverse::avx2::{block_with, broadcast3, slabs_with, Frame};
 use crate::traverse::avx2_ray::{accepted, finite, frame_axes, Prepared};
 use crate::traverse::backend::{Backend, BlockHits, RayQuery, FAR};
 use glam::{Affine3A, Vec3A};
@@ -104,22 +104,14 @@ impl Single {
     #[target_feature(enable = "avx2,fma")]
     unsafe fn of(q: &RayQuery) -> Single {
         let p = Prepared::one(q);
-        let n = p.near.map(|r| 32 * r as usize);
-        let f = p.far.map(|r| 32 * r as usize);
-        let (o, i, fi, to, s) = (p.org, p.inv, p.inv_far, p.tri_org, p.shear);
         Single {
-            org: [_mm256_set1_ps(o[0]), _mm256_set1_ps(o[1]), _mm256_set1_ps(o[2])],
-            inv: [_mm256_set1_ps(i[0]), _mm256_set1_ps(i[1]), _mm256_set1_ps(i[2])],
-            inv_far: [_mm256_set1_ps(fi[0]), _mm256_set1_ps(fi[1]), _mm256_set1_ps(fi[2])],
+            org: broadcast3(p.org),
+            inv: broadcast3(p.inv),
+            inv_far: broadcast3(p.inv_far),
             t_min: _mm256_set1_ps(p.t_min),
-            near: n,
-            far: f,
-            frame: Frame {
-                tri_org: [_mm_set1_ps(to[0]), _mm_set1_ps(to[1]), _mm_set1_ps(to[2])],
-                shear: [_mm_set1_ps(s[0]), _mm_set1_ps(s[1]), _mm_set1_ps(s[2])],
-                k: [16 * p.k[0] as usize, 16 * p.k[1] as usize, 16 * p.k[2] as usize],
-                t_min: _mm_set1_ps(p.t_min),
-            },
+            near: p.near.map(|r| 32 * r as usize),
+            far: p.far.map(|r| 32 * r as usize),
+            frame: Frame::of(&p),
             finite: p.finite != 0,
         }
     }
