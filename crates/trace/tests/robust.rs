@@ -230,17 +230,32 @@ fn the_arena_holds_the_built_hierarchy_and_gives_it_back() {
             b.iter().map(|b| (b.v.map(|row| row.map(f32::to_bits)), b.prim)).collect::<Vec<_>>()
         };
         assert_eq!(bits(&blocks), bits(&one.blocks));
-        // In the arena each node's leaf blocks follow it, and its parent records their lines.
+        // In the arena each node's leaf blocks follow it, largest box first (the slot order
+        // among equals), and its parent records their lines; its first node child (the
+        // largest) follows them.
         fn follow(arena: &renderlab_trace::node::Arena, r: u32, after: Option<u32>) {
             use renderlab_trace::node::{Nodes, EMPTY, LEAF_BIT, UNIT};
             if r & LEAF_BIT != 0 {
                 return;
             }
             let n = arena.get(r);
-            let leaves: Vec<u32> =
-                n.children.iter().copied().filter(|&c| c & LEAF_BIT != 0 && c != EMPTY).collect();
-            for (j, &l) in leaves.iter().enumerate() {
+            let by_area = |leaf: bool| {
+                let mut slots: Vec<usize> = (0..8)
+                    .filter(|&i| (n.children[i] & LEAF_BIT != 0) == leaf && n.children[i] != EMPTY)
+                    .collect();
+                slots.sort_by(|&a, &b| {
+                    n.child_bounds(b).half_area().total_cmp(&n.child_bounds(a).half_area())
+                });
+                slots
+            };
+            let leaves = by_area(true);
+            for (j, &i) in leaves.iter().enumerate() {
+                let l = n.children[i];
                 assert_eq!((l & !LEAF_BIT) as usize * UNIT, r as usize * UNIT + 256 + 160 * j);
+            }
+            if let Some(&first) = by_area(false).first() {
+                let end = r as usize * UNIT + 256 + 160 * leaves.len();
+                assert_eq!(n.children[first] as usize * UNIT, end.next_multiple_of(64));
             }
             if let Some(after) = after {
                 assert_eq!(after as usize, (160 * leaves.len()).div_ceil(64));
