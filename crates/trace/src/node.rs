@@ -157,12 +157,12 @@ pub const MAX_ARENA_BYTES: usize = UNIT << 31;
 
 /// A bottom level's nodes and leaf blocks in one allocation, depth first, each node followed
 /// by its leaf children's blocks and then its node children's subtrees, each kind in order of
-/// the child's box area, largest first: a node and the leaves a ray tests after it share memory
-/// pages and lie where the hardware's stream prefetch looks next, and the lines requested
-/// ahead of a walk ([`WideNode::after`]) hold the leaves most likely hit (by area, against slot
-/// order: bounce and shadow rays +3 to +7 % on the 48 instanced blobs, +0 to +3 % on the
-/// terrain and the blob). References are offsets in units of [`UNIT`] bytes (a leaf's with [`LEAF_BIT`]);
-/// nodes start on a cache line. Measured against separate node and block arrays (the same
+/// the child's box area, largest first: a node and the leaves a ray tests after it share
+/// memory pages and lie where the hardware's stream prefetch looks next, and the lines
+/// requested ahead of a walk ([`WideNode::after`]) hold the leaves most likely hit (by area,
+/// against slot order: bounce and shadow rays +3 to +7 % on the 48 instanced blobs, +0 to +3 %
+/// on the terrain and the blob). References are offsets in units of [`UNIT`] bytes (a leaf's
+/// with [`LEAF_BIT`]); nodes start on a cache line. Measured against separate node and block arrays (the same
 /// walk, `profile_set`, 5 alternating rounds): single rays on the meshes larger than the
 /// caches +1 to +6 %, instanced shadow rays +10 %; and with a node's leaf lines requested
 /// when the node is ([`WideNode::after`]), a further +4 to +20 %. A large arena lies on 2 MiB

@@ -31,9 +31,9 @@ use crate::traverse::backend::{Backend, BlockHits, RayQuery, FAR};
 use glam::{Affine3A, Vec3A};
 use std::arch::x86_64::*;
 
-/// The frame's axis `kz` (`avx2_ray::frame_axes`) for each outcome of the three comparisons of |dir|
-/// (bit 0: |x| > |y|, bit 1: |x| > |z|, bit 2: |y| > |z|): x where it beats both, else y
-/// where it beats z, else z.
+/// The frame's axis `kz` (`avx2_ray::frame_axes`) for each outcome of the three comparisons
+/// of |dir| (bit 0: |x| > |y|, bit 1: |x| > |z|, bit 2: |y| > |z|): x where it beats both,
+/// else y where it beats z, else z.
 const KZ: [u8; 8] = {
     let mut t = [0u8; 8];
     let mut gt = 0;
