@@ -202,8 +202,10 @@ impl Arena {
             *at = at.next_multiple_of(64) + NODE_BYTES;
             let n = &nodes[r as usize];
             *at += n.children.iter().filter(|&&c| c & LEAF_BIT != 0 && c != EMPTY).count() * BLOCK_BYTES;
-            for &c in n.children.iter().filter(|&&c| c & LEAF_BIT == 0) {
-                size(nodes, c, at);
+            // In `put`'s order: each subtree starts on a cache line, so the padding between
+            // them depends on the order.
+            for i in by_area(n, false) {
+                size(nodes, n.children[i], at);
             }
         }
         fn put(nodes: &[WideNode], blocks: &[TriBlock], r: u32, out: &mut Arena, at: &mut usize) -> u32 {
