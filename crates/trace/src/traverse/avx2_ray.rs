@@ -101,7 +101,7 @@ impl Prepared {
         let signs = _mm256_movemask_ps(all) as u32;
         let octant = (signs >> 3) & 7;
         let all_finite = (_mm256_movemask_ps(finite(inv)) as u32 >> 3) & 7 == 7;
-        let [kx, ky, kz] = frame_axes(ray, octant).map(|a| a as i32);
+        let [kx, ky, kz] = frame_axes(all, octant).axis;
         let zero = _mm256_setzero_ps();
         // Row 0: org, inv, t_min, octant.
         let tail =
@@ -274,25 +274,76 @@ pub(super) unsafe fn accepted(ray: &Ray, all: __m256) -> Option<f32> {
     (!t0.is_nan() && finite_in == 0x3f && nonzero != 0 && nonempty).then_some(t_min)
 }
 
-/// The sheared frame's axes `[kx, ky, kz]` of a ray whose direction's sign bits are `octant`,
-/// as `TriRay::new` chooses them: `kz` the axis of the largest |dir| (the first of equals),
-/// `kx`, `ky` the next two cyclically, swapped when `dir[kz] < 0` (its sign bit: `dir[kz]` is
-/// not zero).
-#[inline(always)]
-pub(super) fn frame_axes(ray: &Ray, octant: u32) -> [usize; 3] {
-    let a = [ray.dir.x.abs(), ray.dir.y.abs(), ray.dir.z.abs()];
-    let kz = if a[0] > a[1] && a[0] > a[2] {
-        0
-    } else if a[1] > a[2] {
-        1
-    } else {
-        2
-    };
-    let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
-    if (octant >> kz) & 1 != 0 {
-        std::mem::swap(&mut kx, &mut ky);
+/// The frame's axis `kz` ([`frame_axes`]) for each outcome of the three comparisons
+/// of |dir| (bit 0: |x| > |y|, bit 1: |x| > |z|, bit 2: |y| > |z|): x where it beats both,
+/// else y where it beats z, else z.
+const KZ: [u8; 8] = {
+    let mut t = [0u8; 8];
+    let mut gt = 0;
+    while gt < 8 {
+        t[gt] = if gt & 3 == 3 {
+            0
+        } else if gt & 4 != 0 {
+            1
+        } else {
+            2
+        };
+        gt += 1;
     }
-    [kx, ky, kz]
+    t
+};
+
+/// A sheared frame's axes `[kx, ky, kz]`, the lanes that gather `(dir[kx], dir[ky], dir[kz],
+/// dir[kz], org[kx], org[ky], org[kz], org[kz])` from a ray's eight floats, and the byte
+/// offsets of the `kx`, `ky`, `kz` rows of a vertex in a [`crate::node::TriBlock`].
+pub(super) struct Axes {
+    pub(super) axis: [i32; 3],
+    pub(super) perm: [i32; 8],
+    pub(super) k: [usize; 3],
+}
+
+/// The frame's axes for each `kz` and sign of `dir[kz]` (entry `2·kz + negative`): `kx`, `ky`
+/// the next two axes cyclically, swapped where `dir[kz]` is negative ([`frame_axes`]).
+const FRAMES: [Axes; 6] = {
+    let mut t = [const { Axes { axis: [0; 3], perm: [0; 8], k: [0; 3] } }; 6];
+    let mut i = 0;
+    while i < 6 {
+        let kz = i / 2;
+        let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
+        if i % 2 == 1 {
+            (kx, ky) = (ky, kx);
+        }
+        let [x, y, z] = [kx as i32, ky as i32, kz as i32];
+        t[i] = Axes {
+            axis: [x, y, z],
+            perm: [3 + x, 3 + y, 3 + z, 3 + z, x, y, z, z],
+            k: [16 * kx, 16 * ky, 16 * kz],
+        };
+        i += 1;
+    }
+    t
+};
+
+/// The sheared frame's axes of the ray whose eight floats are `all` and whose direction's sign
+/// bits are `octant`, as `TriRay::new` chooses them: `kz` the axis of the largest |dir| (the
+/// first of equals), `kx`, `ky` the next two cyclically, swapped when `dir[kz] < 0` (its sign
+/// bit: `dir[kz]` is not zero). Three comparisons of |dir| in one register and two small
+/// tables, with no branch (a chain of branches and loads indexed by the axes ran 24 more
+/// instructions a ray).
+///
+/// # Safety
+/// The CPU has AVX2, and the caller is compiled for it.
+#[inline(always)]
+pub(super) unsafe fn frame_axes(all: __m256, octant: u32) -> &'static Axes {
+    // Bit 0: |x| > |y|, bit 1: |x| > |z|, bit 2: |y| > |z|.
+    let ad = _mm256_and_ps(all, _mm256_castsi256_ps(_mm256_set1_epi32(0x7fff_ffff)));
+    let gt = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_GT_OQ>(
+        _mm256_permutevar8x32_ps(ad, _mm256_setr_epi32(3, 3, 4, 4, 4, 4, 4, 4)),
+        _mm256_permutevar8x32_ps(ad, _mm256_setr_epi32(4, 5, 5, 5, 5, 5, 5, 5)),
+    )) as usize
+        & 7;
+    let kz = *KZ.get_unchecked(gt) as usize;
+    FRAMES.get_unchecked(2 * kz + ((octant as usize >> kz) & 1))
 }
 
 /// The rows of the near and far planes of the axis whose minima are row `MIN`, by the sign of

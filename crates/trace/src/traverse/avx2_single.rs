@@ -26,55 +26,10 @@
 use crate::node::{TriBlock, WideNode};
 use crate::ray::Ray;
 use crate::traverse::avx2::{block_with, broadcast3, slabs_with, Frame};
-use crate::traverse::avx2_ray::{accepted, finite, Prepared};
+use crate::traverse::avx2_ray::{accepted, finite, frame_axes, Prepared};
 use crate::traverse::backend::{Backend, BlockHits, RayQuery, FAR};
 use glam::{Affine3A, Vec3A};
 use std::arch::x86_64::*;
-
-/// The frame's axis `kz` (`avx2_ray::frame_axes`) for each outcome of the three comparisons
-/// of |dir| (bit 0: |x| > |y|, bit 1: |x| > |z|, bit 2: |y| > |z|): x where it beats both,
-/// else y where it beats z, else z.
-const KZ: [u8; 8] = {
-    let mut t = [0u8; 8];
-    let mut gt = 0;
-    while gt < 8 {
-        t[gt] = if gt & 3 == 3 {
-            0
-        } else if gt & 4 != 0 {
-            1
-        } else {
-            2
-        };
-        gt += 1;
-    }
-    t
-};
-
-/// A sheared frame's axes: the lanes that gather `(dir[kx], dir[ky], dir[kz], dir[kz],
-/// org[kx], org[ky], org[kz], org[kz])` from a ray's eight floats, and the byte offsets of the
-/// `kx`, `ky`, `kz` rows of a vertex in a [`TriBlock`].
-struct Axes {
-    perm: [i32; 8],
-    k: [usize; 3],
-}
-
-/// The frame's axes for each `kz` and sign of `dir[kz]` (entry `2·kz + negative`): `kx`, `ky`
-/// the next two axes cyclically, swapped where `dir[kz]` is negative (`avx2_ray::frame_axes`).
-const FRAMES: [Axes; 6] = {
-    let mut t = [const { Axes { perm: [0; 8], k: [0; 3] } }; 6];
-    let mut i = 0;
-    while i < 6 {
-        let kz = i / 2;
-        let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
-        if i % 2 == 1 {
-            (kx, ky) = (ky, kx);
-        }
-        let [x, y, z] = [kx as i32, ky as i32, kz as i32];
-        t[i] = Axes { perm: [3 + x, 3 + y, 3 + z, 3 + z, x, y, z, z], k: [16 * kx, 16 * ky, 16 * kz] };
-        i += 1;
-    }
-    t
-};
 
 /// One ray as [`Avx2Single`] reads it.
 #[derive(Clone, Copy, Debug)]
@@ -115,16 +70,7 @@ impl Single {
         let inv_far = _mm256_mul_ps(inv, _mm256_set1_ps(FAR));
         let octant = (_mm256_movemask_ps(all) as u32 >> 3) & 7;
         let all_finite = (_mm256_movemask_ps(finite(inv)) as u32 >> 3) & 7 == 7;
-        // The frame's axes (`avx2_ray::frame_axes`'s) from three comparisons of |dir| and two
-        // small tables, with no branch: bit 0 |x| > |y|, bit 1 |x| > |z|, bit 2 |y| > |z|.
-        let ad = _mm256_and_ps(all, _mm256_castsi256_ps(_mm256_set1_epi32(0x7fff_ffff)));
-        let gt = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_GT_OQ>(
-            _mm256_permutevar8x32_ps(ad, _mm256_setr_epi32(3, 3, 4, 4, 4, 4, 4, 4)),
-            _mm256_permutevar8x32_ps(ad, _mm256_setr_epi32(4, 5, 5, 5, 5, 5, 5, 5)),
-        )) as usize
-            & 7;
-        let kz = *KZ.get_unchecked(gt) as usize;
-        let axes = FRAMES.get_unchecked(2 * kz + ((octant as usize >> kz) & 1));
+        let axes = frame_axes(all, octant);
         // (dir[kx], dir[ky], dir[kz], dir[kz], org[kx], org[ky], org[kz], org[kz]).
         let p = _mm256_permutevar8x32_ps(all, _mm256_loadu_si256(axes.perm.as_ptr() as *const __m256i));
         let (d, o) = (_mm256_castps256_ps128(p), _mm256_extractf128_ps::<1>(p));
