@@ -37,8 +37,9 @@ pub struct WideNode {
     /// The children's references.
     pub children: [u32; WIDTH],
     /// Per child that is a node in an [`Arena`]: the cache lines of that node's own leaf
-    /// blocks, which follow it there (a walk entering the child requests them with the
-    /// child's lines). Zero elsewhere; pads the node to 256 bytes.
+    /// blocks, which follow it there (a packet walk entering the child requests them with the
+    /// child's lines; a single ray's walk requests a fixed count,
+    /// [`crate::traverse::walk::AHEAD`]). Zero elsewhere; pads the node to 256 bytes.
     pub after: [u32; WIDTH],
 }
 
@@ -159,7 +160,8 @@ pub const MAX_ARENA_BYTES: usize = UNIT << 31;
 /// by its leaf children's blocks and then its node children's subtrees, each kind in order of
 /// the child's box area, largest first: a node and the leaves a ray tests after it share
 /// memory pages and lie where the hardware's stream prefetch looks next, and the lines
-/// requested ahead of a walk ([`WideNode::after`]) hold the leaves most likely hit (by area,
+/// requested ahead of a walk ([`crate::traverse::walk::AHEAD`], [`WideNode::after`]) hold the
+/// leaves most likely hit (by area,
 /// against slot order: bounce and shadow rays +3 to +7 % on the 48 instanced blobs, +0 to +3 %
 /// on the terrain and the blob). References are offsets in units of [`UNIT`] bytes (a leaf's
 /// with [`LEAF_BIT`]); nodes start on a cache line. Measured against separate node and block arrays (the same

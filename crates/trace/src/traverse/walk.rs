@@ -2,18 +2,19 @@
 //!
 //! Closest hit: at a node the kernel tests all eight child boxes; one hit child is entered
 //! directly, two are ordered by entry distance (the farther pushed), more are pushed and sorted
-//! so the nearest is on top (by a sorting network of conditional moves: an insertion sort's
-//! branches on the distances mispredict for rays in all directions; bounce rays +1 to +4 % on
-//! the blob, +3 % on the 48 blobs, +6 to +12 % on the terrain), and the nearest is entered. A
-//! leaf may shorten the ray (`t_max`); popped entries farther than the shortened ray are
-//! dropped. Any hit: the same without ordering, stopping at the first accepted hit. Every hit
-//! child (a node, or a leaf's data) is prefetched as soon as it is known: a lone one so that
-//! its reference line (read after its box test) comes with its box rows; where there are two
-//! or more, before the closest walk compares distances, so that the child entered next is on
-//! its way even when the comparison's branch is mispredicted, and the pushed ones while the
-//! walk descends. A node child is
-//! requested with the leaf blocks that follow it in an arena (up to [`AFTER`] lines, as its
-//! parent records, [`crate::node::WideNode::after`]): most of a walk's time on a large mesh is
+//! so the nearest is on top, and the nearest is entered. Neither ordering branches on the
+//! distances, which for rays in all directions mispredicts: two children by the minimum and
+//! maximum of their stack entries read as keys (against a branch, `scripts/paired_passes.py`,
+//! AMD Zen 3: the blob's primary / bounce rays +2.0 / +4.0 %, 8 rounds of 20 pairs, the
+//! instances' bounce rays +3.2 %), more by a sorting network of conditional moves (against an
+//! insertion sort's branches: bounce rays +1 to +4 % on the blob, +3 % on the 48 blobs, +6 to
+//! +12 % on the terrain). A leaf may shorten the ray (`t_max`); popped entries farther than
+//! the shortened ray are dropped. Any hit: the same without ordering, stopping at the first
+//! accepted hit. Every hit child (a node, or a leaf's data) is prefetched as soon as it is
+//! known: a lone one so that its reference line (read after its box test) comes with its box
+//! rows; where there are two or more, all of them before the nearest is known, and the pushed
+//! ones load while the walk descends. A node child is requested with the [`AHEAD`] lines that
+//! follow it, in an arena its first leaf blocks: most of a walk's time on a large mesh is
 //! waiting for memory, and those blocks are the ones it tests next.
 //!
 //! A ray whose every `1/dir` is finite takes the kernel's [`Backend::node_tree`], whose
@@ -72,28 +73,54 @@ struct Entry {
     node: u32,
 }
 
-/// Lines after a node, at most, requested with it ([`WideNode::after`]).
+/// Lines after a node, at most, that a packet walk requests with it ([`WideNode::after`]).
 pub const AFTER: u32 = 8;
 
-/// Starts loading child `slot` of `node`: a node's box rows and references and the leaf blocks
-/// that follow it in an arena (up to [`AFTER`] lines), or what the leaves say a leaf needs, so
-/// that the walk need not wait when it gets there.
+/// Lines after a node that a single ray's walk requests with it, whatever the node's own leaf
+/// blocks take ([`WideNode::after`]): in an arena they are its first leaf blocks and, where its
+/// leaves take fewer lines, the start of its largest node child's subtree.
+///
+/// A fixed count needs neither the count's load nor a branch on it. The count-bounded
+/// requests (up to [`AFTER`]) branched on each of them, and rays in all directions stop at a
+/// different line from node to node. Against them (`scripts/paired_passes.py`, 5 or 6
+/// rounds of 12 to 16 pairs, AMD Zen 3), primary / bounce / shadow rays:
+/// - 2 lines: the blob (69k triangles, a 3.8 MB hierarchy) +2 to +3 %, but the 1M-triangle
+///   terrain 0.95–0.99 and the instances 0.95–0.96;
+/// - 4 lines: the blob 0.99 / 1.04 / 1.03, the terrain and the instances 0.96–1.01;
+/// - 6 lines: the blob 1.00–1.02 / 1.02–1.04 / 1.00–1.02, the terrain 0.99–1.01, the instances
+///   0.98–1.03, the 3.3M-triangle blobs 0.97–0.99;
+/// - 8 lines: the blob 1.00 / 1.01 / 1.01, the terrain 0.97–0.98.
+pub const AHEAD: usize = 6;
+
+/// Starts loading child `slot` of `node`: a node's box rows and references and the [`AHEAD`]
+/// lines that follow it (in an arena its first leaf blocks), or what the leaves say a leaf
+/// needs, so that the walk need not wait when it gets there.
 #[inline(always)]
 unsafe fn fetch<N: Nodes + ?Sized, L: Leaves>(nodes: &N, leaves: &L, node: &WideNode, slot: usize) {
     let child = *node.children.get_unchecked(slot);
     if child & LEAF_BIT == 0 {
-        prefetch_node(nodes.node(child), *node.after.get_unchecked(slot));
+        let n = nodes.node(child);
+        prefetch(n);
+        prefetch_lines((n as *const WideNode).wrapping_add(1) as *const u8, AHEAD);
     } else {
         leaves.fetch(child & !LEAF_BIT);
     }
 }
 
 /// Starts loading node `n` and the first `after` lines that follow it (at most [`AFTER`]): its
-/// leaf blocks in an arena ([`WideNode::after`]).
+/// leaf blocks in an arena ([`WideNode::after`]). For packet walks, which test a node once for
+/// many rays.
 #[inline(always)]
 pub(crate) fn prefetch_node(n: &WideNode, after: u32) {
     prefetch(n);
     prefetch_lines((n as *const WideNode).wrapping_add(1) as *const u8, after.min(AFTER) as usize);
+}
+
+/// Child `i`'s stack entry read as a key ([`Entry`]): its distance's bits above its
+/// reference.
+#[inline(always)]
+unsafe fn key(node: &WideNode, dist: &[f32; WIDTH], i: usize) -> u64 {
+    (u64::from(dist.get_unchecked(i).to_bits()) << 32) | u64::from(*node.children.get_unchecked(i))
 }
 
 /// Sorting networks for 3 to 8 entries (pairs of positions to compare and exchange), the
@@ -196,11 +223,13 @@ unsafe fn closest_with<B: Backend, N: Nodes + ?Sized, L: Leaves, const TREE: boo
                 fetch(nodes, leaves, node, i0);
                 fetch(nodes, leaves, node, i1);
                 if mask == 0 {
-                    let (near, far) = if dist[i1] < dist[i0] { (i1, i0) } else { (i0, i1) };
+                    // The nearer by their keys' minimum, without a branch on the distances:
+                    // for rays in all directions it mispredicts half the time.
+                    let (k0, k1) = (key(node, &dist, i0), key(node, &dist, i1));
                     debug_assert!(sp < STACK);
-                    stack.get_unchecked_mut(sp).write(Entry { node: node.children[far], dist: dist[far] });
+                    *(stack.as_mut_ptr().add(sp) as *mut u64) = k0.max(k1);
                     sp += 1;
-                    cur = node.children[near];
+                    cur = k0.min(k1) as u32;
                     continue 'walk;
                 }
                 // Three or more: push all, then sort them so that the nearest is on top (at
@@ -319,6 +348,24 @@ mod tests {
                 unsafe { sort(keys.as_mut_ptr(), n) };
                 assert!(keys.windows(2).all(|w| w[0] >= w[1]), "{n} keys {bits:#b}: {keys:?}");
             }
+        }
+    }
+
+    /// A key written as a stack entry reads back as the entry it stands for (the two-child
+    /// ordering pushes keys).
+    #[test]
+    fn keys_are_entries() {
+        let mut node = WideNode::EMPTY;
+        node.children = [7, 0, u32::MAX, 12345, 1 << 31, 3, 9, 11];
+        let dist = [0.0f32, 1e-30, 0.5, 1.0, 3.5, 1e30, f32::INFINITY, 2.0];
+        for i in 0..WIDTH {
+            let mut slot = MaybeUninit::<Entry>::uninit();
+            // SAFETY: `i < WIDTH`; `Entry` is 8 bytes, aligned to 8.
+            let e = unsafe {
+                *(slot.as_mut_ptr() as *mut u64) = key(&node, &dist, i);
+                slot.assume_init()
+            };
+            assert_eq!((e.node, e.dist.to_bits()), (node.children[i], dist[i].to_bits()));
         }
     }
 
