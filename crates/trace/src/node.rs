@@ -131,6 +131,16 @@ pub trait Nodes {
 
     /// [`Nodes::node`], checked: panics on a reference outside the store.
     fn get(&self, r: u32) -> &WideNode;
+
+    /// Whether leaf references address this store too, in the same units as node references
+    /// (an [`Arena`]'s leaf blocks): a walk may then request a child's lines without
+    /// asking which kind it is ([`Nodes::address`]).
+    const SHARED: bool = false;
+
+    /// The address that reference `r` (without [`LEAF_BIT`]) stands for where the store is
+    /// [`Nodes::SHARED`], a node's or a leaf block's; elsewhere only a node's. For requests
+    /// ahead of a walk, which never fault: `r` need not be in the store.
+    fn address(&self, r: u32) -> *const u8;
 }
 
 impl Nodes for [WideNode] {
@@ -142,6 +152,11 @@ impl Nodes for [WideNode] {
 
     fn get(&self, r: u32) -> &WideNode {
         &self[r as usize]
+    }
+
+    #[inline(always)]
+    fn address(&self, r: u32) -> *const u8 {
+        self.as_ptr().wrapping_add(r as usize) as *const u8
     }
 }
 
@@ -368,6 +383,13 @@ impl Nodes for Arena {
         );
         // SAFETY: in bounds and on a cache line (checked above).
         unsafe { self.node(r) }
+    }
+
+    const SHARED: bool = true;
+
+    #[inline(always)]
+    fn address(&self, r: u32) -> *const u8 {
+        (self.lines.as_ptr() as *const u8).wrapping_add((r as usize) * UNIT)
     }
 }
 
