@@ -176,11 +176,11 @@ pub const MAX_ARENA_BYTES: usize = UNIT << 31;
 /// the child's box area, largest first: a node and the leaves a ray tests after it share
 /// memory pages and lie where the hardware's stream prefetch looks next, and the lines
 /// requested ahead of a walk ([`crate::traverse::walk::AHEAD`], [`WideNode::after`]) hold the
-/// leaves most likely hit (by area,
-/// against slot order: bounce and shadow rays +3 to +7 % on the 48 instanced blobs, +0 to +3 %
-/// on the terrain and the blob). References are offsets in units of [`UNIT`] bytes (a leaf's
-/// with [`LEAF_BIT`]); nodes start on a cache line. Measured against separate node and block arrays (the same
-/// walk, `profile_set`, 5 alternating rounds): single rays on the meshes larger than the
+/// leaves most likely hit (by area, against slot order: bounce and shadow rays +3 to +7 % on
+/// the 48 instanced blobs, +0 to +3 % on the terrain and the blob). References are offsets in
+/// units of [`UNIT`] bytes (a leaf's with [`LEAF_BIT`]), so a reference of either kind is an
+/// address ([`Nodes::address`]); nodes start on a cache line. Measured against separate node
+/// and block arrays (the same walk, `profile_set`, 5 alternating rounds): single rays on the meshes larger than the
 /// caches +1 to +6 %, instanced shadow rays +10 %; and with a node's leaf lines requested
 /// when the node is ([`WideNode::after`]), a further +4 to +20 %. A large arena lies on 2 MiB
 /// pages where the operating system offers them (Linux's transparent huge pages), so that its
@@ -407,7 +407,7 @@ fn fits(bytes: usize) -> Result<(), BuildError> {
 }
 
 /// Bytes of a [`WideNode`].
-const NODE_BYTES: usize = std::mem::size_of::<WideNode>();
+pub(crate) const NODE_BYTES: usize = std::mem::size_of::<WideNode>();
 
 /// Bytes of a [`TriBlock`] (a multiple of [`UNIT`], so blocks and nodes share the units).
 const BLOCK_BYTES: usize = std::mem::size_of::<TriBlock>();
@@ -417,6 +417,37 @@ const _: () = assert!(BLOCK_BYTES.is_multiple_of(UNIT) && NODE_BYTES.is_multiple
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// In an arena every reference, node or leaf, is the address of what it refers to (what
+    /// [`Nodes::SHARED`] promises a walk that requests a child's lines by address).
+    #[test]
+    fn an_arenas_references_are_addresses() {
+        let tris: Vec<[glam::Vec3; 3]> = (0..200)
+            .map(|i| {
+                let p = glam::Vec3::new((i % 17) as f32, (i / 17) as f32, (i % 5) as f32 * 0.3);
+                [p, p + glam::Vec3::X, p + glam::Vec3::Y]
+            })
+            .collect();
+        let blas = crate::blas::Blas::from_triangles(&tris).unwrap();
+        let arena = &blas.arena;
+        let (mut todo, mut seen) = (vec![blas.root], (0, 0));
+        while let Some(r) = todo.pop() {
+            let n = arena.get(r);
+            assert_eq!(arena.address(r), n as *const WideNode as *const u8);
+            seen.0 += 1;
+            for &c in n.children.iter().filter(|&&c| c != EMPTY) {
+                if c & LEAF_BIT == 0 {
+                    todo.push(c);
+                } else {
+                    // SAFETY: a leaf reference of this arena's hierarchy.
+                    let b = unsafe { arena.block(c) };
+                    assert_eq!(arena.address(c & !LEAF_BIT), b as *const TriBlock as *const u8);
+                    seen.1 += 1;
+                }
+            }
+        }
+        assert!(seen.0 > 1 && seen.1 > 8, "{seen:?}");
+    }
 
     #[test]
     fn an_arena_past_its_references_is_an_error_not_a_panic() {

@@ -24,7 +24,7 @@
 //! builder bounds paths to [`MAX_DEPTH`] levels.
 
 use crate::build::binned::MAX_DEPTH;
-use crate::node::{Nodes, WideNode, EMPTY, LEAF_BIT, WIDTH};
+use crate::node::{Nodes, WideNode, EMPTY, LEAF_BIT, NODE_BYTES, WIDTH};
 use crate::traverse::backend::{prefetch, prefetch_lines, Backend, IZE};
 use std::mem::MaybeUninit;
 
@@ -77,7 +77,7 @@ struct Entry {
 pub const AFTER: u32 = 8;
 
 /// A node's cache lines.
-const NODE_LINES: usize = std::mem::size_of::<WideNode>() / 64;
+const NODE_LINES: usize = NODE_BYTES / 64;
 
 /// Lines after a node that a single ray's walk requests with it, whatever the node's own leaf
 /// blocks take ([`WideNode::after`]): in an arena they are its first leaf blocks and, where its
@@ -90,8 +90,8 @@ const NODE_LINES: usize = std::mem::size_of::<WideNode>() / 64;
 /// - 2 lines: the blob (69k triangles, a 3.8 MB hierarchy) +2 to +3 %, but the 1M-triangle
 ///   terrain 0.95–0.99 and the instances 0.95–0.96;
 /// - 4 lines: the blob 0.99 / 1.04 / 1.03, the terrain and the instances 0.96–1.01;
-/// - 6 lines: the blob 1.00–1.02 / 1.02–1.04 / 1.00–1.02, the terrain 0.99–1.01, the instances
-///   0.98–1.03, the 3.3M-triangle blobs 0.97–0.99;
+/// - 6 lines: the blob 1.00–1.02 / 1.02–1.04 / 1.00–1.02, the terrain 0.98–1.01, the instances
+///   0.98–1.03, the 3.3M-triangle blobs 0.965–0.971;
 /// - 8 lines: the blob 1.00 / 1.01 / 1.01, the terrain 0.97–0.98.
 pub const AHEAD: usize = 6;
 
@@ -104,16 +104,13 @@ pub const AHEAD: usize = 6;
 /// directions mispredicts): for a leaf, its block and the blocks after it, its parent's next
 /// leaves by area. Against the branch (`scripts/paired_passes.py`, AMD Zen 3, 6 rounds of 16
 /// pairs): bounce rays +2 % on the blob and the terrain, +3 % on the instances, +5 % on the
-/// 3.3M-triangle blobs; primary and shadow rays 0.99–1.04 (8 rounds of 16).
+/// 3.3M-triangle blobs; primary and shadow rays 0.99–1.04 (8 rounds of 16; a first 6 rounds
+/// read the blob's 0.992 / 0.972).
 #[inline(always)]
 unsafe fn fetch<N: Nodes + ?Sized, L: Leaves>(nodes: &N, leaves: &L, node: &WideNode, slot: usize) {
     let child = *node.children.get_unchecked(slot);
-    if N::SHARED {
+    if N::SHARED || child & LEAF_BIT == 0 {
         prefetch_lines(nodes.address(child & !LEAF_BIT), NODE_LINES + AHEAD);
-    } else if child & LEAF_BIT == 0 {
-        let n = nodes.node(child);
-        prefetch(n);
-        prefetch_lines((n as *const WideNode).wrapping_add(1) as *const u8, AHEAD);
     } else {
         leaves.fetch(child & !LEAF_BIT);
     }
