@@ -275,13 +275,15 @@ fn vector_grid_nodes(n: usize) -> Option<Vec<renderlab_trace::node::WideNode>> {
 }
 
 /// The single-ray node test with its slab terms reduced as a tree (taken for rays whose every
-/// `1/dir` is finite) against the chain form and the scalar kernel, on every node of a
-/// hierarchy, bit for bit: random rays, rays starting on box planes and at distance zero (where
+/// `1/dir` is finite) against the chain form and the scalar kernel, and the single-ray
+/// kernel's (`(org − row)·(−1/dir)`, the row a memory operand) in both forms against them, on
+/// every node of a hierarchy, bit for bit: random rays, rays starting on box planes and at distance zero (where
 /// signed zeros meet), axis-aligned rays (which the tree form must refuse) and clipped intervals.
 #[test]
 #[cfg(target_arch = "x86_64")]
 fn the_tree_node_test_agrees_with_the_chain() {
     use renderlab_trace::traverse::avx2::Avx2;
+    use renderlab_trace::traverse::avx2_single::Avx2Single;
     use renderlab_trace::traverse::backend::Backend;
     use renderlab_trace::traverse::scalar::Scalar;
     let Some(nodes) = vector_grid_nodes(12) else { return };
@@ -313,9 +315,13 @@ fn the_tree_node_test_agrees_with_the_chain() {
             let chain = Avx2::node(&p, node, q.t_max);
             let bits = |(m, d): (u32, [f32; 8])| (m, d.map(f32::to_bits));
             assert_eq!(bits(chain), bits(Scalar::node(&q, node, q.t_max)), "ray {ray:?}");
+            let s = Avx2Single::prepare(&q);
+            assert_eq!(bits(Avx2Single::node(&s, node, q.t_max)), bits(chain), "single ray {ray:?}");
+            assert_eq!(Avx2Single::tree_safe(&s), Avx2::tree_safe(&p), "ray {ray:?}");
             if Avx2::tree_safe(&p) {
                 tree += 1;
                 assert_eq!(bits(Avx2::node_tree(&p, node, q.t_max)), bits(chain), "ray {ray:?}");
+                assert_eq!(bits(Avx2Single::node_tree(&s, node, q.t_max)), bits(chain), "single ray {ray:?}");
             } else {
                 refused += 1;
             }

@@ -385,6 +385,20 @@ pub(crate) unsafe fn slabs_with<const TREE: bool>(
     let (n0, n1, n2) = (slab!(0, planes[0], inv), slab!(1, planes[1], inv), slab!(2, planes[2], inv));
     let (f0, f1, f2) =
         (slab!(0, planes[3], inv_far), slab!(1, planes[4], inv_far), slab!(2, planes[5], inv_far));
+    entries::<TREE>([n0, n1, n2], [f0, f1, f2], t0, t_max)
+}
+
+/// The entry distances (the largest of the near planes' distances and `t0`) and the
+/// children entered (those whose entry is at most their exit, the smallest of the far planes'
+/// distances and `t_max · IZE`), from the six planes' distances.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+pub(crate) unsafe fn entries<const TREE: bool>(
+    [n0, n1, n2]: [__m256; 3],
+    [f0, f1, f2]: [__m256; 3],
+    t0: __m256,
+    t_max: f32,
+) -> (__m256, __m256) {
     let t1 = _mm256_set1_ps(t_max * IZE);
     // Two levels where no term can be NaN ([`Prepared::finite`], the walk's choice), else the
     // chain whose order ignores NaN terms; the same values either way.
