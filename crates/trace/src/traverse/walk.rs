@@ -31,6 +31,12 @@ use std::mem::MaybeUninit;
 /// Stack entries a walk can need.
 pub const STACK: usize = (WIDTH - 1) * MAX_DEPTH + 1;
 
+/// Stack entries the any-hit walk can need, as it pairs node tests ([`any`]): it pairs only
+/// while it holds at most [`STACK`] entries, a paired step adds at most `2·WIDTH − 2` (the
+/// paired node's hit children for its entry, the entered node's other hit children), and a
+/// walk from any node then adds at most `WIDTH − 1` a level below it.
+const PAIRED_STACK: usize = STACK + 2 * WIDTH - 2 + (WIDTH - 1) * MAX_DEPTH;
+
 /// What a walk does at a leaf.
 pub trait Leaves {
     /// Tests the leaf with payload `leaf` (its reference without [`LEAF_BIT`]) for a closer
@@ -309,13 +315,32 @@ unsafe fn any_with<B: Backend, N: Nodes + ?Sized, L: Leaves, const TREE: bool>(
     if root == EMPTY {
         return false;
     }
-    let mut stack = [const { MaybeUninit::<u32>::uninit() }; STACK];
+    let mut stack = [const { MaybeUninit::<u32>::uninit() }; PAIRED_STACK];
     let mut sp = 0usize;
     let mut cur = root;
     loop {
         if cur & LEAF_BIT == 0 {
             let node = nodes.node(cur);
             let (mut mask, _) = if TREE { B::node_tree(p, node, t_max) } else { B::node(p, node, t_max) };
+            // The node on top of the stack, tested now rather than after this one's subtree:
+            // the two tests do not depend on each other, so they overlap, and most of a
+            // walk's time is waiting on one test's loads and its chain of operations.
+            if sp != 0 && sp <= STACK {
+                let top = stack.get_unchecked(sp - 1).assume_init();
+                if top & LEAF_BIT == 0 {
+                    sp -= 1;
+                    let alt = nodes.node(top);
+                    let (mut amask, _) =
+                        if TREE { B::node_tree(p, alt, t_max) } else { B::node(p, alt, t_max) };
+                    while amask != 0 {
+                        let i = amask.trailing_zeros() as usize;
+                        amask &= amask - 1;
+                        fetch(nodes, leaves, alt, i);
+                        stack.get_unchecked_mut(sp).write(*alt.children.get_unchecked(i));
+                        sp += 1;
+                    }
+                }
+            }
             if mask != 0 {
                 let first = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
@@ -323,7 +348,7 @@ unsafe fn any_with<B: Backend, N: Nodes + ?Sized, L: Leaves, const TREE: bool>(
                     let i = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
                     fetch(nodes, leaves, node, i);
-                    debug_assert!(sp < STACK);
+                    debug_assert!(sp < PAIRED_STACK);
                     stack.get_unchecked_mut(sp).write(node.children[i]);
                     sp += 1;
                 }
