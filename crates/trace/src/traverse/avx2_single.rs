@@ -37,10 +37,14 @@ use std::arch::x86_64::*;
 pub struct Single {
     /// The origin, broadcast per axis.
     org: [__m256; 3],
-    /// `−1/dir`, broadcast per axis: a plane's distance is `(org − plane) · (−1/dir)`, the
-    /// same bits as `(plane − org) · (1/dir)` (negating both factors of a product, and
-    /// swapping a difference's terms, round alike), with the plane's row as the subtraction's
-    /// memory operand.
+    /// `−1/dir`, broadcast per axis: a plane's distance is `(org − plane) · (−1/dir)`, with
+    /// the plane's row as the subtraction's memory operand. That is the same value as
+    /// `(plane − org) · (1/dir)`: swapping a difference's terms negates it exactly, and so
+    /// does negating a factor of a product. The one difference in bits is where the origin
+    /// lies on the plane: both differences are then `+0`, and the products zeros of opposite
+    /// signs. The node test does not pass it on: the comparison of entry and exit does not
+    /// see a zero's sign, and the entry is a maximum whose last operand is the interval's
+    /// start, never `−0` ([`entries`]).
     neg_inv: [__m256; 3],
     /// `−inv · FAR`, the far planes' factor, broadcast per axis.
     neg_inv_far: [__m256; 3],
@@ -129,11 +133,12 @@ impl Single {
         }
     }
 
-    /// The slab tests of `node`'s children, the AVX2 kernel's values bit for bit.
+    /// The slab tests of `node`'s children, the AVX2 kernel's results bit for bit (entry
+    /// distances and mask; `tests/packet.rs` checks them on rays that start on box planes).
     ///
-    /// Each plane's distance is `(org − row) · (−1/dir)`: a vector subtraction reads its
-    /// second operand from memory, so the row's load is part of it, where `(row − org)` took a
-    /// load of its own. Six instructions fewer a test (27 against 33; the blob's bounce rays
+    /// Each plane's distance is `(org − row) · (−1/dir)` ([`Single::neg_inv`]): a vector
+    /// subtraction reads its second operand from memory, so the row's load is part of it,
+    /// where `(row − org)` took a load of its own. Six instructions fewer a test (27 against 33; the blob's bounce rays
     /// 809 instructions a ray against 852), and against the loads apart
     /// (`scripts/paired_passes.py`, AMD Zen 3, 10 rounds of 20 pairs), primary / bounce /
     /// shadow rays: the terrain 1.005 / 1.013 / 1.011, the blob 1.016 / 1.015 / 1.009, the
