@@ -344,6 +344,7 @@ unsafe fn any_with<B: Backend, N: Nodes + ?Sized, L: Leaves, const TREE: bool>(
                         let i = amask.trailing_zeros() as usize;
                         amask &= amask - 1;
                         fetch(nodes, leaves, alt, i);
+                        debug_assert!(sp < PAIRED_STACK);
                         stack.get_unchecked_mut(sp).write(*alt.children.get_unchecked(i));
                         sp += 1;
                     }
