@@ -180,11 +180,11 @@ pub const MAX_ARENA_BYTES: usize = UNIT << 31;
 /// the 48 instanced blobs, +0 to +3 % on the terrain and the blob). References are offsets in
 /// units of [`UNIT`] bytes (a leaf's with [`LEAF_BIT`]), so a reference of either kind is an
 /// address ([`Nodes::address`]); nodes start on a cache line. Measured against separate node
-/// and block arrays (the same walk, `profile_set`, 5 alternating rounds): single rays on the meshes larger than the
-/// caches +1 to +6 %, instanced shadow rays +10 %; and with a node's leaf lines requested
-/// when the node is ([`WideNode::after`]), a further +4 to +20 %. A large arena lies on 2 MiB
-/// pages where the operating system offers them (Linux's transparent huge pages), so that its
-/// scattered reads seldom miss the address translation cache as well.
+/// and block arrays (the same walk, `profile_set`, 5 alternating rounds): single rays on the
+/// meshes larger than the caches +1 to +6 %, instanced shadow rays +10 %; and with a node's
+/// leaf lines requested when the node is ([`WideNode::after`]), a further +4 to +20 %. A large
+/// arena lies on 2 MiB pages where the operating system offers them (Linux's transparent huge
+/// pages), so that its scattered reads seldom miss the address translation cache as well.
 #[derive(Clone, Default)]
 pub struct Arena {
     lines: Lines,

@@ -11,14 +11,15 @@
 //! +12 % on the terrain). A leaf may shorten the ray (`t_max`); popped entries farther than
 //! the shortened ray are dropped. Any hit: the same without ordering, stopping at the first
 //! accepted hit, and with the node on top of the stack tested together with the node entered
-//! (their hit children pushed, its own below the entered node's): the two tests are independent,
-//! so their loads and chains of operations overlap, where one after the other each waited for
-//! its own. Against testing them apart (`scripts/paired_passes.py`, AMD Zen 3, 10 rounds of 20
-//! pairs), shadow rays: the blob +2.8 %, the 1,728-triangle blob +4.9 %, the 3.3M-triangle blobs
-//! +4.9 %, the instances +3.4 %, the terrain +0.4 % (+3.6 % in 8 rounds of 16). The closest walk
-//! does not pair: there a node tested ahead is wasted wherever a hit in the entered subtree
-//! would have dropped it (the blob's primary rays 0.92–0.97 in three forms, its bounce rays,
-//! which mostly leave the mesh without a hit, 0.99–1.02). Every hit child (a node, or a leaf's data) is prefetched as soon as it is
+//! (their hit children pushed, its own below the entered node's): the two tests are
+//! independent, so their loads and chains of operations overlap, where one after the other
+//! each waited for its own. Against testing them apart (`scripts/paired_passes.py`, AMD Zen 3,
+//! 10 rounds of 20 pairs), shadow rays: the blob +2.8 %, the 1,728-triangle blob +4.9 %, the
+//! 3.3M-triangle blobs +4.9 %, the instances +3.4 %, the terrain +0.4 % (+3.6 % in 8 rounds of
+//! 16). The closest walk does not pair: there a node tested ahead is wasted wherever a hit in
+//! the entered subtree would have dropped it (the blob's primary rays 0.84–0.97 in six forms,
+//! its bounce rays, which mostly leave the mesh without a hit, 0.96–1.02; BENCHMARKS.md,
+//! Round 14). Every hit child (a node, or a leaf's data) is prefetched as soon as it is
 //! known: a lone one so that its reference line (read after its box test) comes with its box
 //! rows; where there are two or more, all of them before the nearest is known, and the pushed
 //! ones load while the walk descends. A node child is requested with the [`AHEAD`] lines that
@@ -137,6 +138,28 @@ unsafe fn fetch<N: Nodes + ?Sized, L: Leaves>(nodes: &N, leaves: &L, node: &Wide
 pub(crate) fn prefetch_node(n: &WideNode, after: u32) {
     prefetch(n);
     prefetch_lines((n as *const WideNode).wrapping_add(1) as *const u8, after.min(AFTER) as usize);
+}
+
+/// Pushes the references of `node`'s children in `mask` on the any-hit walk's stack `stack`
+/// from `sp` up, requesting each one's lines; returns the new top.
+#[inline(always)]
+unsafe fn push_hits<N: Nodes + ?Sized, L: Leaves>(
+    nodes: &N,
+    leaves: &L,
+    stack: &mut [MaybeUninit<u32>; PAIRED_STACK],
+    mut sp: usize,
+    node: &WideNode,
+    mut mask: u32,
+) -> usize {
+    while mask != 0 {
+        let i = mask.trailing_zeros() as usize;
+        mask &= mask - 1;
+        fetch(nodes, leaves, node, i);
+        debug_assert!(sp < PAIRED_STACK);
+        stack.get_unchecked_mut(sp).write(*node.children.get_unchecked(i));
+        sp += 1;
+    }
+    sp
 }
 
 /// Child `i`'s stack entry read as a key ([`Entry`]): its distance's bits above its
@@ -329,38 +352,21 @@ unsafe fn any_with<B: Backend, N: Nodes + ?Sized, L: Leaves, const TREE: bool>(
     loop {
         if cur & LEAF_BIT == 0 {
             let node = nodes.node(cur);
-            let (mut mask, _) = if TREE { B::node_tree(p, node, t_max) } else { B::node(p, node, t_max) };
+            let (mask, _) = if TREE { B::node_tree(p, node, t_max) } else { B::node(p, node, t_max) };
             // The node on top of the stack, tested now rather than after this one's subtree:
             // the two tests do not depend on each other, so they overlap, and most of a
             // walk's time is waiting on one test's loads and its chain of operations.
             if sp != 0 && sp <= STACK {
                 let top = stack.get_unchecked(sp - 1).assume_init();
                 if top & LEAF_BIT == 0 {
-                    sp -= 1;
                     let alt = nodes.node(top);
-                    let (mut amask, _) =
-                        if TREE { B::node_tree(p, alt, t_max) } else { B::node(p, alt, t_max) };
-                    while amask != 0 {
-                        let i = amask.trailing_zeros() as usize;
-                        amask &= amask - 1;
-                        fetch(nodes, leaves, alt, i);
-                        debug_assert!(sp < PAIRED_STACK);
-                        stack.get_unchecked_mut(sp).write(*alt.children.get_unchecked(i));
-                        sp += 1;
-                    }
+                    let (amask, _) = if TREE { B::node_tree(p, alt, t_max) } else { B::node(p, alt, t_max) };
+                    sp = push_hits(nodes, leaves, &mut stack, sp - 1, alt, amask);
                 }
             }
             if mask != 0 {
                 let first = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                while mask != 0 {
-                    let i = mask.trailing_zeros() as usize;
-                    mask &= mask - 1;
-                    fetch(nodes, leaves, node, i);
-                    debug_assert!(sp < PAIRED_STACK);
-                    stack.get_unchecked_mut(sp).write(node.children[i]);
-                    sp += 1;
-                }
+                sp = push_hits(nodes, leaves, &mut stack, sp, node, mask & (mask - 1));
                 cur = node.children[first];
                 fetch(nodes, leaves, node, first);
                 continue;
