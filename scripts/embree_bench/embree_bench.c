@@ -34,7 +34,9 @@
  * per ray), "8" and "16" (packets of consecutive rays, rtcIntersect8/16), "1M" (streams of 256
  * consecutive rays, rtcIntersect1M/rtcOccluded1M). Packets and streams use the coherent
  * context flag when the set says its rays are coherent (except occlusion in an instanced
- * scene). Builds use Embree's default quality (medium) and all cores.
+ * scene). Builds use Embree's default quality (medium) and all cores; with
+ * EMBREE_BENCH_QUALITY=high they use RTC_BUILD_QUALITY_HIGH (for triangle meshes Embree's
+ * builder with spatial splits).
  *
  * Serving passes (for scripts/paired_passes.py, which alternates it pass by pass with our
  * `profile_set … serve`): `embree_bench SCENE.bin - serve` with EMBREE_BENCH_ONLY=SET:MODE
@@ -229,11 +231,14 @@ PACKET_PASS(16)
 
 /* The scene of the mesh, or of `ninst` instances of it (transforms `xfm`, 12 floats each);
  * `ms` is the time of the commits. */
+/* The build quality of every scene (EMBREE_BENCH_QUALITY). */
+static enum RTCBuildQuality quality = RTC_BUILD_QUALITY_MEDIUM;
+
 static RTCScene build(RTCDevice device, uint32_t nv, const float *pos, uint32_t nt, const uint32_t *idx,
                       uint32_t ninst, const float *xfm, enum RTCSceneFlags flags, double *ms) {
     RTCScene scene = rtcNewScene(device);
     rtcSetSceneFlags(scene, flags);
-    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_MEDIUM);
+    rtcSetSceneBuildQuality(scene, quality);
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     float *v = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 12, nv);
     memcpy(v, pos, (size_t)nv * 12);
@@ -247,7 +252,7 @@ static RTCScene build(RTCDevice device, uint32_t nv, const float *pos, uint32_t 
     if (ninst > 0) {
         RTCScene top = rtcNewScene(device);
         rtcSetSceneFlags(top, flags);
-        rtcSetSceneBuildQuality(top, RTC_BUILD_QUALITY_MEDIUM);
+        rtcSetSceneBuildQuality(top, quality);
         for (uint32_t i = 0; i < ninst; i++) {
             RTCGeometry inst = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
             rtcSetGeometryInstancedScene(inst, scene);
@@ -324,10 +329,13 @@ int main(int argc, char **argv) {
         strcpy(only_mode, colon + 1);
     }
     if (serve && !only) die("serve needs EMBREE_BENCH_ONLY=SET:MODE");
+    const char *q = getenv("EMBREE_BENCH_QUALITY");
+    if (q && strcmp(q, "high") == 0) quality = RTC_BUILD_QUALITY_HIGH;
+    else if (q && strcmp(q, "medium") != 0) die("EMBREE_BENCH_QUALITY must be medium or high");
     RTCDevice device = rtcNewDevice(getenv("EMBREE_BENCH_CONFIG"));
     if (!device) die("Embree found no device");
-    printf("embree %d.%d.%d, %u triangles, %u instances, %d passes per mode\n", RTC_VERSION_MAJOR,
-           RTC_VERSION_MINOR, RTC_VERSION_PATCH, nt, ninst, reps);
+    printf("embree %d.%d.%d, %u triangles, %u instances, %d passes per mode, %s quality\n", RTC_VERSION_MAJOR,
+           RTC_VERSION_MINOR, RTC_VERSION_PATCH, nt, ninst, reps, quality == RTC_BUILD_QUALITY_HIGH ? "high" : "medium");
 
     const char *scene_names[2] = {"default", "robust"};
     enum RTCSceneFlags scene_flags[2] = {RTC_SCENE_FLAG_NONE, RTC_SCENE_FLAG_ROBUST};

@@ -4,6 +4,7 @@
 use crate::aabb::Aabb;
 use crate::build::binned::{self, PrimRef, SahParams, MAX_PRIMS};
 use crate::build::collapse::collapse;
+use crate::build::spatial::{self, SPLITS};
 use crate::error::BuildError;
 use crate::kernel::Kernel;
 pub use crate::node::Indexed;
@@ -15,6 +16,25 @@ use rayon::prelude::*;
 /// The SAH of bottom levels: leaves of up to one 4-triangle block, and a node visit priced as
 /// one block test (both are one vector operation on a handful of registers).
 pub const BLAS_SAH: SahParams = SahParams { max_leaf: BLOCK, block: BLOCK, traversal_cost: 1.0 };
+
+/// Whether a bottom-level build cuts triangles by spatial splits ([`crate::build::spatial`]).
+///
+/// Cutting makes the boxes around a surface tighter where the object splits' boxes overlap,
+/// which most helps rays that start on the surface; it costs build time (the spatial build
+/// bins every large node's triangles' clipped parts) and memory (a cut triangle is stored in
+/// two leaves). Whether it pays depends on the mesh: on the 69k-triangle blob it takes 6 %
+/// fewer node tests a ray; on the 1M-triangle terrain (an even grid) 1 to 2 % more.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Splits {
+    /// Build with and without cuts, keep the tree of lower SAH cost (the default: about three
+    /// times the plain build's time).
+    #[default]
+    Auto,
+    /// Never cut (the fastest build).
+    Never,
+    /// Always take the tree with cuts.
+    Always,
+}
 
 /// A mesh's BVH: 8-wide nodes over leaves of up to four triangles, stored with the leaves'
 /// vertices (so a query never reads the mesh), nodes and leaves together in one [`Arena`].
@@ -29,9 +49,19 @@ pub struct Blas {
 }
 
 impl Blas {
-    /// Builds the BVH of an indexed mesh. Triangles with a non-finite vertex or zero area are
-    /// left out (they can never be hit; see [`crate::triangle::is_hittable`]).
+    /// Builds the BVH of an indexed mesh, with [`Splits::Auto`]. Triangles with a non-finite
+    /// vertex or zero area are left out (they can never be hit; see
+    /// [`crate::triangle::is_hittable`]).
     pub fn build(positions: &[Vec3], indices: &[[u32; 3]]) -> Result<Blas, BuildError> {
+        Blas::build_with_splits(positions, indices, Splits::Auto)
+    }
+
+    /// [`Blas::build`] choosing whether the build cuts triangles ([`Splits`]).
+    pub fn build_with_splits(
+        positions: &[Vec3],
+        indices: &[[u32; 3]],
+        splits: Splits,
+    ) -> Result<Blas, BuildError> {
         if let Some((triangle, &index)) = indices
             .iter()
             .enumerate()
@@ -39,15 +69,24 @@ impl Blas {
         {
             return Err(BuildError::IndexOutOfRange { triangle, index, vertices: positions.len() });
         }
-        Blas::build_with(indices.len(), |t| indices[t].map(|i| positions[i as usize]))
+        Blas::build_with(indices.len(), |t| indices[t].map(|i| positions[i as usize]), splits)
     }
 
-    /// Builds the BVH of a triangle soup (three vertices per triangle).
+    /// Builds the BVH of a triangle soup (three vertices per triangle), with [`Splits::Auto`].
     pub fn from_triangles(triangles: &[[Vec3; 3]]) -> Result<Blas, BuildError> {
-        Blas::build_with(triangles.len(), |t| triangles[t])
+        Blas::from_triangles_with_splits(triangles, Splits::Auto)
     }
 
-    fn build_with(count: usize, tri: impl Fn(usize) -> [Vec3; 3] + Sync) -> Result<Blas, BuildError> {
+    /// [`Blas::from_triangles`] choosing whether the build cuts triangles ([`Splits`]).
+    pub fn from_triangles_with_splits(triangles: &[[Vec3; 3]], splits: Splits) -> Result<Blas, BuildError> {
+        Blas::build_with(triangles.len(), |t| triangles[t], splits)
+    }
+
+    fn build_with(
+        count: usize,
+        tri: impl Fn(usize) -> [Vec3; 3] + Sync,
+        splits: Splits,
+    ) -> Result<Blas, BuildError> {
         if count > MAX_PRIMS {
             return Err(BuildError::TooMany { what: "triangles", count, limit: MAX_PRIMS });
         }
@@ -60,7 +99,22 @@ impl Blas {
             })
             .collect();
         let hittable = refs.len();
-        let bvh = binned::build(refs, &BLAS_SAH);
+        let bvh = match splits {
+            Splits::Never => binned::build(refs, &BLAS_SAH),
+            Splits::Always => spatial::build(refs, &|t| tri(t as usize), &BLAS_SAH, &SPLITS),
+            Splits::Auto => {
+                let copy = refs.clone();
+                let (plain, split) = rayon::join(
+                    || binned::build(copy, &BLAS_SAH),
+                    || spatial::build(refs, &|t| tri(t as usize), &BLAS_SAH, &SPLITS),
+                );
+                if split.sah(&BLAS_SAH) < plain.sah(&BLAS_SAH) {
+                    split
+                } else {
+                    plain
+                }
+            }
+        };
         let mut blocks = Vec::with_capacity(hittable.div_ceil(3));
         let (nodes, root) = collapse(&bvh, &mut |leaf: &[PrimRef]| {
             blocks.push(TriBlock::new(leaf.iter().map(|r| (r.index(), tri(r.index() as usize)))));

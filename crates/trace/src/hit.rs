@@ -40,6 +40,10 @@ impl Hit {
 /// DXR's any-hit shader: called for every candidate intersection that would be accepted, it
 /// returns whether to accept it (an alpha-tested or translucent surface returns `false` to let
 /// the ray pass). Closures `FnMut(&Hit) -> bool` are filters.
+///
+/// A triangle that the build cut ([`crate::Splits`]) lies in two leaves, so an any-hit query
+/// may offer the same hit twice (as DXR may, unless a geometry asks for no duplicate any-hit
+/// calls): a filter should decide by the hit, not count its calls.
 pub trait HitFilter {
     /// Whether `hit` counts.
     fn accept(&mut self, hit: &Hit) -> bool;

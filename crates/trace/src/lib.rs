@@ -103,7 +103,7 @@ pub mod triangle;
 pub mod workload;
 
 pub use aabb::Aabb;
-pub use blas::Blas;
+pub use blas::{Blas, Splits};
 pub use error::BuildError;
 pub use hit::{Hit, HitFilter, Opaque};
 pub use kernel::Kernel;

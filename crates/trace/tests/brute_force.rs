@@ -8,7 +8,7 @@ mod common;
 use common::*;
 use glam::{Affine3A, Vec3};
 use proptest::prelude::*;
-use renderlab_trace::{brute, Blas, Hit, Instance, Ray, Tlas};
+use renderlab_trace::{brute, Blas, Hit, Instance, Ray, Splits, Tlas};
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 192, ..ProptestConfig::default() })]
@@ -18,7 +18,11 @@ proptest! {
         tris in mesh(80),
         rays in prop::collection::vec(ray_seed(), 24),
     ) {
-        let blases: Vec<Blas> = kernels().into_iter().map(|k| Blas::from_triangles(&tris).unwrap().with_kernel(k)).collect();
+        let blases: Vec<Blas> = SPLITS
+            .into_iter()
+            .flat_map(|s| kernels().into_iter().map(move |k| (s, k)))
+            .map(|(s, k)| Blas::from_triangles_with_splits(&tris, s).unwrap().with_kernel(k))
+            .collect();
         let instances = [Instance::new(0, Affine3A::IDENTITY)];
         let meshes = [tris.clone()];
         for (seed, origin) in rays {
@@ -57,8 +61,8 @@ proptest! {
             tris.iter().enumerate().map(|(i, t)| if i as u32 % 2 == parity { *t } else { [Vec3::NAN; 3] }).collect();
         let instances = [Instance::new(0, Affine3A::IDENTITY)];
         let meshes = [tris.clone()];
-        for k in kernels() {
-            let blas = Blas::from_triangles(&tris).unwrap().with_kernel(k);
+        for (s, k) in SPLITS.into_iter().flat_map(|s| kernels().into_iter().map(move |k| (s, k))) {
+            let blas = Blas::from_triangles_with_splits(&tris, s).unwrap().with_kernel(k);
             for &(seed, origin) in &rays {
                 let ray = ray(&meshes, &instances, seed, origin);
                 let mut keep = |h: &Hit| h.primitive % 2 == parity;
@@ -101,7 +105,14 @@ fn larger_mesh_matches_brute_force() {
             Affine3A::from_rotation_y(0.7) * Affine3A::from_translation(Vec3::new(0.3, 0.2, -0.4)),
         ),
     ];
-    let tlases: Vec<Tlas> = kernels().into_iter().map(|k| scene(&meshes, &instances, k)).collect();
+    // Both builds, with and without cut triangles.
+    let blocks = |s| Blas::from_triangles_with_splits(&meshes[0], s).unwrap().block_count();
+    assert!(blocks(Splits::Always) > blocks(Splits::Never), "the spatial build cut no triangle");
+    let tlases: Vec<Tlas> = SPLITS
+        .into_iter()
+        .flat_map(|s| kernels().into_iter().map(move |k| (s, k)))
+        .map(|(s, k)| scene_with(&meshes, &instances, k, s))
+        .collect();
     let mut state = 12345u64;
     let mut rnd = move || {
         state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);

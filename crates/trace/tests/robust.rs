@@ -8,7 +8,7 @@ use common::{check, kernels, scene};
 use glam::{Affine3A, Vec3};
 use renderlab_trace::blas::Indexed;
 use renderlab_trace::build::binned::MAX_DEPTH;
-use renderlab_trace::{Blas, BuildError, Instance, Ray, Tlas};
+use renderlab_trace::{Blas, BuildError, Instance, Ray, Splits, Tlas};
 
 fn unit_triangle(z: f32) -> [Vec3; 3] {
     [Vec3::new(-1.0, -1.0, z), Vec3::new(1.0, -1.0, z), Vec3::new(0.0, 1.0, z)]
@@ -157,8 +157,10 @@ fn exponentially_spaced_triangles_keep_the_depth_bounded() {
     let tris: Vec<[Vec3; 3]> = (0..120).map(|i| unit_triangle(-(1.5f32.powi(i)))).collect();
     let meshes = vec![tris];
     let instances = vec![Instance::new(0, Affine3A::IDENTITY)];
-    for k in kernels() {
-        let blas = Blas::from_triangles(&meshes[0]).unwrap().with_kernel(k);
+    for (s, k) in
+        [Splits::Never, Splits::Always].into_iter().flat_map(|s| kernels().into_iter().map(move |k| (s, k)))
+    {
+        let blas = Blas::from_triangles_with_splits(&meshes[0], s).unwrap().with_kernel(k);
         assert!(blas.depth() <= MAX_DEPTH, "depth {}", blas.depth());
         assert_eq!(blas.closest_hit(&down(0.0, 0.0)).map(|h| h.primitive), Some(0));
         let tlas = scene(&meshes, &instances, k);
@@ -190,15 +192,17 @@ fn the_build_does_not_depend_on_the_thread_count() {
             tris.push([p(i, j), p(i + 1, j + 1), p(i, j + 1)]);
         }
     }
-    let build = |threads| {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        pool.install(|| Blas::from_triangles(&tris).unwrap())
-    };
-    let (one, two) = (build(1).indexed(), build(2).indexed());
-    assert_eq!(one.nodes, two.nodes);
-    assert_eq!(one.root, two.root);
-    let prims = |b: &Indexed| b.blocks.iter().map(|b| b.prim).collect::<Vec<_>>();
-    assert_eq!(prims(&one), prims(&two));
+    for splits in [Splits::Never, Splits::Always] {
+        let build = |threads| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| Blas::from_triangles_with_splits(&tris, splits).unwrap())
+        };
+        let (one, two) = (build(1).indexed(), build(2).indexed());
+        assert_eq!(one.nodes, two.nodes);
+        assert_eq!(one.root, two.root);
+        let prims = |b: &Indexed| b.blocks.iter().map(|b| b.prim).collect::<Vec<_>>();
+        assert_eq!(prims(&one), prims(&two));
+    }
 }
 
 #[test]

@@ -6,9 +6,9 @@
 
 mod common;
 
-use common::kernels;
+use common::{kernels, SPLITS};
 use glam::{Affine3A, Quat, Vec3};
-use renderlab_trace::{brute, Blas, Instance, Ray, Tlas};
+use renderlab_trace::{brute, Blas, Instance, Ray, Splits, Tlas};
 use std::collections::HashMap;
 
 /// An icosphere of radius 1 subdivided `levels` times, indexed so that shared vertices are the
@@ -93,8 +93,10 @@ fn rays_from_inside_at_vertices_and_edges_always_hit() {
     let (pos, tris) = icosphere(4);
     let soup: Vec<[Vec3; 3]> = tris.iter().map(|t| t.map(|i| pos[i as usize])).collect();
     let targets = targets(&pos, &tris);
-    for k in kernels() {
-        let blas = Blas::build(&pos, &tris).unwrap().with_kernel(k);
+    let blocks = |s| Blas::build_with_splits(&pos, &tris, s).unwrap().block_count();
+    assert!(blocks(Splits::Always) > blocks(Splits::Never), "the spatial build cut no triangle");
+    for (s, k) in SPLITS.into_iter().flat_map(|s| kernels().into_iter().map(move |k| (s, k))) {
+        let blas = Blas::build_with_splits(&pos, &tris, s).unwrap().with_kernel(k);
         for origin in ORIGINS {
             for &target in &targets {
                 let ray = Ray::new(origin, target - origin);
@@ -194,8 +196,8 @@ fn rays_at_a_displaced_grids_vertices_and_edges_never_leak() {
         |p: Vec3| p.x > 0.2 && p.x < n as f32 * 0.37 - 0.2 && p.z > 0.2 && p.z < n as f32 * 0.41 - 0.2;
     let aims: Vec<Vec3> = targets(&pos, &tris).into_iter().filter(|&p| interior(p)).collect();
     let origins = [Vec3::new(3.1, 26.0, 2.7), Vec3::new(-1.3, 24.2, 9.9), Vec3::new(4.0, 29.0, 4.1)];
-    for k in kernels() {
-        let blas = Blas::build(&pos, &tris).unwrap().with_kernel(k);
+    for (s, k) in SPLITS.into_iter().flat_map(|s| kernels().into_iter().map(move |k| (s, k))) {
+        let blas = Blas::build_with_splits(&pos, &tris, s).unwrap().with_kernel(k);
         for origin in origins {
             for &target in &aims {
                 let ray = Ray::new(origin, target - origin);

@@ -52,8 +52,8 @@ const CHUNK: usize = 1 << 13;
 /// SIMD min and max), with its index in the caller's list stored in the bits of `lo.w`.
 #[derive(Clone, Copy, Debug)]
 pub struct PrimRef {
-    lo: Vec4,
-    hi: Vec4,
+    pub(super) lo: Vec4,
+    pub(super) hi: Vec4,
 }
 
 impl PrimRef {
@@ -75,33 +75,34 @@ impl PrimRef {
 
     /// Twice the box's centre (lane w meaningless).
     #[inline(always)]
-    fn centre2(&self) -> Vec4 {
+    pub(super) fn centre2(&self) -> Vec4 {
         self.lo + self.hi
     }
 }
 
 /// A box in 4-lane vectors, lane w ignored.
 #[derive(Clone, Copy, Debug)]
-struct Box4 {
-    lo: Vec4,
-    hi: Vec4,
+pub(super) struct Box4 {
+    pub(super) lo: Vec4,
+    pub(super) hi: Vec4,
 }
 
 impl Box4 {
-    const EMPTY: Box4 = Box4 { lo: Vec4::splat(f32::INFINITY), hi: Vec4::splat(f32::NEG_INFINITY) };
+    pub(super) const EMPTY: Box4 =
+        Box4 { lo: Vec4::splat(f32::INFINITY), hi: Vec4::splat(f32::NEG_INFINITY) };
 
     #[inline(always)]
-    fn union(self, o: Box4) -> Box4 {
+    pub(super) fn union(self, o: Box4) -> Box4 {
         Box4 { lo: self.lo.min(o.lo), hi: self.hi.max(o.hi) }
     }
 
     #[inline(always)]
-    fn grow(self, p: Vec4) -> Box4 {
+    pub(super) fn grow(self, p: Vec4) -> Box4 {
         Box4 { lo: self.lo.min(p), hi: self.hi.max(p) }
     }
 
     #[inline(always)]
-    fn half_area(&self) -> f32 {
+    pub(super) fn half_area(&self) -> f32 {
         let d = self.hi - self.lo;
         if !(d.x >= 0.0 && d.y >= 0.0 && d.z >= 0.0) {
             return 0.0;
@@ -109,22 +110,22 @@ impl Box4 {
         d.x * d.y + d.y * d.z + d.z * d.x
     }
 
-    fn aabb(&self) -> Aabb {
+    pub(super) fn aabb(&self) -> Aabb {
         Aabb { min: self.lo.truncate(), max: self.hi.truncate() }
     }
 }
 
 /// A set's box and the box of its doubled centroids.
 #[derive(Clone, Copy, Debug)]
-struct Bounds {
-    geometry: Box4,
-    centres: Box4,
+pub(super) struct Bounds {
+    pub(super) geometry: Box4,
+    pub(super) centres: Box4,
 }
 
 impl Bounds {
-    const EMPTY: Bounds = Bounds { geometry: Box4::EMPTY, centres: Box4::EMPTY };
+    pub(super) const EMPTY: Bounds = Bounds { geometry: Box4::EMPTY, centres: Box4::EMPTY };
 
-    fn of(refs: &[PrimRef]) -> Bounds {
+    pub(super) fn of(refs: &[PrimRef]) -> Bounds {
         let seq = |refs: &[PrimRef]| {
             refs.iter().fold(Bounds::EMPTY, |b, r| Bounds {
                 geometry: b.geometry.union(Box4 { lo: r.lo, hi: r.hi }),
@@ -138,7 +139,7 @@ impl Bounds {
         }
     }
 
-    fn union(self, o: Bounds) -> Bounds {
+    pub(super) fn union(self, o: Bounds) -> Bounds {
         Bounds { geometry: self.geometry.union(o.geometry), centres: self.centres.union(o.centres) }
     }
 }
@@ -202,6 +203,26 @@ pub struct Bvh2 {
     pub nodes: Vec<Node2>,
     /// The primitives in leaf order.
     pub refs: Vec<PrimRef>,
+}
+
+impl Bvh2 {
+    /// The tree's SAH cost under `p`, over its root's half area: each inner node's half area
+    /// times the traversal cost, and each leaf's times its blocks. 0 for an empty tree.
+    pub fn sah(&self, p: &SahParams) -> f64 {
+        let Some(root) = self.nodes.first() else { return 0.0 };
+        let (mut cost, mut todo) = (0.0f64, vec![0usize]);
+        while let Some(s) = todo.pop() {
+            let n = &self.nodes[s];
+            let area = n.bounds().half_area() as f64;
+            if n.is_leaf() {
+                cost += area * blocks(n.prims().len(), p) as f64;
+            } else {
+                cost += area * p.traversal_cost as f64;
+                todo.extend([n.a as usize, n.b as usize]);
+            }
+        }
+        cost / (root.bounds().half_area() as f64).max(f64::MIN_POSITIVE)
+    }
 }
 
 /// Builds the binary BVH over `refs` (at most [`MAX_PRIMS`]; the callers check).
@@ -287,13 +308,13 @@ fn build_node(
 
 /// `⌈n / block⌉` as the cost of intersecting `n` primitives.
 #[inline]
-fn blocks(n: usize, p: &SahParams) -> f32 {
+pub(super) fn blocks(n: usize, p: &SahParams) -> f32 {
     n.div_ceil(p.block) as f32
 }
 
 /// Maps doubled centroids to bins along each axis.
 #[derive(Clone, Copy, Debug)]
-struct Binner {
+pub(super) struct Binner {
     origin: Vec4,
     /// Bins per unit length (0 along an axis where all centroids coincide).
     scale: Vec4,
@@ -312,13 +333,16 @@ impl Binner {
 
     #[inline(always)]
     fn bins_of(&self, c: Vec4) -> [usize; 3] {
-        // `as usize` saturates (and maps NaN to 0); `min` keeps the top edge in range.
-        let f = ((c - self.origin) * self.scale).to_array();
-        [0, 1, 2].map(|a| (f[a] as usize).min(self.bins - 1))
+        // Clamped as floats (a NaN goes to 0: `max` returns its second operand), then cut to
+        // integers: the bins `(x as usize).min(bins − 1)` gives, without a saturating
+        // conversion to 64 bits on every lane.
+        let f = ((c - self.origin) * self.scale).max(Vec4::ZERO).min(Vec4::splat((self.bins - 1) as f32));
+        let i = f.as_ivec4();
+        [i.x as usize, i.y as usize, i.z as usize]
     }
 
     #[inline(always)]
-    fn bin(&self, c: Vec4, axis: usize) -> usize {
+    pub(super) fn bin(&self, c: Vec4, axis: usize) -> usize {
         self.bins_of(c)[axis]
     }
 }
@@ -338,10 +362,10 @@ const EMPTY_BIN: Bin = Bin { geometry: Box4::EMPTY, count: 0 };
 /// reused by every node of a sequentially built subtree, so that a small node does not pay
 /// for clearing all of them.
 #[derive(Clone, Copy)]
-struct Bins([[Bin; BINS]; 3]);
+pub(super) struct Bins([[Bin; BINS]; 3]);
 
 impl Bins {
-    fn new() -> Bins {
+    pub(super) fn new() -> Bins {
         Bins([[EMPTY_BIN; BINS]; 3])
     }
 
@@ -382,18 +406,23 @@ impl Bins {
 }
 
 /// The cheapest binned plane: primitives in bins `0..=bin` along `axis` go left.
-struct Split {
-    binner: Binner,
-    axis: usize,
-    bin: usize,
+pub(super) struct Split {
+    pub(super) binner: Binner,
+    pub(super) axis: usize,
+    pub(super) bin: usize,
     /// `Σ half_area(side) · blocks(side)` over the two sides.
-    cost: f32,
+    pub(super) cost: f32,
     /// The boxes of the two sides' primitives.
-    left: Box4,
-    right: Box4,
+    pub(super) left: Box4,
+    pub(super) right: Box4,
 }
 
-fn sah_split(refs: &[PrimRef], bounds: &Bounds, p: &SahParams, scratch: &mut Bins) -> Option<Split> {
+pub(super) fn sah_split(
+    refs: &[PrimRef],
+    bounds: &Bounds,
+    p: &SahParams,
+    scratch: &mut Bins,
+) -> Option<Split> {
     let binner = Binner::new(&bounds.centres, refs.len());
     if binner.scale == Vec4::ZERO {
         return None;
@@ -442,7 +471,7 @@ fn sah_split(refs: &[PrimRef], bounds: &Bounds, p: &SahParams, scratch: &mut Bin
 
 /// Moves the primitives whose (doubled) centroid `left` accepts to the front; returns how many
 /// there are and the boxes of the two sides' centroids.
-fn partition(refs: &mut [PrimRef], left: impl Fn(Vec4) -> bool) -> (usize, [Box4; 2]) {
+pub(super) fn partition(refs: &mut [PrimRef], left: impl Fn(Vec4) -> bool) -> (usize, [Box4; 2]) {
     let (mut i, mut j) = (0, refs.len());
     let (mut lc, mut rc) = (Box4::EMPTY, Box4::EMPTY);
     while i < j {
@@ -460,7 +489,7 @@ fn partition(refs: &mut [PrimRef], left: impl Fn(Vec4) -> bool) -> (usize, [Box4
 }
 
 /// Splits at the median centroid along the widest centroid axis; returns `n / 2`.
-fn median_split(refs: &mut [PrimRef], centres: &Box4) -> usize {
+pub(super) fn median_split(refs: &mut [PrimRef], centres: &Box4) -> usize {
     let e = centres.hi - centres.lo;
     let axis = if e.x >= e.y && e.x >= e.z {
         0

@@ -4,7 +4,7 @@
 
 use glam::{Affine3A, Mat3, Quat, Vec3};
 use proptest::prelude::*;
-use renderlab_trace::{brute, Blas, Instance, Kernel, Ray, Tlas};
+use renderlab_trace::{brute, Blas, Instance, Kernel, Ray, Splits, Tlas};
 
 /// A vertex in a box of side 4 around the origin.
 pub fn vertex() -> impl Strategy<Value = Vec3> {
@@ -84,9 +84,17 @@ pub fn ray_seed() -> impl Strategy<Value = ((u64, f32, f32, f32, f32, f32), Vec3
 
 /// The scene's structure with `kernel`.
 pub fn scene(meshes: &[Vec<[Vec3; 3]>], instances: &[Instance], kernel: Kernel) -> Tlas {
-    let blases = meshes.iter().map(|m| Blas::from_triangles(m).unwrap()).collect();
+    scene_with(meshes, instances, kernel, Splits::Auto)
+}
+
+/// [`scene`] with the meshes built with `splits`.
+pub fn scene_with(meshes: &[Vec<[Vec3; 3]>], instances: &[Instance], kernel: Kernel, splits: Splits) -> Tlas {
+    let blases = meshes.iter().map(|m| Blas::from_triangles_with_splits(m, splits).unwrap()).collect();
     Tlas::build(blases, instances).unwrap().with_kernel(kernel)
 }
+
+/// Both bottom-level builds: without cuts and with them.
+pub const SPLITS: [Splits; 2] = [Splits::Never, Splits::Always];
 
 /// Checks every query of `ray` against brute force: the closest hit bit for bit, any-hit's
 /// existence, and the kernels against each other.
