@@ -13,7 +13,7 @@
 //!   spatial one is taken where it costs less than the object one times `1 + bias`
 //!   ([`SplitParams::bias`]). Without the bias the builder's greedy choice rarely cuts (the
 //!   69k-triangle blob's SAH 11.443 → 11.418); with 5 % it cuts where the object split is
-//!   nearly as good, which on the blob gives children that later split better (SAH 11.100,
+//!   nearly as good, which on the blob gives children that later split better (SAH 11.115,
 //!   6 % fewer node tests a bounce or a primary ray), and on the 1M-triangle terrain a worse
 //!   tree (13.863 → 13.977). [`crate::Blas::build`] therefore builds both trees and keeps the
 //!   cheaper ([`Splits::Auto`](crate::Splits)).
@@ -56,9 +56,10 @@ pub struct SplitParams {
 
 /// The bottom levels' splits: every node of 64 references or more may cut, with a bias of 5 %
 /// and at most half as many references more. On the 69k-triangle blob (AMD Zen 3): 3,537 →
-/// 4,583 nodes, 17,942 → 23,212 leaf blocks, SAH 11.443 → 11.100; a bounce ray's node tests
-/// 6.92 → 6.50 and block tests 2.13 → 2.03, a primary ray's 4.68 → 4.38 and 1.22 → 1.13.
-/// (A budget of a quarter: 6.64 node tests; biases of 1 %, 10 % and 30 %: 6.64, 6.52, 6.51.)
+/// 4,547 nodes, 17,942 → 23,032 leaf blocks, SAH 11.443 → 11.115; a bounce ray's node tests
+/// 6.92 → 6.50 and block tests 2.13 → 2.03, a primary ray's 4.68 → 4.37 and 1.22 → 1.13
+/// (callgrind). With a plane per reference: a budget of a quarter, 6.64 node tests; biases of
+/// 1 %, 10 % and 30 %, 6.64, 6.52, 6.51; no bias, 6.78.
 pub const SPLITS: SplitParams = SplitParams { alpha: 0.0, budget: 0.5, bias: 0.05, min_refs: 64 };
 
 /// The builder's tree before it is laid out.
