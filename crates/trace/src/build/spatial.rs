@@ -9,11 +9,12 @@
 //! twice), and the build bins the triangles' clipped parts.
 //!
 //! - **Which splits**: at every node of at least [`SplitParams::min_refs`] references, the best
-//!   binned spatial plane and the best binned object plane are priced by the SAH, and the
+//!   binned object plane and the best binned spatial plane along the same axis are priced by
+//!   the SAH, and the
 //!   spatial one is taken where it costs less than the object one times `1 + bias`
 //!   ([`SplitParams::bias`]). Without the bias the builder's greedy choice rarely cuts (the
 //!   69k-triangle blob's SAH 11.443 → 11.418); with 5 % it cuts where the object split is
-//!   nearly as good, which on the blob gives children that later split better (SAH 11.115,
+//!   nearly as good, which on the blob gives children that later split better (SAH 11.110,
 //!   6 % fewer node tests a bounce or a primary ray), and on the 1M-triangle terrain a worse
 //!   tree (13.863 → 13.977). [`crate::Blas::build`] therefore builds both trees and keeps the
 //!   cheaper ([`Splits::Auto`](crate::Splits)).
@@ -56,9 +57,9 @@ pub struct SplitParams {
 
 /// The bottom levels' splits: every node of 64 references or more may cut, with a bias of 5 %
 /// and at most half as many references more. On the 69k-triangle blob (AMD Zen 3): 3,537 →
-/// 4,547 nodes, 17,942 → 23,032 leaf blocks, SAH 11.443 → 11.115; a bounce ray's node tests
-/// 6.92 → 6.50 and block tests 2.13 → 2.03, a primary ray's 4.68 → 4.37 and 1.22 → 1.13
-/// (callgrind). With a plane per reference: a budget of a quarter, 6.64 node tests; biases of
+/// 4,547 nodes, 17,942 → 23,008 leaf blocks, SAH 11.443 → 11.110; a bounce ray's node tests
+/// 6.92 → 6.51 and block tests 2.13 → 2.03, a primary ray's 4.68 → 4.38 and 1.22 → 1.13
+/// (callgrind). With a plane per reference and on every axis: a budget of a quarter, 6.64 node tests; biases of
 /// 1 %, 10 % and 30 %, 6.64, 6.52, 6.51; no bias, 6.78.
 pub const SPLITS: SplitParams = SplitParams { alpha: 0.0, budget: 0.5, bias: 0.05, min_refs: 64 };
 
@@ -146,7 +147,9 @@ fn build_node<T: Fn(u32) -> [Vec3; 3] + Sync>(
                 Box4 { lo: s.left.lo.max(s.right.lo), hi: s.left.hi.min(s.right.hi) }.half_area()
             });
             let spatial = if budget > 0 && n >= ctx.min_refs && overlap > ctx.min_overlap {
-                spatial_split(&refs, &bounds.geometry, ctx)
+                // Along the object split's axis only: the other two cost twice the binning
+                // and on the 3.3M-triangle blobs bought SAH 16.649 → 16.641.
+                spatial_split(&refs, &bounds.geometry, object.as_ref().map(|s| s.axis), ctx)
             } else {
                 None
             };
@@ -202,7 +205,7 @@ struct SpatialBin {
 
 const EMPTY_SPATIAL: SpatialBin = SpatialBin { geometry: Box4::EMPTY, entries: 0, exits: 0 };
 
-/// The planes of one node: `bins` equal slices of its box along each axis.
+/// The planes of one node: `bins` equal slices of its box along each axis, or along `only`.
 #[derive(Clone, Copy)]
 struct Planes {
     lo: Vec4,
@@ -212,14 +215,21 @@ struct Planes {
 }
 
 impl Planes {
-    fn new(g: &Box4, n: usize) -> Planes {
+    fn new(g: &Box4, n: usize, only: Option<usize>) -> Planes {
         // About one plane per eight references: a small node's triangles then span few bins
         // (on the 3.3M-triangle blobs 24 % less build time than one per reference, SAH 16.637 →
         // 16.641).
         let bins = (n / 8).clamp(4, BINS);
         let extent = g.hi - g.lo;
         let width = extent / bins as f32;
-        let inv = Vec4::select(extent.cmpgt(Vec4::ZERO), bins as f32 / extent, Vec4::ZERO);
+        let mut inv = Vec4::select(extent.cmpgt(Vec4::ZERO), bins as f32 / extent, Vec4::ZERO);
+        if let Some(a) = only {
+            for k in 0..3 {
+                if k != a {
+                    inv[k] = 0.0;
+                }
+            }
+        }
         Planes { lo: g.lo, width, inv, bins }
     }
 
@@ -308,9 +318,10 @@ struct SpatialSplit {
 fn spatial_split<T: Fn(u32) -> [Vec3; 3] + Sync>(
     refs: &[PrimRef],
     g: &Box4,
+    only: Option<usize>,
     ctx: &Ctx<'_, T>,
 ) -> Option<SpatialSplit> {
-    let planes = Planes::new(g, refs.len());
+    let planes = Planes::new(g, refs.len(), only);
     let tri = ctx.tri;
     let bins = if refs.len() >= PAR_BIN {
         refs.par_chunks(CHUNK)
