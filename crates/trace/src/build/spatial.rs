@@ -59,8 +59,8 @@ pub struct SplitParams {
 /// and at most half as many references more. On the 69k-triangle blob (AMD Zen 3): 3,537 →
 /// 4,547 nodes, 17,942 → 23,008 leaf blocks, SAH 11.443 → 11.110; a bounce ray's node tests
 /// 6.92 → 6.51 and block tests 2.13 → 2.03, a primary ray's 4.68 → 4.38 and 1.22 → 1.13
-/// (callgrind). With a plane per reference and on every axis: a budget of a quarter, 6.64 node tests; biases of
-/// 1 %, 10 % and 30 %, 6.64, 6.52, 6.51; no bias, 6.78.
+/// (callgrind). With a plane per reference and on every axis: a budget of a quarter, 6.64
+/// node tests; biases of 1 %, 10 % and 30 %, 6.64, 6.52, 6.51; no bias, 6.78.
 pub const SPLITS: SplitParams = SplitParams { alpha: 0.0, budget: 0.5, bias: 0.05, min_refs: 64 };
 
 /// The builder's tree before it is laid out.
@@ -69,7 +69,9 @@ enum Tree {
     Inner(Box4, Box<[Tree; 2]>),
 }
 
+/// What every node of one build reads.
 struct Ctx<'a, T> {
+    /// A triangle's vertices by its index.
     tri: &'a T,
     p: SahParams,
     /// `alpha` times the root's half area.
@@ -104,6 +106,7 @@ pub fn build<T: Fn(u32) -> [Vec3; 3] + Sync>(
     out
 }
 
+/// Appends `tree` to `out` depth first, each node before its left subtree, then its right one.
 fn lay_out(tree: Tree, out: &mut Bvh2) {
     match tree {
         Tree::Leaf(b, refs) => {
@@ -128,6 +131,10 @@ fn lay_out(tree: Tree, out: &mut Bvh2) {
 /// A node's two sides: references, bounds, and the references each may add.
 type Sides = [(Vec<PrimRef>, Bounds, usize); 2];
 
+/// The subtree over `refs` (with `bounds`) at `depth`, which may add `budget` references: a
+/// spatial split where it is cheaper than the object split by the bias, else the object split,
+/// else a leaf; below [`SAH_DEPTH`], or where the SAH finds no split of a node too large for a
+/// leaf, the median split (as [`super::binned`]).
 fn build_node<T: Fn(u32) -> [Vec3; 3] + Sync>(
     mut refs: Vec<PrimRef>,
     bounds: Bounds,
