@@ -26,8 +26,8 @@ pub const BLAS_SAH: SahParams = SahParams { max_leaf: BLOCK, block: BLOCK, trave
 /// fewer node tests a ray; on the 1M-triangle terrain (an even grid) 1 to 2 % more.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Splits {
-    /// Build with and without cuts, keep the tree of lower SAH cost (the default: about three
-    /// times the plain build's time).
+    /// Build with and without cuts, keep the tree of lower SAH cost (the default: two to three
+    /// times the plain build's time; the terrain's 0.86 → 1.8 s, the 48 blobs' about 2.3 → 7 s).
     #[default]
     Auto,
     /// Never cut (the fastest build).

@@ -46,7 +46,8 @@ pub const PAR_NODE: usize = 4096;
 /// Nodes with at least this many primitives bin (and bound) in parallel.
 pub const PAR_BIN: usize = 1 << 15;
 
-const CHUNK: usize = 1 << 13;
+/// Primitives per parallel chunk of a large node's binning.
+pub(super) const CHUNK: usize = 1 << 13;
 
 /// A primitive as the builder sees it: its box in two 4-lane vectors (so that unions are one
 /// SIMD min and max), with its index in the caller's list stored in the bits of `lo.w`.
@@ -75,7 +76,7 @@ impl PrimRef {
 
     /// Twice the box's centre (lane w meaningless).
     #[inline(always)]
-    pub(super) fn centre2(&self) -> Vec4 {
+    fn centre2(&self) -> Vec4 {
         self.lo + self.hi
     }
 }
@@ -123,7 +124,7 @@ pub(super) struct Bounds {
 }
 
 impl Bounds {
-    pub(super) const EMPTY: Bounds = Bounds { geometry: Box4::EMPTY, centres: Box4::EMPTY };
+    const EMPTY: Bounds = Bounds { geometry: Box4::EMPTY, centres: Box4::EMPTY };
 
     pub(super) fn of(refs: &[PrimRef]) -> Bounds {
         let seq = |refs: &[PrimRef]| {
@@ -139,7 +140,7 @@ impl Bounds {
         }
     }
 
-    pub(super) fn union(self, o: Bounds) -> Bounds {
+    fn union(self, o: Bounds) -> Bounds {
         Bounds { geometry: self.geometry.union(o.geometry), centres: self.centres.union(o.centres) }
     }
 }
@@ -441,23 +442,8 @@ pub(super) fn sah_split(
             continue;
         }
         let row = &bins.0[axis][..nb];
-        // right[i]: the cost of bins i.. as one side, and their count.
-        let mut right = [(0.0f32, 0usize); BINS];
-        let (mut acc, mut count) = (Box4::EMPTY, 0usize);
-        for i in (1..nb).rev() {
-            acc = acc.union(row[i].geometry);
-            count += row[i].count as usize;
-            right[i] = (acc.half_area() * blocks(count, p), count);
-        }
-        let (mut acc, mut count) = (Box4::EMPTY, 0usize);
-        for i in 0..nb - 1 {
-            acc = acc.union(row[i].geometry);
-            count += row[i].count as usize;
-            let (right_cost, right_count) = right[i + 1];
-            if count == 0 || right_count == 0 {
-                continue;
-            }
-            let cost = acc.half_area() * blocks(count, p) + right_cost;
+        let count = |i: usize| row[i].count as usize;
+        if let Some((i, cost)) = sweep(nb, |i| row[i].geometry, count, count, p) {
             if best.is_none_or(|b| cost < b.2) {
                 best = Some((axis, i, cost));
             }
@@ -467,6 +453,43 @@ pub(super) fn sah_split(
     let row = &bins.0[axis][..nb];
     let side = |bins: &[Bin]| bins.iter().fold(Box4::EMPTY, |acc, b| acc.union(b.geometry));
     Some(Split { binner, axis, bin, cost, left: side(&row[..=bin]), right: side(&row[bin + 1..]) })
+}
+
+/// The cheapest of the planes between `nb` bins along one axis by the SAH, given bin `i`'s box
+/// and how many primitives a side gains with it: `to_left(i)` for a side that ends at bin `i`,
+/// `to_right(i)` for one that starts there (the same count for object bins; a spatial bin's
+/// triangles that start and end in it). Planes with an empty side are skipped. Returns the left
+/// side's last bin and `Σ half_area(side) · blocks(side)`; the first of equal costs wins.
+pub(super) fn sweep(
+    nb: usize,
+    geometry: impl Fn(usize) -> Box4,
+    to_left: impl Fn(usize) -> usize,
+    to_right: impl Fn(usize) -> usize,
+    p: &SahParams,
+) -> Option<(usize, f32)> {
+    // right[i]: the cost of bins i.. as one side, and their count.
+    let mut right = [(0.0f32, 0usize); BINS];
+    let (mut acc, mut count) = (Box4::EMPTY, 0usize);
+    for i in (1..nb).rev() {
+        acc = acc.union(geometry(i));
+        count += to_right(i);
+        right[i] = (acc.half_area() * blocks(count, p), count);
+    }
+    let (mut acc, mut count) = (Box4::EMPTY, 0usize);
+    let mut best: Option<(usize, f32)> = None;
+    for i in 0..nb - 1 {
+        acc = acc.union(geometry(i));
+        count += to_left(i);
+        let (right_cost, right_count) = right[i + 1];
+        if count == 0 || right_count == 0 {
+            continue;
+        }
+        let cost = acc.half_area() * blocks(count, p) + right_cost;
+        if best.is_none_or(|b| cost < b.1) {
+            best = Some((i, cost));
+        }
+    }
+    best
 }
 
 /// Moves the primitives whose (doubled) centroid `left` accepts to the front; returns how many

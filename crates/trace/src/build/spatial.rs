@@ -31,13 +31,11 @@
 //!   triangles, and a box only has to hold the part of its triangle it stands for.
 
 use super::binned::{
-    blocks, median_split, partition, sah_split, Bins, Bounds, Box4, Bvh2, Node2, PrimRef, SahParams, BINS,
-    MAX_PRIMS, PAR_BIN, PAR_NODE, SAH_DEPTH,
+    blocks, median_split, partition, sah_split, sweep, Bins, Bounds, Box4, Bvh2, Node2, PrimRef, SahParams,
+    BINS, CHUNK, MAX_PRIMS, PAR_BIN, PAR_NODE, SAH_DEPTH,
 };
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
-
-const CHUNK: usize = 1 << 13;
 
 /// When and how much the build cuts triangles.
 #[derive(Clone, Copy, Debug)]
@@ -345,27 +343,14 @@ fn spatial_split<T: Fn(u32) -> [Vec3; 3] + Sync>(
             continue;
         }
         let row = &bins.0[axis][..nb];
-        let mut right = [0.0f32; BINS];
-        let (mut acc, mut count) = (Box4::EMPTY, 0usize);
-        for i in (1..nb).rev() {
-            acc = acc.union(row[i].geometry);
-            count += row[i].exits as usize;
-            right[i] = if count == 0 { f32::INFINITY } else { acc.half_area() * blocks(count, p) };
-        }
-        let (mut acc, mut count) = (Box4::EMPTY, 0usize);
-        for i in 0..nb - 1 {
-            acc = acc.union(row[i].geometry);
-            count += row[i].entries as usize;
-            if count == 0 {
-                continue;
-            }
-            let cost = acc.half_area() * blocks(count, p) + right[i + 1];
+        let (entries, exits) = (|i: usize| row[i].entries as usize, |i: usize| row[i].exits as usize);
+        if let Some((i, cost)) = sweep(nb, |i| row[i].geometry, entries, exits, p) {
             if best.is_none_or(|b| cost < b.2) {
                 best = Some((axis, i, cost));
             }
         }
     }
-    let (axis, bin, cost) = best.filter(|b| b.2.is_finite())?;
+    let (axis, bin, cost) = best?;
     let row = &bins.0[axis][..nb];
     let side = |bins: &[SpatialBin]| bins.iter().fold(Box4::EMPTY, |acc, b| acc.union(b.geometry));
     let counts = [
